@@ -1,0 +1,366 @@
+/* libball: the ball animation model of Noser, Stern, Stucki and Thalmann,
+ * "Generic 3D Ball Animation Model for Networked Interactive VR Environments".
+ * Equation numbers (eq N) and figures (Fig. N) are the paper's.
+ *
+ * Axes: y up, gravity (0, -g, 0), floor y = floor_level. SI units throughout.
+ * The library never prints, aborts or exits, never allocates inside a step and
+ * keeps no global state: every call returns a ball_status, and a call that
+ * fails leaves the objects it was given exactly as they were. */
+#ifndef BALL_BALL_H
+#define BALL_BALL_H
+
+#include <stddef.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+#if defined(_WIN32)
+#define BALL_API
+#elif defined(__GNUC__)
+#define BALL_API __attribute__((visibility("default")))
+#else
+#define BALL_API
+#endif
+
+#define BALL_VERSION_MAJOR 0
+#define BALL_VERSION_MINOR 1
+#define BALL_VERSION_PATCH 0
+
+#define BALL_MAX_WALLS 16     /* walls per scene, besides the net */
+#define BALL_MAX_RACKETS 4    /* rackets per scene (doubles) */
+#define BALL_MAX_HISTORY 16   /* racket samples a track can keep (the paper's n) */
+#define BALL_MAX_CONTACTS 64  /* exact-mode contacts resolved in one step */
+
+/* ---- status ---------------------------------------------------------- */
+
+typedef enum ball_status {
+  BALL_OK = 0,
+  BALL_EINVAL,      /* a NULL pointer or an argument of the wrong kind */
+  BALL_ENONFINITE,  /* NaN or Inf where a finite number is needed */
+  BALL_ERANGE,      /* a finite value outside its allowed range */
+  BALL_ENOTFOUND,   /* no solution: the ball never gets there */
+  BALL_ESTALE,      /* a racket sample older than the newest one kept */
+  BALL_ENOSPACE,    /* no room left (rackets, walls, samples) */
+  BALL_EPARSE,      /* a scene file that is not valid */
+  BALL_EIO,         /* a file that cannot be read */
+  BALL_ENOMEM,      /* an allocation failed (scene loader only) */
+  BALL_STATUS_COUNT
+} ball_status;
+
+/* A constant English sentence for a status; never NULL. */
+BALL_API const char *ball_strerror(ball_status status);
+
+/* ---- basic types ------------------------------------------------------ */
+
+typedef struct ball_vec3 {
+  double x, y, z;
+} ball_vec3;
+
+/* Effects a scene asks for; the stepper runs only those stages. */
+typedef enum ball_effect {
+  BALL_EFFECT_DRAG = 1u << 0,     /* air friction beta (eq 2) */
+  BALL_EFFECT_SPIN = 1u << 1,     /* spin, its damping and its effect on bounces (eq 4, 11-14) */
+  BALL_EFFECT_FLOOR = 1u << 2,    /* floor bounce (eq 5) */
+  BALL_EFFECT_NET = 1u << 3,      /* the net (Fig. 3, eq 6) */
+  BALL_EFFECT_WALLS = 1u << 4,    /* walls (Fig. 3 on other planes) */
+  BALL_EFFECT_RACKETS = 1u << 5,  /* racket collisions (Fig. 4-9, eq 7-14) */
+  BALL_EFFECT_SOUND = 1u << 6,    /* sound flags on events */
+  BALL_EFFECT_ALL = (1u << 7) - 1u
+} ball_effect;
+
+/* How contacts with static obstacles are found. */
+typedef enum ball_scheme {
+  BALL_SCHEME_SAMPLED = 0,  /* the paper's per-frame tests, as written */
+  BALL_SCHEME_EXACT,        /* contact times in closed form on the analytic path */
+  BALL_SCHEME_COUNT
+} ball_scheme;
+
+/* A rectangle on an axis-aligned vertical plane: the net or a wall.
+ * axis 0: the plane x = position, spanning z in [lo, hi];
+ * axis 2: the plane z = position, spanning x in [lo, hi];
+ * both span y in [bottom, top]. */
+typedef struct ball_plane {
+  int axis;           /* 0 (x plane) or 2 (z plane) */
+  double position;    /* plane coordinate, m */
+  double lo, hi;      /* horizontal extent along the other axis, m (lo < hi) */
+  double bottom, top; /* vertical extent, m (bottom < top) */
+  double damping;     /* netDamping of eq 6, non-dimensional, [0, 1] */
+} ball_plane;
+
+/* ---- rackets (Fig. 4-9, eq 7-15) ------------------------------------- */
+
+typedef enum ball_detect {
+  BALL_DETECT_SPHERE = 0,  /* distance to the racket centre below collision_distance */
+  BALL_DETECT_DISC,        /* the paper's disc test in the racket's moving frame (Fig. 4/5) */
+  BALL_DETECT_SWEPT,       /* ball against the disc moving between samples, exact time of impact */
+  BALL_DETECT_COUNT
+} ball_detect;
+
+typedef enum ball_normal_mode {
+  BALL_NORMAL_REAL = 0,    /* the racket's tracked orientation */
+  BALL_NORMAL_VELOCITY,    /* along the racket velocity (the real normal while still) */
+  BALL_NORMAL_COUNT
+} ball_normal_mode;
+
+typedef enum ball_response {
+  BALL_RESPONSE_RACKET = 0,  /* eq 7: racket velocity direction, clamped speed */
+  BALL_RESPONSE_AUTONOMOUS,  /* eq 8, 9: flies to the partner ("friendly" ball) */
+  BALL_RESPONSE_MIXED,       /* eq 10 */
+  BALL_RESPONSE_PHYSICAL,    /* eq 11-14, with spin */
+  BALL_RESPONSE_COUNT
+} ball_response;
+
+typedef enum ball_level {
+  BALL_LEVEL_CUSTOM = 0,
+  BALL_LEVEL_EASY,      /* sphere test, autonomous, friendly factor 1 */
+  BALL_LEVEL_MID,       /* disc test with velocity normal, mixed 0.8 */
+  BALL_LEVEL_ADVANCED,  /* disc test with real normal, physical with spin */
+  BALL_LEVEL_COUNT
+} ball_level;
+
+typedef struct ball_racket_def {
+  double radius;      /* r_disc, m */
+  int partner;        /* racket the autonomous ball flies to; -1: fly to target */
+  ball_vec3 target;   /* goal point when partner is -1 (its y is ignored: eq 8), m */
+} ball_racket_def;
+
+/* One tracker or network sample of a racket. */
+typedef struct ball_racket_sample {
+  double t;           /* sample time on the sim clock, s */
+  ball_vec3 center;   /* disc centre, m */
+  ball_vec3 normal;   /* disc normal; normalised on entry (must not be ~0) */
+} ball_racket_sample;
+
+/* What a track estimates at a time (interpolated or extrapolated, eq 15). */
+typedef struct ball_racket_pose {
+  ball_vec3 center;    /* m */
+  ball_vec3 normal;    /* unit */
+  ball_vec3 velocity;  /* m/s */
+} ball_racket_pose;
+
+/* ---- the model -------------------------------------------------------- */
+
+typedef struct ball_model {
+  /* dynamics (section 2) */
+  double gravity;             /* g, m/s^2, acts along -y (> 0) */
+  double mass;                /* m, kg (> 0) */
+  double air_friction;        /* beta, kg/s (>= 0); b = m / beta (eq 2) */
+  double radius;              /* ball radius, m (>= 0; 0 is the paper's point ball) */
+  double spin_damping;        /* sDamp of eq 4, s (> 0) */
+  /* floor (eq 5) */
+  double floor_level;         /* m */
+  double floor_damping;       /* floorDamping, [0, 1] */
+  double bounce_threshold;    /* below this vertical speed after a bounce the ball slides, m/s */
+  double sound_threshold;     /* above this vertical speed a bounce makes a sound, m/s */
+  double spin_floor_damping;  /* spinFloorDamping of eq 13, 14, [0, 1] */
+  /* net and walls (Fig. 3, eq 6) */
+  int has_net;                /* 0 or 1 */
+  ball_plane net;             /* the net; damping is netDamping */
+  int n_walls;                /* walls in use, [0, BALL_MAX_WALLS] */
+  ball_plane walls[BALL_MAX_WALLS];
+  /* rackets (section 3, 3.1) */
+  int n_rackets;                              /* [0, BALL_MAX_RACKETS] */
+  ball_racket_def rackets[BALL_MAX_RACKETS];
+  ball_detect detect;                         /* racket collision test */
+  ball_normal_mode normal_mode;               /* racket normal for the disc and swept tests */
+  ball_response response;                     /* racket response */
+  double collision_distance;                  /* d_COLL of the sphere test, m (> 0) */
+  int sleep_frames;                           /* frames without racket tests after a hit, >= 0 */
+  double v_min, v_max;                        /* eq 7 speed clamp, m/s (0 <= v_min <= v_max) */
+  double v_up;                                /* eq 8 vertical launch speed, m/s (> 0) */
+  int v_up_from_racket;                       /* 1: V_up = racket's vertical speed (clamped >= v_up_min) */
+  double friendly_factor;                     /* eq 9, 10, >= 0 (eq 10 uses [0, 1]) */
+  double spin_rack_damping;                   /* eq 12, [0, 1] */
+  int history;                                /* racket samples kept, the paper's n, [2, BALL_MAX_HISTORY] */
+  double extrapolation_time;                  /* eq 15, s (>= 0) */
+  double stale_time;                          /* a racket silent this long does not collide, s (> 0) */
+  /* time (section 4) */
+  double frame_time;          /* real seconds per frame, s (> 0) */
+  double time_base;           /* sim seconds per real second (> 0); scales the ball's speed */
+  /* what to simulate and how */
+  unsigned effects;           /* ball_effect bits */
+  ball_scheme scheme;         /* static obstacle detection */
+  ball_level level;           /* the preset this model started from (informative) */
+  /* initial state */
+  ball_vec3 initial_position; /* m */
+  ball_vec3 initial_velocity; /* m/s */
+  ball_vec3 initial_spin;     /* m/s (the paper's spin is a tangential speed: V x n) */
+} ball_model;
+
+/* Defaults: a tennis ball over a tennis court (23.77 m x 10.97 m, net at
+ * x = 11.885 m, 0.914 m high), exact scheme, every effect but rackets. */
+BALL_API void ball_model_default(ball_model *model);
+
+/* Checks every field; on failure *field (if not NULL) names the first bad one. */
+BALL_API ball_status ball_model_check(const ball_model *model, const char **field);
+
+/* Applies a game level preset (section 4) over the racket fields of model. */
+BALL_API ball_status ball_model_set_level(ball_model *model, ball_level level);
+
+/* Checks one net or wall rectangle; *field names the bad member ("lo", ...). */
+BALL_API ball_status ball_plane_check(const ball_plane *plane, const char **field);
+
+/* Adds a wall; BALL_ENOSPACE when full, BALL_ERANGE/BALL_ENONFINITE on a bad plane. */
+BALL_API ball_status ball_model_add_wall(ball_model *model, const ball_plane *wall);
+
+/* Names of the enums, for files and messages ("sampled", "exact", ...). */
+BALL_API const char *ball_scheme_name(ball_scheme scheme);
+BALL_API const char *ball_detect_name(ball_detect detect);
+BALL_API const char *ball_normal_mode_name(ball_normal_mode mode);
+BALL_API const char *ball_response_name(ball_response response);
+BALL_API const char *ball_level_name(ball_level level);
+BALL_API const char *ball_effect_name(ball_effect effect); /* a single bit */
+
+/* ---- flight segments and prediction (eq 3, 4) ------------------------ */
+
+/* A flight segment: the paper's initial state after a collision ("time reset
+ * to zero"), valid from t0 until the next collision. */
+typedef struct ball_segment {
+  double t0;        /* sim time the segment starts, s */
+  ball_vec3 p0;     /* P0, m */
+  ball_vec3 v0;     /* V0, m/s */
+  ball_vec3 s0;     /* S0, spin, m/s */
+  int grounded;     /* 1: sliding on the floor (vertical motion stopped, eq 5 threshold) */
+} ball_segment;
+
+typedef struct ball_state {
+  ball_vec3 position;  /* m */
+  ball_vec3 velocity;  /* m/s */
+  ball_vec3 spin;      /* m/s */
+} ball_state;
+
+/* State on a segment at sim time t >= seg->t0 (eq 3 and eq 4). */
+BALL_API ball_status ball_segment_eval(const ball_model *model, const ball_segment *seg,
+                                       double t, ball_state *out);
+
+/* Earliest sim time >= t_from when the ball centre is at height y. */
+BALL_API ball_status ball_time_to_height(const ball_model *model, const ball_segment *seg,
+                                         double t_from, double y, double *t);
+
+/* Earliest sim time >= t_from when the centre reaches the plane axis = coord
+ * (axis 0: x, 2: z); BALL_ENOTFOUND if drag stops the ball short of it. */
+BALL_API ball_status ball_time_to_plane(const ball_model *model, const ball_segment *seg,
+                                        double t_from, int axis, double coord, double *t);
+
+/* Next contact of the ball's surface with the floor after t_from, ignoring
+ * every other obstacle: time and centre position. */
+BALL_API ball_status ball_next_floor_contact(const ball_model *model, const ball_segment *seg,
+                                             double t_from, double *t, ball_vec3 *point);
+
+/* Apex of the segment: time and position of the highest point (t0 if falling). */
+BALL_API ball_status ball_apex(const ball_model *model, const ball_segment *seg, double *t,
+                               ball_vec3 *point);
+
+/* ---- static geometry ---------------------------------------------------- */
+
+/* Distance from a sphere's surface to a plane rectangle (< 0: overlapping). */
+BALL_API ball_status ball_sphere_rect_distance(const ball_plane *rect, ball_vec3 center,
+                                               double radius, double *distance);
+
+/* Distance from a sphere's surface to a racket disc (< 0: overlapping). */
+BALL_API ball_status ball_sphere_disc_distance(ball_vec3 disc_center, ball_vec3 disc_normal,
+                                               double disc_radius, ball_vec3 center,
+                                               double radius, double *distance);
+
+/* ---- swept racket test (beyond the paper) ------------------------------ */
+
+/* The ball moving linearly p0 -> p1 while the disc moves c0 -> c1 and turns
+ * n0 -> n1 over the same interval [0, 1]. On a hit, *toi is the first time
+ * of contact in [0, 1] (to 1e-12) and *point the ball centre then. */
+typedef struct ball_swept_query {
+  ball_vec3 p0, p1;      /* ball centre at both ends, m */
+  double ball_radius;    /* m */
+  ball_vec3 c0, c1;      /* disc centre at both ends, m */
+  ball_vec3 n0, n1;      /* disc normal at both ends (need not be unit) */
+  double disc_radius;    /* m */
+} ball_swept_query;
+
+BALL_API ball_status ball_swept_disc(const ball_swept_query *q, int *hit, double *toi,
+                                     ball_vec3 *point);
+
+/* ---- the sim ------------------------------------------------------------ */
+
+typedef enum ball_event_kind {
+  BALL_EVENT_FLOOR = 0,
+  BALL_EVENT_NET,
+  BALL_EVENT_WALL,
+  BALL_EVENT_RACKET,
+  BALL_EVENT_KIND_COUNT
+} ball_event_kind;
+
+typedef struct ball_event {
+  ball_event_kind kind;
+  int index;               /* wall or racket index; 0 for floor and net */
+  double time;             /* sim time of the collision, s */
+  ball_vec3 point;         /* ball centre at the collision (Q), m */
+  ball_vec3 velocity_in;   /* velocity arriving, m/s */
+  ball_vec3 velocity_out;  /* V0 of the new segment, m/s */
+  ball_vec3 spin_out;      /* S0 of the new segment, m/s */
+  int sound;               /* 1: the server should broadcast a sound */
+} ball_event;
+
+typedef enum ball_warning {
+  BALL_WARN_EVENT_OVERFLOW = 0,  /* more events in a step than the caller had room for */
+  BALL_WARN_CONTACT_LIMIT,       /* BALL_MAX_CONTACTS reached in one exact step */
+  BALL_WARN_STALE_RACKET,        /* a racket test skipped because its track was stale */
+  BALL_WARN_COUNT
+} ball_warning;
+
+typedef struct ball_racket_track {
+  int count;                                    /* samples held, [0, history] */
+  ball_racket_sample samples[BALL_MAX_HISTORY]; /* oldest first */
+  int has_prev;                                 /* 1: prev_pose is the pose at the previous frame */
+  ball_racket_pose prev_pose;                   /* for the disc and swept tests */
+} ball_racket_track;
+
+typedef struct ball_sim {
+  double time;                 /* sim clock, s */
+  unsigned long frame;         /* steps taken */
+  ball_segment seg;            /* the current flight segment */
+  ball_vec3 prev_position;     /* ball centre at the end of the previous step (P_old), m */
+  int origin;                  /* what started seg: -1 start, 0 floor, 1 net, 2 + i wall i, 2 + BALL_MAX_WALLS + r racket r */
+  int sleep;                   /* frames left without racket tests */
+  int last_racket;             /* racket of the last hit, -1 if none */
+  ball_racket_track tracks[BALL_MAX_RACKETS];
+  unsigned long warnings[BALL_WARN_COUNT];  /* counts, never printed */
+  unsigned long events_dropped;             /* events that did not fit the caller's array */
+} ball_sim;
+
+/* Starts a sim at time 0 with the model's initial state. */
+BALL_API ball_status ball_sim_init(const ball_model *model, ball_sim *sim);
+
+/* Sets the ball's state at the sim's current time (starts a new segment). */
+BALL_API ball_status ball_sim_set_state(const ball_model *model, ball_sim *sim,
+                                        const ball_state *state);
+
+/* The ball's state at the sim's current time. */
+BALL_API ball_status ball_sim_state(const ball_model *model, const ball_sim *sim,
+                                    ball_state *out);
+
+/* Advances one frame of dt sim seconds (dt >= 0; 0 is a no-op) and writes up
+ * to cap events; *n_events (may be NULL) gets how many were written. Events
+ * that do not fit are counted in sim->events_dropped. */
+BALL_API ball_status ball_step(const ball_model *model, ball_sim *sim, double dt,
+                               ball_event *events, int cap, int *n_events);
+
+/* Feeds a racket sample; samples may arrive late, duplicated or out of order:
+ * one older than the newest kept is rejected with BALL_ESTALE, an exact
+ * duplicate is accepted and ignored. */
+BALL_API ball_status ball_racket_push(const ball_model *model, ball_sim *sim, int racket,
+                                      const ball_racket_sample *sample);
+
+/* The racket's estimated pose at sim time t: interpolated between samples,
+ * extrapolated (eq 15) past the newest. BALL_ENOTFOUND without samples,
+ * BALL_ESTALE if the newest sample is older than stale_time. */
+BALL_API ball_status ball_racket_estimate(const ball_model *model, const ball_sim *sim,
+                                          int racket, double t, ball_racket_pose *out);
+
+/* A hash of the sim's state, to detect desync between peers. */
+BALL_API unsigned long long ball_sim_hash(const ball_sim *sim);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BALL_BALL_H */
