@@ -1,5 +1,5 @@
 /* An outside program using the installed libball. A ball dropped from
- * 1 m falls for sqrt(2 / 9.81) = 0.451523 s before it bounces (eq 3). */
+ * 1 m falls for sqrt(2 / 9.81) = 0.451524 s before it bounces (eq 3). */
 #include <stdio.h>
 
 #include <ball/ball.h>
