@@ -66,4 +66,54 @@ ball_vec3 ball__spin_floor_velocity(const ball_model *m, ball_vec3 spin_air_damp
 /* Checks the racket fields of a model; *field names the bad one. */
 ball_status ball__racket_check(const ball_model *m, const char **field);
 
+/* Racket tests and responses, exposed for the unit tests (racket.c, response.c). */
+
+/* Lowest V_up of eq 8 when it is matched to the racket's vertical speed, m/s. */
+#define BALL__V_UP_MIN 1.0
+/* Fig. 9: n, inverted if the ball's previous position rel_old (relative to the racket) is behind it. */
+ball_vec3 ball__racket_face_normal(ball_vec3 n, ball_vec3 rel_old);
+/* eq 7: V0 along v_racket, speed clamped to [v_min, v_max]; along fallback at v_min when still. */
+ball_vec3 ball__response_racket(const ball_model *m, ball_vec3 v_racket, ball_vec3 fallback);
+/* eq 8: V_up, model->v_up or the racket's vertical speed (>= BALL__V_UP_MIN). */
+double ball__response_v_up(const ball_model *m, ball_vec3 v_racket);
+/* eq 8, 9: V0 flying from q to the goal's (x, z) at q's height, times friendly. */
+ball_vec3 ball__response_autonomous(const ball_model *m, ball_vec3 q, ball_vec3 goal, double v_up,
+                                    double friendly);
+/* eq 10: the friendly velocity mixed with the racket velocity. */
+ball_vec3 ball__response_mixed(ball_vec3 v_friendly, ball_vec3 v_racket, double friendly);
+/* eq 11, 12: V0 and S0 after a physical hit; n is the face normal (Fig. 9),
+ * spin_in the arriving spin with eq 4 applied. */
+void ball__response_physical(const ball_model *m, ball_vec3 v, ball_vec3 spin_in, ball_vec3 n,
+                             ball_vec3 v_racket, ball_vec3 *v0, ball_vec3 *s0);
+/* The sphere test: |p - r| < d_coll. */
+int ball__sphere_test(ball_vec3 p, ball_vec3 r, double d_coll);
+/* Fig. 4, 5: p_old -> p' = p - (r - r_old) against the disc (r_old, unit n,
+ * disc_radius) grown by ball_radius; *s in [0, 1] along the segment, *q the
+ * ball centre at contact carried to the racket's current pose. */
+int ball__disc_test(ball_vec3 p_old, ball_vec3 p, ball_vec3 r_old, ball_vec3 r, ball_vec3 n,
+                    double disc_radius, double ball_radius, double *s, ball_vec3 *q);
+/* A track's pose at t without checks (interpolation, eq 15 past the newest). */
+void ball__racket_pose(const ball_model *m, const ball_racket_track *tr, double t,
+                       ball_racket_pose *out);
+
+/* The swept test over [ta, tb] (swept.c). The ball follows seg (analytic,
+ * when model is not NULL) or moves linearly p0 -> p1; the disc moves linearly
+ * c0 -> c1 and turns n0 -> n1 (normalised lerp) over [tc0, tc1]. */
+typedef struct ball__swept_motion {
+  const ball_model *model;  /* NULL: linear ball motion */
+  const ball_segment *seg;  /* the ball's segment (model not NULL) */
+  double ta, tb;            /* interval searched, s */
+  ball_vec3 p0, p1;         /* ball centre at ta and tb (linear motion), m */
+  double ball_radius;       /* m */
+  double tc0, tc1;          /* times of the two disc poses, s */
+  ball_vec3 c0, c1;         /* disc centre, m */
+  ball_vec3 n0, n1;         /* disc normal (need not be unit) */
+  double disc_radius;       /* m */
+} ball__swept_motion;
+/* First contact (distance to the disc, face or rim, <= the ball radius) in
+ * [ta, tb]; 1 with *t_hit, the ball centre then and the face normal toward
+ * the side the ball came from; 0 if none. */
+int ball__swept_toi(const ball__swept_motion *mo, double *t_hit, ball_vec3 *center,
+                    ball_vec3 *face_normal);
+
 #endif /* BALL_INTERNAL_H */

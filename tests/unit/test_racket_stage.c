@@ -1,0 +1,156 @@
+/* The racket stage inside ball_step: sleep frames (section 3.1), the event a
+ * hit emits, eq 7's restart point, and the swept test's time of impact inside
+ * a frame at 6 Hz where the frame-based tests see the hit late or not at all. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "core_common.h"
+
+static void still_racket_model(ball_model *m, int sleep_frames) {
+  core_model_free(m);
+  m->effects = BALL_EFFECT_RACKETS; /* no drag, no floor: the ball just falls */
+  m->n_rackets = 1;
+  m->detect = BALL_DETECT_SPHERE;
+  m->collision_distance = 1.0;
+  m->response = BALL_RESPONSE_RACKET;
+  m->v_min = 0.5;
+  m->v_max = 40.0;
+  m->sleep_frames = sleep_frames;
+  m->stale_time = 10.0;
+  m->initial_position = core_v3(0, 1, 0);
+}
+
+/* Frames (1-based) in which a racket event came, over `frames` steps of dt. */
+static int hit_frames(const ball_model *m, double dt, int frames, int *which, ball_event *first) {
+  ball_sim sim;
+  ball_event ev[8];
+  int f, n, count = 0;
+  assert_ok(ball_sim_init(m, &sim));
+  assert_ok(ball_racket_push(m, &sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
+  for (f = 1; f <= frames; f++) {
+    assert_ok(ball_step(m, &sim, dt, ev, 8, &n));
+    if (n > 0) {
+      assert_int_equal(n, 1);
+      assert_int_equal(ev[0].kind, BALL_EVENT_RACKET);
+      if (count == 0 && first) *first = ev[0];
+      which[count++] = f;
+    }
+  }
+  return count;
+}
+
+static void sleep_frames_prevent_double_hit_of_one_stroke(void **state) {
+  ball_model m;
+  int which[32], n;
+  (void)state;
+  /* the ball stays within the 1 m collision distance of the still racket for
+   * the whole run (eq 7 sends it off at v_min = 0.5 m/s): every frame would
+   * hit. With 3 sleep frames the hits come every 4th frame: 1, 5, 9. */
+  still_racket_model(&m, 3);
+  n = hit_frames(&m, 0.01, 12, which, NULL);
+  assert_int_equal(n, 3);
+  assert_int_equal(which[0], 1);
+  assert_int_equal(which[1], 5);
+  assert_int_equal(which[2], 9);
+  still_racket_model(&m, 0);
+  n = hit_frames(&m, 0.01, 12, which, NULL);
+  assert_int_equal(n, 12);
+}
+
+static void eq7_hit_event_fields_and_restart_at_q_plus_v0_dt(void **state) {
+  ball_model m;
+  ball_sim sim;
+  ball_event ev[4];
+  ball_state s;
+  int n;
+  (void)state;
+  still_racket_model(&m, 3);
+  m.effects |= BALL_EFFECT_SOUND;
+  m.sound_threshold = 0.4;
+  assert_ok(ball_sim_init(&m, &sim));
+  assert_ok(ball_racket_push(&m, &sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
+  assert_ok(ball_step(&m, &sim, 0.01, ev, 4, &n));
+  assert_int_equal(n, 1);
+  assert_int_equal(ev[0].kind, BALL_EVENT_RACKET);
+  assert_int_equal(ev[0].index, 0);
+  assert_near(ev[0].time, 0.01, 1e-15);
+  /* Q: the ball position at t = 0.01 (sphere test), falling from rest */
+  assert_near(ev[0].point.y, 1.0 - 0.5 * 9.81 * 1e-4, 1e-12);
+  assert_near(ev[0].velocity_in.y, -0.0981, 1e-12);
+  /* still racket: along the face toward the ball's side (-x) at v_min */
+  assert_near(ev[0].velocity_out.x, -0.5, 1e-12);
+  assert_near(ev[0].velocity_out.y, 0.0, 0.0);
+  assert_int_equal(ev[0].sound, 1); /* 0.5 m/s > 0.4 */
+  assert_int_equal(sim.last_racket, 0);
+  assert_int_equal(sim.sleep, 3);
+  /* eq 7: P0 = Q + V0 dt */
+  assert_near(sim.seg.p0.x, ev[0].point.x - 0.5 * 0.01, 1e-15);
+  assert_near(sim.seg.t0, 0.01, 1e-15);
+  assert_ok(ball_sim_state(&m, &sim, &s));
+  assert_near(s.position.x, -0.005, 1e-15);
+}
+
+/* The ball flies +x at 2 m/s; the racket (normal +x) comes from behind at
+ * 20 m/s, sampled at 6 Hz. Without drag x_ball = 2 t and x_racket = -4 + 20 t:
+ * the surfaces (ball radius 0.033) touch when 2 t + 4 - 20 t = 0.033,
+ * t = 3.967 / 18 = 0.22038888... s, inside the second frame [1/6, 2/6]. */
+static int overtake(ball_detect detect, ball_event *hit) {
+  ball_model m;
+  ball_sim sim;
+  ball_event ev[4];
+  int f, n;
+  const double dt = 1.0 / 6.0;
+  core_model_free(&m);
+  m.effects = BALL_EFFECT_RACKETS;
+  m.radius = 0.033;
+  m.n_rackets = 1;
+  m.rackets[0].radius = 0.15;
+  m.detect = detect;
+  m.collision_distance = 0.183;
+  m.response = BALL_RESPONSE_PHYSICAL;
+  m.stale_time = 10.0;
+  m.initial_position = core_v3(0, 1, 0);
+  m.initial_velocity = core_v3(2, 0, 0);
+  assert_ok(ball_sim_init(&m, &sim));
+  for (f = 0; f <= 3; f++) {
+    double t = f * dt;
+    /* the racket follows the ball's height at the sample times */
+    ball_racket_sample s = {t, {-4.0 + 20.0 * t, 1.0 - 0.5 * 9.81 * t * t, 0}, {1, 0, 0}};
+    assert_ok(ball_racket_push(&m, &sim, 0, &s));
+    if (f == 0) continue;
+    assert_ok(ball_step(&m, &sim, dt, ev, 4, &n));
+    if (n > 0) {
+      *hit = ev[0];
+      return f;
+    }
+  }
+  return 0;
+}
+
+static void swept_finds_overtaking_racket_inside_6hz_frame(void **state) {
+  ball_event ev;
+  (void)state;
+  assert_int_equal(overtake(BALL_DETECT_SWEPT, &ev), 2);
+  assert_near(ev.time, 3.967 / 18.0, 1e-9);
+  assert_near(ev.point.x, 2.0 * 3.967 / 18.0, 1e-8);
+  /* eq 11 with the face toward the ball (+x): -2 + n . V_racket = -2 + 20 */
+  assert_near(ev.velocity_in.x, 2.0, 1e-12);
+  assert_near(ev.velocity_out.x, 18.0, 1e-9);
+  /* the disc test sees it at the frame's end; the sphere test not at all */
+  assert_int_equal(overtake(BALL_DETECT_DISC, &ev), 2);
+  assert_near(ev.time, 2.0 / 6.0, 1e-15);
+  assert_int_equal(overtake(BALL_DETECT_SPHERE, &ev), 0);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(sleep_frames_prevent_double_hit_of_one_stroke),
+      cmocka_unit_test(eq7_hit_event_fields_and_restart_at_q_plus_v0_dt),
+      cmocka_unit_test(swept_finds_overtaking_racket_inside_6hz_frame),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
