@@ -34,8 +34,9 @@ static void floor_bounce(const ball_model *m, ball_sim *sim, double t, ball_vec3
   ev->kind = BALL_EVENT_FLOOR;
   ev->index = 0;
   ev->sound = sound(m, v0.y);
-  /* below the bounce threshold the ball stops bouncing and slides (DESIGN 3) */
-  if (v0.y < m->bounce_threshold) {
+  /* below the bounce threshold the ball stops bouncing and slides (DESIGN 3);
+   * so does a bounce too short for the clock to resolve (threshold 0) */
+  if (v0.y < m->bounce_threshold || t + 2.0 * v0.y / m->gravity == t) {
     v0.y = 0.0;
     grounded = 1;
   }
@@ -59,6 +60,7 @@ static void plane_bounce(const ball_model *m, ball_sim *sim, const ball_plane *p
   else
     v0.z = -v0.z;
   v0 = v3_scale(v0, pl->damping);
+  ev->point = q;
   if (pl->axis == 0)
     q.x += v0.x * shift;
   else
@@ -66,7 +68,6 @@ static void plane_bounce(const ball_model *m, ball_sim *sim, const ball_plane *p
   ev->kind = origin == ORIGIN_NET ? BALL_EVENT_NET : BALL_EVENT_WALL;
   ev->index = origin == ORIGIN_NET ? 0 : origin - ORIGIN_WALL(0);
   ev->time = t;
-  ev->point = q;
   ev->velocity_in = s->velocity;
   ev->velocity_out = v0;
   ev->spin_out = s->spin;
@@ -99,19 +100,27 @@ static int plane_contact(const ball_model *m, const ball_segment *seg, const bal
     return 0;
   ball__eval(m, seg, seg->t0 + *tau, &s);
   *q = s.position;
+  /* one ulp back on the approach side: a point ball restarting exactly in
+   * the plane would find the same plane again at tau = 0 (docs/hard-cases.md) */
   if (a == 0)
-    q->x = target;
+    q->x = nextafter(target, v > 0.0 ? -INFINITY : INFINITY);
   else
-    q->z = target;
+    q->z = nextafter(target, v > 0.0 ? -INFINITY : INFINITY);
   return in_extent(pl, *q);
 }
 
 static int floor_contact(const ball_model *m, const ball_segment *seg, double tau_from,
                          double tau_to, double *tau) {
-  double r1, r2;
+  double r1, r2, y_end;
   if (seg->grounded) return 0;
   if (!ball__height_roots(m->gravity, seg->p0.y, seg->v0.y, ball__floor_y(m), &r1, &r2)) return 0;
-  if (r2 < tau_from || r2 > tau_to) return 0;
+  if (r2 < tau_from) return 0;
+  if (r2 > tau_to) {
+    /* a root rounded just past the frame's end while y there is already below: contact now */
+    y_end = seg->p0.y + seg->v0.y * tau_to - 0.5 * m->gravity * tau_to * tau_to;
+    if (!(y_end < ball__floor_y(m)) || seg->v0.y - m->gravity * tau_to > 0.0) return 0;
+    r2 = tau_to;
+  }
   *tau = r2;
   return 1;
 }
@@ -153,6 +162,15 @@ static void step_exact(const ball_model *m, ball_sim *sim, double t_from, double
     else
       plane_bounce(m, sim, plane_of(m, which), which, t_cur, best_q, &s, 0.0, &ev);
     emit(sim, events, cap, n, &ev);
+  }
+  /* Too many contacts (a ball trapped in a corner): rather than let it escape
+   * through an obstacle, it stays where its last contact left it and loses
+   * the rest of the frame. */
+  {
+    ball_segment *seg = &sim->seg;
+    ball_state s;
+    ball__eval(m, seg, t_cur, &s);
+    ball__segment_start(seg, t_end, s.position, s.velocity, s.spin, seg->grounded);
   }
   sim->warnings[BALL_WARN_CONTACT_LIMIT]++;
 }
@@ -276,6 +294,9 @@ ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event 
   t_end = t_prev + dt;
   if (!isfinite(t_end) || sim->seg.t0 > t_prev) return BALL_ERANGE;
   if (dt == 0.0) return BALL_OK;
+  /* a frame whose flight would overflow is refused before anything changes */
+  ball__eval(m, &sim->seg, t_end, &s);
+  if (!v3_finite(s.position) || !v3_finite(s.velocity) || !v3_finite(s.spin)) return BALL_ERANGE;
 
   if (m->scheme == BALL_SCHEME_EXACT)
     step_exact(m, sim, t_prev, t_end, events, cap, &n);
