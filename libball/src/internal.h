@@ -63,6 +63,9 @@ int ball__racket_stage(const ball_model *m, ball_sim *sim, double t_prev, double
  * spinFloorDamping (spinAirDamping S_ball) x n. Implemented in response.c. */
 ball_vec3 ball__spin_floor_velocity(const ball_model *m, ball_vec3 spin_air_damped);
 
+/* ball_model_check limited to the fields of the stages in `stages` (effect bits). */
+ball_status ball__model_check_stages(const ball_model *m, unsigned stages, const char **field);
+
 /* Checks the racket fields of a model; *field names the bad one. */
 ball_status ball__racket_check(const ball_model *m, const char **field);
 

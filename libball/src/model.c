@@ -103,7 +103,10 @@ static ball_status check_vec(ball_vec3 v, const char *name, const char **field) 
   return BALL_OK;
 }
 
-ball_status ball_model_check(const ball_model *m, const char **field) {
+/* Checks the fields every stage reads, and those of the stages in `stages`
+ * (effect bits): the stepper checks only what it will use, so a disabled
+ * effect costs nothing. */
+ball_status ball__model_check_stages(const ball_model *m, unsigned stages, const char **field) {
   ball_status st;
   const char *sub = NULL;
   int i;
@@ -126,7 +129,7 @@ ball_status ball_model_check(const ball_model *m, const char **field) {
   CHECK(m->sound_threshold >= 0.0, "sound_threshold", BALL_ERANGE);
   CHECK_UNIT(m->spin_floor_damping, "spin_floor_damping");
   CHECK(m->has_net == 0 || m->has_net == 1, "has_net", BALL_ERANGE);
-  if (m->has_net) {
+  if (m->has_net && (stages & BALL_EFFECT_NET)) {
     st = ball_plane_check(&m->net, &sub);
     if (st != BALL_OK) {
       if (field) *field = net_field(sub);
@@ -134,12 +137,14 @@ ball_status ball_model_check(const ball_model *m, const char **field) {
     }
   }
   CHECK(m->n_walls >= 0 && m->n_walls <= BALL_MAX_WALLS, "n_walls", BALL_ERANGE);
-  for (i = 0; i < m->n_walls; i++) {
+  for (i = 0; (stages & BALL_EFFECT_WALLS) && i < m->n_walls; i++) {
     st = ball_plane_check(&m->walls[i], &sub);
     CHECK(st == BALL_OK, "walls", st);
   }
-  st = ball__racket_check(m, field);
-  if (st != BALL_OK) return st;
+  if (stages & BALL_EFFECT_RACKETS) {
+    st = ball__racket_check(m, field);
+    if (st != BALL_OK) return st;
+  }
   CHECK_FINITE(m->frame_time, "frame_time");
   CHECK(m->frame_time > 0.0, "frame_time", BALL_ERANGE);
   CHECK_FINITE(m->time_base, "time_base");
@@ -156,6 +161,10 @@ ball_status ball_model_check(const ball_model *m, const char **field) {
   if (ball__has(m, BALL_EFFECT_FLOOR))
     CHECK(m->initial_position.y >= ball__floor_y(m), "initial_position", BALL_ERANGE);
   return BALL_OK;
+}
+
+ball_status ball_model_check(const ball_model *m, const char **field) {
+  return ball__model_check_stages(m, BALL_EFFECT_ALL, field);
 }
 
 ball_status ball_model_add_wall(ball_model *m, const ball_plane *wall) {

@@ -113,6 +113,13 @@ static int floor_contact(const ball_model *m, const ball_segment *seg, double ta
                          double tau_to, double *tau) {
   double r1, r2, y_end;
   if (seg->grounded) return 0;
+  /* a response that put the ball below the floor (eq 7's restart at Q + V0 dt
+   * can) while it moves down: it bounces at once instead of sinking */
+  if (seg->p0.y + seg->v0.y * tau_from - 0.5 * m->gravity * tau_from * tau_from < ball__floor_y(m) &&
+      seg->v0.y - m->gravity * tau_from <= 0.0) {
+    *tau = tau_from;
+    return 1;
+  }
   if (!ball__height_roots(m->gravity, seg->p0.y, seg->v0.y, ball__floor_y(m), &r1, &r2)) return 0;
   if (r2 < tau_from) return 0;
   if (r2 > tau_to) {
@@ -286,7 +293,7 @@ ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event 
   if (!m || !sim || cap < 0 || (cap > 0 && !events)) return BALL_EINVAL;
   if (!isfinite(dt)) return BALL_ENONFINITE;
   if (dt < 0.0) return BALL_ERANGE;
-  st = ball_model_check(m, NULL);
+  st = ball__model_check_stages(m, m->effects, NULL);
   if (st != BALL_OK) return st;
   if (!isfinite(sim->time) || !segment_finite(&sim->seg) || !v3_finite(sim->prev_position))
     return BALL_ENONFINITE;

@@ -169,7 +169,7 @@ typedef struct ball_model {
   int sleep_frames;                           /* frames without racket tests after a hit, >= 0 */
   double v_min, v_max;                        /* eq 7 speed clamp, m/s (0 <= v_min <= v_max) */
   double v_up;                                /* eq 8 vertical launch speed, m/s (> 0) */
-  int v_up_from_racket;                       /* 1: V_up = racket's vertical speed (clamped >= v_up_min) */
+  int v_up_from_racket;                       /* 1: V_up = the racket's vertical speed (at least 1 m/s) */
   double friendly_factor;                     /* eq 9, 10, >= 0 (eq 10 uses [0, 1]) */
   double spin_rack_damping;                   /* eq 12, [0, 1] */
   int history;                                /* racket samples kept, the paper's n, [2, BALL_MAX_HISTORY] */

@@ -1,0 +1,121 @@
+/* Helpers shared by the core's unit tests (test_flight.c, test_floor.c,
+ * test_planes.c, test_schemes.c, test_inputs.c, test_effects.c): a tolerance
+ * assertion that prints both numbers, the base scenes, and a stepping loop
+ * that collects events. Include after <cmocka.h>. */
+#ifndef BALL_TESTS_CORE_COMMON_H
+#define BALL_TESTS_CORE_COMMON_H
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "ball/ball.h"
+
+/* |got - want| <= tol, with both numbers in the failure message. */
+#define assert_near(got, want, tol) core_assert_near((got), (want), (tol), #got, __FILE__, __LINE__)
+
+static inline void core_assert_near(double got, double want, double tol, const char *expr,
+                             const char *file, int line) {
+  if (!(fabs(got - want) <= tol)) {
+    print_error("%s = %.17g, want %.17g +- %.3g (off by %.3g)\n", expr, got, want, tol,
+                fabs(got - want));
+    _fail(file, line);
+  }
+}
+
+/* Relative version: |got - want| <= rel * |want|. */
+#define assert_rel(got, want, rel) \
+  core_assert_near((got), (want), (rel) * fabs(want), #got, __FILE__, __LINE__)
+
+#define assert_ok(call) assert_int_equal((call), BALL_OK)
+
+/* A point ball in free space: no obstacles, no spin, no sound, drag with
+ * b = m / beta = 2 s, floor at 0, exact scheme. Tests switch on what they need. */
+static inline void core_model_free(ball_model *m) {
+  ball_model_default(m);
+  m->mass = 0.05;
+  m->air_friction = 0.025; /* b = 2 s */
+  m->radius = 0.0;
+  m->has_net = 0;
+  m->n_walls = 0;
+  m->n_rackets = 0;
+  m->effects = BALL_EFFECT_DRAG | BALL_EFFECT_FLOOR;
+  m->scheme = BALL_SCHEME_EXACT;
+  m->initial_position.x = 0.0;
+  m->initial_position.y = 1.0;
+  m->initial_position.z = 0.0;
+  m->initial_velocity.x = 0.0;
+  m->initial_velocity.y = 0.0;
+  m->initial_velocity.z = 0.0;
+  m->initial_spin.x = 0.0;
+  m->initial_spin.y = 0.0;
+  m->initial_spin.z = 0.0;
+}
+
+static inline ball_vec3 core_v3(double x, double y, double z) {
+  ball_vec3 r;
+  r.x = x;
+  r.y = y;
+  r.z = z;
+  return r;
+}
+
+static inline ball_segment core_segment(double t0, ball_vec3 p0, ball_vec3 v0, ball_vec3 s0) {
+  ball_segment seg;
+  memset(&seg, 0, sizeof seg);
+  seg.t0 = t0;
+  seg.p0 = p0;
+  seg.v0 = v0;
+  seg.s0 = s0;
+  seg.grounded = 0;
+  return seg;
+}
+
+/* Events collected over a run. */
+#define CORE_MAX_EVENTS 512
+typedef struct core_run {
+  int n;                             /* events kept */
+  ball_event ev[CORE_MAX_EVENTS];    /* in order */
+  unsigned long frames;              /* steps taken */
+} core_run;
+
+/* Steps a fresh sim of m for `frames` frames of dt and collects the events.
+ * Fails the test on any status but BALL_OK or on more events than fit. */
+static inline void core_simulate(const ball_model *m, double dt, unsigned long frames, core_run *run,
+                          ball_sim *sim_out) {
+  ball_sim sim;
+  ball_event ev[BALL_MAX_CONTACTS + 4];
+  unsigned long f;
+  int k, n;
+  assert_ok(ball_sim_init(m, &sim));
+  run->n = 0;
+  run->frames = 0;
+  for (f = 0; f < frames; f++) {
+    assert_ok(ball_step(m, &sim, dt, ev, (int)(sizeof ev / sizeof ev[0]), &n));
+    for (k = 0; k < n; k++) {
+      assert_true(run->n < CORE_MAX_EVENTS);
+      run->ev[run->n++] = ev[k];
+    }
+    run->frames++;
+  }
+  assert_int_equal(sim.events_dropped, 0);
+  if (sim_out) *sim_out = sim;
+}
+
+/* Kinetic plus potential energy: m v^2 / 2 + m g y. */
+static inline double core_energy(const ball_model *m, ball_vec3 v, double y) {
+  return 0.5 * m->mass * (v.x * v.x + v.y * v.y + v.z * v.z) + m->mass * m->gravity * y;
+}
+
+/* A small deterministic generator for seeded random shots (no libc rand:
+ * the same numbers on every platform). */
+typedef struct core_rng {
+  unsigned long long s;
+} core_rng;
+
+static inline double core_uniform(core_rng *r, double lo, double hi) {
+  r->s = r->s * 6364136223846793005ULL + 1442695040888963407ULL;
+  return lo + (hi - lo) * ((double)(r->s >> 11) / 9007199254740992.0);
+}
+
+#endif /* BALL_TESTS_CORE_COMMON_H */
