@@ -1,0 +1,82 @@
+// Shared pieces of the cross-checks: options, seeded sampling, summaries.
+#ifndef BALL_VALIDATION_COMMON_H
+#define BALL_VALIDATION_COMMON_H
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ball/ball.h"
+
+namespace bv {
+
+// How much of each check to run; quick is for ctest, full for the report.
+struct Options {
+  bool full = false;
+  std::uint64_t seed = 20240601;  // every sample set derives its stream from this
+  int flights = 500;              // MuJoCo flight comparisons
+  int contacts = 300;             // MuJoCo floor / net-plane crossings
+  int statics = 5000;             // FCL static configurations per obstacle kind
+  int swept = 500;                // FCL swept motions per motion set
+  double sweep_min_time = 0.02;   // s of wall clock per timed sweep cell
+  std::string csv_path;           // integrator sweep table (CSV)
+};
+
+// One line of the final table: a named check, its numbers and its verdict.
+struct Outcome {
+  std::string check;  // validate_flight, ...
+  bool pass = true;
+  std::vector<std::string> lines;  // human-readable findings, printed in order
+};
+
+// A seeded stream per sample set, so a set does not change when another grows.
+class Rng {
+ public:
+  Rng(std::uint64_t seed, std::uint64_t stream) : gen_(seed * 0x9E3779B97F4A7C15ull + stream) {}
+  double uniform(double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(gen_); }
+  double log_uniform(double lo, double hi) { return std::exp(uniform(std::log(lo), std::log(hi))); }
+  bool chance(double p) { return uniform(0.0, 1.0) < p; }
+  ball_vec3 unit() {  // uniform on the unit sphere
+    double z = uniform(-1.0, 1.0), a = uniform(0.0, 2.0 * M_PI), s = std::sqrt(1.0 - z * z);
+    return ball_vec3{s * std::cos(a), s * std::sin(a), z};
+  }
+  ball_vec3 box(ball_vec3 lo, ball_vec3 hi) {
+    return ball_vec3{uniform(lo.x, hi.x), uniform(lo.y, hi.y), uniform(lo.z, hi.z)};
+  }
+
+ private:
+  std::mt19937_64 gen_;
+};
+
+inline ball_vec3 add(ball_vec3 a, ball_vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+inline ball_vec3 sub(ball_vec3 a, ball_vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+inline ball_vec3 scale(ball_vec3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
+inline double dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+inline double norm(ball_vec3 a) { return std::sqrt(dot(a, a)); }
+inline ball_vec3 cross(ball_vec3 a, ball_vec3 b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+inline ball_vec3 lerp(ball_vec3 a, ball_vec3 b, double u) { return add(a, scale(sub(b, a), u)); }
+
+// printf into a std::string.
+std::string fmt(const char *format, ...) __attribute__((format(printf, 1, 2)));
+
+// Wall-clock seconds since an arbitrary origin.
+inline double now_s() {
+  using clock = std::chrono::steady_clock;
+  return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
+}
+
+// The checks (mujoco_check.cpp, fcl_check.cpp).
+Outcome check_flight(const Options &opt);
+Outcome check_contacts(const Options &opt);
+Outcome check_sweep(const Options &opt);
+Outcome check_static(const Options &opt);
+Outcome check_swept(const Options &opt);
+
+}  // namespace bv
+
+#endif  // BALL_VALIDATION_COMMON_H

@@ -1,0 +1,120 @@
+// ball_validate: libball against MuJoCo 2.2 (flight, contacts, integrators)
+// and FCL 0.7 (static verdicts, swept racket test). Exit status 0 when every
+// check that ran passed.
+#include <algorithm>
+#include <cstdarg>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "common.h"
+
+#ifndef BALL_VALIDATION_CSV
+#define BALL_VALIDATION_CSV "integrator_sweep.csv"
+#endif
+
+namespace bv {
+
+std::string fmt(const char *format, ...) {
+  va_list ap, ap2;
+  va_start(ap, format);
+  va_copy(ap2, ap);
+  int n = std::vsnprintf(nullptr, 0, format, ap);
+  va_end(ap);
+  std::string s(n > 0 ? static_cast<size_t>(n) : 0, '\0');
+  std::vsnprintf(&s[0], s.size() + 1, format, ap2);
+  va_end(ap2);
+  return s;
+}
+
+}  // namespace bv
+
+namespace {
+
+void usage(FILE *f) {
+  std::fprintf(f,
+               "usage: ball_validate [--quick | --full] [--check NAME]... [--seed N] [--csv PATH]\n"
+               "  --quick       a few seconds of samples (default; what ctest runs)\n"
+               "  --full        the report: 10,000 flights, 100,000 static configurations per\n"
+               "                obstacle, 10,000 swept motions per set, a timed integrator sweep\n"
+               "  --check NAME  run only flight, contacts, sweep, static or swept (repeatable)\n"
+               "  --seed N      seed of every sample set (default 20240601)\n"
+               "  --csv PATH    where the integrator sweep table goes (default %s)\n",
+               BALL_VALIDATION_CSV);
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  bv::Options opt;
+  opt.csv_path = BALL_VALIDATION_CSV;
+  std::vector<std::string> only;
+  for (int i = 1; i < argc; i++) {
+    std::string a = argv[i];
+    if (a == "--quick") {
+      opt.full = false;
+    } else if (a == "--full") {
+      opt.full = true;
+    } else if (a == "--check" && i + 1 < argc) {
+      only.push_back(argv[++i]);
+    } else if (a == "--seed" && i + 1 < argc) {
+      opt.seed = std::strtoull(argv[++i], nullptr, 10);
+    } else if (a == "--csv" && i + 1 < argc) {
+      opt.csv_path = argv[++i];
+    } else if (a == "--help" || a == "-h") {
+      usage(stdout);
+      return 0;
+    } else {
+      usage(stderr);
+      return 2;
+    }
+  }
+  if (opt.full) {
+    opt.flights = 10000;
+    opt.contacts = 2000;
+    opt.statics = 100000;
+    opt.swept = 10000;
+    opt.sweep_min_time = 0.5;
+  }
+  struct Check {
+    const char *name;
+    std::function<bv::Outcome(const bv::Options &)> run;
+  };
+  const Check checks[] = {{"flight", bv::check_flight},
+                          {"contacts", bv::check_contacts},
+                          {"sweep", bv::check_sweep},
+                          {"static", bv::check_static},
+                          {"swept", bv::check_swept}};
+  for (const std::string &name : only) {
+    bool known = false;
+    for (const Check &c : checks) known = known || name == c.name;
+    if (!known) {
+      std::fprintf(stderr, "ball_validate: unknown check '%s'\n", name.c_str());
+      usage(stderr);
+      return 2;
+    }
+  }
+  std::printf("ball_validate %s mode, seed %llu, libball %d.%d.%d\n", opt.full ? "full" : "quick",
+              static_cast<unsigned long long>(opt.seed), BALL_VERSION_MAJOR, BALL_VERSION_MINOR,
+              BALL_VERSION_PATCH);
+  bool all = true;
+  std::vector<std::pair<std::string, bool>> summary;
+  for (const Check &c : checks) {
+    if (!only.empty() && std::find(only.begin(), only.end(), c.name) == only.end()) continue;
+    double t0 = bv::now_s();
+    bv::Outcome o = c.run(opt);
+    std::printf("\n== %s: %s (%.1f s)\n", o.check.c_str(), o.pass ? "PASS" : "FAIL", bv::now_s() - t0);
+    for (const std::string &l : o.lines)
+      if (!l.empty()) std::printf("  %s\n", l.c_str());
+    std::fflush(stdout);
+    summary.emplace_back(o.check, o.pass);
+    all = all && o.pass;
+  }
+  std::printf("\n");
+  for (const auto &s : summary) std::printf("%-20s %s\n", s.first.c_str(), s.second ? "PASS" : "FAIL");
+  return all ? 0 : 1;
+}
