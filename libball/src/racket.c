@@ -103,6 +103,13 @@ ball_status ball_racket_push(const ball_model *m, ball_sim *sim, int racket,
   /* not strictly newer (older, or the same time with other data): the first
    * sample for a time wins, so a replayed or reordered stream gives one track */
   if (tr->count > 0 && !(s.t > tr->samples[tr->count - 1].t)) return BALL_ESTALE;
+  /* the velocity this sample implies must be a number: samples a subnormal
+   * time apart would make it infinite and poison the ball's velocity */
+  if (tr->count > 0) {
+    const ball_racket_sample *last = &tr->samples[tr->count - 1];
+    if (!v3_finite(v3_scale(v3_sub(s.center, last->center), 1.0 / (s.t - last->t))))
+      return BALL_ERANGE;
+  }
   keep = history_of(m);
   while (tr->count >= keep) {
     memmove(&tr->samples[0], &tr->samples[1], (size_t)(tr->count - 1) * sizeof s);
@@ -379,6 +386,7 @@ int ball__racket_stage(const ball_model *m, ball_sim *sim, double t_prev, double
   for (i = 0; i < m->n_rackets; i++) {
     ball_status st = ball_racket_estimate(m, sim, i, t, &now[i]);
     ok[i] = st == BALL_OK ? 1 : st == BALL_ESTALE ? -1 : 0;
+    if (ok[i] > 0 && !(v3_finite(now[i].center) && v3_finite(now[i].velocity))) ok[i] = 0;
   }
   if (sim->sleep > 0) {
     sim->sleep--; /* no racket tests for sleep_frames frames after a hit */

@@ -184,16 +184,17 @@ static void step_exact(const ball_model *m, ball_sim *sim, double t_from, double
 
 /* ---- sampled scheme: the paper's per-frame tests (Fig. 1, Fig. 3) ---- */
 
-/* Fig. 3: the segment p_old -> p against the plane (moved by the radius toward p_old). */
+/* Fig. 3: the segment p_old -> p against the plane (moved by the radius
+ * toward p_old); *s is where along the segment it crosses. */
 static int plane_crossing(const ball_model *m, const ball_plane *pl, ball_vec3 p_old, ball_vec3 p,
-                          ball_vec3 *q) {
+                          double *s, ball_vec3 *q) {
   int a = pl->axis;
-  double xo = v3_axis(p_old, a), x = v3_axis(p, a), target, s;
+  double xo = v3_axis(p_old, a), x = v3_axis(p, a), target;
   if (xo == x) return 0; /* segment parallel to the plane */
   target = pl->position - (x > xo ? m->radius : -m->radius);
-  s = (target - xo) / (x - xo);
-  if (!(s >= 0.0 && s <= 1.0)) return 0;
-  *q = v3_lerp(p_old, p, s);
+  *s = (target - xo) / (x - xo);
+  if (!(*s >= 0.0 && *s <= 1.0)) return 0;
+  *q = v3_lerp(p_old, p, *s);
   if (a == 0)
     q->x = target;
   else
@@ -203,26 +204,35 @@ static int plane_crossing(const ball_model *m, const ball_plane *pl, ball_vec3 p
 
 static void step_sampled(const ball_model *m, ball_sim *sim, double t_end, double dt,
                          ball_event *events, int cap, int *n) {
-  ball_state s;
+  ball_state st;
   ball_event ev;
-  ball_vec3 q;
+  ball_vec3 q, best_q = v3(0.0, 0.0, 0.0);
+  double s, best = INFINITY;
   int i, origin = -1;
-  ball__eval(m, &sim->seg, t_end, &s);
+  ball__eval(m, &sim->seg, t_end, &st);
+  /* the first plane the frame's segment crosses (one plane collision a frame) */
   if (ball__has(m, BALL_EFFECT_NET) && m->has_net &&
-      plane_crossing(m, &m->net, sim->prev_position, s.position, &q))
+      plane_crossing(m, &m->net, sim->prev_position, st.position, &s, &q)) {
+    best = s;
+    best_q = q;
     origin = ORIGIN_NET;
-  if (origin < 0 && ball__has(m, BALL_EFFECT_WALLS))
-    for (i = 0; i < m->n_walls && origin < 0; i++)
-      if (plane_crossing(m, &m->walls[i], sim->prev_position, s.position, &q)) origin = ORIGIN_WALL(i);
+  }
+  if (ball__has(m, BALL_EFFECT_WALLS))
+    for (i = 0; i < m->n_walls; i++)
+      if (plane_crossing(m, &m->walls[i], sim->prev_position, st.position, &s, &q) && s < best) {
+        best = s;
+        best_q = q;
+        origin = ORIGIN_WALL(i);
+      }
   if (origin >= 0) {
     /* eq 6: velocity now, restart at Q pushed dt / 10 along the new velocity */
-    plane_bounce(m, sim, plane_of(m, origin), origin, t_end, q, &s, dt / 10.0, &ev);
+    plane_bounce(m, sim, plane_of(m, origin), origin, t_end, best_q, &st, dt / 10.0, &ev);
     emit(sim, events, cap, n, &ev);
-    ball__eval(m, &sim->seg, t_end, &s);
+    ball__eval(m, &sim->seg, t_end, &st);
   }
-  /* Fig. 1, eq 5: below the floor at the end of the frame */
-  if (ball__has(m, BALL_EFFECT_FLOOR) && !sim->seg.grounded && s.position.y < ball__floor_y(m)) {
-    floor_bounce(m, sim, t_end, s.position, &s, &ev);
+/* Fig. 1, eq 5: below the floor at the end of the frame */
+  if (ball__has(m, BALL_EFFECT_FLOOR) && !sim->seg.grounded && st.position.y < ball__floor_y(m)) {
+    floor_bounce(m, sim, t_end, st.position, &st, &ev);
     emit(sim, events, cap, n, &ev);
   }
 }

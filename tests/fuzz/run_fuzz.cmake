@@ -1,0 +1,58 @@
+# Builds the libFuzzer harnesses with clang in WORK_DIR/build and runs each
+# for SECONDS from the seed corpus (docs/hard-cases.md):
+#   cmake -DSOURCE_DIR=<repo> -DWORK_DIR=<dir> -DSECONDS=10 [-DGENERATOR=Ninja]
+#         [-DJOBS=1] -P run_fuzz.cmake
+# New inputs the fuzzer finds go to WORK_DIR/found/<harness>, never into the
+# repository; a crash leaves its input in WORK_DIR (crash-*, leak-*, ...).
+foreach(var SOURCE_DIR WORK_DIR SECONDS)
+  if(NOT DEFINED ${var})
+    message(FATAL_ERROR "run_fuzz.cmake: -D${var}=... is required")
+  endif()
+endforeach()
+if(NOT GENERATOR)
+  set(GENERATOR Ninja)
+endif()
+if(NOT JOBS)
+  set(JOBS 1)
+endif()
+find_program(CLANG NAMES clang clang-14)
+if(NOT CLANG)
+  message(FATAL_ERROR "clang not found: install clang and libclang-rt-14-dev (./run setup does)")
+endif()
+
+set(build ${WORK_DIR}/build)
+execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${build} -G ${GENERATOR}
+    -DCMAKE_C_COMPILER=${CLANG} -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBALL_FUZZ=ON
+    -DBALL_BUILD_VALIDATION=OFF
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "configuring the clang fuzz build failed:\n${out}")
+endif()
+execute_process(COMMAND ${CMAKE_COMMAND} --build ${build} --target fuzz_scene fuzz_sim
+  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "building the fuzz harnesses failed:\n${out}")
+endif()
+
+# the scene harness also starts from the example scenes
+set(corpus_scene ${SOURCE_DIR}/tests/fuzz/corpus/scene ${SOURCE_DIR}/libball/scenes)
+set(corpus_sim ${SOURCE_DIR}/tests/fuzz/corpus/sim)
+set(parallel "")
+if(JOBS GREATER 1)
+  set(parallel -jobs=${JOBS} -workers=${JOBS})
+endif()
+foreach(harness scene sim)
+  set(found ${WORK_DIR}/found/${harness})
+  file(MAKE_DIRECTORY ${found})
+  message(STATUS "fuzz_${harness}: ${SECONDS} s from ${corpus_${harness}}")
+  execute_process(COMMAND ${build}/tests/fuzz_${harness}
+      -max_total_time=${SECONDS} -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
+      ${parallel} -artifact_prefix=${WORK_DIR}/ ${found} ${corpus_${harness}}
+    WORKING_DIRECTORY ${WORK_DIR}
+    RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
+  string(REGEX MATCHALL "stat::number_of_executed_units: [0-9]+" runs "${out}")
+  message(STATUS "fuzz_${harness}: ${runs}")
+  if(NOT rc EQUAL 0)
+    message(FATAL_ERROR "fuzz_${harness} failed (${rc}); the input is in ${WORK_DIR}:\n${out}")
+  endif()
+endforeach()

@@ -1,0 +1,583 @@
+/* Hard cases of contacts (docs/hard-cases.md, section 4): a ball exactly on
+ * the floor, starting inside the net, moving parallel to the net plane,
+ * grazing the net's top and side edges, several contacts in one frame (net
+ * then floor, a corner of two walls, corner and floor at once), a ball wedged
+ * between a wall and the floor, the resting ball, a ball rolling into the
+ * net, more contacts in a frame than BALL_MAX_CONTACTS. Gravity 8 m/s^2 and
+ * speeds that are powers of two make the grazing cases exact in binary. */
+#include <float.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+#include <cmocka.h>
+
+#include "ball/ball.h"
+
+#define NEAR(a, b, tol)                                                                   \
+  do {                                                                                    \
+    double a_ = (a), b_ = (b), t_ = (tol);                                                \
+    if (!(fabs(a_ - b_) <= t_))                                                           \
+      fail_msg("%s = %.17g, expected %s = %.17g within %g", #a, a_, #b, b_, t_);          \
+  } while (0)
+
+#define AT_LEAST(a, b)                                                                    \
+  do {                                                                                    \
+    double a_ = (a), b_ = (b);                                                            \
+    if (!(a_ >= b_)) fail_msg("%s = %.17g, expected >= %.17g", #a, a_, b_);               \
+  } while (0)
+
+#define AT_MOST(a, b)                                                                     \
+  do {                                                                                    \
+    double a_ = (a), b_ = (b);                                                            \
+    if (!(a_ <= b_)) fail_msg("%s = %.17g, expected <= %.17g", #a, a_, b_);               \
+  } while (0)
+
+static ball_vec3 vec(double x, double y, double z) {
+  ball_vec3 r;
+  r.x = x;
+  r.y = y;
+  r.z = z;
+  return r;
+}
+
+/* Floor and net, no drag, no spin, exact scheme, g = 8, the paper's point
+ * ball; the default tennis net at x = 11.885, z in [0, 10.97], y in [0, 0.914]. */
+static void model_of(ball_model *m, unsigned effects, double radius) {
+  ball_model_default(m);
+  m->effects = effects;
+  m->scheme = BALL_SCHEME_EXACT;
+  m->gravity = 8.0;
+  m->radius = radius;
+}
+
+static void start(ball_model *m, ball_sim *sim, ball_vec3 p, ball_vec3 v) {
+  m->initial_position = p;
+  m->initial_velocity = v;
+  m->initial_spin = vec(0.0, 0.0, 0.0);
+  assert_int_equal(ball_sim_init(m, sim), BALL_OK);
+}
+
+static void wall(ball_model *m, int axis, double position, double lo, double hi, double damping) {
+  ball_plane w;
+  w.axis = axis;
+  w.position = position;
+  w.lo = lo;
+  w.hi = hi;
+  w.bottom = m->floor_level;
+  w.top = m->floor_level + 10.0;
+  w.damping = damping;
+  assert_int_equal(ball_model_add_wall(m, &w), BALL_OK);
+}
+
+static void state_of(const ball_model *m, const ball_sim *sim, ball_state *st) {
+  assert_int_equal(ball_sim_state(m, sim, st), BALL_OK);
+  assert_true(isfinite(st->position.x) && isfinite(st->position.y) && isfinite(st->position.z));
+  assert_true(isfinite(st->velocity.x) && isfinite(st->velocity.y) && isfinite(st->velocity.z));
+}
+
+/* Counts events of each kind over frames; checks every event is finite. */
+typedef struct tally {
+  int kind[BALL_EVENT_KIND_COUNT];
+  int total;
+  ball_event first, last;
+} tally;
+
+static void run(const ball_model *m, ball_sim *sim, int frames, double dt, tally *t) {
+  ball_event ev[BALL_MAX_CONTACTS + 2];
+  int f, n, i;
+  for (f = 0; f < frames; f++) {
+    assert_int_equal(ball_step(m, sim, dt, ev, BALL_MAX_CONTACTS + 2, &n), BALL_OK);
+    for (i = 0; i < n; i++) {
+      assert_true(isfinite(ev[i].time) && isfinite(ev[i].velocity_out.x) &&
+                  isfinite(ev[i].velocity_out.y) && isfinite(ev[i].velocity_out.z));
+      if (t->total == 0) t->first = ev[i];
+      t->last = ev[i];
+      t->kind[ev[i].kind]++;
+      t->total++;
+    }
+  }
+}
+
+/* ---- on the floor ------------------------------------------------------- */
+
+/* A ball placed exactly on the floor at rest (floor_level -1.5, radius 0.033):
+ * at most one floor event of zero speed, then grounded (eq 5 threshold), and
+ * y = floor_level + radius to the bit for 10 s, in both schemes. */
+static void test_ball_at_rest_exactly_on_floor_stays_there_eq5(void **state) {
+  int scheme;
+  (void)state;
+  for (scheme = 0; scheme < 2; scheme++) {
+    ball_model m;
+    ball_sim sim;
+    ball_state st;
+    tally t;
+    int f;
+    memset(&t, 0, sizeof t);
+    model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, 0.033);
+    m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
+    m.floor_level = -1.5;
+    start(&m, &sim, vec(3.0, -1.5 + 0.033, 4.0), vec(0.0, 0.0, 0.0));
+    for (f = 0; f < 600; f++) {
+      run(&m, &sim, 1, 1.0 / 60.0, &t);
+      state_of(&m, &sim, &st);
+      NEAR(st.position.y, -1.5 + 0.033, 0.0);
+      NEAR(st.position.x, 3.0, 0.0);
+    }
+    AT_MOST(t.total, 1);
+    if (t.total) NEAR(t.first.velocity_out.y, 0.0, 0.0);
+    assert_int_equal(sim.seg.grounded, 1);
+  }
+}
+
+/* Sliding exactly on the floor at 5 m/s with drag: y stays on the floor, x
+ * follows eq 3 (X0 + V0x b (1 - e^(-t/b))) and nothing bounces. The exact
+ * scheme may first register a zero-speed touchdown (eq 5 at V0y = 0, which
+ * also damps V0x by floorDamping): then V0x is that event's. */
+static void test_ball_sliding_on_floor_follows_eq3(void **state) {
+  ball_model m;
+  ball_sim sim;
+  ball_state st;
+  tally t;
+  double b;
+  (void)state;
+  memset(&t, 0, sizeof t);
+  model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_DRAG, 0.0);
+  b = m.mass / m.air_friction;
+  start(&m, &sim, vec(0.0, 0.0, 4.0), vec(5.0, 0.0, 0.0));
+  run(&m, &sim, 120, 1.0 / 64.0, &t);
+  state_of(&m, &sim, &st);
+  AT_MOST(t.total, 1);
+  NEAR(st.position.y, 0.0, 0.0);
+  if (t.total) {
+    NEAR(t.first.time, 0.0, 0.0);
+    NEAR(t.first.velocity_out.x, 5.0 * m.floor_damping, 0.0);
+  }
+  NEAR(st.position.x, -(t.total ? t.first.velocity_out.x : 5.0) * b * expm1(-sim.time / b), 1e-12);
+}
+
+/* ---- the net plane ------------------------------------------------------ */
+
+/* A ball whose centre starts in the net plane (inside the net), moving either
+ * way or not at all: it does not get stuck in the net (no contact limit, at
+ * most one net event), and after 1 s it is clear of the net (|x - net_x| >=
+ * radius) or, without horizontal speed, has not moved horizontally. */
+static void test_ball_starting_inside_the_net_gets_out_fig3(void **state) {
+  static const double radii[] = {0.0, 0.033};
+  static const double speeds[] = {3.0, -3.0, 0.0};
+  size_t i, j;
+  (void)state;
+  for (i = 0; i < 2; i++)
+    for (j = 0; j < 3; j++) {
+      ball_model m;
+      ball_sim sim;
+      ball_state st;
+      tally t;
+      memset(&t, 0, sizeof t);
+      model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET, radii[i]);
+      start(&m, &sim, vec(11.885, 0.5, 3.0), vec(speeds[j], 0.0, 0.0));
+      run(&m, &sim, 60, 1.0 / 60.0, &t);
+      state_of(&m, &sim, &st);
+      AT_MOST(t.kind[BALL_EVENT_NET], 1);
+      assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
+      if (speeds[j] != 0.0)
+        AT_LEAST(fabs(st.position.x - 11.885), radii[i]);
+      else
+        NEAR(st.position.x, 11.885, 0.0);
+    }
+}
+
+/* Moving exactly parallel to the net plane, touching it (x = net_x - radius)
+ * or in it (radius 0): no net event (Fig. 3: "line segment and net plane
+ * parallel"), x unchanged to the bit, in both schemes. */
+static void test_ball_parallel_to_net_plane_never_hits_it_fig3(void **state) {
+  static const double radii[] = {0.0, 0.033};
+  size_t i;
+  int scheme;
+  (void)state;
+  for (scheme = 0; scheme < 2; scheme++)
+    for (i = 0; i < 2; i++) {
+      ball_model m;
+      ball_sim sim;
+      ball_state st;
+      tally t;
+      memset(&t, 0, sizeof t);
+      model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, radii[i]);
+      m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
+      start(&m, &sim, vec(11.885 - radii[i], 0.5, 3.0), vec(0.0, 2.0, 4.0));
+      run(&m, &sim, 120, 1.0 / 60.0, &t);
+      state_of(&m, &sim, &st);
+      assert_int_equal(t.kind[BALL_EVENT_NET], 0);
+      NEAR(st.position.x, 11.885 - radii[i], 0.0);
+      AT_LEAST(st.position.z, 5.0);
+    }
+}
+
+/* Grazing the top edge: launched horizontally at 8 m/s, 2 m before the net,
+ * the ball crosses the plane at tau = 0.25 s after falling 8 * 0.25^2 / 2 =
+ * 0.25 m (all exact in binary). Starting at top + 0.25 it crosses exactly at
+ * the top edge: a hit (the extent is closed, Fig. 3); 1e-9 m higher it passes
+ * over; 1e-9 m lower it hits. Frames of 1/64 s end exactly at the crossing,
+ * so the sampled scheme sees the same. */
+static void test_grazing_the_net_top_edge_fig3(void **state) {
+  static const double offsets[] = {0.0, 1e-9, -1e-9};
+  size_t i;
+  int scheme;
+  (void)state;
+  for (scheme = 0; scheme < 2; scheme++)
+    for (i = 0; i < 3; i++) {
+      ball_model m;
+      ball_sim sim;
+      tally t;
+      memset(&t, 0, sizeof t);
+      model_of(&m, BALL_EFFECT_NET, 0.0);
+      m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
+      m.net.position = 2.0;
+      m.net.top = 1.0;
+      start(&m, &sim, vec(0.0, 1.25 + offsets[i], 5.0), vec(8.0, 0.0, 0.0));
+      run(&m, &sim, 32, 1.0 / 64.0, &t);
+      assert_int_equal(t.kind[BALL_EVENT_NET], offsets[i] > 0.0 ? 0 : 1);
+      if (t.total) {
+        NEAR(t.first.time, 0.25, 1e-15);
+        NEAR(t.first.point.y, 1.0 + offsets[i], 1e-15);
+        NEAR(t.first.velocity_out.x, -8.0 * m.net.damping, 1e-15);
+      }
+    }
+}
+
+/* Grazing the side edges z = lo = 0 and z = hi = 10.97 of the net: exactly
+ * on an edge is a hit, 1e-9 m outside it passes by (Fig. 3, closed extent). */
+static void test_grazing_the_net_side_edges_fig3(void **state) {
+  static const double zs[] = {0.0, -1e-9, 10.97, 10.97 + 1e-9};
+  size_t i;
+  int scheme;
+  (void)state;
+  for (scheme = 0; scheme < 2; scheme++)
+    for (i = 0; i < 4; i++) {
+      ball_model m;
+      ball_sim sim;
+      tally t;
+      memset(&t, 0, sizeof t);
+      model_of(&m, BALL_EFFECT_NET, 0.0);
+      m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
+      m.net.position = 2.0;
+      start(&m, &sim, vec(0.0, 0.75, zs[i]), vec(8.0, 0.0, 0.0));
+      run(&m, &sim, 32, 1.0 / 64.0, &t);
+      assert_int_equal(t.kind[BALL_EVENT_NET], (i % 2) ? 0 : 1);
+    }
+}
+
+/* ---- several contacts in one frame -------------------------------------- */
+
+/* Net then floor in one 0.5 s frame: 1 m before the net at 10 m/s, 0.3 m
+ * high: net at tau1 = (1 - r) / 10 s (y = 0.3 - 4 tau1^2, vy = -8 tau1), the
+ * whole velocity reflected in x and scaled by netDamping 0.2 (eq 6), then the
+ * floor when y1 + 0.2 vy tau - 4 tau^2 = r, landing 2 tau m before the net
+ * (eq 5). Events in time order. */
+static void test_net_then_floor_in_one_frame_eq5_eq6(void **state) {
+  static const double radii[] = {0.0, 0.033};
+  size_t i;
+  (void)state;
+  for (i = 0; i < 2; i++) {
+    ball_model m;
+    ball_sim sim;
+    ball_event ev[8];
+    int n;
+    double r = radii[i], t_net = (1.0 - r) / 10.0;
+    double y1 = 0.3 - 4.0 * t_net * t_net, vy1 = -0.2 * 8.0 * t_net;
+    double tau2 = (vy1 + sqrt(vy1 * vy1 + 16.0 * (y1 - r))) / 8.0; /* 4 tau^2 - vy1 tau - (y1 - r) = 0 */
+    model_of(&m, BALL_EFFECT_NET | BALL_EFFECT_FLOOR, r);
+    start(&m, &sim, vec(11.885 - 1.0, 0.3, 3.0), vec(10.0, 0.0, 0.0));
+    assert_int_equal(ball_step(&m, &sim, 0.5, ev, 8, &n), BALL_OK);
+    assert_true(n >= 2);
+    assert_int_equal(ev[0].kind, BALL_EVENT_NET);
+    assert_int_equal(ev[1].kind, BALL_EVENT_FLOOR);
+    NEAR(ev[0].time, t_net, 1e-15);
+    NEAR(ev[0].point.y, y1, 1e-15);
+    NEAR(ev[0].velocity_out.x, -2.0, 1e-15);
+    NEAR(ev[0].velocity_out.y, vy1, 1e-15);
+    NEAR(ev[1].time, t_net + tau2, 1e-14);
+    NEAR(ev[1].point.x, 11.885 - r - 2.0 * tau2, 1e-12);
+    assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
+  }
+}
+
+/* Into the corner of two walls (x = 5 and z = 5) at (2, 2) m/s from 1 m away
+ * on both axes: both walls at tau = 0.5 s (minus radius / 2), one event each
+ * at the same time; each scales the whole velocity by its damping 0.5 (eq 6),
+ * so the ball leaves with (-2, ., -2) * 0.25 and never ends a frame behind
+ * either wall. Dropped from 4 tc^2 above the floor it reaches the floor at
+ * the same instant: three contacts at once, and eq 5 damps all components
+ * by 0.75 more: vy = 0.75 * 0.25 * 8 tc. The frame ends 0.1 s after tc,
+ * before the next bounce (2 * 0.1875 * 8 tc / 8 > 0.1 s). */
+static void test_corner_of_two_walls_reflects_both_axes_eq6(void **state) {
+  static const double radii[] = {0.0, 0.1};
+  size_t i;
+  int with_floor;
+  (void)state;
+  for (with_floor = 0; with_floor < 2; with_floor++)
+    for (i = 0; i < 2; i++) {
+      ball_model m;
+      ball_sim sim;
+      ball_state st;
+      ball_event ev[8];
+      int n, f, k;
+      double r = radii[i], tc = (1.0 - r) / 2.0;
+      model_of(&m, BALL_EFFECT_WALLS | BALL_EFFECT_FLOOR, r);
+      wall(&m, 0, 5.0, -10.0, 10.0, 0.5);
+      wall(&m, 2, 5.0, -10.0, 10.0, 0.5);
+      /* with the floor: fall 4 tc^2 to touch it at tc */
+      start(&m, &sim, vec(4.0, r + (with_floor ? 4.0 * tc * tc : 3.0), 4.0), vec(2.0, 0.0, 2.0));
+      assert_int_equal(ball_step(&m, &sim, tc + 0.1, ev, 8, &n), BALL_OK);
+      assert_int_equal(n, with_floor ? 3 : 2);
+      for (k = 0; k < n; k++) NEAR(ev[k].time, tc, 1e-15);
+      NEAR(ev[n - 1].velocity_out.x, -0.5 * (with_floor ? 0.75 : 1.0), 1e-15);
+      NEAR(ev[n - 1].velocity_out.z, -0.5 * (with_floor ? 0.75 : 1.0), 1e-15);
+      if (with_floor) NEAR(ev[n - 1].velocity_out.y, 0.75 * 0.25 * 8.0 * tc, 1e-14);
+      for (f = 0; f < 120; f++) {
+        assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, NULL, 0, NULL), BALL_OK);
+        state_of(&m, &sim, &st);
+        AT_MOST(st.position.x, 5.0 - r);
+        AT_MOST(st.position.z, 5.0 - r);
+        AT_LEAST(st.position.y, r);
+      }
+      assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
+    }
+}
+
+/* The sampled scheme (Fig. 3 per wall) with two walls crossed in one frame:
+ * from (4, 3, 4.5) at (2, 0, 2) m/s, a 0.6 s frame crosses the wall z = 5
+ * (index 1) at s = 0.5 / 1.2 of the chord and the wall x = 5 (index 0) at
+ * s = 1 / 1.2. Whichever is handled, the ball must not end the frame, or any
+ * later frame, behind either wall. */
+static void test_sampled_two_walls_in_one_frame_keeps_ball_inside_fig3(void **state) {
+  ball_model m;
+  ball_sim sim;
+  ball_state st;
+  int f;
+  (void)state;
+  model_of(&m, BALL_EFFECT_WALLS, 0.0);
+  m.scheme = BALL_SCHEME_SAMPLED;
+  wall(&m, 0, 5.0, -10.0, 10.0, 1.0);
+  wall(&m, 2, 5.0, -10.0, 10.0, 1.0);
+  m.walls[0].bottom = m.walls[1].bottom = -1e6;
+  start(&m, &sim, vec(4.0, 3.0, 4.5), vec(2.0, 0.0, 2.0));
+  for (f = 0; f < 10; f++) {
+    assert_int_equal(ball_step(&m, &sim, 0.6, NULL, 0, NULL), BALL_OK);
+    state_of(&m, &sim, &st);
+    AT_MOST(st.position.x, 5.0);
+    AT_MOST(st.position.z, 5.0);
+  }
+}
+
+/* Wedged between a wall and the floor: a grounded ball touching the wall
+ * (x = 5 - radius) pushed into it at 2 m/s bounces off once (eq 6: times
+ * wall damping 0.5, and floorDamping 0.75 if a zero-speed touchdown came
+ * first) and slides away on the floor; at rest in the wedge it stays put, to the bit, with no
+ * event. Falling into the edge at 45 degrees it meets both at once and
+ * leaves with both components reversed. Never behind the wall nor under the
+ * floor. */
+static void test_ball_wedged_between_wall_and_floor_eq5_eq6(void **state) {
+  static const double radii[] = {0.0, 0.1};
+  size_t i;
+  int k;
+  (void)state;
+  for (i = 0; i < 2; i++)
+    for (k = 0; k < 3; k++) {
+      ball_model m;
+      ball_sim sim;
+      ball_state st;
+      tally t;
+      int f;
+      double r = radii[i];
+      memset(&t, 0, sizeof t);
+      model_of(&m, BALL_EFFECT_WALLS | BALL_EFFECT_FLOOR, r);
+      wall(&m, 0, 5.0, -10.0, 10.0, 0.5);
+      if (k == 0) start(&m, &sim, vec(5.0 - r, r, 0.0), vec(2.0, 0.0, 0.0));
+      if (k == 1) start(&m, &sim, vec(5.0 - r, r, 0.0), vec(0.0, 0.0, 0.0));
+      if (k == 2) start(&m, &sim, vec(4.0 - r, r + 4.0 * 0.25, 0.0), vec(2.0, 0.0, 0.0));
+      for (f = 0; f < 120; f++) {
+        run(&m, &sim, 1, 1.0 / 60.0, &t);
+        state_of(&m, &sim, &st);
+        AT_MOST(st.position.x, 5.0 - r);
+        AT_LEAST(st.position.y, r);
+      }
+      assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
+      if (k == 0) {
+        assert_int_equal(t.kind[BALL_EVENT_WALL], 1);
+        NEAR(st.velocity.x, -2.0 * 0.5 * (t.kind[BALL_EVENT_FLOOR] ? 0.75 : 1.0), 0.0);
+        NEAR(st.position.y, r, 0.0);
+      }
+      if (k == 1) {
+        AT_MOST(t.total, 1); /* the zero-speed settling on the floor */
+        assert_int_equal(t.kind[BALL_EVENT_WALL], 0);
+        NEAR(st.position.x, 5.0 - r, 0.0);
+        NEAR(st.position.y, r, 0.0);
+      }
+      if (k == 2) {
+        assert_int_equal(t.kind[BALL_EVENT_WALL], 1);
+        AT_LEAST(t.kind[BALL_EVENT_FLOOR], 1);
+        NEAR(t.first.time, 0.5, 1e-15);
+        AT_MOST(st.velocity.x, 0.0);
+      }
+    }
+}
+
+/* ---- the resting ball ---------------------------------------------------- */
+
+/* Dropped from 1 m (g = 8): arrives at sqrt(16) = 4 m/s and leaves each bounce
+ * at 0.75 times its arrival speed (eq 5): 3, 2.25, 1.6875, ... The bounce
+ * that would leave below bounce_threshold = 0.3 m/s grounds the ball instead:
+ * 4 * 0.75^k < 0.3 first for k = 10 (0.225), so exactly 10 floor events, the
+ * k-th at time 0.5 + sum_{j<k} 2 * 4 * 0.75^j / 8. Then 10 s of nothing. */
+static void test_resting_ball_stops_after_ten_bounces_eq5(void **state) {
+  ball_model m;
+  ball_sim sim;
+  ball_state st;
+  ball_event ev[BALL_MAX_CONTACTS];
+  int f, n, i, k = 0;
+  double t_expect = 0.5;
+  (void)state;
+  model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_SOUND, 0.0);
+  start(&m, &sim, vec(0.0, 1.0, 0.0), vec(0.0, 0.0, 0.0));
+  for (f = 0; f < 60 * 20; f++) {
+    assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n), BALL_OK);
+    for (i = 0; i < n; i++, k++) {
+      double v_out = 4.0 * pow(0.75, k + 1);
+      assert_int_equal(ev[i].kind, BALL_EVENT_FLOOR);
+      NEAR(ev[i].time, t_expect, 1e-12);
+      NEAR(ev[i].velocity_out.y, v_out < 0.3 ? 0.0 : v_out, 1e-12);
+      t_expect += 2.0 * v_out / 8.0;
+    }
+  }
+  assert_int_equal(k, 10);
+  assert_int_equal(sim.seg.grounded, 1);
+  state_of(&m, &sim, &st);
+  NEAR(st.position.y, 0.0, 0.0);
+}
+
+/* The same ball with bounce_threshold = 0, the limit the paper's threshold
+ * exists for (Zeno: infinitely many bounces in 0.5 + 2 * 0.75 * 4 / 8 / 0.25
+ * = 3.5 s). Whatever the stepper does about it, the ball never ends a frame
+ * below the floor, stays finite, and is on the floor at rest after 10 s. */
+static void test_resting_ball_with_zero_threshold_never_sinks_eq5(void **state) {
+  int scheme;
+  (void)state;
+  for (scheme = 0; scheme < 2; scheme++) {
+    ball_model m;
+    ball_sim sim;
+    ball_state st;
+    tally t;
+    int f;
+    memset(&t, 0, sizeof t);
+    model_of(&m, BALL_EFFECT_FLOOR, 0.0);
+    m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
+    m.bounce_threshold = 0.0;
+    start(&m, &sim, vec(0.0, 1.0, 0.0), vec(0.0, 0.0, 0.0));
+    for (f = 0; f < 60 * 10; f++) {
+      run(&m, &sim, 1, 1.0 / 60.0, &t);
+      state_of(&m, &sim, &st);
+      AT_LEAST(st.position.y, 0.0);
+    }
+    AT_MOST(st.position.y, 0.01); /* sampled: micro-bounces of at most g dt^2 / 2 */
+  }
+  /* and a ball placed at rest on the floor with threshold 0 */
+  {
+    ball_model m;
+    ball_sim sim;
+    ball_state st;
+    tally t;
+    int f;
+    memset(&t, 0, sizeof t);
+    model_of(&m, BALL_EFFECT_FLOOR, 0.0);
+    m.bounce_threshold = 0.0;
+    start(&m, &sim, vec(0.0, 0.0, 0.0), vec(0.0, 0.0, 0.0));
+    for (f = 0; f < 60; f++) {
+      run(&m, &sim, 1, 1.0 / 60.0, &t);
+      state_of(&m, &sim, &st);
+      AT_LEAST(st.position.y, 0.0);
+    }
+  }
+}
+
+/* A ball rolling (grounded) into the net at 5 m/s with drag: one net event
+ * at x = net_x - radius, leaves at -0.2 times its arrival speed (eq 6), still
+ * on the floor, and slides away: never past the net, no more events. */
+static void test_ball_rolling_into_the_net_bounces_once_eq6(void **state) {
+  static const double radii[] = {0.0, 0.033};
+  size_t i;
+  (void)state;
+  for (i = 0; i < 2; i++) {
+    ball_model m;
+    ball_sim sim;
+    ball_state st;
+    tally t;
+    int f;
+    double r = radii[i];
+    memset(&t, 0, sizeof t);
+    model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, r);
+    start(&m, &sim, vec(10.0, r, 3.0), vec(5.0, 0.0, 0.0));
+    for (f = 0; f < 240; f++) {
+      run(&m, &sim, 1, 1.0 / 60.0, &t);
+      state_of(&m, &sim, &st);
+      AT_MOST(st.position.x, 11.885 - r);
+      NEAR(st.position.y, r, 0.0);
+    }
+    assert_int_equal(t.kind[BALL_EVENT_NET], 1);
+    NEAR(t.last.point.x, 11.885 - r, 1e-12);
+    NEAR(t.last.velocity_out.x, -0.2 * t.last.velocity_in.x, 1e-15);
+    assert_true(t.last.velocity_in.x > 0.0);
+    assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
+  }
+}
+
+/* More contacts in one frame than BALL_MAX_CONTACTS: walls 0.05 m apart and a
+ * ball at 100 m/s (33 wall contacts per 1/60 s frame, 333 per 1/6 s frame).
+ * The limit is counted as a warning; the ball must still never end a frame
+ * outside the two walls. */
+static void test_contact_limit_keeps_ball_between_walls(void **state) {
+  static const double dts[] = {1.0 / 60.0, 1.0 / 6.0};
+  size_t i;
+  (void)state;
+  for (i = 0; i < 2; i++) {
+    ball_model m;
+    ball_sim sim;
+    ball_state st;
+    int f;
+    model_of(&m, BALL_EFFECT_WALLS, 0.0);
+    wall(&m, 0, 0.0, -10.0, 10.0, 1.0);
+    wall(&m, 0, 0.05, -10.0, 10.0, 1.0);
+    m.walls[0].bottom = m.walls[1].bottom = -1e9;
+    start(&m, &sim, vec(0.025, 5.0, 0.0), vec(100.0, 0.0, 0.0));
+    for (f = 0; f < 30; f++) {
+      assert_int_equal(ball_step(&m, &sim, dts[i], NULL, 0, NULL), BALL_OK);
+      state_of(&m, &sim, &st);
+      AT_LEAST(st.position.x, 0.0);
+      AT_MOST(st.position.x, 0.05);
+    }
+    if (i == 1) assert_true(sim.warnings[BALL_WARN_CONTACT_LIMIT] > 0);
+  }
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(test_ball_at_rest_exactly_on_floor_stays_there_eq5),
+      cmocka_unit_test(test_ball_sliding_on_floor_follows_eq3),
+      cmocka_unit_test(test_ball_starting_inside_the_net_gets_out_fig3),
+      cmocka_unit_test(test_ball_parallel_to_net_plane_never_hits_it_fig3),
+      cmocka_unit_test(test_grazing_the_net_top_edge_fig3),
+      cmocka_unit_test(test_grazing_the_net_side_edges_fig3),
+      cmocka_unit_test(test_net_then_floor_in_one_frame_eq5_eq6),
+      cmocka_unit_test(test_corner_of_two_walls_reflects_both_axes_eq6),
+      cmocka_unit_test(test_sampled_two_walls_in_one_frame_keeps_ball_inside_fig3),
+      cmocka_unit_test(test_ball_wedged_between_wall_and_floor_eq5_eq6),
+      cmocka_unit_test(test_resting_ball_stops_after_ten_bounces_eq5),
+      cmocka_unit_test(test_resting_ball_with_zero_threshold_never_sinks_eq5),
+      cmocka_unit_test(test_ball_rolling_into_the_net_bounces_once_eq6),
+      cmocka_unit_test(test_contact_limit_keeps_ball_between_walls),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
