@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <stdint.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -378,8 +379,160 @@ static ball_status load_walls(scene_loader *L, const yaml_node_t *node, double d
   return BALL_OK;
 }
 
+/* An unsigned 64-bit integer (a seed): plain decimal digits, in range. */
+static ball_status get_uint64(scene_loader *L, const yaml_node_t *node, const char *path, uint64_t *out) {
+  const char *text, *c;
+  char *end;
+  unsigned long long v;
+  if (node->type != YAML_SCALAR_NODE) return fail(L, node, path, "expected an integer, got %s", node_kind(node));
+  text = scalar_text(node);
+  if (!is_plain_scalar(node)) return fail(L, node, path, "expected an integer, got the string \"%s\"", text);
+  if (node->data.scalar.length == 0) return fail(L, node, path, "expected an integer, got nothing");
+  for (c = text; *c; ++c)
+    if (*c < '0' || *c > '9')
+      return fail(L, node, path, "expected an integer in [0, 18446744073709551615], got \"%s\"", text);
+  errno = 0;
+  v = strtoull(text, &end, 10);
+  if (errno == ERANGE || *end != '\0' || v > (unsigned long long)UINT64_MAX)
+    return fail(L, node, path, "integer %s is out of range [0, 18446744073709551615]", text);
+  *out = (uint64_t)v;
+  return BALL_OK;
+}
+
+/* A number in [lo, hi] (hi_open: [lo, hi)); read and checked where it stands. */
+static ball_status get_ranged(scene_loader *L, const yaml_node_t *node, const char *path, double lo, double hi,
+                              int hi_open, const char *range, double *out) {
+  double v;
+  ball_status st = get_number(L, node, path, &v);
+  if (st != BALL_OK) return st;
+  if (!(v >= lo) || (hi_open ? !(v < hi) : !(v <= hi)))
+    return fail(L, node, path, "out of range: must be %s, got %s", range, scalar_text(node));
+  *out = v;
+  return BALL_OK;
+}
+
+/* Whether mapping node has key. */
+static int has_key(scene_loader *L, const yaml_node_t *node, const char *key) {
+  yaml_node_pair_t *p;
+  for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p)
+    if (strcmp(pair_key(L, p), key) == 0) return 1;
+  return 0;
+}
+
+/* Fails on the first of the required keys (NULL-terminated) node lacks. */
+static ball_status require_keys(scene_loader *L, const yaml_node_t *node, const char *path,
+                                const char *const *required) {
+  for (; *required; ++required) {
+    if (!has_key(L, node, *required)) {
+      char sub[SCENE_PATH_SIZE];
+      join(sub, path, *required);
+      return fail(L, node, sub, "missing required key \"%s\"", *required);
+    }
+  }
+  return BALL_OK;
+}
+
+static ball_status load_keyframes(scene_loader *L, const yaml_node_t *node, const char *path,
+                                  ball_racket_script *s) {
+  static const char *const keys[] = {"t", "center", "normal", NULL};
+  int i, n;
+  ball_status st;
+  if (node->type != YAML_SEQUENCE_NODE)
+    return fail(L, node, path, "expected a list of keyframes {t, center, normal}, got %s", node_kind(node));
+  n = (int)(node->data.sequence.items.top - node->data.sequence.items.start);
+  if (n < 1) return fail(L, node, path, "expected at least one keyframe");
+  if (n > BALL_SCRIPT_MAX_KEYFRAMES)
+    return fail(L, node, path, "%d keyframes given, at most %d allowed", n, BALL_SCRIPT_MAX_KEYFRAMES);
+  for (i = 0; i < n; ++i) {
+    yaml_node_t *item = yaml_document_get_node(L->doc, node->data.sequence.items.start[i]);
+    ball_script_keyframe *k = &s->keyframes[i];
+    yaml_node_pair_t *p;
+    char kpath[SCENE_PATH_SIZE];
+    snprintf(kpath, sizeof kpath, "%.80s[%d]", path, i);
+    if ((st = check_mapping(L, item, kpath, keys)) != BALL_OK) return st;
+    if ((st = require_keys(L, item, kpath, keys)) != BALL_OK) return st;
+    for (p = item->data.mapping.pairs.start; p < item->data.mapping.pairs.top; ++p) {
+      const char *key = pair_key(L, p);
+      yaml_node_t *v = pair_value(L, p);
+      char sub[SCENE_PATH_SIZE];
+      join(sub, kpath, key);
+      if (strcmp(key, "t") == 0) {
+        if ((st = get_number(L, v, sub, &k->t)) != BALL_OK) return st;
+        if (i > 0 && !(k->t > s->keyframes[i - 1].t))
+          return fail(L, v, sub, "out of range: keyframe times must increase strictly, got %s after %.17g",
+                      scalar_text(v), s->keyframes[i - 1].t);
+      } else if (strcmp(key, "center") == 0) {
+        if ((st = get_vec3(L, v, sub, &k->center)) != BALL_OK) return st;
+      } else {
+        ball_vec3 u;
+        double big, w;
+        if ((st = get_vec3(L, v, sub, &u)) != BALL_OK) return st;
+        /* normalise without overflow: scale by the largest component first */
+        big = fmax(fabs(u.x), fmax(fabs(u.y), fabs(u.z)));
+        if (big > 0.0) {
+          u.x /= big;
+          u.y /= big;
+          u.z /= big;
+        }
+        w = sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+        if (!(big * w >= 1e-9)) return fail(L, v, sub, "out of range: a normal must not be (nearly) zero");
+        k->normal.x = u.x / w;
+        k->normal.y = u.y / w;
+        k->normal.z = u.z / w;
+      }
+    }
+  }
+  s->n_keyframes = n;
+  return BALL_OK;
+}
+
+/* rackets[i].script: keyframes and network conditions (docs/scenes.md). */
+static ball_status load_script(scene_loader *L, const yaml_node_t *node, const char *path, ball_racket_script *s) {
+  static const char *const keys[] = {"keyframes", "repeat", "rate", "delay", "jitter", "loss", "duplicate",
+                                     "noise", "normal_noise", "seed", NULL};
+  static const char *const required[] = {"keyframes", NULL};
+  const yaml_node_t *repeat_node = NULL;
+  yaml_node_pair_t *p;
+  ball_status st;
+  const char *field = NULL;
+  ball_script_default(s);
+  if ((st = check_mapping(L, node, path, keys)) != BALL_OK) return st;
+  if ((st = require_keys(L, node, path, required)) != BALL_OK) return st;
+  for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p) {
+    const char *k = pair_key(L, p);
+    yaml_node_t *v = pair_value(L, p);
+    char sub[SCENE_PATH_SIZE];
+    join(sub, path, k);
+    if (strcmp(k, "keyframes") == 0) st = load_keyframes(L, v, sub, s);
+    else if (strcmp(k, "repeat") == 0) {
+      st = get_ranged(L, v, sub, 0.0, HUGE_VAL, 0, ">= 0 (0: no repeat)", &s->repeat);
+      repeat_node = v;
+    } else if (strcmp(k, "rate") == 0) st = get_ranged(L, v, sub, 2.0, 120.0, 0, "in [2, 120] Hz", &s->rate);
+    else if (strcmp(k, "delay") == 0) st = get_ranged(L, v, sub, 0.0, 60.0, 0, "in [0, 60] s", &s->delay);
+    else if (strcmp(k, "jitter") == 0) st = get_ranged(L, v, sub, 0.0, 0.5, 0, "in [0, 0.5] s", &s->jitter);
+    else if (strcmp(k, "loss") == 0) st = get_ranged(L, v, sub, 0.0, 1.0, 1, "in [0, 1)", &s->loss);
+    else if (strcmp(k, "duplicate") == 0) st = get_ranged(L, v, sub, 0.0, 1.0, 0, "in [0, 1]", &s->duplicate);
+    else if (strcmp(k, "noise") == 0) st = get_ranged(L, v, sub, 0.0, HUGE_VAL, 0, ">= 0 m", &s->noise);
+    else if (strcmp(k, "normal_noise") == 0)
+      st = get_ranged(L, v, sub, 0.0, 1.0, 0, "in [0, 1] rad", &s->normal_noise);
+    else st = get_uint64(L, v, sub, &s->seed);
+    if (st != BALL_OK) return st;
+  }
+  if (repeat_node && s->repeat != 0.0 &&
+      !(s->repeat > s->keyframes[s->n_keyframes - 1].t - s->keyframes[0].t)) {
+    char sub[SCENE_PATH_SIZE];
+    join(sub, path, "repeat");
+    return fail(L, repeat_node, sub, "out of range: must be 0 or > the keyframes' span (%.17g s), got %s",
+                s->keyframes[s->n_keyframes - 1].t - s->keyframes[0].t, scalar_text(repeat_node));
+  }
+  /* the reader checked every field where it stands; this is the library's word */
+  if ((st = ball_script_check(s, &field)) != BALL_OK)
+    return fail(L, node, path, "rejected by ball_script_check: %s: %s", field ? field : "?", ball_strerror(st));
+  return BALL_OK;
+}
+
 static ball_status load_rackets(scene_loader *L, const yaml_node_t *node, const ball_model *defaults) {
-  static const char *const keys[] = {"radius", "partner", "target", NULL};
+  static const char *const keys[] = {"radius", "partner", "target", "script", NULL};
   ball_model *m = &L->scene.model;
   int i, n;
   ball_status st;
@@ -402,6 +555,7 @@ static ball_status load_rackets(scene_loader *L, const yaml_node_t *node, const 
       join(sub, path, k);
       if (strcmp(k, "radius") == 0) st = set_number(L, v, sub, &r->radius);
       else if (strcmp(k, "partner") == 0) st = get_int(L, v, sub, &r->partner);
+      else if (strcmp(k, "script") == 0) st = load_script(L, v, sub, &L->scene.scripts[i]);
       else st = get_vec3(L, v, sub, &r->target);
       if (st != BALL_OK) return st;
       remember(L, sub, NULL, v);

@@ -13,6 +13,8 @@
 #define EXIT_USAGE 2
 #define MAX_FRAMES 1000000000.0
 #define EVENT_CAP (BALL_MAX_CONTACTS + BALL_MAX_RACKETS + 8)
+#define SAMPLE_CAP 64
+#define ARRIVAL_SLACK 1e-9 /* s */
 
 typedef enum out_format { FORMAT_NONE = 0, FORMAT_CSV, FORMAT_JSONL } out_format;
 
@@ -33,6 +35,9 @@ static void print_help(FILE *f) {
           "\n"
           "Runs a libball scene headless: steps the ball at the scene's frame rate,\n"
           "prints every collision event as one line and a summary at the end.\n"
+          "Scripted rackets (rackets[i].script) send their samples as the scene's\n"
+          "network conditions deliver them; before each step every sample that has\n"
+          "arrived by the end of the step goes to ball_racket_push.\n"
           "\n"
           "  SCENE               a YAML scene file (docs/scenes.md); without it the\n"
           "                      built-in tennis serve (the same as scenes/tennis.yaml)\n"
@@ -52,8 +57,9 @@ static void print_help(FILE *f) {
           "Output lines:\n"
           "  scene: NAME (FILE) scheme=... fps=... dt=... frames=... effects=...\n"
           "  event t=T kind=floor|net|wall|racket index=I point=X,Y,Z v_in=X,Y,Z\n"
-          "        v_out=X,Y,Z speed_in=S speed_out=S sound=0|1\n"
+          "        v_out=X,Y,Z spin_out=X,Y,Z speed_in=S speed_out=S sound=0|1\n"
           "  summary: frames=N time=T events=N floor=N net=N wall=N racket=N sounds=N\n"
+          "  samples: arrived=N accepted=N duplicate=N stale=N invalid=N\n"
           "  final: position=X,Y,Z velocity=X,Y,Z spin=X,Y,Z grounded=0|1\n"
           "  warnings: event_overflow=N contact_limit=N stale_racket=N events_dropped=N\n"
           "\n"
@@ -210,6 +216,10 @@ int main(int argc, char **argv) {
   FILE *out = NULL;
   ball_status st;
   int rc, i;
+  /* racket samples by what ball_racket_push made of them */
+  static ball_script_player player; /* about 50 kB: kept off the stack */
+  ball_script_sample samples[SAMPLE_CAP];
+  unsigned long n_arrived = 0, n_accepted = 0, n_duplicate = 0, n_stale = 0, n_invalid = 0;
 
   rc = parse_args(argc, argv, &o);
   if (rc >= 0) return rc;
@@ -246,6 +256,8 @@ int main(int argc, char **argv) {
 
   st = ball_sim_init(&scene.model, &sim);
   if (st != BALL_OK) return runtime_error("cannot start the sim", st);
+  st = ball_script_player_init(&player, scene.scripts, scene.model.n_rackets);
+  if (st != BALL_OK) return runtime_error("cannot start the racket scripts", st);
 
   if (o.out_path) {
     out = fopen(o.out_path, "w");
@@ -270,7 +282,28 @@ int main(int argc, char **argv) {
 
   memset(counts, 0, sizeof counts);
   for (k = 0; k < frames; ++k) {
-    int n = 0;
+    int n = 0, n_samples;
+    /* the samples that have arrived by the time this step advances to (to
+     * ARRIVAL_SLACK: the sim clock adds dt up frame by frame, and a sample
+     * taken on the frame clock must not come a frame late by rounding) */
+    do {
+      st = ball_script_poll(&player, sim.time + dt + ARRIVAL_SLACK, samples, SAMPLE_CAP, &n_samples);
+      if (st != BALL_OK) {
+        if (out) fclose(out);
+        return runtime_error("racket script", st);
+      }
+      for (i = 0; i < n_samples; ++i) {
+        const ball_racket_track *tr = &sim.tracks[samples[i].racket];
+        double newest = tr->count > 0 ? tr->samples[tr->count - 1].t : -HUGE_VAL;
+        /* rejected samples are normal under jitter: count them and go on */
+        st = ball_racket_push(&scene.model, &sim, samples[i].racket, &samples[i].sample);
+        n_arrived++;
+        if (st == BALL_OK && samples[i].sample.t > newest) n_accepted++;
+        else if (st == BALL_OK) n_duplicate++; /* a copy of a kept sample: ignored */
+        else if (st == BALL_ESTALE) n_stale++;
+        else n_invalid++;
+      }
+    } while (n_samples == SAMPLE_CAP);
     st = ball_step(&scene.model, &sim, dt, events, EVENT_CAP, &n);
     if (st != BALL_OK) {
       if (out) fclose(out);
@@ -280,10 +313,11 @@ int main(int argc, char **argv) {
     for (i = 0; i < n; ++i) {
       const ball_event *e = &events[i];
       printf("event t=%.6f kind=%s index=%d point=%.6f,%.6f,%.6f v_in=%.4f,%.4f,%.4f v_out=%.4f,%.4f,%.4f "
-             "speed_in=%.4f speed_out=%.4f sound=%d\n",
+             "spin_out=%.4f,%.4f,%.4f speed_in=%.4f speed_out=%.4f sound=%d\n",
              e->time, kind_name(e->kind), e->index, e->point.x, e->point.y, e->point.z, e->velocity_in.x,
              e->velocity_in.y, e->velocity_in.z, e->velocity_out.x, e->velocity_out.y, e->velocity_out.z,
-             norm(e->velocity_in), norm(e->velocity_out), e->sound ? 1 : 0);
+             e->spin_out.x, e->spin_out.y, e->spin_out.z, norm(e->velocity_in), norm(e->velocity_out),
+             e->sound ? 1 : 0);
       if ((unsigned)e->kind < BALL_EVENT_KIND_COUNT) counts[e->kind]++;
       n_events++;
       if (e->sound) n_sounds++;
@@ -311,6 +345,8 @@ int main(int argc, char **argv) {
   printf("summary: frames=%lu time=%.6f events=%lu floor=%lu net=%lu wall=%lu racket=%lu sounds=%lu\n", frames,
          sim.time, n_events, counts[BALL_EVENT_FLOOR], counts[BALL_EVENT_NET], counts[BALL_EVENT_WALL],
          counts[BALL_EVENT_RACKET], n_sounds);
+  printf("samples: arrived=%lu accepted=%lu duplicate=%lu stale=%lu invalid=%lu\n", n_arrived, n_accepted,
+         n_duplicate, n_stale, n_invalid);
   printf("final: position=%.6f,%.6f,%.6f velocity=%.6f,%.6f,%.6f spin=%.6f,%.6f,%.6f grounded=%d\n", state.position.x,
          state.position.y, state.position.z, state.velocity.x, state.velocity.y, state.velocity.z, state.spin.x,
          state.spin.y, state.spin.z, sim.seg.grounded);

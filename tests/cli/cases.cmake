@@ -70,7 +70,62 @@ macro(read_lines file)
   file(STRINGS "${file}" LINES)
 endmacro()
 
-set(summary_re "\nsummary: frames=[0-9]+ time=[0-9.]+ events=[0-9]+ floor=[0-9]+ net=[0-9]+ wall=[0-9]+ racket=[0-9]+ sounds=[0-9]+\nfinal: position=[^ ]+ velocity=[^ ]+ spin=[^ ]+ grounded=[01]\nwarnings: event_overflow=0 contact_limit=0 stale_racket=0 events_dropped=0\n$")
+# How often the ball centre crosses the plane x = net_x in a --out CSV, into VAR.
+function(count_net_crossings file net_x var)
+  file(STRINGS "${file}" rows)
+  list(REMOVE_AT rows 0)
+  set(n 0)
+  set(prev "")
+  foreach(row IN LISTS rows)
+    string(REPLACE "," ";" c "${row}")
+    list(GET c 1 x)
+    if(x GREATER net_x)
+      set(side 1)
+    else()
+      set(side 0)
+    endif()
+    if(NOT prev STREQUAL "" AND NOT side EQUAL prev)
+      math(EXPR n "${n} + 1")
+    endif()
+    set(prev ${side})
+  endforeach()
+  set(${var} ${n} PARENT_SCOPE)
+endfunction()
+
+# The racket events of OUT into RACKETS; fails unless there are at least
+# min_count and they alternate between rackets 0 and 1, starting with 0.
+function(expect_rally min_count)
+  string(REGEX MATCHALL "event [^\n]* kind=racket [^\n]*" hits "${OUT}")
+  list(LENGTH hits n)
+  if(n LESS min_count)
+    fail("${n} racket events, expected at least ${min_count}")
+  endif()
+  set(want 0)
+  foreach(h IN LISTS hits)
+    if(NOT h MATCHES "kind=racket index=${want} ")
+      fail("racket events do not alternate 0, 1, 0, ...: ${h}")
+    endif()
+    math(EXPR want "1 - ${want}")
+  endforeach()
+  set(RACKETS "${hits}" PARENT_SCOPE)
+endfunction()
+
+# The samples line of OUT: SAMPLES_ARRIVED, _ACCEPTED, _DUPLICATE, _STALE.
+macro(read_samples)
+  if(NOT OUT MATCHES "\nsamples: arrived=([0-9]+) accepted=([0-9]+) duplicate=([0-9]+) stale=([0-9]+) invalid=0\n")
+    fail("no samples line with invalid=0")
+  endif()
+  set(SAMPLES_ARRIVED ${CMAKE_MATCH_1})
+  set(SAMPLES_ACCEPTED ${CMAKE_MATCH_2})
+  set(SAMPLES_DUPLICATE ${CMAKE_MATCH_3})
+  set(SAMPLES_STALE ${CMAKE_MATCH_4})
+  math(EXPR sum "${SAMPLES_ACCEPTED} + ${SAMPLES_DUPLICATE} + ${SAMPLES_STALE}")
+  if(NOT sum EQUAL SAMPLES_ARRIVED)
+    fail("accepted + duplicate + stale = ${sum}, not arrived = ${SAMPLES_ARRIVED}")
+  endif()
+endmacro()
+
+set(summary_re "\nsummary: frames=[0-9]+ time=[0-9.]+ events=[0-9]+ floor=[0-9]+ net=[0-9]+ wall=[0-9]+ racket=[0-9]+ sounds=[0-9]+\nsamples: arrived=[0-9]+ accepted=[0-9]+ duplicate=[0-9]+ stale=[0-9]+ invalid=0\nfinal: position=[^ ]+ velocity=[^ ]+ spin=[^ ]+ grounded=[01]\nwarnings: event_overflow=0 contact_limit=0 stale_racket=0 events_dropped=0\n$")
 
 if(CASE STREQUAL "help")
   ballsim(--help)
@@ -368,6 +423,134 @@ elseif(CASE STREQUAL "missing_scene")
   ballsim(no/such/scene.yaml)
   expect_rc(1)
   expect_err("^no/such/scene\\.yaml: No such file or directory\n$")
+
+elseif(CASE STREQUAL "rally_easy")
+  # Easy level (sphere test, autonomous ball): the rackets hold still, every
+  # stroke flies to the partner with V_up = 4 m/s (eq 8), so each racket
+  # event leaves with v_out y = 4.0000. 12 s: at least 10 strokes and 10
+  # net crossings (15 by design, one stroke every 0.8167 s from t = 0.117 s).
+  ballsim("${SCENES}/rally_easy.yaml" --out rally.csv)
+  expect_rc(0)
+  expect_out("${summary_re}")
+  expect_out(" net=0 ")
+  expect_rally(10)
+  foreach(h IN LISTS RACKETS)
+    event_field("${h}" v_out v)
+    expect_between("v_out y (V_up, eq 8)" "${v_1}" 4.0 4.0)
+  endforeach()
+  count_net_crossings("${WORK}/rally.csv" 11.885 crossings)
+  expect_between("net crossings" "${crossings}" 10 1000)
+  # 10 Hz for 12 s from two rackets, 80 ms delay: about 2 * 120 samples taken,
+  # 5 % lost, 5 % duplicated; a jitter of 150 ms > 100 ms between samples
+  # puts some out of order (stale) and delivers some copies (duplicate)
+  read_samples()
+  expect_between("samples arrived" "${SAMPLES_ARRIVED}" 200 260)
+  expect_between("stale samples (out of order)" "${SAMPLES_STALE}" 1 100)
+  expect_between("duplicate samples" "${SAMPLES_DUPLICATE}" 1 100)
+
+elseif(CASE STREQUAL "rally_mid")
+  # Mid level (disc test with the velocity normal, mixed 0.8): the swings of
+  # rally_mid.yaml move at V_friendly, so eq 10 gives V0 y = 0.8 * 4 + 0.2 * 4
+  # = 4 m/s, give or take the velocity the 2 mm tracker noise puts into the
+  # racket estimate (a difference of two samples 1/60 s apart: sigma =
+  # 0.2 * sqrt(2) * 0.002 * 60 = 0.034 m/s; the bound is 4.4 sigma).
+  ballsim("${SCENES}/rally_mid.yaml" --out rally.csv)
+  expect_rc(0)
+  expect_out("${summary_re}")
+  expect_out(" net=0 ")
+  expect_rally(10)
+  foreach(h IN LISTS RACKETS)
+    event_field("${h}" v_out v)
+    expect_between("v_out y (eq 10)" "${v_1}" 3.85 4.15)
+  endforeach()
+  count_net_crossings("${WORK}/rally.csv" 11.885 crossings)
+  expect_between("net crossings" "${crossings}" 10 1000)
+  read_samples()
+
+elseif(CASE STREQUAL "rally_advanced")
+  # Advanced level (disc test with the real normal, physical with spin):
+  # the swings brush up along the face, so after the first stroke every ball
+  # leaves with spin about z (eq 12), of alternating sign.
+  ballsim("${SCENES}/rally_advanced.yaml" --out rally.csv)
+  expect_rc(0)
+  expect_out("${summary_re}")
+  expect_out(" net=0 ")
+  expect_rally(10)
+  foreach(h IN LISTS RACKETS)
+    event_field("${h}" spin_out s)
+    string(REGEX REPLACE "^-" "" sz "${s_2}")
+    expect_between("|spin_out z| (eq 12)" "${sz}" 0.3 5)
+  endforeach()
+  count_net_crossings("${WORK}/rally.csv" 11.885 crossings)
+  expect_between("net crossings" "${crossings}" 10 1000)
+  read_samples()
+
+elseif(CASE STREQUAL "serve")
+  # eq 7: the ball leaves along the racket's velocity (23.5, 0, 5) m/s with
+  # its speed |V| = 24.03 m/s, inside [v_min, v_max] = [5, 40], so unclamped;
+  # it lands cross-court in the service box: 11.885 < x < 18.285,
+  # 5.485 < z < 9.6 (centre line to singles side line).
+  ballsim("${SCENES}/serve.yaml")
+  expect_rc(0)
+  expect_out("${summary_re}")
+  expect_out(" net=0 ")
+  expect_out("\nevent t=0\.450000 kind=racket index=0 [^\n]* v_out=23\.5000,0\.0000,5\.0000 ")
+  collect_events()
+  list(GET EVENTS 1 bounce)
+  if(NOT bounce MATCHES "kind=floor")
+    fail("the serve does not land next: ${bounce}")
+  endif()
+  event_field("${bounce}" point p)
+  expect_between("bounce x" "${p_0}" 11.885 18.285)
+  expect_between("bounce z" "${p_2}" 5.485 9.6)
+
+elseif(CASE STREQUAL "smash_6hz")
+  # 6 Hz for 3 s: samples 0..18, 19 in all, none rejected. The swept test
+  # finds the hit although the disc moves 2.5 m between samples; eq 7 gives
+  # the direction of the estimated velocity (2.4, -0.8, 0) / (1/6 s) and the
+  # speed v_min = 20 m/s: V0 = 20 (3, -1, 0) / sqrt(10) = (18.9737, -6.3246, 0).
+  ballsim("${SCENES}/smash_6hz.yaml")
+  expect_rc(0)
+  expect_out("${summary_re}")
+  expect_out(" racket=1 ")
+  expect_out(" net=0 ")
+  expect_out("\nsamples: arrived=19 accepted=19 duplicate=0 stale=0 invalid=0\n")
+  expect_out("kind=racket index=0 point=7\.99999[0-9],2\.600000,5\.000000 [^\n]* v_out=18\.9737,-6\.3246,0\.0000 [^\n]* speed_out=20\.0000 ")
+  collect_events()
+  list(GET EVENTS 1 bounce)
+  event_field("${bounce}" point p)
+  expect_between("smash lands beyond the net, in the court: x" "${p_0}" 11.885 23.77)
+
+elseif(CASE STREQUAL "drop_shot")
+  # Physical response with a sliced swing: V0 = (6.5, 3.6, 0) exactly (the
+  # swing was solved from eq 11) with backspin S z > 0 (eq 12). It lands just
+  # behind the net, and the bounce loses speed to the spin (eq 13, 14, with
+  # floorDamping 0.75 and spinFloorDamping 0.8):
+  # v_out x = 0.75 v_in x - 0.8 S z = 0.75 * 4.6365 - 1.0696 = 2.4077 m/s,
+  # where 0.8 S z is the bounce's spin_out z.
+  ballsim("${SCENES}/drop_shot.yaml")
+  expect_rc(0)
+  expect_out("${summary_re}")
+  expect_out(" net=0 ")
+  expect_out("kind=racket index=0 [^\n]* v_out=6\.5000,3\.6000,0\.0000 spin_out=-?0\.0000,0\.0000,1\.98[0-9][0-9] ")
+  collect_events()
+  list(GET EVENTS 1 bounce)
+  if(NOT bounce MATCHES "kind=floor")
+    fail("the drop shot does not land next: ${bounce}")
+  endif()
+  event_field("${bounce}" point p)
+  expect_between("lands just behind the net: x" "${p_0}" 11.885 14.0)
+  event_field("${bounce}" v_in vin)
+  event_field("${bounce}" v_out vout)
+  event_field("${bounce}" spin_out s)
+  expect_between("v_in x" "${vin_0}" 4.6364 4.6366)
+  expect_between("spin_out z (0.8 S z)" "${s_2}" 1.0695 1.0697)
+  expect_between("v_out x (eq 13)" "${vout_0}" 2.4076 2.4078)
+
+elseif(CASE STREQUAL "bad_script")
+  ballsim("${HERE}/bad_script.yaml")
+  expect_rc(1)
+  expect_err("bad_script\\.yaml:7:13: rackets\\[0\\]\\.script\\.rate: out of range: must be in \\[2, 120\\] Hz, got 200\n$")
 
 elseif(CASE STREQUAL "bad_scenes")
   # file:line:column: field: message, for each kind of error

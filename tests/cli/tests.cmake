@@ -11,6 +11,13 @@ set(BALL_CLI_CASES
   darts
   juggling
   juggling_exact_at_any_fps
+  rally_easy
+  rally_mid
+  rally_advanced
+  serve
+  smash_6hz
+  drop_shot
+  bad_script
   overrides
   out_csv
   out_jsonl
