@@ -26,6 +26,17 @@ static inline ball_vec3 v3_lerp(ball_vec3 a, ball_vec3 b, double u) {
 }
 static inline double v3_axis(ball_vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
 
+/* For the check functions: on a failed condition, name the field in *field
+ * (if the caller asked) and return the status. */
+#define CHECK(cond, name, status) \
+  do {                            \
+    if (!(cond)) {                \
+      if (field) *field = (name); \
+      return (status);            \
+    }                             \
+  } while (0)
+#define CHECK_FINITE(value, name) CHECK(isfinite(value), name, BALL_ENONFINITE)
+
 static inline int ball__has(const ball_model *m, unsigned effect) { return (m->effects & effect) != 0; }
 
 /* ---- flight (flight.c) ---- */

@@ -59,15 +59,6 @@ void ball_model_default(ball_model *m) {
   m->initial_spin = v3(0.0, 0.0, 0.0);
 }
 
-#define CHECK(cond, name, status) \
-  do {                            \
-    if (!(cond)) {                \
-      if (field) *field = (name); \
-      return (status);            \
-    }                             \
-  } while (0)
-
-#define CHECK_FINITE(value, name) CHECK(isfinite(value), name, BALL_ENONFINITE)
 #define CHECK_UNIT(value, name) \
   CHECK_FINITE(value, name);    \
   CHECK((value) >= 0.0 && (value) <= 1.0, name, BALL_ERANGE)

@@ -170,14 +170,6 @@ int ball__disc_test(ball_vec3 p_old, ball_vec3 p, ball_vec3 r_old, ball_vec3 r, 
 
 /* ---- model ---- */
 
-#define CHECK(cond, name, status) \
-  do {                            \
-    if (!(cond)) {                \
-      if (field) *field = (name); \
-      return (status);            \
-    }                             \
-  } while (0)
-#define CHECK_FINITE(value, name) CHECK(isfinite(value), name, BALL_ENONFINITE)
 
 ball_status ball__racket_check(const ball_model *m, const char **field) {
   int i;
