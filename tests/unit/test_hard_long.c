@@ -159,10 +159,75 @@ static void test_long_sampled_run_stays_finite_and_inside_eq5(void **state) {
   }
 }
 
+/* The rally that never ends, with rackets: the easy level (sphere test,
+ * autonomous ball, eq 8, 9) between two still rackets sending samples at
+ * 10 Hz, for 1e6 frames (1e7 with BALL_LONG). V_up is chosen so that the
+ * flight time t0 = 2 V_up / g (eq 8) is exactly 49 frames: every stroke
+ * lands on the partner's centre at a frame, so the rally neither drifts nor
+ * breaks, and every racket event must come 49 frames after the previous one,
+ * alternating between the rackets, at the height of the first stroke: within
+ * 1e-4 m, since the clock is a sum of frame times whose rounding (an ulp of t
+ * is 4e-12 s at t = 2e4 s) moves each stroke by up to |V_up| ulp(t), about
+ * 1.5e-11 m: 7e-6 m after the 2e5 strokes of the long run (seen: 1e-6 m
+ * after 28,000). */
+static void test_long_racket_rally_never_breaks_eq8_eq9(void **state) {
+  ball_model m;
+  ball_sim sim;
+  ball_state st;
+  ball_event ev[8];
+  ball_racket_sample smp;
+  long f, frames = frames_to_run(), hits = 0, last_hit = -1;
+  long long heap0;
+  int n, i, r, last_racket = -1;
+  double stroke_y = 0.0;
+  const double dt = 1.0 / 60.0;
+  (void)state;
+  ball_model_default(&m);
+  assert_int_equal(ball_model_set_level(&m, BALL_LEVEL_EASY), BALL_OK);
+  m.n_rackets = 2;
+  m.rackets[0].partner = 1;
+  m.rackets[1].partner = 0;
+  m.v_up = 49.0 * dt * m.gravity / 2.0; /* eq 8: t0 = 2 V_up / g = 49 frames */
+  m.initial_position = vec(1.1, 1.0, 5.485);
+  m.initial_velocity = vec(0.0, 0.0, 0.0);
+  assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+  heap0 = heap_in_use();
+  for (f = 0; f < frames; f++) {
+    if (f % 6 == 0)
+      for (r = 0; r < 2; r++) {
+        smp.t = sim.time;
+        smp.center = r == 0 ? vec(1.0, 1.0, 5.485) : vec(22.77, 1.0, 5.485);
+        smp.normal = vec(r == 0 ? 1.0 : -1.0, 0.0, 0.0);
+        if (ball_racket_push(&m, &sim, r, &smp) != BALL_OK) fail_msg("frame %ld: sample refused", f);
+      }
+    if (ball_step(&m, &sim, dt, ev, 8, &n) != BALL_OK) fail_msg("frame %ld: step failed", f);
+    for (i = 0; i < n; i++) {
+      if (ev[i].kind != BALL_EVENT_RACKET)
+        fail_msg("frame %ld: a %d event: the rally broke", f, (int)ev[i].kind);
+      if (hits == 0) stroke_y = ev[i].point.y;
+      if ((hits > 0 && f - last_hit != 49) || ev[i].index == last_racket ||
+          fabs(ev[i].point.y - stroke_y) > 1e-4)
+        fail_msg("frame %ld: hit %ld by racket %d at y %.17g, %ld frames after the last",
+                 f, hits, ev[i].index, ev[i].point.y, f - last_hit);
+      last_hit = f;
+      last_racket = ev[i].index;
+      hits++;
+    }
+    if (ball_sim_state(&m, &sim, &st) != BALL_OK || !(st.position.y >= 0.0) ||
+        !isfinite(st.velocity.x) || !isfinite(st.velocity.y) || !isfinite(st.velocity.z))
+      fail_msg("frame %ld: ball at (%.17g, %.17g, %.17g)", f, st.position.x, st.position.y, st.position.z);
+  }
+  print_message("%ld frames: %ld racket hits, stroke height %.17g m\n", frames, hits, stroke_y);
+  assert_true(hits >= frames / 49 - 1);
+  assert_int_equal((long)sim.warnings[BALL_WARN_STALE_RACKET], 0);
+  if (heap0 >= 0) assert_int_equal(heap_in_use(), heap0);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_long_bouncing_run_stays_finite_on_the_floor_eq5_eq6),
       cmocka_unit_test(test_long_sampled_run_stays_finite_and_inside_eq5),
+      cmocka_unit_test(test_long_racket_rally_never_breaks_eq8_eq9),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
