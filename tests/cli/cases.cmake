@@ -65,13 +65,21 @@ function(event_field line name var)
   endif()
 endfunction()
 
-# Lines of a file into the list LINES (no empty last line).
-macro(read_lines file)
-  file(STRINGS "${file}" LINES)
-endmacro()
+# Lines of a file into the list LINES (no empty last line); with a count,
+# fails unless there are exactly that many.
+function(read_lines file)
+  file(STRINGS "${file}" lines)
+  list(LENGTH lines n)
+  if(ARGC GREATER 1 AND NOT n EQUAL ARGV1)
+    get_filename_component(name "${file}" NAME)
+    fail("${name} has ${n} lines, expected ${ARGV1}")
+  endif()
+  set(LINES "${lines}" PARENT_SCOPE)
+endfunction()
 
-# How often the ball centre crosses the plane x = net_x in a --out CSV, into VAR.
-function(count_net_crossings file net_x var)
+# How often the ball centre crosses the plane x = net_x in a --out CSV must
+# be within [lo, hi].
+function(expect_net_crossings file net_x lo hi)
   file(STRINGS "${file}" rows)
   list(REMOVE_AT rows 0)
   set(n 0)
@@ -89,7 +97,7 @@ function(count_net_crossings file net_x var)
     endif()
     set(prev ${side})
   endforeach()
-  set(${var} ${n} PARENT_SCOPE)
+  expect_between("net crossings" "${n}" "${lo}" "${hi}")
 endfunction()
 
 # The racket events of OUT into RACKETS; fails unless there are at least
@@ -127,6 +135,29 @@ endmacro()
 
 set(summary_re "\nsummary: frames=[0-9]+ time=[0-9.]+ events=[0-9]+ floor=[0-9]+ net=[0-9]+ wall=[0-9]+ racket=[0-9]+ sounds=[0-9]+\nsamples: arrived=[0-9]+ accepted=[0-9]+ duplicate=[0-9]+ stale=[0-9]+ invalid=0\nfinal: position=[^ ]+ velocity=[^ ]+ spin=[^ ]+ grounded=[01]\nwarnings: event_overflow=0 contact_limit=0 stale_racket=0 events_dropped=0\n$")
 
+# Runs ballsim with the given arguments; expects exit status 0 and the
+# summary block at the end of stdout. Sets RC, OUT and ERR.
+function(run_scene)
+  ballsim(${ARGN})
+  expect_rc(0)
+  expect_out("${summary_re}")
+  set(RC "${RC}" PARENT_SCOPE)
+  set(OUT "${OUT}" PARENT_SCOPE)
+  set(ERR "${ERR}" PARENT_SCOPE)
+endfunction()
+
+# Runs ballsim with the arguments before STATUS; expects that exit status
+# and stderr matching the STDERR regex. Sets RC, OUT and ERR.
+function(expect_failure)
+  cmake_parse_arguments(PARSE_ARGV 0 A "" "STATUS;STDERR" "")
+  ballsim(${A_UNPARSED_ARGUMENTS})
+  expect_rc(${A_STATUS})
+  expect_err("${A_STDERR}")
+  set(RC "${RC}" PARENT_SCOPE)
+  set(OUT "${OUT}" PARENT_SCOPE)
+  set(ERR "${ERR}" PARENT_SCOPE)
+endfunction()
+
 if(CASE STREQUAL "help")
   ballsim(--help)
   expect_rc(0)
@@ -140,10 +171,8 @@ if(CASE STREQUAL "help")
 
 elseif(CASE STREQUAL "default_is_tennis")
   # No scene: the built-in tennis serve, identical to scenes/tennis.yaml.
-  ballsim(--out builtin.csv)
-  expect_rc(0)
+  run_scene(--out builtin.csv)
   expect_out("^scene: tennis \\(built-in\\) scheme=exact fps=60 ")
-  expect_out("${summary_re}")
   string(REGEX REPLACE "^[^\n]*\n" "" builtin_body "${OUT}")
   ballsim("${SCENES}/tennis.yaml" --out file.csv)
   expect_rc(0)
@@ -160,9 +189,7 @@ elseif(CASE STREQUAL "default_is_tennis")
 elseif(CASE STREQUAL "tennis")
   # The serve crosses the net without touching it and lands in the service
   # box: 11.885 m (net) < x < 18.285 m (service line), 0 < z < 10.97 m.
-  ballsim("${SCENES}/tennis.yaml")
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/tennis.yaml")
   expect_out(" net=0 ")
   collect_events()
   list(LENGTH EVENTS n)
@@ -185,9 +212,7 @@ elseif(CASE STREQUAL "football_wall")
   # radius before the plane: x = 11 - 0.11 = 10.89 m; eq 6 turns the normal
   # speed around with the wall's damping 0.7. Then it bounces back on the
   # grass and ends sliding (grounded) nearer the kicker.
-  ballsim("${SCENES}/football_wall.yaml")
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/football_wall.yaml")
   expect_out(" wall=1 ")
   expect_out("grounded=1\n")
   collect_events()
@@ -227,9 +252,7 @@ elseif(CASE STREQUAL "dropped_ball")
   # and 6.07 * 0.75^n < 0.3 m/s (the bounce threshold) first for n = 11:
   # 11 floor events, the last one leaving at 0, then the ball rests on the
   # floor (y = radius = 0.12 m) with zero velocity.
-  ballsim("${SCENES}/dropped_ball.yaml")
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/dropped_ball.yaml")
   expect_out(" events=11 floor=11 net=0 wall=0 ")
   expect_out("final: position=0\\.000000,0\\.120000,0\\.000000 velocity=0\\.000000,0\\.000000,0\\.000000 [^\n]* grounded=1\n")
   collect_events()
@@ -244,9 +267,7 @@ elseif(CASE STREQUAL "dropped_ball")
 elseif(CASE STREQUAL "darts")
   # One hit, on the board (x = 2.37 m, y in [1.5045, 1.9555], z in
   # [-0.2255, 0.2255]), near the bull at 1.73 m; the board takes the speed.
-  ballsim("${SCENES}/darts.yaml")
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/darts.yaml")
   expect_out(" events=1 floor=0 net=0 wall=1 racket=0 ")
   collect_events()
   list(GET EVENTS 0 hit)
@@ -263,9 +284,7 @@ elseif(CASE STREQUAL "darts")
 elseif(CASE STREQUAL "juggling")
   # Drag-free, by hand (see juggling.yaml): contacts at t = 1.2 s, x = 0.6 m
   # and t = 2.46 s, x = 0.6 + 0.45 * 1.26 = 1.167 m.
-  ballsim("${SCENES}/juggling.yaml")
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/juggling.yaml")
   expect_out("effects=floor,sound\n")
   expect_out("\nevent t=1\\.200000 kind=floor index=0 point=0\\.600000,0\\.035000,0\\.000000 v_in=0\\.5000,-6\\.8670,0\\.0000 v_out=[^ ]+,6\\.1803,0\\.0000 ")
   expect_out("\nevent t=2\\.460000 kind=floor index=0 point=1\\.167000,0\\.035000,0\\.000000 ")
@@ -296,11 +315,7 @@ elseif(CASE STREQUAL "out_csv")
   # 0.1 s at 60 fps: 6 frames, so 7 rows (t = 0 included) under a header.
   ballsim("${SCENES}/tennis.yaml" --duration 0.1 --out traj.csv)
   expect_rc(0)
-  read_lines("${WORK}/traj.csv")
-  list(LENGTH LINES n)
-  if(NOT n EQUAL 8)
-    fail("traj.csv has ${n} lines, expected 8")
-  endif()
+  read_lines("${WORK}/traj.csv" 8)
   list(GET LINES 0 header)
   if(NOT header STREQUAL "t,px,py,pz,vx,vy,vz,sx,sy,sz")
     fail("bad CSV header: ${header}")
@@ -337,11 +352,7 @@ elseif(CASE STREQUAL "out_csv")
 elseif(CASE STREQUAL "out_jsonl")
   ballsim("${SCENES}/tennis.yaml" --duration 0.1 --out traj.jsonl)
   expect_rc(0)
-  read_lines("${WORK}/traj.jsonl")
-  list(LENGTH LINES n)
-  if(NOT n EQUAL 7)
-    fail("traj.jsonl has ${n} lines, expected 7")
-  endif()
+  read_lines("${WORK}/traj.jsonl" 7)
   set(num "-?[0-9][-0-9.e+]*")
   foreach(line IN LISTS LINES)
     if(NOT line MATCHES "^{\"t\":${num},\"px\":${num},\"py\":${num},\"pz\":${num},\"vx\":${num},\"vy\":${num},\"vz\":${num},\"sx\":${num},\"sy\":${num},\"sz\":${num}}$")
@@ -377,69 +388,50 @@ elseif(CASE STREQUAL "format_option")
 
 elseif(CASE STREQUAL "bad_numbers")
   foreach(bad abc 0 -5 60x nan inf 1e999 " 60" "")
-    ballsim("--fps=${bad}")
-    expect_rc(2)
-    expect_err("^ballsim: --fps: expected a number > 0, got \"${bad}\" \\(see ballsim --help\\)\n$")
+    expect_failure("--fps=${bad}" STATUS 2
+      STDERR "^ballsim: --fps: expected a number > 0, got \"${bad}\" \\(see ballsim --help\\)\n$")
     if(NOT OUT STREQUAL "")
       fail("printed to stdout before failing")
     endif()
   endforeach()
   foreach(bad -1 0 1s)
-    ballsim(--duration "${bad}")
-    expect_rc(2)
-    expect_err("^ballsim: --duration: expected a number of seconds > 0, got \"${bad}\"")
+    expect_failure(--duration "${bad}" STATUS 2
+      STDERR "^ballsim: --duration: expected a number of seconds > 0, got \"${bad}\"")
   endforeach()
 
 elseif(CASE STREQUAL "bad_options")
-  ballsim(--bogus)
-  expect_rc(2)
-  expect_err("^ballsim: unknown option --bogus ")
-  ballsim(-x)
-  expect_rc(2)
-  expect_err("^ballsim: unknown option -x ")
-  ballsim("${SCENES}/darts.yaml" "${SCENES}/tennis.yaml")
-  expect_rc(2)
-  expect_err("^ballsim: more than one scene given: ")
-  ballsim(--fps)
-  expect_rc(2)
-  expect_err("^ballsim: --fps needs a value")
-  ballsim(--scheme fast)
-  expect_rc(2)
-  expect_err("^ballsim: --scheme: expected sampled or exact, got \"fast\"")
-  ballsim(--out traj.xml --format xml)
-  expect_rc(2)
-  expect_err("^ballsim: --format: expected csv or jsonl, got \"xml\"")
-  ballsim(--out traj.txt)
-  expect_rc(2)
-  expect_err("^ballsim: --out traj.txt: cannot tell the format")
-  ballsim(--format csv)
-  expect_rc(2)
-  expect_err("^ballsim: --format needs --out FILE")
+  expect_failure(--bogus STATUS 2 STDERR "^ballsim: unknown option --bogus ")
+  expect_failure(-x STATUS 2 STDERR "^ballsim: unknown option -x ")
+  expect_failure("${SCENES}/darts.yaml" "${SCENES}/tennis.yaml" STATUS 2
+    STDERR "^ballsim: more than one scene given: ")
+  expect_failure(--fps STATUS 2 STDERR "^ballsim: --fps needs a value")
+  expect_failure(--scheme fast STATUS 2
+    STDERR "^ballsim: --scheme: expected sampled or exact, got \"fast\"")
+  expect_failure(--out traj.xml --format xml STATUS 2
+    STDERR "^ballsim: --format: expected csv or jsonl, got \"xml\"")
+  expect_failure(--out traj.txt STATUS 2 STDERR "^ballsim: --out traj.txt: cannot tell the format")
+  expect_failure(--format csv STATUS 2 STDERR "^ballsim: --format needs --out FILE")
   if(EXISTS "${WORK}/traj.txt" OR EXISTS "${WORK}/traj.xml")
     fail("a usage error still wrote a file")
   endif()
 
 elseif(CASE STREQUAL "missing_scene")
-  ballsim(no/such/scene.yaml)
-  expect_rc(1)
-  expect_err("^no/such/scene\\.yaml: No such file or directory\n$")
+  expect_failure(no/such/scene.yaml STATUS 1
+    STDERR "^no/such/scene\\.yaml: No such file or directory\n$")
 
 elseif(CASE STREQUAL "rally_easy")
   # Easy level (sphere test, autonomous ball): the rackets hold still, every
   # stroke flies to the partner with V_up = 4 m/s (eq 8), so each racket
   # event leaves with v_out y = 4.0000. 12 s: at least 10 strokes and 10
   # net crossings (15 by design, one stroke every 0.8167 s from t = 0.117 s).
-  ballsim("${SCENES}/rally_easy.yaml" --out rally.csv)
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/rally_easy.yaml" --out rally.csv)
   expect_out(" net=0 ")
   expect_rally(10)
   foreach(h IN LISTS RACKETS)
     event_field("${h}" v_out v)
     expect_between("v_out y (V_up, eq 8)" "${v_1}" 4.0 4.0)
   endforeach()
-  count_net_crossings("${WORK}/rally.csv" 11.885 crossings)
-  expect_between("net crossings" "${crossings}" 10 1000)
+  expect_net_crossings("${WORK}/rally.csv" 11.885 10 1000)
   # 10 Hz for 12 s from two rackets, 80 ms delay: about 2 * 120 samples taken,
   # 5 % lost, 5 % duplicated; a jitter of 150 ms > 100 ms between samples
   # puts some out of order (stale) and delivers some copies (duplicate)
@@ -454,26 +446,21 @@ elseif(CASE STREQUAL "rally_mid")
   # = 4 m/s, give or take the velocity the 2 mm tracker noise puts into the
   # racket estimate (a difference of two samples 1/60 s apart: sigma =
   # 0.2 * sqrt(2) * 0.002 * 60 = 0.034 m/s; the bound is 4.4 sigma).
-  ballsim("${SCENES}/rally_mid.yaml" --out rally.csv)
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/rally_mid.yaml" --out rally.csv)
   expect_out(" net=0 ")
   expect_rally(10)
   foreach(h IN LISTS RACKETS)
     event_field("${h}" v_out v)
     expect_between("v_out y (eq 10)" "${v_1}" 3.85 4.15)
   endforeach()
-  count_net_crossings("${WORK}/rally.csv" 11.885 crossings)
-  expect_between("net crossings" "${crossings}" 10 1000)
+  expect_net_crossings("${WORK}/rally.csv" 11.885 10 1000)
   read_samples()
 
 elseif(CASE STREQUAL "rally_advanced")
   # Advanced level (disc test with the real normal, physical with spin):
   # the swings brush up along the face, so after the first stroke every ball
   # leaves with spin about z (eq 12), of alternating sign.
-  ballsim("${SCENES}/rally_advanced.yaml" --out rally.csv)
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/rally_advanced.yaml" --out rally.csv)
   expect_out(" net=0 ")
   expect_rally(10)
   foreach(h IN LISTS RACKETS)
@@ -481,8 +468,7 @@ elseif(CASE STREQUAL "rally_advanced")
     string(REGEX REPLACE "^-" "" sz "${s_2}")
     expect_between("|spin_out z| (eq 12)" "${sz}" 0.3 5)
   endforeach()
-  count_net_crossings("${WORK}/rally.csv" 11.885 crossings)
-  expect_between("net crossings" "${crossings}" 10 1000)
+  expect_net_crossings("${WORK}/rally.csv" 11.885 10 1000)
   read_samples()
 
 elseif(CASE STREQUAL "serve")
@@ -490,9 +476,7 @@ elseif(CASE STREQUAL "serve")
   # its speed |V| = 24.03 m/s, inside [v_min, v_max] = [5, 40], so unclamped;
   # it lands cross-court in the service box: 11.885 < x < 18.285,
   # 5.485 < z < 9.6 (centre line to singles side line).
-  ballsim("${SCENES}/serve.yaml")
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/serve.yaml")
   expect_out(" net=0 ")
   expect_out("\nevent t=0\.450000 kind=racket index=0 [^\n]* v_out=23\.5000,0\.0000,5\.0000 ")
   collect_events()
@@ -509,9 +493,7 @@ elseif(CASE STREQUAL "smash_6hz")
   # finds the hit although the disc moves 2.5 m between samples; eq 7 gives
   # the direction of the estimated velocity (2.4, -0.8, 0) / (1/6 s) and the
   # speed v_min = 20 m/s: V0 = 20 (3, -1, 0) / sqrt(10) = (18.9737, -6.3246, 0).
-  ballsim("${SCENES}/smash_6hz.yaml")
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/smash_6hz.yaml")
   expect_out(" racket=1 ")
   expect_out(" net=0 ")
   expect_out("\nsamples: arrived=19 accepted=19 duplicate=0 stale=0 invalid=0\n")
@@ -528,9 +510,7 @@ elseif(CASE STREQUAL "drop_shot")
   # floorDamping 0.75 and spinFloorDamping 0.8):
   # v_out x = 0.75 v_in x - 0.8 S z = 0.75 * 4.6365 - 1.0696 = 2.4077 m/s,
   # where 0.8 S z is the bounce's spin_out z.
-  ballsim("${SCENES}/drop_shot.yaml")
-  expect_rc(0)
-  expect_out("${summary_re}")
+  run_scene("${SCENES}/drop_shot.yaml")
   expect_out(" net=0 ")
   expect_out("kind=racket index=0 [^\n]* v_out=6\.5000,3\.6000,0\.0000 spin_out=-?0\.0000,0\.0000,1\.98[0-9][0-9] ")
   collect_events()
@@ -548,24 +528,19 @@ elseif(CASE STREQUAL "drop_shot")
   expect_between("v_out x (eq 13)" "${vout_0}" 2.4076 2.4078)
 
 elseif(CASE STREQUAL "bad_script")
-  ballsim("${HERE}/bad_script.yaml")
-  expect_rc(1)
-  expect_err("bad_script\\.yaml:7:13: rackets\\[0\\]\\.script\\.rate: out of range: must be in \\[2, 120\\] Hz, got 200\n$")
+  expect_failure("${HERE}/bad_script.yaml" STATUS 1
+    STDERR "bad_script\\.yaml:7:13: rackets\\[0\\]\\.script\\.rate: out of range: must be in \\[2, 120\\] Hz, got 200\n$")
 
 elseif(CASE STREQUAL "bad_scenes")
   # file:line:column: field: message, for each kind of error
-  ballsim("${HERE}/bad_range.yaml")
-  expect_rc(1)
-  expect_err("bad_range\\.yaml:5:12: floor\\.damping: out of range: must be in \\[0, 1\\]\n$")
-  ballsim("${HERE}/bad_key.yaml")
-  expect_rc(1)
-  expect_err("bad_key\\.yaml:4:51: walls\\[1\\]\\.dampnig: unknown key \"dampnig\"\n$")
-  ballsim("${HERE}/bad_type.yaml")
-  expect_rc(1)
-  expect_err("bad_type\\.yaml:3:13: ball\\.position: expected a list of 3 numbers \\[x, y, z\\], got 2 items\n$")
-  ballsim("${HERE}/bad_syntax.yaml")
-  expect_rc(1)
-  expect_err("bad_syntax\\.yaml:4:9: YAML syntax: mapping values are not allowed in this context\n$")
+  expect_failure("${HERE}/bad_range.yaml" STATUS 1
+    STDERR "bad_range\\.yaml:5:12: floor\\.damping: out of range: must be in \\[0, 1\\]\n$")
+  expect_failure("${HERE}/bad_key.yaml" STATUS 1
+    STDERR "bad_key\\.yaml:4:51: walls\\[1\\]\\.dampnig: unknown key \"dampnig\"\n$")
+  expect_failure("${HERE}/bad_type.yaml" STATUS 1
+    STDERR "bad_type\\.yaml:3:13: ball\\.position: expected a list of 3 numbers \\[x, y, z\\], got 2 items\n$")
+  expect_failure("${HERE}/bad_syntax.yaml" STATUS 1
+    STDERR "bad_syntax\\.yaml:4:9: YAML syntax: mapping values are not allowed in this context\n$")
   if(NOT OUT STREQUAL "")
     fail("printed to stdout before failing")
   endif()

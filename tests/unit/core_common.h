@@ -1,7 +1,7 @@
-/* Helpers shared by the core's unit tests (test_flight.c, test_floor.c,
- * test_planes.c, test_schemes.c, test_inputs.c, test_effects.c): a tolerance
- * assertion that prints both numbers, the base scenes, and a stepping loop
- * that collects events. Include after <cmocka.h>. */
+/* Helpers shared by the unit tests: tolerance assertions that print both
+ * numbers, vector arithmetic, the base scenes (a ball in free space, the
+ * tennis net, the court with a back wall), starting a sim, and a stepping
+ * loop that collects events. Include after <cmocka.h>. */
 #ifndef BALL_TESTS_CORE_COMMON_H
 #define BALL_TESTS_CORE_COMMON_H
 
@@ -11,21 +11,26 @@
 
 #include "ball/ball.h"
 
-/* |got - want| <= tol, with both numbers in the failure message. */
-#define assert_near(got, want, tol) core_assert_near((got), (want), (tol), #got, __FILE__, __LINE__)
+/* |got - want| <= tol, with both expressions and numbers in the failure
+ * message. A NaN on either side fails. */
+#define assert_near(got, want, tol) \
+  core_assert_near((got), (want), (tol), #got, #want, __FILE__, __LINE__)
 
-static inline void core_assert_near(double got, double want, double tol, const char *expr,
-                             const char *file, int line) {
+static inline void core_assert_near(double got, double want, double tol, const char *got_expr,
+                                    const char *want_expr, const char *file, int line) {
   if (!(fabs(got - want) <= tol)) {
-    print_error("%s = %.17g, want %.17g +- %.3g (off by %.3g)\n", expr, got, want, tol,
-                fabs(got - want));
+    print_error("%s = %.17g, want %s = %.17g +- %.3g (off by %.3g)\n", got_expr, got, want_expr,
+                want, tol, fabs(got - want));
     _fail(file, line);
   }
 }
 
 /* Relative version: |got - want| <= rel * |want|. */
 #define assert_rel(got, want, rel) \
-  core_assert_near((got), (want), (rel) * fabs(want), #got, __FILE__, __LINE__)
+  core_assert_near((got), (want), (rel) * fabs(want), #got, #want, __FILE__, __LINE__)
+
+/* Every component of a ball_vec3 is finite. */
+#define assert_finite3(v) assert_true(isfinite((v).x) && isfinite((v).y) && isfinite((v).z))
 
 #define assert_ok(call) assert_int_equal((call), BALL_OK)
 
@@ -58,6 +63,70 @@ static inline ball_vec3 core_v3(double x, double y, double z) {
   r.y = y;
   r.z = z;
   return r;
+}
+
+static inline ball_vec3 core_add(ball_vec3 a, ball_vec3 b) {
+  return core_v3(a.x + b.x, a.y + b.y, a.z + b.z);
+}
+static inline ball_vec3 core_sub(ball_vec3 a, ball_vec3 b) {
+  return core_v3(a.x - b.x, a.y - b.y, a.z - b.z);
+}
+static inline ball_vec3 core_scale(ball_vec3 a, double k) { return core_v3(a.x * k, a.y * k, a.z * k); }
+static inline double core_dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline double core_norm(ball_vec3 a) { return sqrt(core_dot(a, a)); }
+static inline ball_vec3 core_unit(ball_vec3 a) { return core_scale(a, 1.0 / core_norm(a)); }
+static inline ball_vec3 core_cross(ball_vec3 a, ball_vec3 b) {
+  return core_v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+
+/* The default tennis net (x = 11.885 m, z in [0, 10.97] m, y in [0, 0.914] m)
+ * with the given netDamping, switched on in the model (not in the effects). */
+static inline void core_tennis_net(ball_model *m, double damping) {
+  m->has_net = 1;
+  m->net.axis = 0;
+  m->net.position = 11.885;
+  m->net.lo = 0.0;
+  m->net.hi = 10.97;
+  m->net.bottom = 0.0;
+  m->net.top = 0.914;
+  m->net.damping = damping;
+}
+
+/* The tennis court with a back wall at x = -1 (damping 0.8), drag with b =
+ * 5 s, radius 0.03 m, floorDamping 0.8, netDamping 0.9: the serve from
+ * (3, 1.5, 2) m at (12, 3, 0.5) m/s hits the net at y = 0.76 m, flies back,
+ * bounces, hits the wall and bounces on. Exact scheme, no spin. */
+static inline void core_court_scene(ball_model *m) {
+  ball_plane back = {0, -1.0, -5.0, 15.0, 0.0, 4.0, 0.8};
+  core_model_free(m);
+  m->air_friction = 0.01; /* b = 5 s */
+  m->radius = 0.03;
+  m->floor_damping = 0.8;
+  m->bounce_threshold = 0.3;
+  m->sound_threshold = 0.5;
+  core_tennis_net(m, 0.9);
+  m->effects = BALL_EFFECT_DRAG | BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_WALLS |
+               BALL_EFFECT_SOUND;
+  assert_ok(ball_model_add_wall(m, &back));
+  m->initial_position = core_v3(3.0, 1.5, 2.0);
+  m->initial_velocity = core_v3(12.0, 3.0, 0.5);
+}
+
+/* Starts sim at time 0 with the ball at p moving at v, no spin (the model's
+ * initial state). */
+static inline void core_start(ball_model *m, ball_sim *sim, ball_vec3 p, ball_vec3 v) {
+  m->initial_position = p;
+  m->initial_velocity = v;
+  m->initial_spin = core_v3(0.0, 0.0, 0.0);
+  assert_ok(ball_sim_init(m, sim));
+}
+
+static inline ball_racket_sample core_sample(double t, ball_vec3 c, ball_vec3 n) {
+  ball_racket_sample s;
+  s.t = t;
+  s.center = c;
+  s.normal = n;
+  return s;
 }
 
 static inline ball_segment core_segment(double t0, ball_vec3 p0, ball_vec3 v0, ball_vec3 s0) {

@@ -28,33 +28,17 @@
 #define FRAMES 420 /* 7 s at 60 Hz */
 #define FPS 60.0
 
-/* The tennis court with a back wall, a side wall, a spinning ball: the serve
- * hits the net, comes back, bounces, hits the walls and bounces on. */
+/* The tennis court with a back wall (core_court_scene), a side wall at z =
+ * -0.5 and a spinning ball: the serve hits the net, comes back, bounces, hits
+ * the walls and bounces on. */
 static void full_scene(ball_model *m, ball_scheme scheme) {
-  ball_plane back = {0, -1.0, -5.0, 15.0, 0.0, 4.0, 0.8};
   ball_plane side = {2, -0.5, -5.0, 30.0, 0.0, 4.0, 0.7};
-  core_model_free(m);
-  m->air_friction = 0.01;
-  m->radius = 0.03;
-  m->floor_damping = 0.8;
-  m->bounce_threshold = 0.3;
-  m->sound_threshold = 0.5;
+  core_court_scene(m);
   m->spin_damping = 2.0;
   m->spin_floor_damping = 0.8;
-  m->has_net = 1;
-  m->net.axis = 0;
-  m->net.position = 11.885;
-  m->net.lo = 0.0;
-  m->net.hi = 10.97;
-  m->net.bottom = 0.0;
-  m->net.top = 0.914;
-  m->net.damping = 0.9;
-  m->effects = BALL_EFFECT_DRAG | BALL_EFFECT_SPIN | BALL_EFFECT_FLOOR | BALL_EFFECT_NET |
-               BALL_EFFECT_WALLS | BALL_EFFECT_SOUND;
+  m->effects |= BALL_EFFECT_SPIN;
   m->scheme = scheme;
-  assert_ok(ball_model_add_wall(m, &back));
   assert_ok(ball_model_add_wall(m, &side));
-  m->initial_position = core_v3(3.0, 1.5, 2.0);
   m->initial_velocity = core_v3(12.0, 3.0, -0.5);
   m->initial_spin = core_v3(0.5, 0.0, 2.0);
 }

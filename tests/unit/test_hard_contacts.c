@@ -15,14 +15,7 @@
 
 #include <cmocka.h>
 
-#include "ball/ball.h"
-
-#define NEAR(a, b, tol)                                                                   \
-  do {                                                                                    \
-    double a_ = (a), b_ = (b), t_ = (tol);                                                \
-    if (!(fabs(a_ - b_) <= t_))                                                           \
-      fail_msg("%s = %.17g, expected %s = %.17g within %g", #a, a_, #b, b_, t_);          \
-  } while (0)
+#include "core_common.h"
 
 #define AT_LEAST(a, b)                                                                    \
   do {                                                                                    \
@@ -36,14 +29,6 @@
     if (!(a_ <= b_)) fail_msg("%s = %.17g, expected <= %.17g", #a, a_, b_);               \
   } while (0)
 
-static ball_vec3 vec(double x, double y, double z) {
-  ball_vec3 r;
-  r.x = x;
-  r.y = y;
-  r.z = z;
-  return r;
-}
-
 /* Floor and net, no drag, no spin, exact scheme, g = 8, the paper's point
  * ball; the default tennis net at x = 11.885, z in [0, 10.97], y in [0, 0.914]. */
 static void model_of(ball_model *m, unsigned effects, double radius) {
@@ -52,13 +37,6 @@ static void model_of(ball_model *m, unsigned effects, double radius) {
   m->scheme = BALL_SCHEME_EXACT;
   m->gravity = 8.0;
   m->radius = radius;
-}
-
-static void start(ball_model *m, ball_sim *sim, ball_vec3 p, ball_vec3 v) {
-  m->initial_position = p;
-  m->initial_velocity = v;
-  m->initial_spin = vec(0.0, 0.0, 0.0);
-  assert_int_equal(ball_sim_init(m, sim), BALL_OK);
 }
 
 static void wall(ball_model *m, int axis, double position, double lo, double hi, double damping) {
@@ -75,8 +53,8 @@ static void wall(ball_model *m, int axis, double position, double lo, double hi,
 
 static void state_of(const ball_model *m, const ball_sim *sim, ball_state *st) {
   assert_int_equal(ball_sim_state(m, sim, st), BALL_OK);
-  assert_true(isfinite(st->position.x) && isfinite(st->position.y) && isfinite(st->position.z));
-  assert_true(isfinite(st->velocity.x) && isfinite(st->velocity.y) && isfinite(st->velocity.z));
+  assert_finite3(st->position);
+  assert_finite3(st->velocity);
 }
 
 /* Counts events of each kind over frames; checks every event is finite. */
@@ -120,15 +98,15 @@ static void test_ball_at_rest_exactly_on_floor_stays_there_eq5(void **state) {
     model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, 0.033);
     m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
     m.floor_level = -1.5;
-    start(&m, &sim, vec(3.0, -1.5 + 0.033, 4.0), vec(0.0, 0.0, 0.0));
+    core_start(&m, &sim, core_v3(3.0, -1.5 + 0.033, 4.0), core_v3(0.0, 0.0, 0.0));
     for (f = 0; f < 600; f++) {
       run(&m, &sim, 1, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
-      NEAR(st.position.y, -1.5 + 0.033, 0.0);
-      NEAR(st.position.x, 3.0, 0.0);
+      assert_near(st.position.y, -1.5 + 0.033, 0.0);
+      assert_near(st.position.x, 3.0, 0.0);
     }
     AT_MOST(t.total, 1);
-    if (t.total) NEAR(t.first.velocity_out.y, 0.0, 0.0);
+    if (t.total) assert_near(t.first.velocity_out.y, 0.0, 0.0);
     assert_int_equal(sim.seg.grounded, 1);
   }
 }
@@ -147,16 +125,16 @@ static void test_ball_sliding_on_floor_follows_eq3(void **state) {
   memset(&t, 0, sizeof t);
   model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_DRAG, 0.0);
   b = m.mass / m.air_friction;
-  start(&m, &sim, vec(0.0, 0.0, 4.0), vec(5.0, 0.0, 0.0));
+  core_start(&m, &sim, core_v3(0.0, 0.0, 4.0), core_v3(5.0, 0.0, 0.0));
   run(&m, &sim, 120, 1.0 / 64.0, &t);
   state_of(&m, &sim, &st);
   AT_MOST(t.total, 1);
-  NEAR(st.position.y, 0.0, 0.0);
+  assert_near(st.position.y, 0.0, 0.0);
   if (t.total) {
-    NEAR(t.first.time, 0.0, 0.0);
-    NEAR(t.first.velocity_out.x, 5.0 * m.floor_damping, 0.0);
+    assert_near(t.first.time, 0.0, 0.0);
+    assert_near(t.first.velocity_out.x, 5.0 * m.floor_damping, 0.0);
   }
-  NEAR(st.position.x, -(t.total ? t.first.velocity_out.x : 5.0) * b * expm1(-sim.time / b), 1e-12);
+  assert_near(st.position.x, -(t.total ? t.first.velocity_out.x : 5.0) * b * expm1(-sim.time / b), 1e-12);
 }
 
 /* ---- the net plane ------------------------------------------------------ */
@@ -178,7 +156,7 @@ static void test_ball_starting_inside_the_net_gets_out_fig3(void **state) {
       tally t;
       memset(&t, 0, sizeof t);
       model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET, radii[i]);
-      start(&m, &sim, vec(11.885, 0.5, 3.0), vec(speeds[j], 0.0, 0.0));
+      core_start(&m, &sim, core_v3(11.885, 0.5, 3.0), core_v3(speeds[j], 0.0, 0.0));
       run(&m, &sim, 60, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
       AT_MOST(t.kind[BALL_EVENT_NET], 1);
@@ -186,7 +164,7 @@ static void test_ball_starting_inside_the_net_gets_out_fig3(void **state) {
       if (speeds[j] != 0.0)
         AT_LEAST(fabs(st.position.x - 11.885), radii[i]);
       else
-        NEAR(st.position.x, 11.885, 0.0);
+        assert_near(st.position.x, 11.885, 0.0);
     }
 }
 
@@ -207,11 +185,11 @@ static void test_ball_parallel_to_net_plane_never_hits_it_fig3(void **state) {
       memset(&t, 0, sizeof t);
       model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, radii[i]);
       m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
-      start(&m, &sim, vec(11.885 - radii[i], 0.5, 3.0), vec(0.0, 2.0, 4.0));
+      core_start(&m, &sim, core_v3(11.885 - radii[i], 0.5, 3.0), core_v3(0.0, 2.0, 4.0));
       run(&m, &sim, 120, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
       assert_int_equal(t.kind[BALL_EVENT_NET], 0);
-      NEAR(st.position.x, 11.885 - radii[i], 0.0);
+      assert_near(st.position.x, 11.885 - radii[i], 0.0);
       AT_LEAST(st.position.z, 5.0);
     }
 }
@@ -237,13 +215,13 @@ static void test_grazing_the_net_top_edge_fig3(void **state) {
       m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
       m.net.position = 2.0;
       m.net.top = 1.0;
-      start(&m, &sim, vec(0.0, 1.25 + offsets[i], 5.0), vec(8.0, 0.0, 0.0));
+      core_start(&m, &sim, core_v3(0.0, 1.25 + offsets[i], 5.0), core_v3(8.0, 0.0, 0.0));
       run(&m, &sim, 32, 1.0 / 64.0, &t);
       assert_int_equal(t.kind[BALL_EVENT_NET], offsets[i] > 0.0 ? 0 : 1);
       if (t.total) {
-        NEAR(t.first.time, 0.25, 1e-15);
-        NEAR(t.first.point.y, 1.0 + offsets[i], 1e-15);
-        NEAR(t.first.velocity_out.x, -8.0 * m.net.damping, 1e-15);
+        assert_near(t.first.time, 0.25, 1e-15);
+        assert_near(t.first.point.y, 1.0 + offsets[i], 1e-15);
+        assert_near(t.first.velocity_out.x, -8.0 * m.net.damping, 1e-15);
       }
     }
 }
@@ -264,7 +242,7 @@ static void test_grazing_the_net_side_edges_fig3(void **state) {
       model_of(&m, BALL_EFFECT_NET, 0.0);
       m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
       m.net.position = 2.0;
-      start(&m, &sim, vec(0.0, 0.75, zs[i]), vec(8.0, 0.0, 0.0));
+      core_start(&m, &sim, core_v3(0.0, 0.75, zs[i]), core_v3(8.0, 0.0, 0.0));
       run(&m, &sim, 32, 1.0 / 64.0, &t);
       assert_int_equal(t.kind[BALL_EVENT_NET], (i % 2) ? 0 : 1);
     }
@@ -290,17 +268,17 @@ static void test_net_then_floor_in_one_frame_eq5_eq6(void **state) {
     double y1 = 0.3 - 4.0 * t_net * t_net, vy1 = -0.2 * 8.0 * t_net;
     double tau2 = (vy1 + sqrt(vy1 * vy1 + 16.0 * (y1 - r))) / 8.0; /* 4 tau^2 - vy1 tau - (y1 - r) = 0 */
     model_of(&m, BALL_EFFECT_NET | BALL_EFFECT_FLOOR, r);
-    start(&m, &sim, vec(11.885 - 1.0, 0.3, 3.0), vec(10.0, 0.0, 0.0));
+    core_start(&m, &sim, core_v3(11.885 - 1.0, 0.3, 3.0), core_v3(10.0, 0.0, 0.0));
     assert_int_equal(ball_step(&m, &sim, 0.5, ev, 8, &n), BALL_OK);
     assert_true(n >= 2);
     assert_int_equal(ev[0].kind, BALL_EVENT_NET);
     assert_int_equal(ev[1].kind, BALL_EVENT_FLOOR);
-    NEAR(ev[0].time, t_net, 1e-15);
-    NEAR(ev[0].point.y, y1, 1e-15);
-    NEAR(ev[0].velocity_out.x, -2.0, 1e-15);
-    NEAR(ev[0].velocity_out.y, vy1, 1e-15);
-    NEAR(ev[1].time, t_net + tau2, 1e-14);
-    NEAR(ev[1].point.x, 11.885 - r - 2.0 * tau2, 1e-12);
+    assert_near(ev[0].time, t_net, 1e-15);
+    assert_near(ev[0].point.y, y1, 1e-15);
+    assert_near(ev[0].velocity_out.x, -2.0, 1e-15);
+    assert_near(ev[0].velocity_out.y, vy1, 1e-15);
+    assert_near(ev[1].time, t_net + tau2, 1e-14);
+    assert_near(ev[1].point.x, 11.885 - r - 2.0 * tau2, 1e-12);
     assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
   }
 }
@@ -330,13 +308,13 @@ static void test_corner_of_two_walls_reflects_both_axes_eq6(void **state) {
       wall(&m, 0, 5.0, -10.0, 10.0, 0.5);
       wall(&m, 2, 5.0, -10.0, 10.0, 0.5);
       /* with the floor: fall 4 tc^2 to touch it at tc */
-      start(&m, &sim, vec(4.0, r + (with_floor ? 4.0 * tc * tc : 3.0), 4.0), vec(2.0, 0.0, 2.0));
+      core_start(&m, &sim, core_v3(4.0, r + (with_floor ? 4.0 * tc * tc : 3.0), 4.0), core_v3(2.0, 0.0, 2.0));
       assert_int_equal(ball_step(&m, &sim, tc + 0.1, ev, 8, &n), BALL_OK);
       assert_int_equal(n, with_floor ? 3 : 2);
-      for (k = 0; k < n; k++) NEAR(ev[k].time, tc, 1e-15);
-      NEAR(ev[n - 1].velocity_out.x, -0.5 * (with_floor ? 0.75 : 1.0), 1e-15);
-      NEAR(ev[n - 1].velocity_out.z, -0.5 * (with_floor ? 0.75 : 1.0), 1e-15);
-      if (with_floor) NEAR(ev[n - 1].velocity_out.y, 0.75 * 0.25 * 8.0 * tc, 1e-14);
+      for (k = 0; k < n; k++) assert_near(ev[k].time, tc, 1e-15);
+      assert_near(ev[n - 1].velocity_out.x, -0.5 * (with_floor ? 0.75 : 1.0), 1e-15);
+      assert_near(ev[n - 1].velocity_out.z, -0.5 * (with_floor ? 0.75 : 1.0), 1e-15);
+      if (with_floor) assert_near(ev[n - 1].velocity_out.y, 0.75 * 0.25 * 8.0 * tc, 1e-14);
       for (f = 0; f < 120; f++) {
         assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, NULL, 0, NULL), BALL_OK);
         state_of(&m, &sim, &st);
@@ -364,7 +342,7 @@ static void test_sampled_two_walls_in_one_frame_keeps_ball_inside_fig3(void **st
   wall(&m, 0, 5.0, -10.0, 10.0, 1.0);
   wall(&m, 2, 5.0, -10.0, 10.0, 1.0);
   m.walls[0].bottom = m.walls[1].bottom = -1e6;
-  start(&m, &sim, vec(4.0, 3.0, 4.5), vec(2.0, 0.0, 2.0));
+  core_start(&m, &sim, core_v3(4.0, 3.0, 4.5), core_v3(2.0, 0.0, 2.0));
   for (f = 0; f < 10; f++) {
     assert_int_equal(ball_step(&m, &sim, 0.6, NULL, 0, NULL), BALL_OK);
     state_of(&m, &sim, &st);
@@ -396,9 +374,9 @@ static void test_ball_wedged_between_wall_and_floor_eq5_eq6(void **state) {
       memset(&t, 0, sizeof t);
       model_of(&m, BALL_EFFECT_WALLS | BALL_EFFECT_FLOOR, r);
       wall(&m, 0, 5.0, -10.0, 10.0, 0.5);
-      if (k == 0) start(&m, &sim, vec(5.0 - r, r, 0.0), vec(2.0, 0.0, 0.0));
-      if (k == 1) start(&m, &sim, vec(5.0 - r, r, 0.0), vec(0.0, 0.0, 0.0));
-      if (k == 2) start(&m, &sim, vec(4.0 - r, r + 4.0 * 0.25, 0.0), vec(2.0, 0.0, 0.0));
+      if (k == 0) core_start(&m, &sim, core_v3(5.0 - r, r, 0.0), core_v3(2.0, 0.0, 0.0));
+      if (k == 1) core_start(&m, &sim, core_v3(5.0 - r, r, 0.0), core_v3(0.0, 0.0, 0.0));
+      if (k == 2) core_start(&m, &sim, core_v3(4.0 - r, r + 4.0 * 0.25, 0.0), core_v3(2.0, 0.0, 0.0));
       for (f = 0; f < 120; f++) {
         run(&m, &sim, 1, 1.0 / 60.0, &t);
         state_of(&m, &sim, &st);
@@ -408,19 +386,19 @@ static void test_ball_wedged_between_wall_and_floor_eq5_eq6(void **state) {
       assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
       if (k == 0) {
         assert_int_equal(t.kind[BALL_EVENT_WALL], 1);
-        NEAR(st.velocity.x, -2.0 * 0.5 * (t.kind[BALL_EVENT_FLOOR] ? 0.75 : 1.0), 0.0);
-        NEAR(st.position.y, r, 0.0);
+        assert_near(st.velocity.x, -2.0 * 0.5 * (t.kind[BALL_EVENT_FLOOR] ? 0.75 : 1.0), 0.0);
+        assert_near(st.position.y, r, 0.0);
       }
       if (k == 1) {
         AT_MOST(t.total, 1); /* the zero-speed settling on the floor */
         assert_int_equal(t.kind[BALL_EVENT_WALL], 0);
-        NEAR(st.position.x, 5.0 - r, 0.0);
-        NEAR(st.position.y, r, 0.0);
+        assert_near(st.position.x, 5.0 - r, 0.0);
+        assert_near(st.position.y, r, 0.0);
       }
       if (k == 2) {
         assert_int_equal(t.kind[BALL_EVENT_WALL], 1);
         AT_LEAST(t.kind[BALL_EVENT_FLOOR], 1);
-        NEAR(t.first.time, 0.5, 1e-15);
+        assert_near(t.first.time, 0.5, 1e-15);
         AT_MOST(st.velocity.x, 0.0);
       }
     }
@@ -442,21 +420,21 @@ static void test_resting_ball_stops_after_ten_bounces_eq5(void **state) {
   double t_expect = 0.5;
   (void)state;
   model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_SOUND, 0.0);
-  start(&m, &sim, vec(0.0, 1.0, 0.0), vec(0.0, 0.0, 0.0));
+  core_start(&m, &sim, core_v3(0.0, 1.0, 0.0), core_v3(0.0, 0.0, 0.0));
   for (f = 0; f < 60 * 20; f++) {
     assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n), BALL_OK);
     for (i = 0; i < n; i++, k++) {
       double v_out = 4.0 * pow(0.75, k + 1);
       assert_int_equal(ev[i].kind, BALL_EVENT_FLOOR);
-      NEAR(ev[i].time, t_expect, 1e-12);
-      NEAR(ev[i].velocity_out.y, v_out < 0.3 ? 0.0 : v_out, 1e-12);
+      assert_near(ev[i].time, t_expect, 1e-12);
+      assert_near(ev[i].velocity_out.y, v_out < 0.3 ? 0.0 : v_out, 1e-12);
       t_expect += 2.0 * v_out / 8.0;
     }
   }
   assert_int_equal(k, 10);
   assert_int_equal(sim.seg.grounded, 1);
   state_of(&m, &sim, &st);
-  NEAR(st.position.y, 0.0, 0.0);
+  assert_near(st.position.y, 0.0, 0.0);
 }
 
 /* The same ball with bounce_threshold = 0, the limit the paper's threshold
@@ -476,7 +454,7 @@ static void test_resting_ball_with_zero_threshold_never_sinks_eq5(void **state) 
     model_of(&m, BALL_EFFECT_FLOOR, 0.0);
     m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
     m.bounce_threshold = 0.0;
-    start(&m, &sim, vec(0.0, 1.0, 0.0), vec(0.0, 0.0, 0.0));
+    core_start(&m, &sim, core_v3(0.0, 1.0, 0.0), core_v3(0.0, 0.0, 0.0));
     for (f = 0; f < 60 * 10; f++) {
       run(&m, &sim, 1, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
@@ -494,7 +472,7 @@ static void test_resting_ball_with_zero_threshold_never_sinks_eq5(void **state) 
     memset(&t, 0, sizeof t);
     model_of(&m, BALL_EFFECT_FLOOR, 0.0);
     m.bounce_threshold = 0.0;
-    start(&m, &sim, vec(0.0, 0.0, 0.0), vec(0.0, 0.0, 0.0));
+    core_start(&m, &sim, core_v3(0.0, 0.0, 0.0), core_v3(0.0, 0.0, 0.0));
     for (f = 0; f < 60; f++) {
       run(&m, &sim, 1, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
@@ -519,16 +497,16 @@ static void test_ball_rolling_into_the_net_bounces_once_eq6(void **state) {
     double r = radii[i];
     memset(&t, 0, sizeof t);
     model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, r);
-    start(&m, &sim, vec(10.0, r, 3.0), vec(5.0, 0.0, 0.0));
+    core_start(&m, &sim, core_v3(10.0, r, 3.0), core_v3(5.0, 0.0, 0.0));
     for (f = 0; f < 240; f++) {
       run(&m, &sim, 1, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
       AT_MOST(st.position.x, 11.885 - r);
-      NEAR(st.position.y, r, 0.0);
+      assert_near(st.position.y, r, 0.0);
     }
     assert_int_equal(t.kind[BALL_EVENT_NET], 1);
-    NEAR(t.last.point.x, 11.885 - r, 1e-12);
-    NEAR(t.last.velocity_out.x, -0.2 * t.last.velocity_in.x, 1e-15);
+    assert_near(t.last.point.x, 11.885 - r, 1e-12);
+    assert_near(t.last.velocity_out.x, -0.2 * t.last.velocity_in.x, 1e-15);
     assert_true(t.last.velocity_in.x > 0.0);
     assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
   }
@@ -551,7 +529,7 @@ static void test_contact_limit_keeps_ball_between_walls(void **state) {
     wall(&m, 0, 0.0, -10.0, 10.0, 1.0);
     wall(&m, 0, 0.05, -10.0, 10.0, 1.0);
     m.walls[0].bottom = m.walls[1].bottom = -1e9;
-    start(&m, &sim, vec(0.025, 5.0, 0.0), vec(100.0, 0.0, 0.0));
+    core_start(&m, &sim, core_v3(0.025, 5.0, 0.0), core_v3(100.0, 0.0, 0.0));
     for (f = 0; f < 30; f++) {
       assert_int_equal(ball_step(&m, &sim, dts[i], NULL, 0, NULL), BALL_OK);
       state_of(&m, &sim, &st);

@@ -14,34 +14,9 @@
 
 #include <cmocka.h>
 
-#include "ball/ball.h"
-
-#define NEAR(a, b, tol)                                                                   \
-  do {                                                                                    \
-    double a_ = (a), b_ = (b), t_ = (tol);                                                \
-    if (!(fabs(a_ - b_) <= t_))                                                           \
-      fail_msg("%s = %.17g, expected %s = %.17g within %g", #a, a_, #b, b_, t_);          \
-  } while (0)
-
-#define FINITE3(v) assert_true(isfinite((v).x) && isfinite((v).y) && isfinite((v).z))
+#include "core_common.h"
 
 #define FRAME (1.0 / 60.0)
-
-static ball_vec3 vec(double x, double y, double z) {
-  ball_vec3 r;
-  r.x = x;
-  r.y = y;
-  r.z = z;
-  return r;
-}
-
-static ball_racket_sample sample(double t, ball_vec3 c, ball_vec3 n) {
-  ball_racket_sample s;
-  s.t = t;
-  s.center = c;
-  s.normal = n;
-  return s;
-}
 
 /* One racket, no drag, no spin, floor only, the ball at (0, 1.5, 0) flying
  * +x at v m/s toward a racket near x = 1. */
@@ -53,9 +28,9 @@ static void racket_model(ball_model *m, ball_detect detect, ball_response respon
   m->detect = detect;
   m->normal_mode = BALL_NORMAL_REAL;
   m->response = response;
-  m->initial_position = vec(0.0, 1.5, 0.0);
-  m->initial_velocity = vec(v, 0.0, 0.0);
-  m->initial_spin = vec(0.0, 0.0, 0.0);
+  m->initial_position = core_v3(0.0, 1.5, 0.0);
+  m->initial_velocity = core_v3(v, 0.0, 0.0);
+  m->initial_spin = core_v3(0.0, 0.0, 0.0);
 }
 
 /* Steps frames; checks finite state and events; counts racket hits and
@@ -74,13 +49,13 @@ static void step_frames(const ball_model *m, ball_sim *sim, int frames, racket_r
     int n, i;
     assert_int_equal(ball_step(m, sim, FRAME, ev, BALL_MAX_CONTACTS + 2, &n), BALL_OK);
     assert_int_equal(ball_sim_state(m, sim, &st), BALL_OK);
-    FINITE3(st.position);
-    FINITE3(st.velocity);
-    FINITE3(st.spin);
+    assert_finite3(st.position);
+    assert_finite3(st.velocity);
+    assert_finite3(st.spin);
     for (i = 0; i < n; i++) {
-      FINITE3(ev[i].point);
-      FINITE3(ev[i].velocity_out);
-      FINITE3(ev[i].spin_out);
+      assert_finite3(ev[i].point);
+      assert_finite3(ev[i].velocity_out);
+      assert_finite3(ev[i].spin_out);
       assert_true(isfinite(ev[i].time));
       if (ev[i].kind != BALL_EVENT_RACKET) continue;
       if (r->hits == 0) r->first = ev[i];
@@ -115,17 +90,17 @@ static void test_still_racket_hits_once_with_defined_direction_eq7_eq11(void **s
         racket_model(&m, detects[d], resp ? BALL_RESPONSE_PHYSICAL : BALL_RESPONSE_RACKET, 10.0);
         m.normal_mode = mode ? BALL_NORMAL_VELOCITY : BALL_NORMAL_REAL;
         assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
-        s = sample(-0.1, vec(1.0, 1.45, 0.0), vec(-1.0, 0.0, 0.0));
+        s = core_sample(-0.1, core_v3(1.0, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
         assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
         s.t = 0.0;
         assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
         step_frames(&m, &sim, 40, &r);
         if (r.hits != 1) fail_msg("detect %d response %d mode %d: %d hits", (int)d, resp, mode, r.hits);
         if (resp == 0) {
-          NEAR(r.first.velocity_out.x, -5.0, 1e-12);
-          NEAR(r.first.velocity_out.y, 0.0, 1e-12);
+          assert_near(r.first.velocity_out.x, -5.0, 1e-12);
+          assert_near(r.first.velocity_out.y, 0.0, 1e-12);
         } else {
-          NEAR(r.first.velocity_out.x, -10.0, 1e-9);
+          assert_near(r.first.velocity_out.x, -10.0, 1e-9);
         }
       }
 }
@@ -152,15 +127,15 @@ static void test_racket_turning_fast_stays_finite_fig4(void **state) {
       m.history = 4;
       assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
       for (i = 0, t = -0.1; i < 4; i++, t += 0.05) {
-        ball_vec3 n = i % 2 ? vec(turns[k][0], turns[k][1], turns[k][2]) : vec(-1.0, 0.0, 0.0);
-        s = sample(t, vec(1.0, 1.45, 0.0), n);
+        ball_vec3 n = i % 2 ? core_v3(turns[k][0], turns[k][1], turns[k][2]) : core_v3(-1.0, 0.0, 0.0);
+        s = core_sample(t, core_v3(1.0, 1.45, 0.0), n);
         assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
       }
       step_frames(&m, &sim, 40, &r);
       /* reversed normal: the same plane x = 1, so eq 11 must send the ball back */
       if (k == 1 && d > 0) {
         assert_int_equal(r.hits, 1);
-        NEAR(r.first.velocity_out.x, -10.0, 1e-9);
+        assert_near(r.first.velocity_out.x, -10.0, 1e-9);
       }
     }
 }
@@ -179,30 +154,30 @@ static void test_zero_tiny_huge_and_nan_normals(void **state) {
   (void)state;
   racket_model(&m, BALL_DETECT_DISC, BALL_RESPONSE_PHYSICAL, 10.0);
   assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
-  s = sample(0.0, vec(1.0, 1.45, 0.0), vec(-1.0, 0.0, 0.0));
+  s = core_sample(0.0, core_v3(1.0, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
   copy = sim;
   for (i = 0; i < sizeof bad_range / sizeof bad_range[0]; i++) {
-    s = sample(0.1, vec(1.0, 1.45, 0.0), vec(bad_range[i][0], bad_range[i][1], bad_range[i][2]));
+    s = core_sample(0.1, core_v3(1.0, 1.45, 0.0), core_v3(bad_range[i][0], bad_range[i][1], bad_range[i][2]));
     assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ERANGE);
   }
-  s.normal = vec(NAN, 0.0, 1.0);
+  s.normal = core_v3(NAN, 0.0, 1.0);
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ENONFINITE);
-  s.normal = vec(0.0, INFINITY, 0.0);
+  s.normal = core_v3(0.0, INFINITY, 0.0);
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ENONFINITE);
-  s.normal = vec(0.0, 1.0, 0.0);
+  s.normal = core_v3(0.0, 1.0, 0.0);
   s.center.y = NAN;
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ENONFINITE);
   assert_memory_equal(&sim, &copy, sizeof sim);
-  s = sample(0.1, vec(1.0, 1.45, 0.0), vec(DBL_MAX, -DBL_MAX, DBL_MAX));
+  s = core_sample(0.1, core_v3(1.0, 1.45, 0.0), core_v3(DBL_MAX, -DBL_MAX, DBL_MAX));
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
   assert_int_equal(ball_racket_estimate(&m, &sim, 0, 0.1, &pose), BALL_OK);
-  NEAR(pose.normal.x, 1.0 / sqrt(3.0), 1e-15);
-  NEAR(pose.normal.y, -1.0 / sqrt(3.0), 1e-15);
-  s = sample(0.2, vec(1.0, 1.45, 0.0), vec(0.0, 1e-8, 0.0));
+  assert_near(pose.normal.x, 1.0 / sqrt(3.0), 1e-15);
+  assert_near(pose.normal.y, -1.0 / sqrt(3.0), 1e-15);
+  s = core_sample(0.2, core_v3(1.0, 1.45, 0.0), core_v3(0.0, 1e-8, 0.0));
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
   assert_int_equal(ball_racket_estimate(&m, &sim, 0, 0.2, &pose), BALL_OK);
-  NEAR(pose.normal.y, 1.0, 1e-15);
+  assert_near(pose.normal.y, 1.0, 1e-15);
 }
 
 /* A racket overtaking the ball from behind (the paper's warning after eq 7):
@@ -226,12 +201,13 @@ static void test_racket_overtaking_from_behind_eq7_eq11_fig9(void **state) {
       m.extrapolation_time = 1.0; /* eq 15: the racket keeps moving past its last sample */
       assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
       for (i = 0; i < 2; i++) {
-        ball_racket_sample s = sample(-0.1 + 0.1 * i, vec(-2.0 + 2.0 * i, 1.45, 0.0), vec(1.0, 0.0, 0.0));
+        ball_racket_sample s =
+            core_sample(-0.1 + 0.1 * i, core_v3(-2.0 + 2.0 * i, 1.45, 0.0), core_v3(1.0, 0.0, 0.0));
         assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
       }
       step_frames(&m, &sim, 50, &r);
       if (r.hits < 1) fail_msg("detect %d response %d: the racket never caught the ball", (int)d, resp);
-      NEAR(r.first.velocity_out.x, resp ? 15.0 : 20.0, 1e-9);
+      assert_near(r.first.velocity_out.x, resp ? 15.0 : 20.0, 1e-9);
     }
 }
 
@@ -250,7 +226,7 @@ static void test_samples_with_equal_timestamps(void **state) {
     memset(&r, 0, sizeof r);
     racket_model(&m, BALL_DETECT_DISC, resp ? BALL_RESPONSE_PHYSICAL : BALL_RESPONSE_RACKET, 10.0);
     assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
-    s = sample(0.0, vec(1.0, 1.45, 0.0), vec(-1.0, 0.0, 0.0));
+    s = core_sample(0.0, core_v3(1.0, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
     assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
     copy = sim;
     assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
@@ -265,13 +241,15 @@ static void test_samples_with_equal_timestamps(void **state) {
     memset(&r, 0, sizeof r);
     assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
     {
-      ball_racket_sample a = sample(0.5, vec(1.0, 1.45, 0.0), vec(-1.0, 0.0, 0.0));
-      ball_racket_sample b = sample(nextafter(0.5, 1.0), vec(0.99, 1.45, 0.0), vec(-1.0, 0.0, 0.0));
+      ball_racket_sample a = core_sample(0.5, core_v3(1.0, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
+      ball_racket_sample b =
+          core_sample(nextafter(0.5, 1.0), core_v3(0.99, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
       assert_int_equal(ball_racket_push(&m, &sim, 0, &a), BALL_OK);
       assert_int_equal(ball_racket_push(&m, &sim, 0, &b), BALL_OK);
     }
     step_frames(&m, &sim, 40, &r);
-    if (r.hits > 0 && resp == 0) NEAR(hypot(r.first.velocity_out.x, r.first.velocity_out.y), m.v_max, 1e-9);
+    if (r.hits > 0 && resp == 0)
+      assert_near(hypot(r.first.velocity_out.x, r.first.velocity_out.y), m.v_max, 1e-9);
   }
 }
 
@@ -297,7 +275,7 @@ static void test_racket_inside_the_ball(void **state) {
       m.stale_time = 10.0;
       assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
       for (i = 0; i < 2; i++) {
-        ball_racket_sample s = sample(-0.1 + 0.1 * i, vec(0.0, 1.5, 0.0), vec(0.0, 1.0, 0.0));
+        ball_racket_sample s = core_sample(-0.1 + 0.1 * i, core_v3(0.0, 1.5, 0.0), core_v3(0.0, 1.0, 0.0));
         assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
       }
       step_frames(&m, &sim, 60, &r);

@@ -24,14 +24,7 @@
 
 static void net_model(ball_model *m) {
   core_model_free(m);
-  m->has_net = 1;
-  m->net.axis = 0;
-  m->net.position = 11.885;
-  m->net.lo = 0.0;
-  m->net.hi = 10.97;
-  m->net.bottom = 0.0;
-  m->net.top = 0.914;
-  m->net.damping = 0.2;
+  core_tennis_net(m, 0.2);
   m->effects |= BALL_EFFECT_NET | BALL_EFFECT_WALLS;
   m->initial_position = core_v3(10.0, 0.5, 5.0);
   m->initial_velocity = core_v3(8.0, 2.0, 1.0);

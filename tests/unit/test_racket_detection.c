@@ -33,12 +33,6 @@ typedef struct swing {
   ball_racket_sample s[MAX_SAMPLES];
 } swing;
 
-static ball_vec3 add(ball_vec3 a, ball_vec3 b) { return core_v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static ball_vec3 sub(ball_vec3 a, ball_vec3 b) { return core_v3(a.x - b.x, a.y - b.y, a.z - b.z); }
-static ball_vec3 scale(ball_vec3 a, double k) { return core_v3(a.x * k, a.y * k, a.z * k); }
-static double dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static double norm(ball_vec3 a) { return sqrt(dot(a, a)); }
-static ball_vec3 unit(ball_vec3 a) { return scale(a, 1.0 / norm(a)); }
 static ball_vec3 rnd(core_rng *r, double lo, double hi) {
   double x = core_uniform(r, lo, hi), y = core_uniform(r, lo, hi);
   return core_v3(x, y, core_uniform(r, lo, hi));
@@ -76,7 +70,7 @@ static void make_swing(const ball_model *m, core_rng *r, double dt, swing *sw) {
   }
   acc = rnd(r, -30, 30);
   offset = rnd(r, -0.25, 0.25);
-  n_c = unit(add(core_v3(1, 0, 0), rnd(r, -0.5, 0.5)));
+  n_c = core_unit(core_add(core_v3(1, 0, 0), rnd(r, -0.5, 0.5)));
   spin = rnd(r, -6, 6); /* how fast the normal turns, 1/s */
   /* the ball's segment from t = 0 that has velocity vb at X at time tc (eq 3) */
   v0 = core_v3(vb.x * exp(tc / b), vb.y + g * tc, vb.z * exp(tc / b));
@@ -90,16 +84,16 @@ static void make_swing(const ball_model *m, core_rng *r, double dt, swing *sw) {
     double t = k * dt, u = t - tc - delay;
     ball_racket_sample *s = &sw->s[sw->n++];
     s->t = t;
-    s->center = add(add(add(x, offset), scale(vr, u)), scale(acc, 0.5 * u * u));
-    s->normal = unit(add(n_c, scale(spin, u)));
+    s->center = core_add(core_add(core_add(x, offset), core_scale(vr, u)), core_scale(acc, 0.5 * u * u));
+    s->normal = core_unit(core_add(n_c, core_scale(spin, u)));
   }
 }
 
 /* ---- ground truth: the same motions, finely sampled ---- */
 
 static double disc_distance(ball_vec3 p, ball_vec3 c, ball_vec3 n) {
-  ball_vec3 w = sub(p, c);
-  double d = dot(w, n), rho = norm(sub(w, scale(n, d)));
+  ball_vec3 w = core_sub(p, c);
+  double d = core_dot(w, n), rho = core_norm(core_sub(w, core_scale(n, d)));
   return (rho <= DISC_R ? fabs(d) : hypot(d, rho - DISC_R)) - BALL_R;
 }
 
@@ -109,22 +103,23 @@ static double ground_truth(const ball_model *m, const swing *sw, double *closest
   *closest = INFINITY;
   for (k = 1; k < sw->n; k++) {
     const ball_racket_sample *a = &sw->s[k - 1], *bs = &sw->s[k];
-    ball_vec3 nb = dot(a->normal, bs->normal) < 0 ? scale(bs->normal, -1) : bs->normal;
+    ball_vec3 nb = core_dot(a->normal, bs->normal) < 0 ? core_scale(bs->normal, -1) : bs->normal;
     ball_state s0, s1;
     int i, steps;
     /* skip frames where the ball stays far from both poses' reach */
     ball_segment_eval(m, &sw->seg, a->t, &s0);
     ball_segment_eval(m, &sw->seg, bs->t, &s1);
-    if (norm(sub(s0.position, a->center)) + norm(sub(s1.position, bs->center)) >
-        norm(sub(s1.position, s0.position)) + norm(sub(bs->center, a->center)) + 4.0 * (DISC_R + BALL_R))
+    if (core_norm(core_sub(s0.position, a->center)) + core_norm(core_sub(s1.position, bs->center)) >
+        core_norm(core_sub(s1.position, s0.position)) + core_norm(core_sub(bs->center, a->center)) +
+            4.0 * (DISC_R + BALL_R))
       continue;
     steps = (int)ceil((bs->t - a->t) / GT_STEP);
     for (i = 0; i <= steps; i++) {
       double t = a->t + (bs->t - a->t) * i / steps, u = (t - a->t) / (bs->t - a->t), dist;
       ball_state s;
       ball_segment_eval(m, &sw->seg, t, &s);
-      dist = disc_distance(s.position, add(a->center, scale(sub(bs->center, a->center), u)),
-                           unit(add(a->normal, scale(sub(nb, a->normal), u))));
+      dist = disc_distance(s.position, core_add(a->center, core_scale(core_sub(bs->center, a->center), u)),
+                           core_unit(core_add(a->normal, core_scale(core_sub(nb, a->normal), u))));
       if (dist < *closest) *closest = dist;
       if (dist <= 0.0) return t;
     }

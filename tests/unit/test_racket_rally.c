@@ -29,16 +29,6 @@
 #define COURT_Z 5.485
 #define READY_Y 1.0
 
-static ball_vec3 add(ball_vec3 a, ball_vec3 b) { return core_v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static ball_vec3 sub(ball_vec3 a, ball_vec3 b) { return core_v3(a.x - b.x, a.y - b.y, a.z - b.z); }
-static ball_vec3 scale(ball_vec3 a, double k) { return core_v3(a.x * k, a.y * k, a.z * k); }
-static double dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static double norm(ball_vec3 a) { return sqrt(dot(a, a)); }
-static ball_vec3 unit(ball_vec3 a) { return scale(a, 1.0 / norm(a)); }
-static ball_vec3 cross(ball_vec3 a, ball_vec3 b) {
-  return core_v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-
 typedef struct plan {
   int active;
   double t;                 /* T */
@@ -52,7 +42,7 @@ static ball_vec3 ready_normal(int racket) { return core_v3(racket == 0 ? 1.0 : -
 /* eq 8, 9 by hand: from q to (goal x, q y, goal z) with v_up, times friendly. */
 static ball_vec3 friendly_velocity(const ball_model *m, ball_vec3 q, ball_vec3 goal, double v_up, double friendly) {
   double b = m->mass / m->air_friction, t0 = 2.0 * v_up / m->gravity, f = 1.0 / (-b * expm1(-t0 / b));
-  return scale(core_v3((goal.x - q.x) * f, v_up, (goal.z - q.z) * f), friendly);
+  return core_scale(core_v3((goal.x - q.x) * f, v_up, (goal.z - q.z) * f), friendly);
 }
 
 /* The racket's scripted pose at t: ready, approach, the swing through X at T, return. */
@@ -62,13 +52,14 @@ static void racket_pose(int racket, const plan *p, double t, ball_vec3 *c, ball_
   *n = ready_normal(racket);
   if (!p->active || t <= p->t - 0.6 || t >= p->t + 0.7) return;
   if (t < p->t - 0.25) {
-    *c = add(r, scale(sub(sub(p->x, scale(p->u, 0.25)), r), (t - (p->t - 0.6)) / 0.35));
+    ball_vec3 from = core_sub(p->x, core_scale(p->u, 0.25)); /* where the stroke begins */
+    *c = core_add(r, core_scale(core_sub(from, r), (t - (p->t - 0.6)) / 0.35));
   } else if (t <= p->t + 0.25) {
-    *c = add(p->x, scale(p->u, t - p->t));
+    *c = core_add(p->x, core_scale(p->u, t - p->t));
     *n = p->n;
   } else {
-    ball_vec3 e = add(p->x, scale(p->u, 0.25));
-    *c = add(e, scale(sub(r, e), (t - (p->t + 0.25)) / 0.45));
+    ball_vec3 e = core_add(p->x, core_scale(p->u, 0.25));
+    *c = core_add(e, core_scale(core_sub(r, e), (t - (p->t + 0.25)) / 0.45));
   }
 }
 
@@ -106,31 +97,32 @@ static void make_plan(const ball_model *m, int receiver, double t, const ball_st
     /* the racket's velocity does not matter (eq 9); slower than the ball
      * leaves, so the swing does not follow it into a second hit */
     p->u = friendly_velocity(m, s->position, goal, m->v_up, 0.5);
-    p->n = unit(p->u);
+    p->n = core_unit(p->u);
   } else if (m->response == BALL_RESPONSE_MIXED) {
     /* eq 10 solved for the racket velocity that gives a lob to the partner
      * (V_up 5.5 m/s): V_racket = (V_lob - ff V_f) / (1 - ff) */
     double ff = m->friendly_factor;
     ball_vec3 vf = friendly_velocity(m, s->position, goal, m->v_up, 1.0);
     ball_vec3 lob = friendly_velocity(m, s->position, goal, 5.5, 1.0);
-    p->u = scale(sub(lob, scale(vf, ff)), 1.0 / (1.0 - ff));
-    p->n = unit(p->u);
+    p->u = core_scale(core_sub(lob, core_scale(vf, ff)), 1.0 / (1.0 - ff));
+    p->n = core_unit(p->u);
   } else {
     /* eq 11 with V_racket = s n + w, w the brush orthogonal to n:
      * V0 = V + (s - 2 n.V) n + w + S x n. Solve n for V0 = V_des (a lob to
      * the partner, V_up 5.5 m/s), then s. */
-    ball_vec3 v_des = friendly_velocity(m, s->position, goal, 5.5, 1.0), n = unit(sub(v_des, v)), w, rhs;
+    ball_vec3 v_des = friendly_velocity(m, s->position, goal, 5.5, 1.0), w, rhs;
+    ball_vec3 n = core_unit(core_sub(v_des, v));
     int it;
     double k;
     for (it = 0; it < 20; it++) {
-      w = sub(core_v3(0, 1.5, 0), scale(n, n.y * 1.5));
-      rhs = sub(sub(sub(v_des, v), w), cross(s->spin, n));
-      n = unit(rhs);
+      w = core_sub(core_v3(0, 1.5, 0), core_scale(n, n.y * 1.5));
+      rhs = core_sub(core_sub(core_sub(v_des, v), w), core_cross(s->spin, n));
+      n = core_unit(rhs);
     }
-    w = sub(core_v3(0, 1.5, 0), scale(n, n.y * 1.5));
-    k = norm(sub(sub(sub(v_des, v), w), cross(s->spin, n)));
+    w = core_sub(core_v3(0, 1.5, 0), core_scale(n, n.y * 1.5));
+    k = core_norm(core_sub(core_sub(core_sub(v_des, v), w), core_cross(s->spin, n)));
     p->n = n;
-    p->u = add(scale(n, k + 2.0 * dot(n, v)), w);
+    p->u = core_add(core_scale(n, k + 2.0 * core_dot(n, v)), w);
   }
 }
 
@@ -174,7 +166,7 @@ static int rally(ball_level level, int *hits, double *max_spin) {
       if (ev[k].kind == BALL_EVENT_NET) return crossings; /* into the net: rally over */
       if (ev[k].kind != BALL_EVENT_RACKET) continue;
       (*hits)++;
-      if (norm(ev[k].spin_out) > *max_spin) *max_spin = norm(ev[k].spin_out);
+      if (core_norm(ev[k].spin_out) > *max_spin) *max_spin = core_norm(ev[k].spin_out);
       /* the hitter's swing runs on and returns to ready; plan the receiver's */
       receiver = 1 - ev[k].index;
       if (!predict(&m, &sim, receiver, &t_hit, &at)) return crossings;

@@ -90,34 +90,12 @@ static void eq5_sampled_bounce_times_converge_to_exact_as_fps_grows(void **state
 
 /* ---- exact: frame-rate independence ---------------------------------- */
 
-/* Several floor bounces, a net hit (the tennis net, damping 0.9) and a hit on
- * a back wall at x = -1: from (3, 1.5, 2) at (12, 3, 0.5) m/s the ball meets
- * the net at y = 0.76 m, flies back, bounces, hits the wall and bounces on.
- * Radius 0.03 so the planes are offset too; frame-rate independence is
- * checked with the paper's point ball as well. */
-static void court_scene(ball_model *m) {
-  ball_plane back = {0, -1.0, -5.0, 15.0, 0.0, 4.0, 0.8};
-  core_model_free(m);
-  m->mass = 0.05;
-  m->air_friction = 0.01; /* b = 5 s */
-  m->radius = 0.03;
-  m->floor_damping = 0.8;
-  m->bounce_threshold = 0.3;
-  m->sound_threshold = 0.5;
-  m->has_net = 1;
-  m->net.axis = 0;
-  m->net.position = 11.885;
-  m->net.lo = 0.0;
-  m->net.hi = 10.97;
-  m->net.bottom = 0.0;
-  m->net.top = 0.914;
-  m->net.damping = 0.9;
-  m->effects = BALL_EFFECT_DRAG | BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_WALLS |
-               BALL_EFFECT_SOUND;
-  assert_ok(ball_model_add_wall(m, &back));
-  m->initial_position = core_v3(3.0, 1.5, 2.0);
-  m->initial_velocity = core_v3(12.0, 3.0, 0.5);
-}
+/* core_court_scene (core_common.h): several floor bounces, a net hit (the
+ * tennis net, damping 0.9) and a hit on a back wall at x = -1: from
+ * (3, 1.5, 2) at (12, 3, 0.5) m/s the ball meets the net at y = 0.76 m, flies
+ * back, bounces, hits the wall and bounces on. Radius 0.03 so the planes are
+ * offset too; frame-rate independence is checked with the paper's point ball
+ * as well. */
 
 static double vdiff(ball_vec3 a, ball_vec3 b) {
   double d = fabs(a.x - b.x), dy = fabs(a.y - b.y), dz = fabs(a.z - b.z);
@@ -133,7 +111,7 @@ static void frame_rate_independence(double radius) {
   ball_state s_ref, s;
   size_t r;
   int k, floors = 0, nets = 0, walls = 0;
-  court_scene(&m);
+  core_court_scene(&m);
   m.radius = radius;
   core_simulate(&m, 1.0 / rates[0], (unsigned long)(duration * rates[0]), &ref, &sim);
   assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
@@ -197,7 +175,7 @@ static void eq5_eq6_energy_never_increases_at_a_collision_exact(void **state) {
   int shot, k, events = 0, nets = 0, walls = 0;
   (void)state;
   for (shot = 0; shot < 200; shot++) {
-    court_scene(&m);
+    core_court_scene(&m);
     m.n_walls = 0;
     side.damping = core_uniform(&rng, 0.0, 1.0);
     back.damping = shot % 10 == 0 ? 1.0 : core_uniform(&rng, 0.0, 1.0);

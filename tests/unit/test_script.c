@@ -14,8 +14,8 @@
 
 #include <cmocka.h>
 
-#include "ball/ball.h"
 #include "ball/scene.h"
+#include "core_common.h"
 
 #define MAX_STREAM 12000
 
@@ -23,25 +23,18 @@
 static ball_script_player player_a, player_b;
 static ball_script_sample stream_a[MAX_STREAM], stream_b[MAX_STREAM];
 
-static ball_vec3 v3(double x, double y, double z) {
-  ball_vec3 v;
-  v.x = x;
-  v.y = y;
-  v.z = z;
-  return v;
-}
-
-static void assert_close(double got, double want, double tol) {
-  if (!(fabs(got - want) <= tol)) fail_msg("got %.17g, want %.17g (tolerance %g)", got, want, tol);
+/* Keyframe i of s: the racket at center facing normal at time t. */
+static void keyframe(ball_racket_script *s, int i, double t, ball_vec3 center, ball_vec3 normal) {
+  s->keyframes[i].t = t;
+  s->keyframes[i].center = center;
+  s->keyframes[i].normal = normal;
 }
 
 /* A still racket at (1, 2, 3) facing +x, with the given network. */
 static void still_script(ball_racket_script *s, double rate) {
   ball_script_default(s);
   s->n_keyframes = 1;
-  s->keyframes[0].t = 0.0;
-  s->keyframes[0].center = v3(1.0, 2.0, 3.0);
-  s->keyframes[0].normal = v3(1.0, 0.0, 0.0);
+  keyframe(s, 0, 0.0, core_v3(1.0, 2.0, 3.0), core_v3(1.0, 0.0, 0.0));
   s->rate = rate;
 }
 
@@ -49,12 +42,8 @@ static void still_script(ball_racket_script *s, double rate) {
 static void swing_script(ball_racket_script *s) {
   ball_script_default(s);
   s->n_keyframes = 2;
-  s->keyframes[0].t = 0.2;
-  s->keyframes[0].center = v3(0.0, 1.0, 0.0);
-  s->keyframes[0].normal = v3(1.0, 0.0, 0.0);
-  s->keyframes[1].t = 0.6;
-  s->keyframes[1].center = v3(2.0, 1.5, 0.5);
-  s->keyframes[1].normal = v3(0.0, 1.0, 0.0);
+  keyframe(s, 0, 0.2, core_v3(0.0, 1.0, 0.0), core_v3(1.0, 0.0, 0.0));
+  keyframe(s, 1, 0.6, core_v3(2.0, 1.5, 0.5), core_v3(0.0, 1.0, 0.0));
   s->repeat = 1.0;
 }
 
@@ -93,30 +82,24 @@ static void keyframes_interpolate_linearly_and_hold_outside(void **state) {
   (void)state;
   ball_script_default(&s);
   s.n_keyframes = 3;
-  s.keyframes[0].t = 0.0;
-  s.keyframes[0].center = v3(0.0, 0.0, 0.0);
-  s.keyframes[0].normal = v3(1.0, 0.0, 0.0);
-  s.keyframes[1].t = 1.0;
-  s.keyframes[1].center = v3(2.0, 4.0, -2.0);
-  s.keyframes[1].normal = v3(0.0, 3.0, 0.0); /* any length: normalised */
-  s.keyframes[2].t = 3.0;
-  s.keyframes[2].center = v3(2.0, 0.0, 0.0);
-  s.keyframes[2].normal = v3(0.0, 1.0, 0.0);
+  keyframe(&s, 0, 0.0, core_v3(0.0, 0.0, 0.0), core_v3(1.0, 0.0, 0.0));
+  keyframe(&s, 1, 1.0, core_v3(2.0, 4.0, -2.0), core_v3(0.0, 3.0, 0.0)); /* any length: normalised */
+  keyframe(&s, 2, 3.0, core_v3(2.0, 0.0, 0.0), core_v3(0.0, 1.0, 0.0));
   /* t = 0.25: a quarter of the way, centre (0.5, 1, -0.5); normal
    * (0.75, 0.25, 0) / |.| = (3, 1, 0) / sqrt(10) */
   assert_int_equal(ball_script_pose(&s, 0.25, &c, &n), BALL_OK);
-  assert_close(c.x, 0.5, 1e-15);
-  assert_close(c.y, 1.0, 1e-15);
-  assert_close(c.z, -0.5, 1e-15);
-  assert_close(n.x, 3.0 / sqrt(10.0), 1e-15);
-  assert_close(n.y, 1.0 / sqrt(10.0), 1e-15);
-  assert_close(n.z, 0.0, 1e-15);
+  assert_near(c.x, 0.5, 1e-15);
+  assert_near(c.y, 1.0, 1e-15);
+  assert_near(c.z, -0.5, 1e-15);
+  assert_near(n.x, 3.0 / sqrt(10.0), 1e-15);
+  assert_near(n.y, 1.0 / sqrt(10.0), 1e-15);
+  assert_near(n.z, 0.0, 1e-15);
   /* t = 2: half way from keyframe 1 to 2: (2, 2, -1), normal (0, 1, 0) */
   assert_int_equal(ball_script_pose(&s, 2.0, &c, &n), BALL_OK);
-  assert_close(c.x, 2.0, 1e-15);
-  assert_close(c.y, 2.0, 1e-15);
-  assert_close(c.z, -1.0, 1e-15);
-  assert_close(n.y, 1.0, 1e-15);
+  assert_near(c.x, 2.0, 1e-15);
+  assert_near(c.y, 2.0, 1e-15);
+  assert_near(c.z, -1.0, 1e-15);
+  assert_near(n.y, 1.0, 1e-15);
   /* before the first keyframe and after the last: held */
   assert_int_equal(ball_script_pose(&s, -5.0, &c, &n), BALL_OK);
   assert_true(c.x == 0.0 && c.y == 0.0 && c.z == 0.0 && n.x == 1.0);
@@ -130,31 +113,25 @@ static void repeat_wraps_from_last_keyframe_back_to_first(void **state) {
   (void)state;
   ball_script_default(&s);
   s.n_keyframes = 3;
-  s.keyframes[0].t = 0.0;
-  s.keyframes[0].center = v3(0.0, 0.0, 0.0);
-  s.keyframes[0].normal = v3(1.0, 0.0, 0.0);
-  s.keyframes[1].t = 1.0;
-  s.keyframes[1].center = v3(2.0, 4.0, -2.0);
-  s.keyframes[1].normal = v3(0.0, 1.0, 0.0);
-  s.keyframes[2].t = 3.0;
-  s.keyframes[2].center = v3(2.0, 0.0, 0.0);
-  s.keyframes[2].normal = v3(0.0, 1.0, 0.0);
+  keyframe(&s, 0, 0.0, core_v3(0.0, 0.0, 0.0), core_v3(1.0, 0.0, 0.0));
+  keyframe(&s, 1, 1.0, core_v3(2.0, 4.0, -2.0), core_v3(0.0, 1.0, 0.0));
+  keyframe(&s, 2, 3.0, core_v3(2.0, 0.0, 0.0), core_v3(0.0, 1.0, 0.0));
   s.repeat = 4.0; /* span 3 s, then 1 s from keyframe 2 back to keyframe 0 */
   /* t = 3.5: half way from (2, 0, 0) back to (0, 0, 0): (1, 0, 0); normal
    * (0.5, 0.5, 0) / |.| */
   assert_int_equal(ball_script_pose(&s, 3.5, &c, &n), BALL_OK);
-  assert_close(c.x, 1.0, 1e-15);
-  assert_close(c.y, 0.0, 1e-15);
-  assert_close(n.x, sqrt(0.5), 1e-15);
-  assert_close(n.y, sqrt(0.5), 1e-15);
+  assert_near(c.x, 1.0, 1e-15);
+  assert_near(c.y, 0.0, 1e-15);
+  assert_near(n.x, sqrt(0.5), 1e-15);
+  assert_near(n.y, sqrt(0.5), 1e-15);
   /* t = 4.25 and 8.25 are t = 0.25 again: (0.5, 1, -0.5) */
   assert_int_equal(ball_script_pose(&s, 4.25, &c, &n), BALL_OK);
-  assert_close(c.x, 0.5, 1e-14);
-  assert_close(c.y, 1.0, 1e-14);
-  assert_close(c.z, -0.5, 1e-14);
+  assert_near(c.x, 0.5, 1e-14);
+  assert_near(c.y, 1.0, 1e-14);
+  assert_near(c.z, -0.5, 1e-14);
   assert_int_equal(ball_script_pose(&s, 8.25, &c2, &n2), BALL_OK);
-  assert_close(c2.y, 1.0, 1e-14);
-  assert_close(n2.x, n.x, 1e-14);
+  assert_near(c2.y, 1.0, 1e-14);
+  assert_near(n2.x, n.x, 1e-14);
   /* a repeat not longer than the span is rejected */
   s.repeat = 3.0;
   assert_int_equal(ball_script_pose(&s, 0.5, &c, &n), BALL_ERANGE);
@@ -299,12 +276,12 @@ static void delay_shifts_every_arrival_by_exactly_the_delay(void **state) {
     assert_int_equal(stream_a[i].index, stream_b[i].index);
     assert_int_equal(stream_a[i].copy, stream_b[i].copy);
     assert_true(memcmp(&stream_a[i].sample, &stream_b[i].sample, sizeof stream_a[i].sample) == 0);
-    assert_close(stream_b[i].arrival - stream_a[i].arrival, 0.25, 1e-12);
+    assert_near(stream_b[i].arrival - stream_a[i].arrival, 0.25, 1e-12);
   }
   /* without jitter, arrival = t + delay */
   s.jitter = 0.0;
   nb = collect(&player_b, &s, 1, 10.0, 1.0 / 60.0, 64, stream_b);
-  for (i = 0; i < nb; ++i) assert_close(stream_b[i].arrival - stream_b[i].sample.t, 0.25, 1e-12);
+  for (i = 0; i < nb; ++i) assert_near(stream_b[i].arrival - stream_b[i].sample.t, 0.25, 1e-12);
 }
 
 static void jitter_delivers_out_of_order_within_its_bounds(void **state) {
@@ -364,7 +341,7 @@ static void noise_has_the_stated_sigma(void **state) {
       sum2 += d[j] * d[j];
     }
     /* the normal (1, 0, 0) tilted by sigma g across it: y / x = sigma g_y */
-    assert_close(x->normal.x * x->normal.x + x->normal.y * x->normal.y + x->normal.z * x->normal.z, 1.0, 1e-12);
+    assert_near(x->normal.x * x->normal.x + x->normal.y * x->normal.y + x->normal.z * x->normal.z, 1.0, 1e-12);
     r = x->normal.y / x->normal.x;
     nsum2 += r * r;
   }
@@ -374,10 +351,10 @@ static void noise_has_the_stated_sigma(void **state) {
   m = sum / (3.0 * n);
   sd = sqrt(sum2 / (3.0 * n) - m * m);
   assert_true(fabs(m) < 3.7e-4);
-  assert_close(sd, 0.01, 0.04 * 0.01);
+  assert_near(sd, 0.01, 0.04 * 0.01);
   /* 4000 tilts: relative sd of the sd 1.1 %; bound 5 % */
   nsd = sqrt(nsum2 / n);
-  assert_close(nsd, 0.05, 0.05 * 0.05);
+  assert_near(nsd, 0.05, 0.05 * 0.05);
 }
 
 /* ---- arguments ---- */
@@ -399,7 +376,7 @@ static void bad_scripts_and_polls_are_rejected(void **state) {
   assert_int_equal(ball_script_check(&s, &field), BALL_ENONFINITE);
   assert_string_equal(field, "delay");
   still_script(&s, 60.0);
-  s.keyframes[0].normal = v3(0.0, 0.0, 0.0);
+  s.keyframes[0].normal = core_v3(0.0, 0.0, 0.0);
   assert_int_equal(ball_script_check(&s, &field), BALL_ERANGE);
   assert_string_equal(field, "keyframes.normal");
   still_script(&s, 60.0);
@@ -450,8 +427,8 @@ static void script_keys_land_in_the_scene(void **state) {
   assert_int_equal(s->n_keyframes, 2);
   assert_true(s->keyframes[1].t == 1.5 && s->keyframes[1].center.z == 6.0);
   assert_true(s->keyframes[0].normal.z == 1.0);                                /* normalised */
-  assert_close(s->keyframes[1].normal.x, 0.6, 1e-16);
-  assert_close(s->keyframes[1].normal.y, 0.8, 1e-16);
+  assert_near(s->keyframes[1].normal.x, 0.6, 1e-16);
+  assert_near(s->keyframes[1].normal.y, 0.8, 1e-16);
   assert_true(s->repeat == 2.5 && s->rate == 6.0 && s->delay == 0.1 && s->jitter == 0.02);
   assert_true(s->loss == 0.1 && s->duplicate == 0.05 && s->noise == 0.003 && s->normal_noise == 0.01);
   assert_true(s->seed == UINT64_C(18446744073709551615));
