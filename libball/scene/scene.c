@@ -7,6 +7,7 @@
 #include <errno.h>
 #include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdint.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -184,6 +185,38 @@ static ball_status get_vec3(scene_loader *L, const yaml_node_t *node, const char
   return BALL_OK;
 }
 
+/* An unsigned 64-bit integer (a seed): plain decimal digits, in range. */
+static ball_status get_uint64(scene_loader *L, const yaml_node_t *node, const char *path, uint64_t *out) {
+  const char *text, *c;
+  char *end;
+  unsigned long long v;
+  if (node->type != YAML_SCALAR_NODE) return fail(L, node, path, "expected an integer, got %s", node_kind(node));
+  text = scalar_text(node);
+  if (!is_plain_scalar(node)) return fail(L, node, path, "expected an integer, got the string \"%s\"", text);
+  if (node->data.scalar.length == 0) return fail(L, node, path, "expected an integer, got nothing");
+  for (c = text; *c; ++c)
+    if (*c < '0' || *c > '9')
+      return fail(L, node, path, "expected an integer in [0, 18446744073709551615], got \"%s\"", text);
+  errno = 0;
+  v = strtoull(text, &end, 10);
+  if (errno == ERANGE || *end != '\0' || v > (unsigned long long)UINT64_MAX)
+    return fail(L, node, path, "integer %s is out of range [0, 18446744073709551615]", text);
+  *out = (uint64_t)v;
+  return BALL_OK;
+}
+
+/* A number in [lo, hi] (hi_open: [lo, hi)); read and checked where it stands. */
+static ball_status get_ranged(scene_loader *L, const yaml_node_t *node, const char *path, double lo, double hi,
+                              int hi_open, const char *range, double *out) {
+  double v;
+  ball_status st = get_number(L, node, path, &v);
+  if (st != BALL_OK) return st;
+  if (!(v >= lo) || (hi_open ? !(v < hi) : !(v <= hi)))
+    return fail(L, node, path, "out of range: must be %s, got %s", range, scalar_text(node));
+  *out = v;
+  return BALL_OK;
+}
+
 /* A name out of a table of names (given by the library's own name functions). */
 typedef const char *(*name_fn)(int value);
 
@@ -226,126 +259,217 @@ static void join(char *dst, const char *path, const char *key) {
   copy_string(dst + n, SCENE_PATH_SIZE - n, key);
 }
 
-/* ---- mappings ------------------------------------------------------------ */
 
-/* Checks that node is a mapping whose keys are distinct scalars, each one of
- * the allowed names (a NULL-terminated list). */
-static ball_status check_mapping(scene_loader *L, const yaml_node_t *node, const char *path,
-                                 const char *const *allowed) {
-  yaml_node_pair_t *p, *q;
-  if (node->type != YAML_MAPPING_NODE)
-    return fail(L, node, path, "expected a mapping (key: value lines), got %s", node_kind(node));
-  for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p) {
-    yaml_node_t *key = yaml_document_get_node(L->doc, p->key);
-    const char *const *a;
-    char sub[SCENE_PATH_SIZE];
-    if (key->type != YAML_SCALAR_NODE) return fail(L, key, path, "a key must be a plain name, got %s", node_kind(key));
-    join(sub, path, scalar_text(key));
-    for (a = allowed; *a; ++a)
-      if (strcmp(*a, scalar_text(key)) == 0) break;
-    if (!*a) return fail(L, key, sub, "unknown key \"%s\"", scalar_text(key));
-    for (q = node->data.mapping.pairs.start; q < p; ++q) {
-      yaml_node_t *prev = yaml_document_get_node(L->doc, q->key);
-      if (strcmp(scalar_text(prev), scalar_text(key)) == 0)
-        return fail(L, key, sub, "key given twice (first on line %d)", (int)prev->start_mark.line + 1);
-    }
-  }
-  return BALL_OK;
+/* ---- sections ------------------------------------------------------------ */
+
+/* A section (floor, racket, a wall, a script, ...) is a mapping read by one
+ * loop, read_section, from a table of its keys: each key says what its value
+ * is and where in the section's struct it goes. Keys that need more than
+ * that (the net's axis, time.fps, a script, ...) are KEY_SPECIAL and go to
+ * the section's hook, in their place in the file. */
+typedef enum key_kind {
+  KEY_NUMBER,  /* a finite number: double */
+  KEY_INT,     /* an integer: int */
+  KEY_BOOL,    /* true or false: int */
+  KEY_VEC3,    /* [x, y, z]: ball_vec3 */
+  KEY_ENUM,    /* one of the names of key_spec.names: stored by key_spec.put */
+  KEY_RANGED,  /* a number in key_spec's range, checked where it stands: double */
+  KEY_UINT64,  /* an unsigned 64-bit integer: uint64_t */
+  KEY_SPECIAL  /* read by the section's hook */
+} key_kind;
+
+typedef struct key_spec {
+  const char *name;                  /* NULL ends a table */
+  key_kind kind;
+  size_t offset;                     /* of the field in the section's struct */
+  int required;                      /* must be given (in a section that requires keys) */
+  name_fn names;                     /* KEY_ENUM: the names, how many, and how to store one */
+  int count;
+  void (*put)(void *field, int value);
+  double lo, hi;                     /* KEY_RANGED: [lo, hi], or [lo, hi) with hi_open */
+  int hi_open;
+  const char *range;                 /* KEY_RANGED: the range in words, for the error */
+} key_spec;
+
+#define KEY(name, kind, type, field) {name, kind, offsetof(type, field), 0, NULL, 0, NULL, 0.0, 0.0, 0, NULL}
+#define REQUIRED_KEY(name, kind, type, field) \
+  {name, kind, offsetof(type, field), 1, NULL, 0, NULL, 0.0, 0.0, 0, NULL}
+#define SPECIAL_KEY(name, required) {name, KEY_SPECIAL, 0, required, NULL, 0, NULL, 0.0, 0.0, 0, NULL}
+#define ENUM_KEY(name, type, field, names, count, put) \
+  {name, KEY_ENUM, offsetof(type, field), 0, names, count, put, 0.0, 0.0, 0, NULL}
+#define RANGED_KEY(name, type, field, lo, hi, hi_open, range) \
+  {name, KEY_RANGED, offsetof(type, field), 0, NULL, 0, NULL, lo, hi, hi_open, range}
+#define END_OF_KEYS {NULL, KEY_SPECIAL, 0, 0, NULL, 0, NULL, 0.0, 0.0, 0, NULL}
+
+static void put_scheme(void *field, int v) { *(ball_scheme *)field = (ball_scheme)v; }
+static void put_detect(void *field, int v) { *(ball_detect *)field = (ball_detect)v; }
+static void put_normal(void *field, int v) { *(ball_normal_mode *)field = (ball_normal_mode)v; }
+static void put_response(void *field, int v) { *(ball_response *)field = (ball_response)v; }
+
+/* Reads a KEY_SPECIAL key (key: its key node) of the section that fills
+ * base; ctx is what the section's caller passed along. */
+typedef ball_status (*key_hook)(scene_loader *L, const yaml_node_t *key, const yaml_node_t *value,
+                                const char *path, void *base, void *ctx);
+
+typedef struct section {
+  const key_spec *keys;
+  key_hook hook;  /* NULL when no key is KEY_SPECIAL */
+  int require;    /* fail on a missing required key */
+  int record;     /* remember where each key was set (model keys: for ball_model_check's errors) */
+} section;
+
+static const key_spec *find_key(const key_spec *keys, const char *name) {
+  for (; keys->name; ++keys)
+    if (strcmp(keys->name, name) == 0) return keys;
+  return NULL;
 }
 
 static const char *pair_key(scene_loader *L, const yaml_node_pair_t *p) {
   return scalar_text(yaml_document_get_node(L->doc, p->key));
 }
 
-static yaml_node_t *pair_value(scene_loader *L, const yaml_node_pair_t *p) {
-  return yaml_document_get_node(L->doc, p->value);
-}
-
-/* Reads one numeric key of a mapping into *dst, recording where it was set. */
-static ball_status set_number(scene_loader *L, const yaml_node_t *value, const char *path, double *dst) {
-  ball_status st = get_number(L, value, path, dst);
-  if (st == BALL_OK) remember(L, path, NULL, value);
-  return st;
-}
-
-/* ---- sections ------------------------------------------------------------ */
-
-static ball_status load_floor(scene_loader *L, const yaml_node_t *node) {
-  static const char *const keys[] = {"level", "damping", "bounce_threshold", "sound_threshold",
-                                     "spin_damping", NULL};
-  ball_model *m = &L->scene.model;
+/* The value of key in mapping node, or NULL. */
+static yaml_node_t *key_value(scene_loader *L, const yaml_node_t *node, const char *key) {
   yaml_node_pair_t *p;
-  ball_status st;
-  if ((st = check_mapping(L, node, "floor", keys)) != BALL_OK) return st;
+  for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p)
+    if (strcmp(pair_key(L, p), key) == 0) return yaml_document_get_node(L->doc, p->value);
+  return NULL;
+}
+
+/* Checks that node is a mapping whose keys are distinct scalars, each one of
+ * the section's, and (if it requires them) that no required key is missing. */
+static ball_status check_section(scene_loader *L, const yaml_node_t *node, const char *path, const section *sec) {
+  yaml_node_pair_t *p, *q;
+  const key_spec *r;
+  if (node->type != YAML_MAPPING_NODE)
+    return fail(L, node, path, "expected a mapping (key: value lines), got %s", node_kind(node));
   for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p) {
-    const char *k = pair_key(L, p);
-    yaml_node_t *v = pair_value(L, p);
-    char path[SCENE_PATH_SIZE];
-    double *dst = NULL;
-    join(path, "floor", k);
-    if (strcmp(k, "level") == 0) dst = &m->floor_level;
-    else if (strcmp(k, "damping") == 0) dst = &m->floor_damping;
-    else if (strcmp(k, "bounce_threshold") == 0) dst = &m->bounce_threshold;
-    else if (strcmp(k, "sound_threshold") == 0) dst = &m->sound_threshold;
-    else dst = &m->spin_floor_damping;
-    if ((st = set_number(L, v, path, dst)) != BALL_OK) return st;
+    yaml_node_t *key = yaml_document_get_node(L->doc, p->key);
+    char sub[SCENE_PATH_SIZE];
+    if (key->type != YAML_SCALAR_NODE) return fail(L, key, path, "a key must be a plain name, got %s", node_kind(key));
+    join(sub, path, scalar_text(key));
+    if (!find_key(sec->keys, scalar_text(key))) return fail(L, key, sub, "unknown key \"%s\"", scalar_text(key));
+    for (q = node->data.mapping.pairs.start; q < p; ++q) {
+      yaml_node_t *prev = yaml_document_get_node(L->doc, q->key);
+      if (strcmp(scalar_text(prev), scalar_text(key)) == 0)
+        return fail(L, key, sub, "key given twice (first on line %d)", (int)prev->start_mark.line + 1);
+    }
+  }
+  for (r = sec->keys; sec->require && r->name; ++r) {
+    if (r->required && !key_value(L, node, r->name)) {
+      char sub[SCENE_PATH_SIZE];
+      join(sub, path, r->name);
+      return fail(L, node, sub, "missing required key \"%s\"", r->name);
+    }
   }
   return BALL_OK;
 }
 
-/* A net or a wall: keys of ball_plane. *bottom_set tells whether "bottom"
- * was given (a wall without it stands on the floor). */
-static ball_status load_plane(scene_loader *L, const yaml_node_t *node, const char *path, ball_plane *pl,
-                              int require_all, int *bottom_set) {
-  static const char *const keys[] = {"axis", "position", "lo", "hi", "bottom", "top", "damping", NULL};
-  static const char *const required[] = {"axis", "position", "lo", "hi", "top", NULL};
-  static const char *const axes[] = {"x", "z"};
-  yaml_node_pair_t *p;
+/* Reads value into base's field that spec names. */
+static ball_status read_key(scene_loader *L, const key_spec *spec, const yaml_node_t *value, const char *path,
+                            void *base) {
+  void *field = (char *)base + spec->offset;
   ball_status st;
-  const char *const *r;
-  if ((st = check_mapping(L, node, path, keys)) != BALL_OK) return st;
-  if (require_all) {
-    for (r = required; *r; ++r) {
-      int found = 0;
-      for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p)
-        if (strcmp(pair_key(L, p), *r) == 0) found = 1;
-      if (!found) {
-        char sub[SCENE_PATH_SIZE];
-        join(sub, path, *r);
-        return fail(L, node, sub, "missing required key \"%s\"", *r);
-      }
-    }
+  int e;
+  switch (spec->kind) {
+    case KEY_NUMBER: return get_number(L, value, path, field);
+    case KEY_INT: return get_int(L, value, path, field);
+    case KEY_BOOL: return get_bool(L, value, path, field);
+    case KEY_VEC3: return get_vec3(L, value, path, field);
+    case KEY_UINT64: return get_uint64(L, value, path, field);
+    case KEY_RANGED:
+      return get_ranged(L, value, path, spec->lo, spec->hi, spec->hi_open, spec->range, field);
+    case KEY_ENUM:
+      if ((st = get_enum(L, value, path, spec->names, spec->count, &e)) == BALL_OK) spec->put(field, e);
+      return st;
+    case KEY_SPECIAL: break;
   }
-  *bottom_set = 0;
+  return BALL_EINVAL; /* not reached: KEY_SPECIAL keys go to the hook */
+}
+
+/* Reads the pairs of a checked section in file order into base. */
+static ball_status read_section(scene_loader *L, const yaml_node_t *node, const char *path, const section *sec,
+                                void *base, void *ctx) {
+  yaml_node_pair_t *p;
   for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p) {
-    const char *k = pair_key(L, p);
-    yaml_node_t *v = pair_value(L, p);
+    yaml_node_t *key = yaml_document_get_node(L->doc, p->key);
+    yaml_node_t *value = yaml_document_get_node(L->doc, p->value);
+    const key_spec *spec = find_key(sec->keys, scalar_text(key));
     char sub[SCENE_PATH_SIZE];
-    join(sub, path, k);
-    if (strcmp(k, "axis") == 0) {
-      if (v->type == YAML_SCALAR_NODE && strcmp(scalar_text(v), axes[0]) == 0) pl->axis = 0;
-      else if (v->type == YAML_SCALAR_NODE && strcmp(scalar_text(v), axes[1]) == 0) pl->axis = 2;
-      else if (v->type == YAML_SCALAR_NODE) return fail(L, v, sub, "expected x or z, got \"%s\"", scalar_text(v));
-      else return fail(L, v, sub, "expected x or z, got %s", node_kind(v));
-      remember(L, sub, NULL, v);
-      continue;
-    }
-    if (strcmp(k, "position") == 0) st = set_number(L, v, sub, &pl->position);
-    else if (strcmp(k, "lo") == 0) st = set_number(L, v, sub, &pl->lo);
-    else if (strcmp(k, "hi") == 0) st = set_number(L, v, sub, &pl->hi);
-    else if (strcmp(k, "top") == 0) st = set_number(L, v, sub, &pl->top);
-    else if (strcmp(k, "damping") == 0) st = set_number(L, v, sub, &pl->damping);
-    else {
-      st = set_number(L, v, sub, &pl->bottom);
-      *bottom_set = 1;
+    ball_status st;
+    join(sub, path, scalar_text(key));
+    if (spec->kind == KEY_SPECIAL) {
+      st = sec->hook(L, key, value, sub, base, ctx);
+    } else {
+      st = read_key(L, spec, value, sub, base);
+      if (st == BALL_OK && sec->record) remember(L, sub, NULL, value);
     }
     if (st != BALL_OK) return st;
   }
   return BALL_OK;
 }
 
+static ball_status load_section(scene_loader *L, const yaml_node_t *node, const char *path, const section *sec,
+                                void *base, void *ctx) {
+  ball_status st = check_section(L, node, path, sec);
+  return st != BALL_OK ? st : read_section(L, node, path, sec, base, ctx);
+}
+
+/* The items of a list (what: "walls") of at most max of them. */
+static ball_status get_list(scene_loader *L, const yaml_node_t *node, const char *path, const char *what, int max,
+                            int *n) {
+  if (node->type != YAML_SEQUENCE_NODE) return fail(L, node, path, "expected a list of %s, got %s", what, node_kind(node));
+  *n = (int)(node->data.sequence.items.top - node->data.sequence.items.start);
+  if (*n > max) return fail(L, node, path, "%d %s given, at most %d allowed", *n, what, max);
+  return BALL_OK;
+}
+
+static yaml_node_t *list_item(scene_loader *L, const yaml_node_t *node, int i) {
+  return yaml_document_get_node(L->doc, node->data.sequence.items.start[i]);
+}
+
+/* ---- floor, net and walls -------------------------------------------------- */
+
+static const key_spec floor_keys[] = {
+    KEY("level", KEY_NUMBER, ball_model, floor_level),
+    KEY("damping", KEY_NUMBER, ball_model, floor_damping),
+    KEY("bounce_threshold", KEY_NUMBER, ball_model, bounce_threshold),
+    KEY("sound_threshold", KEY_NUMBER, ball_model, sound_threshold),
+    KEY("spin_damping", KEY_NUMBER, ball_model, spin_floor_damping),
+    END_OF_KEYS,
+};
+static const section floor_section = {floor_keys, NULL, 0, 1};
+
+/* A plane's axis: x or z (stored as 0 or 2). */
+static ball_status plane_axis(scene_loader *L, const yaml_node_t *key, const yaml_node_t *v, const char *path,
+                              void *base, void *ctx) {
+  ball_plane *pl = (ball_plane *)base;
+  (void)key;
+  (void)ctx;
+  if (v->type == YAML_SCALAR_NODE && strcmp(scalar_text(v), "x") == 0) pl->axis = 0;
+  else if (v->type == YAML_SCALAR_NODE && strcmp(scalar_text(v), "z") == 0) pl->axis = 2;
+  else if (v->type == YAML_SCALAR_NODE) return fail(L, v, path, "expected x or z, got \"%s\"", scalar_text(v));
+  else return fail(L, v, path, "expected x or z, got %s", node_kind(v));
+  remember(L, path, NULL, v);
+  return BALL_OK;
+}
+
+/* A net or a wall: keys of ball_plane. A wall must give the required ones;
+ * without "bottom" it stands on the floor (load_root). */
+static const key_spec plane_keys[] = {
+    SPECIAL_KEY("axis", 1),
+    REQUIRED_KEY("position", KEY_NUMBER, ball_plane, position),
+    REQUIRED_KEY("lo", KEY_NUMBER, ball_plane, lo),
+    REQUIRED_KEY("hi", KEY_NUMBER, ball_plane, hi),
+    KEY("bottom", KEY_NUMBER, ball_plane, bottom),
+    REQUIRED_KEY("top", KEY_NUMBER, ball_plane, top),
+    KEY("damping", KEY_NUMBER, ball_plane, damping),
+    END_OF_KEYS,
+};
+static const section net_section = {plane_keys, plane_axis, 0, 1};
+static const section wall_section = {plane_keys, plane_axis, 1, 1};
+
 static ball_status load_net(scene_loader *L, const yaml_node_t *node) {
-  int bottom_set;
   ball_status st;
   if (node->type == YAML_SCALAR_NODE && strcmp(scalar_text(node), "none") == 0) {
     L->scene.model.has_net = 0;
@@ -353,7 +477,7 @@ static ball_status load_net(scene_loader *L, const yaml_node_t *node) {
   }
   if (node->type == YAML_SCALAR_NODE)
     return fail(L, node, "net", "expected a mapping or none, got \"%s\"", scalar_text(node));
-  if ((st = load_plane(L, node, "net", &L->scene.model.net, 0, &bottom_set)) != BALL_OK) return st;
+  if ((st = load_section(L, node, "net", &net_section, &L->scene.model.net, NULL)) != BALL_OK) return st;
   L->scene.model.has_net = 1;
   return BALL_OK;
 }
@@ -362,79 +486,65 @@ static ball_status load_walls(scene_loader *L, const yaml_node_t *node, double d
   ball_model *m = &L->scene.model;
   int i, n;
   ball_status st;
-  if (node->type != YAML_SEQUENCE_NODE) return fail(L, node, "walls", "expected a list of walls, got %s", node_kind(node));
-  n = (int)(node->data.sequence.items.top - node->data.sequence.items.start);
-  if (n > BALL_MAX_WALLS) return fail(L, node, "walls", "%d walls given, at most %d allowed", n, BALL_MAX_WALLS);
+  if ((st = get_list(L, node, "walls", "walls", BALL_MAX_WALLS, &n)) != BALL_OK) return st;
   for (i = 0; i < n; ++i) {
-    yaml_node_t *item = yaml_document_get_node(L->doc, node->data.sequence.items.start[i]);
+    yaml_node_t *item = list_item(L, node, i);
     char path[SCENE_PATH_SIZE];
     ball_plane *w = &m->walls[i];
     snprintf(path, sizeof path, "walls[%d]", i);
     remember(L, path, NULL, item);
     memset(w, 0, sizeof *w);
     w->damping = default_damping;
-    if ((st = load_plane(L, item, path, w, 1, &L->wall_bottom_set[i])) != BALL_OK) return st;
+    if ((st = load_section(L, item, path, &wall_section, w, NULL)) != BALL_OK) return st;
+    L->wall_bottom_set[i] = key_value(L, item, "bottom") != NULL;
   }
   m->n_walls = n;
   return BALL_OK;
 }
 
-/* An unsigned 64-bit integer (a seed): plain decimal digits, in range. */
-static ball_status get_uint64(scene_loader *L, const yaml_node_t *node, const char *path, uint64_t *out) {
-  const char *text, *c;
-  char *end;
-  unsigned long long v;
-  if (node->type != YAML_SCALAR_NODE) return fail(L, node, path, "expected an integer, got %s", node_kind(node));
-  text = scalar_text(node);
-  if (!is_plain_scalar(node)) return fail(L, node, path, "expected an integer, got the string \"%s\"", text);
-  if (node->data.scalar.length == 0) return fail(L, node, path, "expected an integer, got nothing");
-  for (c = text; *c; ++c)
-    if (*c < '0' || *c > '9')
-      return fail(L, node, path, "expected an integer in [0, 18446744073709551615], got \"%s\"", text);
-  errno = 0;
-  v = strtoull(text, &end, 10);
-  if (errno == ERANGE || *end != '\0' || v > (unsigned long long)UINT64_MAX)
-    return fail(L, node, path, "integer %s is out of range [0, 18446744073709551615]", text);
-  *out = (uint64_t)v;
-  return BALL_OK;
-}
+/* ---- rackets and their scripts ------------------------------------------- */
 
-/* A number in [lo, hi] (hi_open: [lo, hi)); read and checked where it stands. */
-static ball_status get_ranged(scene_loader *L, const yaml_node_t *node, const char *path, double lo, double hi,
-                              int hi_open, const char *range, double *out) {
-  double v;
-  ball_status st = get_number(L, node, path, &v);
-  if (st != BALL_OK) return st;
-  if (!(v >= lo) || (hi_open ? !(v < hi) : !(v <= hi)))
-    return fail(L, node, path, "out of range: must be %s, got %s", range, scalar_text(node));
-  *out = v;
-  return BALL_OK;
-}
-
-/* Whether mapping node has key. */
-static int has_key(scene_loader *L, const yaml_node_t *node, const char *key) {
-  yaml_node_pair_t *p;
-  for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p)
-    if (strcmp(pair_key(L, p), key) == 0) return 1;
-  return 0;
-}
-
-/* Fails on the first of the required keys (NULL-terminated) node lacks. */
-static ball_status require_keys(scene_loader *L, const yaml_node_t *node, const char *path,
-                                const char *const *required) {
-  for (; *required; ++required) {
-    if (!has_key(L, node, *required)) {
-      char sub[SCENE_PATH_SIZE];
-      join(sub, path, *required);
-      return fail(L, node, sub, "missing required key \"%s\"", *required);
+/* A keyframe's t (strictly after the one before) or normal (made unit). */
+static ball_status keyframe_key(scene_loader *L, const yaml_node_t *key, const yaml_node_t *v, const char *path,
+                                void *base, void *ctx) {
+  ball_script_keyframe *k = (ball_script_keyframe *)base;
+  const ball_racket_script *s = (const ball_racket_script *)ctx;
+  ball_status st;
+  if (strcmp(scalar_text(key), "t") == 0) {
+    if ((st = get_number(L, v, path, &k->t)) != BALL_OK) return st;
+    if (k > s->keyframes && !(k->t > k[-1].t))
+      return fail(L, v, path, "out of range: keyframe times must increase strictly, got %s after %.17g",
+                  scalar_text(v), k[-1].t);
+  } else {
+    ball_vec3 u;
+    double big, w;
+    if ((st = get_vec3(L, v, path, &u)) != BALL_OK) return st;
+    /* normalise without overflow: scale by the largest component first */
+    big = fmax(fabs(u.x), fmax(fabs(u.y), fabs(u.z)));
+    if (big > 0.0) {
+      u.x /= big;
+      u.y /= big;
+      u.z /= big;
     }
+    w = sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
+    if (!(big * w >= 1e-9)) return fail(L, v, path, "out of range: a normal must not be (nearly) zero");
+    k->normal.x = u.x / w;
+    k->normal.y = u.y / w;
+    k->normal.z = u.z / w;
   }
   return BALL_OK;
 }
 
+static const key_spec keyframe_keys[] = {
+    SPECIAL_KEY("t", 1),
+    REQUIRED_KEY("center", KEY_VEC3, ball_script_keyframe, center),
+    SPECIAL_KEY("normal", 1),
+    END_OF_KEYS,
+};
+static const section keyframe_section = {keyframe_keys, keyframe_key, 1, 0};
+
 static ball_status load_keyframes(scene_loader *L, const yaml_node_t *node, const char *path,
                                   ball_racket_script *s) {
-  static const char *const keys[] = {"t", "center", "normal", NULL};
   int i, n;
   ball_status st;
   if (node->type != YAML_SEQUENCE_NODE)
@@ -444,80 +554,45 @@ static ball_status load_keyframes(scene_loader *L, const yaml_node_t *node, cons
   if (n > BALL_SCRIPT_MAX_KEYFRAMES)
     return fail(L, node, path, "%d keyframes given, at most %d allowed", n, BALL_SCRIPT_MAX_KEYFRAMES);
   for (i = 0; i < n; ++i) {
-    yaml_node_t *item = yaml_document_get_node(L->doc, node->data.sequence.items.start[i]);
-    ball_script_keyframe *k = &s->keyframes[i];
-    yaml_node_pair_t *p;
     char kpath[SCENE_PATH_SIZE];
     snprintf(kpath, sizeof kpath, "%.80s[%d]", path, i);
-    if ((st = check_mapping(L, item, kpath, keys)) != BALL_OK) return st;
-    if ((st = require_keys(L, item, kpath, keys)) != BALL_OK) return st;
-    for (p = item->data.mapping.pairs.start; p < item->data.mapping.pairs.top; ++p) {
-      const char *key = pair_key(L, p);
-      yaml_node_t *v = pair_value(L, p);
-      char sub[SCENE_PATH_SIZE];
-      join(sub, kpath, key);
-      if (strcmp(key, "t") == 0) {
-        if ((st = get_number(L, v, sub, &k->t)) != BALL_OK) return st;
-        if (i > 0 && !(k->t > s->keyframes[i - 1].t))
-          return fail(L, v, sub, "out of range: keyframe times must increase strictly, got %s after %.17g",
-                      scalar_text(v), s->keyframes[i - 1].t);
-      } else if (strcmp(key, "center") == 0) {
-        if ((st = get_vec3(L, v, sub, &k->center)) != BALL_OK) return st;
-      } else {
-        ball_vec3 u;
-        double big, w;
-        if ((st = get_vec3(L, v, sub, &u)) != BALL_OK) return st;
-        /* normalise without overflow: scale by the largest component first */
-        big = fmax(fabs(u.x), fmax(fabs(u.y), fabs(u.z)));
-        if (big > 0.0) {
-          u.x /= big;
-          u.y /= big;
-          u.z /= big;
-        }
-        w = sqrt(u.x * u.x + u.y * u.y + u.z * u.z);
-        if (!(big * w >= 1e-9)) return fail(L, v, sub, "out of range: a normal must not be (nearly) zero");
-        k->normal.x = u.x / w;
-        k->normal.y = u.y / w;
-        k->normal.z = u.z / w;
-      }
-    }
+    if ((st = load_section(L, list_item(L, node, i), kpath, &keyframe_section, &s->keyframes[i], s)) != BALL_OK)
+      return st;
   }
   s->n_keyframes = n;
   return BALL_OK;
 }
 
+static ball_status script_keyframes(scene_loader *L, const yaml_node_t *key, const yaml_node_t *v,
+                                    const char *path, void *base, void *ctx) {
+  (void)key;
+  (void)ctx;
+  return load_keyframes(L, v, path, (ball_racket_script *)base);
+}
+
 /* rackets[i].script: keyframes and network conditions (docs/scenes.md). */
+static const key_spec script_keys[] = {
+    SPECIAL_KEY("keyframes", 1),
+    RANGED_KEY("repeat", ball_racket_script, repeat, 0.0, HUGE_VAL, 0, ">= 0 (0: no repeat)"),
+    RANGED_KEY("rate", ball_racket_script, rate, 2.0, 120.0, 0, "in [2, 120] Hz"),
+    RANGED_KEY("delay", ball_racket_script, delay, 0.0, 60.0, 0, "in [0, 60] s"),
+    RANGED_KEY("jitter", ball_racket_script, jitter, 0.0, 0.5, 0, "in [0, 0.5] s"),
+    RANGED_KEY("loss", ball_racket_script, loss, 0.0, 1.0, 1, "in [0, 1)"),
+    RANGED_KEY("duplicate", ball_racket_script, duplicate, 0.0, 1.0, 0, "in [0, 1]"),
+    RANGED_KEY("noise", ball_racket_script, noise, 0.0, HUGE_VAL, 0, ">= 0 m"),
+    RANGED_KEY("normal_noise", ball_racket_script, normal_noise, 0.0, 1.0, 0, "in [0, 1] rad"),
+    KEY("seed", KEY_UINT64, ball_racket_script, seed),
+    END_OF_KEYS,
+};
+static const section script_section = {script_keys, script_keyframes, 1, 0};
+
 static ball_status load_script(scene_loader *L, const yaml_node_t *node, const char *path, ball_racket_script *s) {
-  static const char *const keys[] = {"keyframes", "repeat", "rate", "delay", "jitter", "loss", "duplicate",
-                                     "noise", "normal_noise", "seed", NULL};
-  static const char *const required[] = {"keyframes", NULL};
-  const yaml_node_t *repeat_node = NULL;
-  yaml_node_pair_t *p;
+  const yaml_node_t *repeat_node;
   ball_status st;
   const char *field = NULL;
   ball_script_default(s);
-  if ((st = check_mapping(L, node, path, keys)) != BALL_OK) return st;
-  if ((st = require_keys(L, node, path, required)) != BALL_OK) return st;
-  for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p) {
-    const char *k = pair_key(L, p);
-    yaml_node_t *v = pair_value(L, p);
-    char sub[SCENE_PATH_SIZE];
-    join(sub, path, k);
-    if (strcmp(k, "keyframes") == 0) st = load_keyframes(L, v, sub, s);
-    else if (strcmp(k, "repeat") == 0) {
-      st = get_ranged(L, v, sub, 0.0, HUGE_VAL, 0, ">= 0 (0: no repeat)", &s->repeat);
-      repeat_node = v;
-    } else if (strcmp(k, "rate") == 0) st = get_ranged(L, v, sub, 2.0, 120.0, 0, "in [2, 120] Hz", &s->rate);
-    else if (strcmp(k, "delay") == 0) st = get_ranged(L, v, sub, 0.0, 60.0, 0, "in [0, 60] s", &s->delay);
-    else if (strcmp(k, "jitter") == 0) st = get_ranged(L, v, sub, 0.0, 0.5, 0, "in [0, 0.5] s", &s->jitter);
-    else if (strcmp(k, "loss") == 0) st = get_ranged(L, v, sub, 0.0, 1.0, 1, "in [0, 1)", &s->loss);
-    else if (strcmp(k, "duplicate") == 0) st = get_ranged(L, v, sub, 0.0, 1.0, 0, "in [0, 1]", &s->duplicate);
-    else if (strcmp(k, "noise") == 0) st = get_ranged(L, v, sub, 0.0, HUGE_VAL, 0, ">= 0 m", &s->noise);
-    else if (strcmp(k, "normal_noise") == 0)
-      st = get_ranged(L, v, sub, 0.0, 1.0, 0, "in [0, 1] rad", &s->normal_noise);
-    else st = get_uint64(L, v, sub, &s->seed);
-    if (st != BALL_OK) return st;
-  }
+  if ((st = load_section(L, node, path, &script_section, s, NULL)) != BALL_OK) return st;
+  repeat_node = key_value(L, node, "repeat");
   if (repeat_node && s->repeat != 0.0 &&
       !(s->repeat > s->keyframes[s->n_keyframes - 1].t - s->keyframes[0].t)) {
     char sub[SCENE_PATH_SIZE];
@@ -531,122 +606,99 @@ static ball_status load_script(scene_loader *L, const yaml_node_t *node, const c
   return BALL_OK;
 }
 
+/* rackets[i].script goes to L->scene.scripts[i] (ctx). */
+static ball_status racket_script(scene_loader *L, const yaml_node_t *key, const yaml_node_t *v, const char *path,
+                                 void *base, void *ctx) {
+  ball_status st = load_script(L, v, path, (ball_racket_script *)ctx);
+  (void)key;
+  (void)base;
+  if (st == BALL_OK) remember(L, path, NULL, v);
+  return st;
+}
+
+static const key_spec rackets_keys[] = {
+    KEY("radius", KEY_NUMBER, ball_racket_def, radius),
+    KEY("partner", KEY_INT, ball_racket_def, partner),
+    KEY("target", KEY_VEC3, ball_racket_def, target),
+    SPECIAL_KEY("script", 0),
+    END_OF_KEYS,
+};
+static const section rackets_section = {rackets_keys, racket_script, 0, 1};
+
 static ball_status load_rackets(scene_loader *L, const yaml_node_t *node, const ball_model *defaults) {
-  static const char *const keys[] = {"radius", "partner", "target", "script", NULL};
   ball_model *m = &L->scene.model;
   int i, n;
   ball_status st;
-  if (node->type != YAML_SEQUENCE_NODE) return fail(L, node, "rackets", "expected a list of rackets, got %s", node_kind(node));
-  n = (int)(node->data.sequence.items.top - node->data.sequence.items.start);
-  if (n > BALL_MAX_RACKETS) return fail(L, node, "rackets", "%d rackets given, at most %d allowed", n, BALL_MAX_RACKETS);
+  if ((st = get_list(L, node, "rackets", "rackets", BALL_MAX_RACKETS, &n)) != BALL_OK) return st;
   for (i = 0; i < n; ++i) {
-    yaml_node_t *item = yaml_document_get_node(L->doc, node->data.sequence.items.start[i]);
+    yaml_node_t *item = list_item(L, node, i);
     ball_racket_def *r = &m->rackets[i];
-    yaml_node_pair_t *p;
     char path[SCENE_PATH_SIZE];
     snprintf(path, sizeof path, "rackets[%d]", i);
     remember(L, path, NULL, item);
     *r = defaults->rackets[i];
-    if ((st = check_mapping(L, item, path, keys)) != BALL_OK) return st;
-    for (p = item->data.mapping.pairs.start; p < item->data.mapping.pairs.top; ++p) {
-      const char *k = pair_key(L, p);
-      yaml_node_t *v = pair_value(L, p);
-      char sub[SCENE_PATH_SIZE];
-      join(sub, path, k);
-      if (strcmp(k, "radius") == 0) st = set_number(L, v, sub, &r->radius);
-      else if (strcmp(k, "partner") == 0) st = get_int(L, v, sub, &r->partner);
-      else if (strcmp(k, "script") == 0) st = load_script(L, v, sub, &L->scene.scripts[i]);
-      else st = get_vec3(L, v, sub, &r->target);
-      if (st != BALL_OK) return st;
-      remember(L, sub, NULL, v);
-    }
+    if ((st = load_section(L, item, path, &rackets_section, r, &L->scene.scripts[i])) != BALL_OK) return st;
   }
   m->n_rackets = n;
   return BALL_OK;
 }
 
-static ball_status load_racket(scene_loader *L, const yaml_node_t *node) {
-  static const char *const keys[] = {"detect", "normal", "response", "collision_distance", "sleep_frames",
-                                     "v_min", "v_max", "v_up", "v_up_from_racket", "friendly_factor",
-                                     "spin_rack_damping", "history", "extrapolation_time", "stale_time",
-                                     NULL};
-  ball_model *m = &L->scene.model;
-  yaml_node_pair_t *p;
+static const key_spec racket_keys[] = {
+    ENUM_KEY("detect", ball_model, detect, detect_name, BALL_DETECT_COUNT, put_detect),
+    ENUM_KEY("normal", ball_model, normal_mode, normal_name, BALL_NORMAL_COUNT, put_normal),
+    ENUM_KEY("response", ball_model, response, response_name, BALL_RESPONSE_COUNT, put_response),
+    KEY("collision_distance", KEY_NUMBER, ball_model, collision_distance),
+    KEY("sleep_frames", KEY_INT, ball_model, sleep_frames),
+    KEY("v_min", KEY_NUMBER, ball_model, v_min),
+    KEY("v_max", KEY_NUMBER, ball_model, v_max),
+    KEY("v_up", KEY_NUMBER, ball_model, v_up),
+    KEY("v_up_from_racket", KEY_BOOL, ball_model, v_up_from_racket),
+    KEY("friendly_factor", KEY_NUMBER, ball_model, friendly_factor),
+    KEY("spin_rack_damping", KEY_NUMBER, ball_model, spin_rack_damping),
+    KEY("history", KEY_INT, ball_model, history),
+    KEY("extrapolation_time", KEY_NUMBER, ball_model, extrapolation_time),
+    KEY("stale_time", KEY_NUMBER, ball_model, stale_time),
+    END_OF_KEYS,
+};
+static const section racket_section = {racket_keys, NULL, 0, 1};
+
+/* ---- time, effects and the ball -------------------------------------------- */
+
+/* time.frame_time or time.fps (one of them; ctx: the one seen so far). */
+static ball_status time_frame(scene_loader *L, const yaml_node_t *key, const yaml_node_t *v, const char *path,
+                              void *base, void *ctx) {
+  ball_model *m = (ball_model *)base;
+  const yaml_node_t **frame_node = (const yaml_node_t **)ctx;
   ball_status st;
-  if ((st = check_mapping(L, node, "racket", keys)) != BALL_OK) return st;
-  for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p) {
-    const char *k = pair_key(L, p);
-    yaml_node_t *v = pair_value(L, p);
-    char path[SCENE_PATH_SIZE];
-    int e;
-    join(path, "racket", k);
-    if (strcmp(k, "detect") == 0) {
-      if ((st = get_enum(L, v, path, detect_name, BALL_DETECT_COUNT, &e)) == BALL_OK) m->detect = (ball_detect)e;
-    } else if (strcmp(k, "normal") == 0) {
-      if ((st = get_enum(L, v, path, normal_name, BALL_NORMAL_COUNT, &e)) == BALL_OK) m->normal_mode = (ball_normal_mode)e;
-    } else if (strcmp(k, "response") == 0) {
-      if ((st = get_enum(L, v, path, response_name, BALL_RESPONSE_COUNT, &e)) == BALL_OK) m->response = (ball_response)e;
-    } else if (strcmp(k, "sleep_frames") == 0) {
-      st = get_int(L, v, path, &m->sleep_frames);
-    } else if (strcmp(k, "history") == 0) {
-      st = get_int(L, v, path, &m->history);
-    } else if (strcmp(k, "v_up_from_racket") == 0) {
-      st = get_bool(L, v, path, &m->v_up_from_racket);
-    } else {
-      double *dst;
-      if (strcmp(k, "collision_distance") == 0) dst = &m->collision_distance;
-      else if (strcmp(k, "v_min") == 0) dst = &m->v_min;
-      else if (strcmp(k, "v_max") == 0) dst = &m->v_max;
-      else if (strcmp(k, "v_up") == 0) dst = &m->v_up;
-      else if (strcmp(k, "friendly_factor") == 0) dst = &m->friendly_factor;
-      else if (strcmp(k, "spin_rack_damping") == 0) dst = &m->spin_rack_damping;
-      else if (strcmp(k, "extrapolation_time") == 0) dst = &m->extrapolation_time;
-      else dst = &m->stale_time;
-      st = get_number(L, v, path, dst);
-    }
-    if (st != BALL_OK) return st;
-    remember(L, path, NULL, v);
+  double fps;
+  if (*frame_node) return fail(L, key, "time", "give frame_time or fps, not both");
+  *frame_node = v;
+  if (strcmp(scalar_text(key), "frame_time") == 0) {
+    if ((st = get_number(L, v, path, &m->frame_time)) == BALL_OK) remember(L, path, NULL, v);
+    return st;
   }
+  if ((st = get_number(L, v, path, &fps)) != BALL_OK) return st;
+  if (!(fps > 0.0)) return fail(L, v, path, "must be > 0, got %s", scalar_text(v));
+  m->frame_time = 1.0 / fps;
+  remember(L, "time.frame_time", path, v);
   return BALL_OK;
 }
 
-static ball_status load_time(scene_loader *L, const yaml_node_t *node) {
-  static const char *const keys[] = {"frame_time", "fps", "time_base", NULL};
-  ball_model *m = &L->scene.model;
-  yaml_node_pair_t *p;
-  ball_status st;
-  const yaml_node_t *frame_node = NULL;
-  if ((st = check_mapping(L, node, "time", keys)) != BALL_OK) return st;
-  for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p) {
-    const char *k = pair_key(L, p);
-    yaml_node_t *v = pair_value(L, p);
-    if (strcmp(k, "time_base") == 0) {
-      if ((st = set_number(L, v, "time.time_base", &m->time_base)) != BALL_OK) return st;
-    } else if (frame_node) {
-      return fail(L, yaml_document_get_node(L->doc, p->key), "time", "give frame_time or fps, not both");
-    } else if (strcmp(k, "frame_time") == 0) {
-      frame_node = v;
-      if ((st = set_number(L, v, "time.frame_time", &m->frame_time)) != BALL_OK) return st;
-    } else {
-      double fps;
-      frame_node = v;
-      if ((st = get_number(L, v, "time.fps", &fps)) != BALL_OK) return st;
-      if (!(fps > 0.0)) return fail(L, v, "time.fps", "must be > 0, got %s", scalar_text(v));
-      m->frame_time = 1.0 / fps;
-      remember(L, "time.frame_time", "time.fps", v);
-    }
-  }
-  return BALL_OK;
-}
+static const key_spec time_keys[] = {
+    SPECIAL_KEY("frame_time", 0),
+    SPECIAL_KEY("fps", 0),
+    KEY("time_base", KEY_NUMBER, ball_model, time_base),
+    END_OF_KEYS,
+};
+static const section time_section = {time_keys, time_frame, 0, 1};
 
 static ball_status load_effects(scene_loader *L, const yaml_node_t *node) {
   unsigned mask = 0;
   int i, n;
-  if (node->type != YAML_SEQUENCE_NODE)
-    return fail(L, node, "effects", "expected a list of effect names, got %s", node_kind(node));
-  n = (int)(node->data.sequence.items.top - node->data.sequence.items.start);
+  ball_status st;
+  if ((st = get_list(L, node, "effects", "effect names", INT_MAX, &n)) != BALL_OK) return st;
   for (i = 0; i < n; ++i) {
-    yaml_node_t *item = yaml_document_get_node(L->doc, node->data.sequence.items.start[i]);
+    yaml_node_t *item = list_item(L, node, i);
     char path[SCENE_PATH_SIZE];
     unsigned bit;
     snprintf(path, sizeof path, "effects[%d]", i);
@@ -667,25 +719,13 @@ static ball_status load_effects(scene_loader *L, const yaml_node_t *node) {
   return BALL_OK;
 }
 
-static ball_status load_ball(scene_loader *L, const yaml_node_t *node) {
-  static const char *const keys[] = {"position", "velocity", "spin", NULL};
-  ball_model *m = &L->scene.model;
-  yaml_node_pair_t *p;
-  ball_status st;
-  if ((st = check_mapping(L, node, "ball", keys)) != BALL_OK) return st;
-  for (p = node->data.mapping.pairs.start; p < node->data.mapping.pairs.top; ++p) {
-    const char *k = pair_key(L, p);
-    yaml_node_t *v = pair_value(L, p);
-    char path[SCENE_PATH_SIZE];
-    ball_vec3 *dst = strcmp(k, "position") == 0   ? &m->initial_position
-                     : strcmp(k, "velocity") == 0 ? &m->initial_velocity
-                                                  : &m->initial_spin;
-    join(path, "ball", k);
-    if ((st = get_vec3(L, v, path, dst)) != BALL_OK) return st;
-    remember(L, path, NULL, v);
-  }
-  return BALL_OK;
-}
+static const key_spec ball_keys[] = {
+    KEY("position", KEY_VEC3, ball_model, initial_position),
+    KEY("velocity", KEY_VEC3, ball_model, initial_velocity),
+    KEY("spin", KEY_VEC3, ball_model, initial_spin),
+    END_OF_KEYS,
+};
+static const section ball_section = {ball_keys, NULL, 0, 1};
 
 /* ---- mapping ball_model_check's field names back to scene keys ---------- */
 
@@ -806,13 +846,67 @@ static const scene_location *find_location(const scene_loader *L, const char *pa
 
 /* ---- the document --------------------------------------------------------- */
 
+
+/* The top-level keys that are not plain fields: name, duration and the
+ * sections (level is read first, by load_root). ctx: the default model. */
+static ball_status root_key(scene_loader *L, const yaml_node_t *key, const yaml_node_t *v, const char *path,
+                            void *base, void *ctx) {
+  const ball_model *defaults = (const ball_model *)ctx;
+  const char *k = scalar_text(key);
+  const yaml_node_t *frame_node = NULL;
+  ball_status st;
+  if (strcmp(k, "level") == 0) return BALL_OK;
+  if (strcmp(k, "name") == 0) {
+    if (v->type != YAML_SCALAR_NODE) return fail(L, v, "name", "expected a string, got %s", node_kind(v));
+    if (v->data.scalar.length >= sizeof L->scene.name)
+      return fail(L, v, "name", "longer than %d characters", (int)sizeof L->scene.name - 1);
+    copy_string(L->scene.name, sizeof L->scene.name, scalar_text(v));
+    return BALL_OK;
+  }
+  if (strcmp(k, "duration") == 0) {
+    if ((st = get_number(L, v, "duration", &L->scene.duration)) != BALL_OK) return st;
+    if (!(L->scene.duration > 0.0)) return fail(L, v, "duration", "must be > 0, got %s", scalar_text(v));
+    return BALL_OK;
+  }
+  if (strcmp(k, "floor") == 0) st = load_section(L, v, path, &floor_section, base, NULL);
+  else if (strcmp(k, "net") == 0) st = load_net(L, v);
+  else if (strcmp(k, "walls") == 0) st = load_walls(L, v, defaults->net.damping);
+  else if (strcmp(k, "rackets") == 0) st = load_rackets(L, v, defaults);
+  else if (strcmp(k, "racket") == 0) st = load_section(L, v, path, &racket_section, base, NULL);
+  else if (strcmp(k, "time") == 0) st = load_section(L, v, path, &time_section, base, &frame_node);
+  else if (strcmp(k, "effects") == 0) st = load_effects(L, v);
+  else st = load_section(L, v, path, &ball_section, base, NULL);
+  if (st != BALL_OK) return st;
+  if (v->type != YAML_SCALAR_NODE) remember(L, k, NULL, v);
+  return BALL_OK;
+}
+
+static const key_spec root_keys[] = {
+    SPECIAL_KEY("name", 0),
+    SPECIAL_KEY("duration", 0),
+    KEY("gravity", KEY_NUMBER, ball_model, gravity),
+    KEY("mass", KEY_NUMBER, ball_model, mass),
+    KEY("air_friction", KEY_NUMBER, ball_model, air_friction),
+    KEY("radius", KEY_NUMBER, ball_model, radius),
+    KEY("spin_damping", KEY_NUMBER, ball_model, spin_damping),
+    SPECIAL_KEY("floor", 0),
+    SPECIAL_KEY("net", 0),
+    SPECIAL_KEY("walls", 0),
+    SPECIAL_KEY("rackets", 0),
+    SPECIAL_KEY("racket", 0),
+    SPECIAL_KEY("level", 0),
+    SPECIAL_KEY("time", 0),
+    SPECIAL_KEY("effects", 0),
+    ENUM_KEY("scheme", ball_model, scheme, scheme_name, BALL_SCHEME_COUNT, put_scheme),
+    SPECIAL_KEY("ball", 0),
+    END_OF_KEYS,
+};
+static const section root_section = {root_keys, root_key, 0, 1};
+
 static ball_status load_root(scene_loader *L, const yaml_node_t *root) {
-  static const char *const keys[] = {"name", "duration", "gravity", "mass", "air_friction", "radius",
-                                     "spin_damping", "floor", "net", "walls", "rackets", "racket",
-                                     "level", "time", "effects", "scheme", "ball", NULL};
   ball_model defaults;
   ball_model *m = &L->scene.model;
-  yaml_node_pair_t *p;
+  yaml_node_t *v;
   ball_status st;
   const char *field = NULL;
   int i;
@@ -820,59 +914,20 @@ static ball_status load_root(scene_loader *L, const yaml_node_t *root) {
   ball_model_default(&defaults);
   if (root->type == YAML_SCALAR_NODE && root->data.scalar.length == 0)
     return fail(L, root, "", "the scene is empty (expected a mapping of keys)");
-  if ((st = check_mapping(L, root, "", keys)) != BALL_OK) return st;
+  if ((st = check_section(L, root, "", &root_section)) != BALL_OK) return st;
   remember(L, "", NULL, root);
 
   /* The level preset goes first, whatever its place in the file, so every
    * racket key can override it. */
-  for (p = root->data.mapping.pairs.start; p < root->data.mapping.pairs.top; ++p) {
-    if (strcmp(pair_key(L, p), "level") == 0) {
-      yaml_node_t *v = pair_value(L, p);
-      int level;
-      if ((st = get_enum(L, v, "level", level_name, BALL_LEVEL_COUNT, &level)) != BALL_OK) return st;
-      if (ball_model_set_level(m, (ball_level)level) != BALL_OK)
-        return fail(L, v, "level", "the library rejected level \"%s\"", scalar_text(v));
-      remember(L, "level", NULL, v);
-    }
+  if ((v = key_value(L, root, "level")) != NULL) {
+    int level;
+    if ((st = get_enum(L, v, "level", level_name, BALL_LEVEL_COUNT, &level)) != BALL_OK) return st;
+    if (ball_model_set_level(m, (ball_level)level) != BALL_OK)
+      return fail(L, v, "level", "the library rejected level \"%s\"", scalar_text(v));
+    remember(L, "level", NULL, v);
   }
 
-  for (p = root->data.mapping.pairs.start; p < root->data.mapping.pairs.top; ++p) {
-    const char *k = pair_key(L, p);
-    yaml_node_t *v = pair_value(L, p);
-    if (strcmp(k, "level") == 0) continue;
-    if (strcmp(k, "name") == 0) {
-      if (v->type != YAML_SCALAR_NODE) return fail(L, v, "name", "expected a string, got %s", node_kind(v));
-      if (v->data.scalar.length >= sizeof L->scene.name)
-        return fail(L, v, "name", "longer than %d characters", (int)sizeof L->scene.name - 1);
-      copy_string(L->scene.name, sizeof L->scene.name, scalar_text(v));
-      continue;
-    }
-    if (strcmp(k, "duration") == 0) {
-      if ((st = get_number(L, v, "duration", &L->scene.duration)) != BALL_OK) return st;
-      if (!(L->scene.duration > 0.0)) return fail(L, v, "duration", "must be > 0, got %s", scalar_text(v));
-      continue;
-    }
-    if (strcmp(k, "gravity") == 0) st = set_number(L, v, k, &m->gravity);
-    else if (strcmp(k, "mass") == 0) st = set_number(L, v, k, &m->mass);
-    else if (strcmp(k, "air_friction") == 0) st = set_number(L, v, k, &m->air_friction);
-    else if (strcmp(k, "radius") == 0) st = set_number(L, v, k, &m->radius);
-    else if (strcmp(k, "spin_damping") == 0) st = set_number(L, v, k, &m->spin_damping);
-    else if (strcmp(k, "floor") == 0) st = load_floor(L, v);
-    else if (strcmp(k, "net") == 0) st = load_net(L, v);
-    else if (strcmp(k, "walls") == 0) st = load_walls(L, v, defaults.net.damping);
-    else if (strcmp(k, "rackets") == 0) st = load_rackets(L, v, &defaults);
-    else if (strcmp(k, "racket") == 0) st = load_racket(L, v);
-    else if (strcmp(k, "time") == 0) st = load_time(L, v);
-    else if (strcmp(k, "effects") == 0) st = load_effects(L, v);
-    else if (strcmp(k, "ball") == 0) st = load_ball(L, v);
-    else {
-      int e;
-      st = get_enum(L, v, "scheme", scheme_name, BALL_SCHEME_COUNT, &e);
-      if (st == BALL_OK) m->scheme = (ball_scheme)e;
-    }
-    if (st != BALL_OK) return st;
-    if (v->type != YAML_SCALAR_NODE) remember(L, k, NULL, v);
-  }
+  if ((st = read_section(L, root, "", &root_section, m, &defaults)) != BALL_OK) return st;
 
   /* A wall without "bottom" stands on the floor. */
   for (i = 0; i < m->n_walls; ++i)
