@@ -293,12 +293,61 @@ ball_status ball_sim_state(const ball_model *m, const ball_sim *sim, ball_state 
   return BALL_OK;
 }
 
+/* What a step changes besides the clock, kept to undo a refused frame (the
+ * track samples are not touched by a step, so the whole sim is not copied). */
+typedef struct step_undo {
+  ball_segment seg;
+  int origin, sleep, last_racket;
+  unsigned long warnings[BALL_WARN_COUNT], events_dropped;
+  int has_prev[BALL_MAX_RACKETS];
+  ball_racket_pose prev_pose[BALL_MAX_RACKETS];
+} step_undo;
+
+static void undo_save(step_undo *u, const ball_sim *sim) {
+  int r;
+  u->seg = sim->seg;
+  u->origin = sim->origin;
+  u->sleep = sim->sleep;
+  u->last_racket = sim->last_racket;
+  memcpy(u->warnings, sim->warnings, sizeof u->warnings);
+  u->events_dropped = sim->events_dropped;
+  for (r = 0; r < BALL_MAX_RACKETS; r++) {
+    u->has_prev[r] = sim->tracks[r].has_prev;
+    u->prev_pose[r] = sim->tracks[r].prev_pose;
+  }
+}
+
+static void undo_restore(const step_undo *u, ball_sim *sim, double t) {
+  int r;
+  sim->time = t;
+  sim->seg = u->seg;
+  sim->origin = u->origin;
+  sim->sleep = u->sleep;
+  sim->last_racket = u->last_racket;
+  memcpy(sim->warnings, u->warnings, sizeof u->warnings);
+  sim->events_dropped = u->events_dropped;
+  for (r = 0; r < BALL_MAX_RACKETS; r++) {
+    sim->tracks[r].has_prev = u->has_prev[r];
+    sim->tracks[r].prev_pose = u->prev_pose[r];
+  }
+}
+
+static int events_finite(const ball_event *ev, int n) {
+  int i;
+  for (i = 0; i < n; i++)
+    if (!isfinite(ev[i].time) || !v3_finite(ev[i].point) || !v3_finite(ev[i].velocity_in) ||
+        !v3_finite(ev[i].velocity_out) || !v3_finite(ev[i].spin_out))
+      return 0;
+  return 1;
+}
+
 ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event *events, int cap,
                       int *n_events) {
   ball_status st;
   double t_prev, t_end;
   int n = 0;
   ball_state s;
+  step_undo undo;
   if (n_events) *n_events = 0;
   if (!m || !sim || cap < 0 || (cap > 0 && !events)) return BALL_EINVAL;
   if (!isfinite(dt)) return BALL_ENONFINITE;
@@ -314,6 +363,7 @@ ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event 
   /* a frame whose flight would overflow is refused before anything changes */
   ball__eval(m, &sim->seg, t_end, &s);
   if (!v3_finite(s.position) || !v3_finite(s.velocity) || !v3_finite(s.spin)) return BALL_ERANGE;
+  undo_save(&undo, sim);
 
   if (m->scheme == BALL_SCHEME_EXACT)
     step_exact(m, sim, t_prev, t_end, events, cap, &n);
@@ -332,6 +382,13 @@ ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event 
     }
   }
   ball__eval(m, &sim->seg, t_end, &s);
+  /* a response that overflowed (speeds near DBL_MAX): refuse the frame and
+   * give the sim back as it was */
+  if (!segment_finite(&sim->seg) || !v3_finite(s.position) || !v3_finite(s.velocity) ||
+      !v3_finite(s.spin) || !events_finite(events, n)) {
+    undo_restore(&undo, sim, t_prev);
+    return BALL_ERANGE;
+  }
   sim->prev_position = s.position;
   sim->frame++;
   if (n_events) *n_events = n;

@@ -398,6 +398,37 @@ static void test_overflowing_frame_is_refused_or_finite(void **state) {
   }
 }
 
+/* A bounce that overflows (found by fuzz_sim): velocity and spin near
+ * DBL_MAX; eq 5 damps the velocity by 0.75 but eq 13 adds 0.8 * S x n, so
+ * V0z = 0.75 * (-DBL_MAX) + 0.8 * (-DBL_MAX) = -Inf. The flight to the
+ * frame's end is finite, so only the response overflows: the frame is refused
+ * with BALL_ERANGE and the sim is byte for byte as it was. */
+static void test_overflowing_bounce_is_refused_unchanged_eq5_eq13(void **state) {
+  ball_model m;
+  ball_sim sim, copy;
+  ball_state s0;
+  ball_event ev[8];
+  int n = 7;
+  (void)state;
+  ball_model_default(&m);
+  assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+  s0.position = core_v3(0.0, 1e-4, 3.0);
+  s0.velocity = core_v3(0.0, -DBL_MAX, -DBL_MAX);
+  s0.spin = core_v3(-DBL_MAX, 0.0, 0.0);
+  assert_int_equal(ball_sim_set_state(&m, &sim, &s0), BALL_OK);
+  copy = sim;
+  assert_int_equal(ball_step(&m, &sim, 0.05, ev, 8, &n), BALL_ERANGE);
+  assert_int_equal(n, 0);
+  assert_memory_equal(&sim, &copy, sizeof sim);
+  /* the same shot a million times slower bounces normally */
+  s0.velocity = core_v3(0.0, -DBL_MAX * 1e-6, -DBL_MAX * 1e-6);
+  s0.spin = core_v3(-DBL_MAX * 1e-6, 0.0, 0.0);
+  assert_int_equal(ball_sim_set_state(&m, &sim, &s0), BALL_OK);
+  assert_int_equal(ball_step(&m, &sim, 1e-300, ev, 8, &n), BALL_OK);
+  assert_int_equal(n, 1);
+  assert_true(ev[0].velocity_out.z < -1e300 && isfinite(ev[0].velocity_out.z));
+}
+
 /* ---- speeds ----------------------------------------------------------- */
 
 /* Speed 0: a dropped ball falls straight, x and z exactly unchanged, and hits
@@ -564,6 +595,7 @@ int main(void) {
       cmocka_unit_test(test_bad_dt_is_rejected_and_changes_nothing),
       cmocka_unit_test(test_subnormal_dt_is_harmless),
       cmocka_unit_test(test_overflowing_frame_is_refused_or_finite),
+      cmocka_unit_test(test_overflowing_bounce_is_refused_unchanged_eq5_eq13),
       cmocka_unit_test(test_speed_zero_drops_straight_eq3),
       cmocka_unit_test(test_speed_1e300_and_subnormal_never_reach_the_net_eq3),
       cmocka_unit_test(test_speed_1e6_does_not_tunnel_through_the_net_fig3),
