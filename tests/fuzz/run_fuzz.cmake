@@ -2,8 +2,14 @@
 # for SECONDS from the seed corpus (docs/hard-cases.md):
 #   cmake -DSOURCE_DIR=<repo> -DWORK_DIR=<dir> -DSECONDS=10 [-DGENERATOR=Ninja]
 #         [-DJOBS=1] -P run_fuzz.cmake
+# or, deterministically (fixed seed, a fixed number of inputs: what ctest's
+# fuzz_smoke does, so that CI gives the same verdict every time):
+#   ... -DRUNS_SCENE=20000 -DRUNS_SIM=2000 -P run_fuzz.cmake
 # New inputs the fuzzer finds go to WORK_DIR/found/<harness>, never into the
 # repository; a crash leaves its input in WORK_DIR (crash-*, leak-*, ...).
+if(NOT DEFINED SECONDS AND DEFINED RUNS_SCENE)
+  set(SECONDS 0)
+endif()
 foreach(var SOURCE_DIR WORK_DIR SECONDS)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "run_fuzz.cmake: -D${var}=... is required")
@@ -44,9 +50,16 @@ endif()
 foreach(harness scene sim)
   set(found ${WORK_DIR}/found/${harness})
   file(MAKE_DIRECTORY ${found})
-  message(STATUS "fuzz_${harness}: ${SECONDS} s from ${corpus_${harness}}")
+  string(TOUPPER ${harness} H)
+  if(DEFINED RUNS_${H})
+    set(budget -runs=${RUNS_${H}} -seed=1)
+    message(STATUS "fuzz_${harness}: ${RUNS_${H}} inputs, seed 1, from ${corpus_${harness}}")
+  else()
+    set(budget -max_total_time=${SECONDS})
+    message(STATUS "fuzz_${harness}: ${SECONDS} s from ${corpus_${harness}}")
+  endif()
   execute_process(COMMAND ${build}/tests/fuzz_${harness}
-      -max_total_time=${SECONDS} -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
+      ${budget} -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
       ${parallel} -artifact_prefix=${WORK_DIR}/ ${found} ${corpus_${harness}}
     WORKING_DIRECTORY ${WORK_DIR}
     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)

@@ -7,7 +7,8 @@
 # test (label "fuzz") configures and builds that clang build under the build
 # tree and runs each harness briefly from the seed corpus in corpus/.
 option(BALL_FUZZ "Build the libFuzzer harnesses (clang only)" OFF)
-set(BALL_FUZZ_SECONDS 10 CACHE STRING "Seconds each harness runs in the fuzz_smoke test")
+set(BALL_FUZZ_RUNS_SCENE 50000 CACHE STRING "Inputs fuzz_scene runs in the fuzz_smoke test (seed 1)")
+set(BALL_FUZZ_RUNS_SIM 5000 CACHE STRING "Inputs fuzz_sim runs in the fuzz_smoke test (seed 1)")
 
 if(BALL_FUZZ)
   if(NOT CMAKE_C_COMPILER_ID MATCHES "Clang")
@@ -52,7 +53,8 @@ else()
       -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
       -DWORK_DIR=${CMAKE_CURRENT_BINARY_DIR}/fuzz
       -DGENERATOR=${CMAKE_GENERATOR}
-      -DSECONDS=${BALL_FUZZ_SECONDS}
+      -DRUNS_SCENE=${BALL_FUZZ_RUNS_SCENE}
+      -DRUNS_SIM=${BALL_FUZZ_RUNS_SIM}
       -P ${CMAKE_CURRENT_LIST_DIR}/run_fuzz.cmake)
   set_tests_properties(fuzz_smoke PROPERTIES LABELS fuzz TIMEOUT 900)
 endif()
