@@ -19,6 +19,7 @@
 #define SCENE_MAX_LOCATIONS 512
 #define SCENE_PATH_SIZE 96
 #define SCENE_DEFAULT_DURATION 10.0
+#define SCENE_DEFAULT_FRAME_TIME (1.0 / 60.0)
 
 /* Where a scene path was set in the file: used to point an error found later
  * (by ball_model_check) at the line that set the value. */
@@ -667,30 +668,31 @@ static const section racket_section = {racket_keys, NULL, 0, 1};
 /* time.frame_time or time.fps (one of them; ctx: the one seen so far). */
 static ball_status time_frame(scene_loader *L, const yaml_node_t *key, const yaml_node_t *v, const char *path,
                               void *base, void *ctx) {
-  ball_model *m = (ball_model *)base;
+  ball_scene *sc = (ball_scene *)base;
   const yaml_node_t **frame_node = (const yaml_node_t **)ctx;
   ball_status st;
-  double fps;
+  double x;
   if (*frame_node) return fail(L, key, "time", "give frame_time or fps, not both");
   *frame_node = v;
+  if ((st = get_number(L, v, path, &x)) != BALL_OK) return st;
   if (strcmp(scalar_text(key), "frame_time") == 0) {
-    if ((st = get_number(L, v, path, &m->frame_time)) == BALL_OK) remember(L, path, NULL, v);
-    return st;
+    if (!(x > 0.0)) return fail(L, v, path, "out of range: must be > 0, got %s", scalar_text(v));
+    sc->frame_time = x;
+  } else {
+    if (!(x > 0.0) || !isfinite(1.0 / x))
+      return fail(L, v, path, "out of range: must be > 0 (and 1 / fps finite), got %s", scalar_text(v));
+    sc->frame_time = 1.0 / x;
   }
-  if ((st = get_number(L, v, path, &fps)) != BALL_OK) return st;
-  if (!(fps > 0.0)) return fail(L, v, path, "must be > 0, got %s", scalar_text(v));
-  m->frame_time = 1.0 / fps;
-  remember(L, "time.frame_time", path, v);
   return BALL_OK;
 }
 
 static const key_spec time_keys[] = {
     SPECIAL_KEY("frame_time", 0),
     SPECIAL_KEY("fps", 0),
-    KEY("time_base", KEY_NUMBER, ball_model, time_base),
+    RANGED_KEY("time_base", ball_scene, time_base, 4.9406564584124654e-324, HUGE_VAL, 0, "> 0"),
     END_OF_KEYS,
 };
-static const section time_section = {time_keys, time_frame, 0, 1};
+static const section time_section = {time_keys, time_frame, 0, 0};
 
 static ball_status load_effects(scene_loader *L, const yaml_node_t *node) {
   unsigned mask = 0;
@@ -754,8 +756,6 @@ static const char *const field_to_scene[][2] = {
     {"history", "racket.history"},
     {"extrapolation_time", "racket.extrapolation_time"},
     {"stale_time", "racket.stale_time"},
-    {"frame_time", "time.frame_time"},
-    {"time_base", "time.time_base"},
     {"initial_position", "ball.position"},
     {"initial_velocity", "ball.velocity"},
     {"initial_spin", "ball.spin"},
@@ -807,9 +807,6 @@ static const char *const range_hints[][2] = {
     {"racket.history", "must be in [2, 16]"},
     {"racket.extrapolation_time", "must be >= 0"},
     {"racket.stale_time", "must be > 0"},
-    {"time.frame_time", "must be > 0"},
-    {"time.fps", "must be > 0 (and 1 / fps finite)"},
-    {"time.time_base", "must be > 0"},
     {"ball.position", "must not start below the floor (y >= floor.level + radius) while the floor effect is on"},
 };
 
@@ -873,7 +870,7 @@ static ball_status root_key(scene_loader *L, const yaml_node_t *key, const yaml_
   else if (strcmp(k, "walls") == 0) st = load_walls(L, v, defaults->net.damping);
   else if (strcmp(k, "rackets") == 0) st = load_rackets(L, v, defaults);
   else if (strcmp(k, "racket") == 0) st = load_section(L, v, path, &racket_section, base, NULL);
-  else if (strcmp(k, "time") == 0) st = load_section(L, v, path, &time_section, base, &frame_node);
+  else if (strcmp(k, "time") == 0) st = load_section(L, v, path, &time_section, &L->scene, &frame_node);
   else if (strcmp(k, "effects") == 0) st = load_effects(L, v);
   else st = load_section(L, v, path, &ball_section, base, NULL);
   if (st != BALL_OK) return st;
@@ -1006,6 +1003,8 @@ static ball_status load_parser(yaml_parser_t *parser, const char *name, ball_sce
   copy_string(L->err.file, sizeof L->err.file, name);
   ball_model_default(&L->scene.model);
   L->scene.duration = SCENE_DEFAULT_DURATION;
+  L->scene.frame_time = SCENE_DEFAULT_FRAME_TIME;
+  L->scene.time_base = 1.0;
 
   if (!yaml_parser_load(parser, &doc)) {
     const char *problem = parser->problem ? parser->problem : "cannot be parsed";
@@ -1125,6 +1124,8 @@ void ball_scene_default(ball_scene *scene) {
   /* The default model is the tennis court with a serve that clears the net. */
   ball_model_default(&scene->model);
   scene->duration = 3.0;
+  scene->frame_time = SCENE_DEFAULT_FRAME_TIME;
+  scene->time_base = 1.0;
 }
 
 void ball_scene_error_format(const ball_scene_error *err, char *buf, size_t size) {

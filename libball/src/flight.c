@@ -6,17 +6,38 @@ double ball__drag_b(const ball_model *m) {
   return m->mass / m->air_friction; /* eq 2: b = m / beta; may overflow to +Inf */
 }
 
-/* eq 3: b (1 - e^(-t/b)) as -b expm1(-t/b): no cancellation for b >> t. */
-double ball__drag_distance(double b, double t) {
-  if (t == 0.0) return 0.0;
-  if (isinf(b)) return t;
-  return -b * expm1(-t / b);
+/* b and 1/b together: the two divisions are independent, so they overlap. */
+static void drag_of(const ball_model *m, double *b, double *k) {
+  *b = ball__drag_b(m);
+  *k = isinf(*b) ? 0.0 : m->air_friction / m->mass;
 }
 
-/* eq 3: e^(-t/b). */
-double ball__drag_decay(double b, double t) {
-  if (t == 0.0 || isinf(b)) return 1.0;
-  return exp(-t / b);
+/* eq 3 for both horizontal terms at once: *d = b (1 - e^(-t/b)) and
+ * *f = e^(-t/b), from one transcendental call. For t/b < ln 2, expm1 gives
+ * both without cancellation (f = 1 + expm1 >= 1/2 is exact to an ulp);
+ * beyond, f = e^(-t/b) <= 1/2 and 1 - f is as exact. k = 1/b, 0 for no drag. */
+static void drag_terms(double b, double k, double t, double *d, double *f) {
+  double x;
+  if (t == 0.0 || k == 0.0) {
+    *d = t;
+    *f = 1.0;
+    return;
+  }
+  x = t * k;
+  if (x < 0.69314718055994531) {
+    double e = expm1(-x);
+    *d = -b * e;
+    *f = 1.0 + e;
+  } else {
+    *f = exp(-x);
+    *d = b * (1.0 - *f);
+  }
+}
+
+double ball__drag_distance(double b, double t) {
+  double d, f;
+  drag_terms(b, isinf(b) ? 0.0 : 1.0 / b, t, &d, &f);
+  return d;
 }
 
 /* eq 4: spinAirDamping = sDamp / (sDamp + t). */
@@ -25,10 +46,9 @@ double ball__spin_air_damping(const ball_model *m, double t) {
 }
 
 void ball__eval(const ball_model *m, const ball_segment *seg, double t, ball_state *out) {
-  double tau = t - seg->t0;
-  double b = ball__drag_b(m);
-  double d = ball__drag_distance(b, tau);
-  double f = ball__drag_decay(b, tau);
+  double tau = t - seg->t0, b, k, d, f;
+  drag_of(m, &b, &k);
+  drag_terms(b, k, tau, &d, &f);
   /* eq 3: horizontal with drag, vertical under gravity alone */
   out->position.x = seg->p0.x + seg->v0.x * d;
   out->position.z = seg->p0.z + seg->v0.z * d;
@@ -41,10 +61,11 @@ void ball__eval(const ball_model *m, const ball_segment *seg, double t, ball_sta
     out->position.y = seg->p0.y + seg->v0.y * tau - 0.5 * m->gravity * tau * tau;
     out->velocity.y = seg->v0.y - m->gravity * tau;
   }
-  if (ball__has(m, BALL_EFFECT_SPIN))
-    out->spin = v3_scale(seg->s0, ball__spin_air_damping(m, tau));
+  if (ball__has(m, BALL_EFFECT_SPIN) &&
+      (seg->s0.x != 0.0 || seg->s0.y != 0.0 || seg->s0.z != 0.0))
+    out->spin = ball_v3_scale(seg->s0, ball__spin_air_damping(m, tau)); /* eq 4 */
   else
-    out->spin = v3(0.0, 0.0, 0.0);
+    out->spin = ball_v3(0.0, 0.0, 0.0);
 }
 
 void ball__segment_start(ball_segment *seg, double t, ball_vec3 p0, ball_vec3 v0, ball_vec3 s0,
@@ -79,14 +100,18 @@ int ball__height_roots(double g, double y0, double v, double y, double *r1, doub
 
 /* tau >= tau_from with x(tau) = target along one horizontal axis; 0 if never. */
 int ball__plane_tau(double b, double x0, double v, double target, double tau_from, double *tau) {
-  double u, t;
+  double d = target - x0, u, t;
   if (v == 0.0) {
-    if (x0 != target) return 0;
+    if (d != 0.0) return 0;
     *tau = tau_from;
     return 1;
   }
-  u = (target - x0) / v; /* the needed b (1 - e^(-tau/b)) */
-  if (!(u >= 0.0) || !isfinite(u)) return 0;
+  /* moving away from the plane never reaches it: decided on the signs, not on
+   * d / v, which underflows to -0 for a ball one subnormal past a plane at
+   * x = 0 and would pass "u >= 0" (docs/hard-cases.md, walls at 0) */
+  if (d != 0.0 && (d > 0.0) != (v > 0.0)) return 0;
+  u = d / v; /* the needed b (1 - e^(-tau/b)) */
+  if (!isfinite(u)) return 0;
   if (isinf(b)) {
     t = u;
   } else {
@@ -104,8 +129,8 @@ int ball__plane_tau(double b, double x0, double v, double target, double tau_fro
 
 static ball_status check_args(const ball_model *m, const ball_segment *seg, double t) {
   if (!m || !seg) return BALL_EINVAL;
-  if (!isfinite(t) || !isfinite(seg->t0) || !v3_finite(seg->p0) || !v3_finite(seg->v0) ||
-      !v3_finite(seg->s0))
+  if (!isfinite(t) || !isfinite(seg->t0) || !ball_v3_finite(seg->p0) || !ball_v3_finite(seg->v0) ||
+      !ball_v3_finite(seg->s0))
     return BALL_ENONFINITE;
   if (t < seg->t0) return BALL_ERANGE;
   return BALL_OK;
@@ -151,7 +176,7 @@ ball_status ball_time_to_plane(const ball_model *m, const ball_segment *seg, dou
   if (st != BALL_OK) return st;
   if (!t || (axis != 0 && axis != 2)) return BALL_EINVAL;
   if (!isfinite(coord)) return BALL_ENONFINITE;
-  if (!ball__plane_tau(ball__drag_b(m), v3_axis(seg->p0, axis), v3_axis(seg->v0, axis), coord,
+  if (!ball__plane_tau(ball__drag_b(m), ball_v3_axis(seg->p0, axis), ball_v3_axis(seg->v0, axis), coord,
                        t_from - seg->t0, &tau))
     return BALL_ENOTFOUND;
   *t = seg->t0 + tau;

@@ -8,14 +8,14 @@ ball_status ball_sphere_rect_distance(const ball_plane *rect, ball_vec3 c, doubl
   ball_status st;
   double h, hc, yc, dn, dh, dy;
   if (!rect || !distance) return BALL_EINVAL;
-  if (!v3_finite(c) || !isfinite(radius)) return BALL_ENONFINITE;
+  if (!ball_v3_finite(c) || !isfinite(radius)) return BALL_ENONFINITE;
   if (radius < 0.0) return BALL_ERANGE;
   st = ball_plane_check(rect, NULL);
   if (st != BALL_OK) return st;
   h = rect->axis == 0 ? c.z : c.x; /* in-plane horizontal coordinate */
   hc = clamp(h, rect->lo, rect->hi);
   yc = clamp(c.y, rect->bottom, rect->top);
-  dn = v3_axis(c, rect->axis) - rect->position;
+  dn = ball_v3_axis(c, rect->axis) - rect->position;
   dh = h - hc;
   dy = c.y - yc;
   *distance = sqrt(dn * dn + dh * dh + dy * dy) - radius;
@@ -28,17 +28,17 @@ ball_status ball_sphere_disc_distance(ball_vec3 disc_center, ball_vec3 disc_norm
   double len, h, rho;
   ball_vec3 n, d, radial;
   if (!distance) return BALL_EINVAL;
-  if (!v3_finite(disc_center) || !v3_finite(disc_normal) || !v3_finite(c) ||
+  if (!ball_v3_finite(disc_center) || !ball_v3_finite(disc_normal) || !ball_v3_finite(c) ||
       !isfinite(disc_radius) || !isfinite(radius))
     return BALL_ENONFINITE;
   if (disc_radius < 0.0 || radius < 0.0) return BALL_ERANGE;
-  len = v3_norm(disc_normal);
+  len = ball_v3_norm(disc_normal);
   if (!(len > 1e-12)) return BALL_ERANGE;
-  n = v3_scale(disc_normal, 1.0 / len);
-  d = v3_sub(c, disc_center);
-  h = v3_dot(d, n);
-  radial = v3_sub(d, v3_scale(n, h));
-  rho = v3_norm(radial);
+  n = ball_v3_scale(disc_normal, 1.0 / len);
+  d = ball_v3_sub(c, disc_center);
+  h = ball_v3_dot(d, n);
+  radial = ball_v3_sub(d, ball_v3_scale(n, h));
+  rho = ball_v3_norm(radial);
   if (rho <= disc_radius)
     *distance = fabs(h) - radius;
   else

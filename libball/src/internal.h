@@ -5,26 +5,7 @@
 #include <math.h>
 
 #include "ball/ball.h"
-
-/* ---- vectors ---- */
-static inline ball_vec3 v3(double x, double y, double z) {
-  ball_vec3 r;
-  r.x = x; r.y = y; r.z = z;
-  return r;
-}
-static inline ball_vec3 v3_add(ball_vec3 a, ball_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static inline ball_vec3 v3_sub(ball_vec3 a, ball_vec3 b) { return v3(a.x - b.x, a.y - b.y, a.z - b.z); }
-static inline ball_vec3 v3_scale(ball_vec3 a, double s) { return v3(a.x * s, a.y * s, a.z * s); }
-static inline double v3_dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static inline ball_vec3 v3_cross(ball_vec3 a, ball_vec3 b) {
-  return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-static inline double v3_norm(ball_vec3 a) { return sqrt(v3_dot(a, a)); }
-static inline int v3_finite(ball_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
-static inline ball_vec3 v3_lerp(ball_vec3 a, ball_vec3 b, double u) {
-  return v3(a.x + (b.x - a.x) * u, a.y + (b.y - a.y) * u, a.z + (b.z - a.z) * u);
-}
-static inline double v3_axis(ball_vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
+#include "ball/vec3.h"
 
 /* For the check functions: on a failed condition, name the field in *field
  * (if the caller asked) and return the status. */
@@ -43,10 +24,8 @@ static inline int ball__has(const ball_model *m, unsigned effect) { return (m->e
 
 /* b = m / beta, or +Inf when drag is off or beta = 0. */
 double ball__drag_b(const ball_model *m);
-/* b (1 - e^(-t/b)), computed as -b expm1(-t/b); t when b is infinite (eq 3). */
+/* b (1 - e^(-t/b)) without cancellation; t when b is infinite (eq 3). */
 double ball__drag_distance(double b, double t);
-/* e^(-t/b), 1 when b is infinite (eq 3). */
-double ball__drag_decay(double b, double t);
 /* sDamp / (sDamp + t) (eq 4), 1 when spin is off. */
 double ball__spin_air_damping(const ball_model *m, double t);
 /* State at sim time t on seg, no argument checks (eq 3, 4). */
@@ -64,21 +43,30 @@ static inline double ball__floor_y(const ball_model *m) { return m->floor_level 
 
 /* Racket stage of a step, run after the static obstacles when the RACKETS
  * effect is on. The frame goes from t_prev (ball centre then:
- * sim->prev_position) to t = sim->time (ball on sim->seg). Handles the sleep
+ * sim->prev_position) to t = sim->time (ball on sim->seg, *s_end its state
+ * then). Handles the sleep
  * counter, the detection mode and the response; on a hit it starts a new
  * segment in sim->seg, writes *ev and returns 1; otherwise returns 0.
  * Updates each track's prev_pose for the next frame. */
-int ball__racket_stage(const ball_model *m, ball_sim *sim, double t_prev, double dt, ball_event *ev);
+int ball__racket_stage(const ball_model *m, ball_sim *sim, double t_prev, double dt,
+                       const ball_state *s_end, ball_event *ev);
+/* BALL_OK if m is the model sim is bound to (BALL_EMODEL if not). */
+ball_status ball__bound(const ball_model *m, const ball_sim *sim);
 
 /* eq 13: velocity added at a floor bounce by the air-damped spin, normal (0, 1, 0):
  * spinFloorDamping (spinAirDamping S_ball) x n. Implemented in response.c. */
 ball_vec3 ball__spin_floor_velocity(const ball_model *m, ball_vec3 spin_air_damped);
 
-/* ball_model_check limited to the fields of the stages in `stages` (effect bits). */
-ball_status ball__model_check_stages(const ball_model *m, unsigned stages, const char **field);
+/* ---- model (model.c) ---- */
 
-/* Checks the racket fields of a model; *field names the bad one. */
-ball_status ball__racket_check(const ball_model *m, const char **field);
+/* The hash's start value (FNV-1a's offset basis). */
+#define BALL__HASH_SEED 14695981039346656037ULL
+/* One 64-bit word, a double (by its bits, -0 as +0), a vector into a hash. */
+uint64_t ball__hash_word(uint64_t h, uint64_t w);
+uint64_t ball__hash_double(uint64_t h, double v);
+uint64_t ball__hash_vec(uint64_t h, ball_vec3 v);
+/* 1 if model a equals the bound copy b in every byte a step reads. */
+int ball__model_same(const ball_model *a, const ball_model *b);
 
 /* Racket tests and responses, exposed for the unit tests (racket.c, response.c). */
 

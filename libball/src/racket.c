@@ -14,10 +14,10 @@
 static ball_vec3 nlerp(ball_vec3 a, ball_vec3 b, double u) {
   ball_vec3 n;
   double len;
-  if (v3_dot(a, b) < 0.0) b = v3_scale(b, -1.0); /* a disc has two faces */
-  n = v3_lerp(a, b, u);
-  len = v3_norm(n);
-  return len > 0.0 ? v3_scale(n, 1.0 / len) : a;
+  if (ball_v3_dot(a, b) < 0.0) b = ball_v3_scale(b, -1.0); /* a disc has two faces */
+  n = ball_v3_lerp(a, b, u);
+  len = ball_v3_norm(n);
+  return len > 0.0 ? ball_v3_scale(n, 1.0 / len) : a;
 }
 
 /* Interpolation between the two samples around t (linear centre, nlerp
@@ -31,7 +31,7 @@ void ball__racket_pose(const ball_model *m, const ball_racket_track *tr, double 
   if (n == 1) {
     out->center = s[0].center;
     out->normal = s[0].normal;
-    out->velocity = v3(0.0, 0.0, 0.0);
+    out->velocity = ball_v3(0.0, 0.0, 0.0);
     return;
   }
   if (t >= s[n - 1].t) {
@@ -41,16 +41,16 @@ void ball__racket_pose(const ball_model *m, const ball_racket_track *tr, double 
     double dx = t - s[n - 1].t;
     a = &s[n - 2];
     b = &s[n - 1];
-    out->velocity = v3_scale(v3_sub(b->center, a->center), 1.0 / (b->t - a->t));
+    out->velocity = ball_v3_scale(ball_v3_sub(b->center, a->center), 1.0 / (b->t - a->t));
     if (dx > m->extrapolation_time) dx = m->extrapolation_time;
-    out->center = v3_add(b->center, v3_scale(out->velocity, dx));
+    out->center = ball_v3_add(b->center, ball_v3_scale(out->velocity, dx));
     out->normal = b->normal;
     return;
   }
   if (t <= s[0].t) {
     a = &s[0];
     b = &s[1];
-    out->velocity = v3_scale(v3_sub(b->center, a->center), 1.0 / (b->t - a->t));
+    out->velocity = ball_v3_scale(ball_v3_sub(b->center, a->center), 1.0 / (b->t - a->t));
     out->center = a->center;
     out->normal = a->normal;
     return;
@@ -61,9 +61,9 @@ void ball__racket_pose(const ball_model *m, const ball_racket_track *tr, double 
   b = &s[k + 1];
   {
     double u = (t - a->t) / (b->t - a->t);
-    out->center = v3_lerp(a->center, b->center, u);
+    out->center = ball_v3_lerp(a->center, b->center, u);
     out->normal = nlerp(a->normal, b->normal, u);
-    out->velocity = v3_scale(v3_sub(b->center, a->center), 1.0 / (b->t - a->t));
+    out->velocity = ball_v3_scale(ball_v3_sub(b->center, a->center), 1.0 / (b->t - a->t));
   }
 }
 
@@ -83,23 +83,25 @@ ball_status ball_racket_push(const ball_model *m, ball_sim *sim, int racket,
   ball_racket_sample s;
   double scale, len;
   int i, keep;
-  if (!m || !sim || !sample) return BALL_EINVAL;
+  ball_status st = ball__bound(m, sim);
+  if (st != BALL_OK) return st;
+  if (!sample) return BALL_EINVAL;
   if (racket < 0 || racket >= m->n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
   if (m->history < 2 || m->history > BALL_MAX_HISTORY) return BALL_ERANGE;
-  if (!isfinite(sample->t) || !v3_finite(sample->center) || !v3_finite(sample->normal))
+  if (!isfinite(sample->t) || !ball_v3_finite(sample->center) || !ball_v3_finite(sample->normal))
     return BALL_ENONFINITE;
   /* normalise without overflow: scale by the largest component first */
   scale = fmax(fabs(sample->normal.x), fmax(fabs(sample->normal.y), fabs(sample->normal.z)));
   if (!(scale > 0.0)) return BALL_ERANGE;
   s = *sample;
-  s.normal = v3_scale(sample->normal, 1.0 / scale);
-  len = v3_norm(s.normal) * scale;
+  s.normal = ball_v3_scale(sample->normal, 1.0 / scale);
+  len = ball_v3_norm(s.normal) * scale;
   if (!(len >= 1e-9)) return BALL_ERANGE;
-  s.normal = v3_scale(s.normal, 1.0 / v3_norm(s.normal));
+  s.normal = ball_v3_scale(s.normal, 1.0 / ball_v3_norm(s.normal));
   tr = &sim->tracks[racket];
   if (tr->count < 0 || tr->count > BALL_MAX_HISTORY) return BALL_EINVAL;
   for (i = 0; i < tr->count; i++)
-    if (same_sample(&tr->samples[i], &s)) return BALL_OK; /* a duplicate: nothing new */
+    if (same_sample(&tr->samples[i], &s)) return BALL_EDUPLICATE; /* nothing new */
   /* not strictly newer (older, or the same time with other data): the first
    * sample for a time wins, so a replayed or reordered stream gives one track */
   if (tr->count > 0 && !(s.t > tr->samples[tr->count - 1].t)) return BALL_ESTALE;
@@ -107,7 +109,7 @@ ball_status ball_racket_push(const ball_model *m, ball_sim *sim, int racket,
    * time apart would make it infinite and poison the ball's velocity */
   if (tr->count > 0) {
     const ball_racket_sample *last = &tr->samples[tr->count - 1];
-    if (!v3_finite(v3_scale(v3_sub(s.center, last->center), 1.0 / (s.t - last->t))))
+    if (!ball_v3_finite(ball_v3_scale(ball_v3_sub(s.center, last->center), 1.0 / (s.t - last->t))))
       return BALL_ERANGE;
   }
   keep = history_of(m);
@@ -119,13 +121,10 @@ ball_status ball_racket_push(const ball_model *m, ball_sim *sim, int racket,
   return BALL_OK;
 }
 
-ball_status ball_racket_estimate(const ball_model *m, const ball_sim *sim, int racket, double t,
-                                 ball_racket_pose *out) {
-  const ball_racket_track *tr;
-  if (!m || !sim || !out) return BALL_EINVAL;
-  if (racket < 0 || racket >= m->n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
-  if (!isfinite(t)) return BALL_ENONFINITE;
-  tr = &sim->tracks[racket];
+/* ball_racket_estimate without the argument and binding checks. */
+static ball_status estimate(const ball_model *m, const ball_sim *sim, int racket, double t,
+                            ball_racket_pose *out) {
+  const ball_racket_track *tr = &sim->tracks[racket];
   if (tr->count < 0 || tr->count > BALL_MAX_HISTORY) return BALL_EINVAL;
   if (tr->count == 0) return BALL_ENOTFOUND;
   if (t - tr->samples[tr->count - 1].t > m->stale_time) return BALL_ESTALE;
@@ -133,11 +132,21 @@ ball_status ball_racket_estimate(const ball_model *m, const ball_sim *sim, int r
   return BALL_OK;
 }
 
+ball_status ball_racket_estimate(const ball_model *m, const ball_sim *sim, int racket, double t,
+                                 ball_racket_pose *out) {
+  ball_status st = ball__bound(m, sim);
+  if (st != BALL_OK) return st;
+  if (!out) return BALL_EINVAL;
+  if (racket < 0 || racket >= m->n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
+  if (!isfinite(t)) return BALL_ENONFINITE;
+  return estimate(m, sim, racket, t, out);
+}
+
 /* ---- the collision tests ---- */
 
 /* The paper's simple test: the ball closer to the racket centre than d_COLL. */
 int ball__sphere_test(ball_vec3 p, ball_vec3 r, double d_coll) {
-  return v3_norm(v3_sub(p, r)) < d_coll;
+  return ball_v3_norm(ball_v3_sub(p, r)) < d_coll;
 }
 
 /* Fig. 4, 5 in the racket's moving frame: P' = P - (R - R_old), the segment
@@ -147,10 +156,10 @@ int ball__sphere_test(ball_vec3 p, ball_vec3 r, double d_coll) {
  * generous at the rim corners; the swept test is exact there). */
 int ball__disc_test(ball_vec3 p_old, ball_vec3 p, ball_vec3 r_old, ball_vec3 r, ball_vec3 n,
                     double disc_radius, double ball_radius, double *s_out, ball_vec3 *q) {
-  ball_vec3 dr = v3_sub(r, r_old);
-  ball_vec3 p_rel = v3_sub(p, dr); /* P' */
-  double d0 = v3_dot(v3_sub(p_old, r_old), n);
-  double d1 = v3_dot(v3_sub(p_rel, r_old), n);
+  ball_vec3 dr = ball_v3_sub(r, r_old);
+  ball_vec3 p_rel = ball_v3_sub(p, dr); /* P' */
+  double d0 = ball_v3_dot(ball_v3_sub(p_old, r_old), n);
+  double d1 = ball_v3_dot(ball_v3_sub(p_rel, r_old), n);
   double side = d0 >= 0.0 ? 1.0 : -1.0;
   double e0 = side * d0 - ball_radius, e1 = side * d1 - ball_radius, s;
   ball_vec3 qr, w;
@@ -160,55 +169,12 @@ int ball__disc_test(ball_vec3 p_old, ball_vec3 p, ball_vec3 r_old, ball_vec3 r, 
     if (e1 > 0.0) return 0; /* stays in front of the face */
     s = e0 / (e0 - e1);
   }
-  qr = v3_lerp(p_old, p_rel, s); /* Q' in the racket's frame */
-  w = v3_sub(qr, r_old);
-  if (v3_norm(v3_sub(w, v3_scale(n, v3_dot(w, n)))) > disc_radius + ball_radius) return 0;
+  qr = ball_v3_lerp(p_old, p_rel, s); /* Q' in the racket's frame */
+  w = ball_v3_sub(qr, r_old);
+  if (ball_v3_norm(ball_v3_sub(w, ball_v3_scale(n, ball_v3_dot(w, n)))) > disc_radius + ball_radius) return 0;
   if (s_out) *s_out = s;
-  if (q) *q = v3_add(qr, dr);
+  if (q) *q = ball_v3_add(qr, dr);
   return 1;
-}
-
-/* ---- model ---- */
-
-
-ball_status ball__racket_check(const ball_model *m, const char **field) {
-  int i;
-  CHECK(m != NULL, "model", BALL_EINVAL);
-  CHECK(m->n_rackets >= 0 && m->n_rackets <= BALL_MAX_RACKETS, "n_rackets", BALL_ERANGE);
-  for (i = 0; i < m->n_rackets; i++) {
-    const ball_racket_def *r = &m->rackets[i];
-    CHECK_FINITE(r->radius, "rackets.radius");
-    CHECK(r->radius > 0.0, "rackets.radius", BALL_ERANGE);
-    CHECK(r->partner >= -1 && r->partner < m->n_rackets && r->partner != i, "rackets.partner",
-          BALL_ERANGE);
-    CHECK(v3_finite(r->target), "rackets.target", BALL_ENONFINITE);
-  }
-  CHECK((unsigned)m->detect < BALL_DETECT_COUNT, "detect", BALL_ERANGE);
-  CHECK((unsigned)m->normal_mode < BALL_NORMAL_COUNT, "normal_mode", BALL_ERANGE);
-  CHECK((unsigned)m->response < BALL_RESPONSE_COUNT, "response", BALL_ERANGE);
-  CHECK_FINITE(m->collision_distance, "collision_distance");
-  CHECK(m->collision_distance > 0.0, "collision_distance", BALL_ERANGE);
-  CHECK(m->sleep_frames >= 0, "sleep_frames", BALL_ERANGE);
-  CHECK_FINITE(m->v_min, "v_min");
-  CHECK(m->v_min >= 0.0, "v_min", BALL_ERANGE);
-  CHECK_FINITE(m->v_max, "v_max");
-  CHECK(m->v_max >= m->v_min, "v_max", BALL_ERANGE);
-  CHECK_FINITE(m->v_up, "v_up");
-  CHECK(m->v_up > 0.0, "v_up", BALL_ERANGE);
-  CHECK(m->v_up_from_racket == 0 || m->v_up_from_racket == 1, "v_up_from_racket", BALL_ERANGE);
-  CHECK_FINITE(m->friendly_factor, "friendly_factor");
-  CHECK(m->friendly_factor >= 0.0, "friendly_factor", BALL_ERANGE);
-  CHECK(m->response != BALL_RESPONSE_MIXED || m->friendly_factor <= 1.0, "friendly_factor",
-        BALL_ERANGE); /* eq 10: friendlyFactor in [0, 1] */
-  CHECK_FINITE(m->spin_rack_damping, "spin_rack_damping");
-  CHECK(m->spin_rack_damping >= 0.0 && m->spin_rack_damping <= 1.0, "spin_rack_damping",
-        BALL_ERANGE);
-  CHECK(m->history >= 2 && m->history <= BALL_MAX_HISTORY, "history", BALL_ERANGE);
-  CHECK_FINITE(m->extrapolation_time, "extrapolation_time");
-  CHECK(m->extrapolation_time >= 0.0, "extrapolation_time", BALL_ERANGE);
-  CHECK_FINITE(m->stale_time, "stale_time");
-  CHECK(m->stale_time > 0.0, "stale_time", BALL_ERANGE);
-  return BALL_OK;
 }
 
 /* Section 4's game levels; docs/game-levels.md lists every value. */
@@ -265,37 +231,37 @@ typedef struct racket_hit {
 /* The normal the disc and swept tests use: the real one, or the velocity's
  * direction (the real one while the racket is still). */
 static ball_vec3 test_normal(const ball_model *m, const ball_racket_pose *pose) {
-  double sp = v3_norm(pose->velocity);
+  double sp = ball_v3_norm(pose->velocity);
   if (m->normal_mode == BALL_NORMAL_VELOCITY && sp >= STILL_SPEED)
-    return v3_scale(pose->velocity, 1.0 / sp);
+    return ball_v3_scale(pose->velocity, 1.0 / sp);
   return pose->normal;
 }
 
 static int test_racket(const ball_model *m, const ball_sim *sim, int i, double t_prev,
-                       const ball_racket_pose *old, const ball_racket_pose *now, racket_hit *h) {
+                       const ball_state *s_end, const ball_racket_pose *old,
+                       const ball_racket_pose *now, racket_hit *h) {
   double t = sim->time;
-  ball_state s;
-  ball__eval(m, &sim->seg, t, &s);
+  const ball_state *s = s_end;
   h->pose = *now;
   if (m->detect == BALL_DETECT_SPHERE) {
-    if (!ball__sphere_test(s.position, now->center, m->collision_distance)) return 0;
-    h->key = v3_norm(v3_sub(s.position, now->center));
+    if (!ball__sphere_test(s->position, now->center, m->collision_distance)) return 0;
+    h->key = ball_v3_norm(ball_v3_sub(s->position, now->center));
     h->t = t;
-    h->q = s.position; /* the paper: the ball position is the collision point */
+    h->q = s->position; /* the paper: the ball position is the collision point */
     h->face = ball__racket_face_normal(test_normal(m, now),
-                                       v3_sub(sim->prev_position, old->center));
+                                       ball_v3_sub(sim->prev_position, old->center));
     return 1;
   }
   if (m->detect == BALL_DETECT_DISC) {
     double sfrac;
     /* the disc at R_old with its normal then, or along the racket's velocity now */
     ball_vec3 n = m->normal_mode == BALL_NORMAL_REAL ? old->normal : test_normal(m, now);
-    if (!ball__disc_test(sim->prev_position, s.position, old->center, now->center, n,
+    if (!ball__disc_test(sim->prev_position, s->position, old->center, now->center, n,
                          m->rackets[i].radius, m->radius, &sfrac, &h->q))
       return 0;
     h->key = sfrac;
     h->t = t; /* the frame-based test: the hit is at the frame's time */
-    h->face = ball__racket_face_normal(n, v3_sub(sim->prev_position, old->center));
+    h->face = ball__racket_face_normal(n, ball_v3_sub(sim->prev_position, old->center));
     return 1;
   }
   {
@@ -309,7 +275,7 @@ static int test_racket(const ball_model *m, const ball_sim *sim, int i, double t
     mo.ta = sim->seg.t0 > t_prev ? sim->seg.t0 : t_prev;
     mo.tb = t;
     mo.p0 = sim->prev_position;
-    mo.p1 = s.position;
+    mo.p1 = s->position;
     mo.ball_radius = m->radius;
     mo.tc0 = t_prev;
     mo.tc1 = t;
@@ -330,12 +296,12 @@ static int test_racket(const ball_model *m, const ball_sim *sim, int i, double t
 static void respond(const ball_model *m, ball_sim *sim, int i, double dt, const racket_hit *h,
                     ball_event *ev) {
   ball_state in;
-  ball_vec3 v0, s0 = v3(0.0, 0.0, 0.0), p0 = h->q;
+  ball_vec3 v0, s0 = ball_v3(0.0, 0.0, 0.0), p0 = h->q;
   const ball_racket_pose *pose = &h->pose;
   ball__eval(m, &sim->seg, h->t, &in);
   if (m->response == BALL_RESPONSE_RACKET) {
     v0 = ball__response_racket(m, pose->velocity, h->face); /* eq 7 */
-    p0 = v3_add(h->q, v3_scale(v0, dt));                    /* eq 7: P = Q + V0 dt */
+    p0 = ball_v3_add(h->q, ball_v3_scale(v0, dt));                    /* eq 7: P = Q + V0 dt */
   } else if (m->response == BALL_RESPONSE_PHYSICAL) {
     ball__response_physical(m, in.velocity, in.spin, h->face, pose->velocity, &v0, &s0);
   } else {
@@ -345,7 +311,7 @@ static void respond(const ball_model *m, ball_sim *sim, int i, double dt, const 
     ball_racket_pose pp;
     int partner = m->rackets[i].partner;
     double v_up = ball__response_v_up(m, pose->velocity);
-    if (partner >= 0 && ball_racket_estimate(m, sim, partner, h->t, &pp) == BALL_OK)
+    if (partner >= 0 && estimate(m, sim, partner, h->t, &pp) == BALL_OK)
       goal = pp.center;
     if (m->response == BALL_RESPONSE_AUTONOMOUS) {
       v0 = ball__response_autonomous(m, h->q, goal, v_up, m->friendly_factor);
@@ -355,7 +321,7 @@ static void respond(const ball_model *m, ball_sim *sim, int i, double dt, const 
     }
   }
   ball__segment_start(&sim->seg, h->t, p0, v0, s0, 0);
-  sim->last_racket = i;
+  sim->next.valid = 0;
   sim->sleep = m->sleep_frames;
   ev->kind = BALL_EVENT_RACKET;
   ev->index = i;
@@ -364,11 +330,12 @@ static void respond(const ball_model *m, ball_sim *sim, int i, double dt, const 
   ev->velocity_in = in.velocity;
   ev->velocity_out = v0;
   ev->spin_out = s0;
-  ev->sound = ball__has(m, BALL_EFFECT_SOUND) && v3_norm(v0) > m->sound_threshold;
+  ev->sound = ball__has(m, BALL_EFFECT_SOUND) && ball_v3_norm(v0) > m->sound_threshold;
+  ev->segment = sim->seg;
 }
 
 int ball__racket_stage(const ball_model *m, ball_sim *sim, double t_prev, double dt,
-                       ball_event *ev) {
+                       const ball_state *s_end, ball_event *ev) {
   ball_racket_pose now[BALL_MAX_RACKETS];
   int ok[BALL_MAX_RACKETS];
   int i, best = -1, hit = 0;
@@ -376,9 +343,9 @@ int ball__racket_stage(const ball_model *m, ball_sim *sim, double t_prev, double
   double t = sim->time;
   memset(&best_h, 0, sizeof best_h);
   for (i = 0; i < m->n_rackets; i++) {
-    ball_status st = ball_racket_estimate(m, sim, i, t, &now[i]);
+    ball_status st = estimate(m, sim, i, t, &now[i]);
     ok[i] = st == BALL_OK ? 1 : st == BALL_ESTALE ? -1 : 0;
-    if (ok[i] > 0 && !(v3_finite(now[i].center) && v3_finite(now[i].velocity))) ok[i] = 0;
+    if (ok[i] > 0 && !(ball_v3_finite(now[i].center) && ball_v3_finite(now[i].velocity))) ok[i] = 0;
   }
   if (sim->sleep > 0) {
     sim->sleep--; /* no racket tests for sleep_frames frames after a hit */
@@ -392,9 +359,10 @@ int ball__racket_stage(const ball_model *m, ball_sim *sim, double t_prev, double
        * re-estimated at t_prev; else the racket counts as still */
       if (tr->has_prev)
         old = tr->prev_pose;
-      else if (ball_racket_estimate(m, sim, i, t_prev, &old) != BALL_OK)
+      else if (estimate(m, sim, i, t_prev, &old) != BALL_OK)
         old = now[i];
-      if (test_racket(m, sim, i, t_prev, &old, &now[i], &h) && (best < 0 || h.key < best_h.key)) {
+      if (test_racket(m, sim, i, t_prev, s_end, &old, &now[i], &h) &&
+          (best < 0 || h.key < best_h.key)) {
         best = i;
         best_h = h;
       }

@@ -1,19 +1,27 @@
-/* The stepper: one frame of flight, static obstacles, rackets. */
+/* The stepper: one frame of flight, static obstacles, rackets; and the
+ * prediction, which shares the exact scheme's contact code. */
 #include <string.h>
 
 #include "internal.h"
 
-#define ORIGIN_FLOOR 0
-#define ORIGIN_NET 1
-#define ORIGIN_WALL(i) (2 + (i))
+#define WHICH_NONE -1
+#define WHICH_FLOOR 0
+#define WHICH_NET 1
+#define WHICH_WALL(i) (2 + (i))
 
-static void emit(ball_sim *sim, ball_event *events, int cap, int *n, const ball_event *ev) {
-  if (*n < cap) {
-    events[(*n)++] = *ev;
-  } else {
-    sim->events_dropped++;
-    sim->warnings[BALL_WARN_EVENT_OVERFLOW]++;
-  }
+/* Where events go: the caller's array; what does not fit is counted. */
+typedef struct sink {
+  ball_event *events;
+  int cap;
+  int n;
+  unsigned long *missed;
+} sink;
+
+static void emit(sink *k, const ball_event *ev) {
+  if (k->n < k->cap)
+    k->events[k->n++] = *ev;
+  else
+    (*k->missed)++;
 }
 
 static int sound(const ball_model *m, double speed) {
@@ -21,15 +29,15 @@ static int sound(const ball_model *m, double speed) {
 }
 
 /* eq 5 (with eq 13, 14 when spin is on): the floor bounce at time t, ball at p. */
-static void floor_bounce(const ball_model *m, ball_sim *sim, double t, ball_vec3 p,
+static void floor_bounce(const ball_model *m, ball_segment *seg, double t, ball_vec3 p,
                          const ball_state *s, ball_event *ev) {
   double fd = m->floor_damping;
-  ball_vec3 v0 = v3(s->velocity.x * fd, -s->velocity.y * fd, s->velocity.z * fd);
-  ball_vec3 s0 = v3(0.0, 0.0, 0.0);
+  ball_vec3 v0 = ball_v3(s->velocity.x * fd, -s->velocity.y * fd, s->velocity.z * fd);
+  ball_vec3 s0 = ball_v3(0.0, 0.0, 0.0);
   int grounded = 0;
   if (ball__has(m, BALL_EFFECT_SPIN)) {
-    v0 = v3_add(v0, ball__spin_floor_velocity(m, s->spin)); /* eq 13 */
-    s0 = v3_scale(s->spin, m->spin_floor_damping);         /* eq 14 */
+    v0 = ball_v3_add(v0, ball__spin_floor_velocity(m, s->spin)); /* eq 13 */
+    s0 = ball_v3_scale(s->spin, m->spin_floor_damping);         /* eq 14 */
   }
   ev->kind = BALL_EVENT_FLOOR;
   ev->index = 0;
@@ -46,34 +54,36 @@ static void floor_bounce(const ball_model *m, ball_sim *sim, double t, ball_vec3
   ev->velocity_in = s->velocity;
   ev->velocity_out = v0;
   ev->spin_out = s0;
-  ball__segment_start(&sim->seg, t, p, v0, s0, grounded);
-  sim->origin = ORIGIN_FLOOR;
+  ball__segment_start(seg, t, p, v0, s0, grounded);
+  ev->segment = *seg;
 }
 
-/* eq 6: the net (or a wall) at time t, ball at q. shift is the paper's
- * dt / 10 push along the new normal velocity (0 in exact mode). */
-static void plane_bounce(const ball_model *m, ball_sim *sim, const ball_plane *pl, int origin,
-                         double t, ball_vec3 q, const ball_state *s, double shift, ball_event *ev) {
+/* eq 6: the net (or a wall) at time t, ball at q; restart at r (q shifted
+ * by the paper's dt / 10 push in the sampled scheme, one ulp in the exact one). */
+static void plane_bounce(const ball_model *m, ball_segment *seg, const ball_plane *pl, int which,
+                         double t, ball_vec3 q, ball_vec3 r, const ball_state *s, double shift,
+                         ball_event *ev) {
   ball_vec3 v0 = s->velocity;
+  int grounded = seg->grounded;
   if (pl->axis == 0)
     v0.x = -v0.x;
   else
     v0.z = -v0.z;
-  v0 = v3_scale(v0, pl->damping);
-  ev->point = q;
+  v0 = ball_v3_scale(v0, pl->damping);
   if (pl->axis == 0)
-    q.x += v0.x * shift;
+    r.x += v0.x * shift;
   else
-    q.z += v0.z * shift;
-  ev->kind = origin == ORIGIN_NET ? BALL_EVENT_NET : BALL_EVENT_WALL;
-  ev->index = origin == ORIGIN_NET ? 0 : origin - ORIGIN_WALL(0);
+    r.z += v0.z * shift;
+  ev->kind = which == WHICH_NET ? BALL_EVENT_NET : BALL_EVENT_WALL;
+  ev->index = which == WHICH_NET ? 0 : which - WHICH_WALL(0);
   ev->time = t;
+  ev->point = q;
   ev->velocity_in = s->velocity;
   ev->velocity_out = v0;
   ev->spin_out = s->spin;
-  ev->sound = sound(m, v3_axis(v0, pl->axis));
-  ball__segment_start(&sim->seg, t, q, v0, s->spin, sim->seg.grounded);
-  sim->origin = origin;
+  ev->sound = sound(m, ball_v3_axis(v0, pl->axis));
+  ball__segment_start(seg, t, r, v0, s->spin, grounded);
+  ev->segment = *seg;
 }
 
 static int in_extent(const ball_plane *pl, ball_vec3 q) {
@@ -81,27 +91,26 @@ static int in_extent(const ball_plane *pl, ball_vec3 q) {
   return h >= pl->lo && h <= pl->hi && q.y >= pl->bottom && q.y <= pl->top;
 }
 
-static const ball_plane *plane_of(const ball_model *m, int origin) {
-  return origin == ORIGIN_NET ? &m->net : &m->walls[origin - ORIGIN_WALL(0)];
+static const ball_plane *plane_of(const ball_model *m, int which) {
+  return which == WHICH_NET ? &m->net : &m->walls[which - WHICH_WALL(0)];
 }
 
 /* ---- exact scheme: contacts in closed form on the analytic path ---- */
 
-/* First crossing of the ball's surface with the plane rectangle in
- * [tau_from, tau_to] on seg, approaching from the side the ball is on. */
+/* First crossing of the ball's surface with the plane rectangle at tau >=
+ * tau_from on seg, approaching from the side the ball is on; *q the centre
+ * then, one ulp back on the approach side (a point ball restarting exactly
+ * in the plane would find the same plane again at once: docs/hard-cases.md). */
 static int plane_contact(const ball_model *m, const ball_segment *seg, const ball_plane *pl,
-                         double b, double tau_from, double tau_to, double *tau, ball_vec3 *q) {
+                         double b, double tau_from, double *tau, ball_vec3 *q) {
   int a = pl->axis;
-  double v = v3_axis(seg->v0, a), target;
+  double v = ball_v3_axis(seg->v0, a), target;
   ball_state s;
   if (v == 0.0) return 0;
   target = pl->position - (v > 0.0 ? m->radius : -m->radius);
-  if (!ball__plane_tau(b, v3_axis(seg->p0, a), v, target, tau_from, tau) || *tau > tau_to)
-    return 0;
+  if (!ball__plane_tau(b, ball_v3_axis(seg->p0, a), v, target, tau_from, tau)) return 0;
   ball__eval(m, seg, seg->t0 + *tau, &s);
   *q = s.position;
-  /* one ulp back on the approach side: a point ball restarting exactly in
-   * the plane would find the same plane again at tau = 0 (docs/hard-cases.md) */
   if (a == 0)
     q->x = nextafter(target, v > 0.0 ? -INFINITY : INFINITY);
   else
@@ -109,77 +118,96 @@ static int plane_contact(const ball_model *m, const ball_segment *seg, const bal
   return in_extent(pl, *q);
 }
 
-static int floor_contact(const ball_model *m, const ball_segment *seg, double tau_from,
-                         double tau_to, double *tau) {
-  double r1, r2, y_end;
+static double height(const ball_model *m, const ball_segment *seg, double tau) {
+  return seg->p0.y + seg->v0.y * tau - 0.5 * m->gravity * tau * tau;
+}
+
+/* The descending floor contact at tau >= tau_from. */
+static int floor_contact(const ball_model *m, const ball_segment *seg, double tau_from, double *tau) {
+  double r1, r2;
   if (seg->grounded) return 0;
   /* a response that put the ball below the floor (eq 7's restart at Q + V0 dt
    * can) while it moves down: it bounces at once instead of sinking */
-  if (seg->p0.y + seg->v0.y * tau_from - 0.5 * m->gravity * tau_from * tau_from < ball__floor_y(m) &&
-      seg->v0.y - m->gravity * tau_from <= 0.0) {
+  if (height(m, seg, tau_from) < ball__floor_y(m) && seg->v0.y - m->gravity * tau_from <= 0.0) {
     *tau = tau_from;
     return 1;
   }
   if (!ball__height_roots(m->gravity, seg->p0.y, seg->v0.y, ball__floor_y(m), &r1, &r2)) return 0;
   if (r2 < tau_from) return 0;
-  if (r2 > tau_to) {
-    /* a root rounded just past the frame's end while y there is already below: contact now */
-    y_end = seg->p0.y + seg->v0.y * tau_to - 0.5 * m->gravity * tau_to * tau_to;
-    if (!(y_end < ball__floor_y(m)) || seg->v0.y - m->gravity * tau_to > 0.0) return 0;
-    r2 = tau_to;
-  }
   *tau = r2;
   return 1;
 }
 
-static void step_exact(const ball_model *m, ball_sim *sim, double t_from, double t_end,
-                       ball_event *events, int cap, int *n) {
-  double b = ball__drag_b(m);
-  double t_cur = t_from;
+/* The earliest static contact on seg at or after t_from: into *c. */
+static void find_next(const ball_model *m, const ball_segment *seg, double t_from, ball_contact *c) {
+  double b = ball__drag_b(m), tau_from = t_from - seg->t0, tau, best = INFINITY;
+  ball_vec3 q, best_q = ball_v3(0.0, 0.0, 0.0);
+  int i, which = WHICH_NONE;
+  if (ball__has(m, BALL_EFFECT_FLOOR) && floor_contact(m, seg, tau_from, &tau)) {
+    best = tau;
+    which = WHICH_FLOOR;
+  }
+  if (ball__has(m, BALL_EFFECT_NET) && m->has_net &&
+      plane_contact(m, seg, &m->net, b, tau_from, &tau, &q) && tau < best) {
+    best = tau;
+    best_q = q;
+    which = WHICH_NET;
+  }
+  if (ball__has(m, BALL_EFFECT_WALLS))
+    for (i = 0; i < m->n_walls; i++)
+      if (plane_contact(m, seg, &m->walls[i], b, tau_from, &tau, &q) && tau < best) {
+        best = tau;
+        best_q = q;
+        which = WHICH_WALL(i);
+      }
+  c->valid = 1;
+  c->which = which;
+  c->time = which == WHICH_NONE ? INFINITY : seg->t0 + best;
+  c->point = best_q;
+}
+
+/* The contact c on seg: its response starts the next segment. */
+static void resolve(const ball_model *m, ball_segment *seg, const ball_contact *c, ball_event *ev) {
+  ball_state s;
+  ball__eval(m, seg, c->time, &s);
+  if (c->which == WHICH_FLOOR)
+    floor_bounce(m, seg, c->time, s.position, &s, ev);
+  else
+    plane_bounce(m, seg, plane_of(m, c->which), c->which, c->time, s.position, c->point, &s, 0.0, ev);
+}
+
+/* The exact scheme over (t_from, t_end] on seg, next being seg's cached next
+ * contact (computed here when not valid): every contact in time order, up to
+ * BALL_MAX_CONTACTS; *end gets the state at t_end. Returns the contacts
+ * resolved, or -1 when the limit was reached. */
+static int exact_advance(const ball_model *m, ball_segment *seg, ball_contact *next, double t_from,
+                         double t_end, sink *k, ball_state *end) {
   int contacts;
+  double t_cur = t_from;
   for (contacts = 0; contacts < BALL_MAX_CONTACTS; contacts++) {
-    const ball_segment *seg = &sim->seg;
-    double tau_from = t_cur - seg->t0, tau_to = t_end - seg->t0, tau, best = INFINITY;
-    int which = -1, i;
-    ball_vec3 q, best_q = v3(0.0, 0.0, 0.0);
-    ball_state s;
     ball_event ev;
-    if (ball__has(m, BALL_EFFECT_FLOOR) && floor_contact(m, seg, tau_from, tau_to, &tau)) {
-      best = tau;
-      which = ORIGIN_FLOOR;
+    if (!next->valid) find_next(m, seg, t_cur, next);
+    if (!(next->time <= t_end)) {
+      ball__eval(m, seg, t_end, end);
+      /* a floor root rounded just past the frame's end while the ball there
+       * is already below the floor: the contact is now */
+      if (!(next->which == WHICH_FLOOR && end->position.y < ball__floor_y(m) && end->velocity.y <= 0.0))
+        return contacts;
+      next->time = t_end;
     }
-    if (ball__has(m, BALL_EFFECT_NET) && m->has_net &&
-        plane_contact(m, seg, &m->net, b, tau_from, tau_to, &tau, &q) && tau < best) {
-      best = tau;
-      best_q = q;
-      which = ORIGIN_NET;
-    }
-    if (ball__has(m, BALL_EFFECT_WALLS))
-      for (i = 0; i < m->n_walls; i++)
-        if (plane_contact(m, seg, &m->walls[i], b, tau_from, tau_to, &tau, &q) && tau < best) {
-          best = tau;
-          best_q = q;
-          which = ORIGIN_WALL(i);
-        }
-    if (which < 0) return;
-    t_cur = seg->t0 + best;
-    ball__eval(m, seg, t_cur, &s);
-    if (which == ORIGIN_FLOOR)
-      floor_bounce(m, sim, t_cur, s.position, &s, &ev);
-    else
-      plane_bounce(m, sim, plane_of(m, which), which, t_cur, best_q, &s, 0.0, &ev);
-    emit(sim, events, cap, n, &ev);
+    t_cur = next->time;
+    resolve(m, seg, next, &ev);
+    emit(k, &ev);
+    next->valid = 0;
   }
   /* Too many contacts (a ball trapped in a corner): rather than let it escape
    * through an obstacle, it stays where its last contact left it and loses
    * the rest of the frame. */
-  {
-    ball_segment *seg = &sim->seg;
-    ball_state s;
-    ball__eval(m, seg, t_cur, &s);
-    ball__segment_start(seg, t_end, s.position, s.velocity, s.spin, seg->grounded);
-  }
-  sim->warnings[BALL_WARN_CONTACT_LIMIT]++;
+  ball__eval(m, seg, t_cur, end);
+  ball__segment_start(seg, t_end, end->position, end->velocity, end->spin, seg->grounded);
+  next->valid = 0;
+  ball__eval(m, seg, t_end, end);
+  return -1;
 }
 
 /* ---- sampled scheme: the paper's per-frame tests (Fig. 1, Fig. 3) ---- */
@@ -189,12 +217,12 @@ static void step_exact(const ball_model *m, ball_sim *sim, double t_from, double
 static int plane_crossing(const ball_model *m, const ball_plane *pl, ball_vec3 p_old, ball_vec3 p,
                           double *s, ball_vec3 *q) {
   int a = pl->axis;
-  double xo = v3_axis(p_old, a), x = v3_axis(p, a), target;
+  double xo = ball_v3_axis(p_old, a), x = ball_v3_axis(p, a), target;
   if (xo == x) return 0; /* segment parallel to the plane */
   target = pl->position - (x > xo ? m->radius : -m->radius);
   *s = (target - xo) / (x - xo);
   if (!(*s >= 0.0 && *s <= 1.0)) return 0;
-  *q = v3_lerp(p_old, p, *s);
+  *q = ball_v3_lerp(p_old, p, *s);
   if (a == 0)
     q->x = target;
   else
@@ -202,71 +230,82 @@ static int plane_crossing(const ball_model *m, const ball_plane *pl, ball_vec3 p
   return in_extent(pl, *q);
 }
 
-static void step_sampled(const ball_model *m, ball_sim *sim, double t_end, double dt,
-                         ball_event *events, int cap, int *n) {
-  ball_state st;
+/* One sampled frame ending at t_end, *st the state there (updated on a
+ * collision). Returns the collisions. */
+static int step_sampled(const ball_model *m, ball_sim *sim, double t_end, double dt, sink *k,
+                        ball_state *st) {
   ball_event ev;
-  ball_vec3 q, best_q = v3(0.0, 0.0, 0.0);
+  ball_vec3 q, best_q = ball_v3(0.0, 0.0, 0.0);
   double s, best = INFINITY;
-  int i, origin = -1;
-  ball__eval(m, &sim->seg, t_end, &st);
+  int i, which = WHICH_NONE, n = 0;
   /* the first plane the frame's segment crosses (one plane collision a frame) */
   if (ball__has(m, BALL_EFFECT_NET) && m->has_net &&
-      plane_crossing(m, &m->net, sim->prev_position, st.position, &s, &q)) {
+      plane_crossing(m, &m->net, sim->prev_position, st->position, &s, &q)) {
     best = s;
     best_q = q;
-    origin = ORIGIN_NET;
+    which = WHICH_NET;
   }
   if (ball__has(m, BALL_EFFECT_WALLS))
     for (i = 0; i < m->n_walls; i++)
-      if (plane_crossing(m, &m->walls[i], sim->prev_position, st.position, &s, &q) && s < best) {
+      if (plane_crossing(m, &m->walls[i], sim->prev_position, st->position, &s, &q) && s < best) {
         best = s;
         best_q = q;
-        origin = ORIGIN_WALL(i);
+        which = WHICH_WALL(i);
       }
-  if (origin >= 0) {
+  if (which != WHICH_NONE) {
     /* eq 6: velocity now, restart at Q pushed dt / 10 along the new velocity */
-    plane_bounce(m, sim, plane_of(m, origin), origin, t_end, best_q, &st, dt / 10.0, &ev);
-    emit(sim, events, cap, n, &ev);
-    ball__eval(m, &sim->seg, t_end, &st);
+    plane_bounce(m, &sim->seg, plane_of(m, which), which, t_end, best_q, best_q, st, dt / 10.0, &ev);
+    emit(k, &ev);
+    ball__eval(m, &sim->seg, t_end, st);
+    n++;
   }
-/* Fig. 1, eq 5: below the floor at the end of the frame */
-  if (ball__has(m, BALL_EFFECT_FLOOR) && !sim->seg.grounded && st.position.y < ball__floor_y(m)) {
-    floor_bounce(m, sim, t_end, st.position, &st, &ev);
-    emit(sim, events, cap, n, &ev);
+  /* Fig. 1, eq 5: below the floor at the end of the frame */
+  if (ball__has(m, BALL_EFFECT_FLOOR) && !sim->seg.grounded && st->position.y < ball__floor_y(m)) {
+    floor_bounce(m, &sim->seg, t_end, st->position, st, &ev);
+    emit(k, &ev);
+    ball__eval(m, &sim->seg, t_end, st);
+    n++;
   }
+  return n;
 }
 
-/* ---- public ---- */
+/* ---- the sim ---- */
 
 static int segment_finite(const ball_segment *seg) {
-  return isfinite(seg->t0) && v3_finite(seg->p0) && v3_finite(seg->v0) && v3_finite(seg->s0);
+  return isfinite(seg->t0) && ball_v3_finite(seg->p0) && ball_v3_finite(seg->v0) &&
+         ball_v3_finite(seg->s0);
+}
+
+static int state_finite(const ball_state *s) {
+  return ball_v3_finite(s->position) && ball_v3_finite(s->velocity) && ball_v3_finite(s->spin);
 }
 
 static ball_status check_state(const ball_model *m, const ball_state *state) {
-  if (!v3_finite(state->position) || !v3_finite(state->velocity) || !v3_finite(state->spin))
-    return BALL_ENONFINITE;
+  if (!state_finite(state)) return BALL_ENONFINITE;
   if (ball__has(m, BALL_EFFECT_FLOOR) && state->position.y < ball__floor_y(m)) return BALL_ERANGE;
   return BALL_OK;
 }
 
 static void start_state(const ball_model *m, ball_sim *sim, const ball_state *state) {
-  ball_vec3 spin = ball__has(m, BALL_EFFECT_SPIN) ? state->spin : v3(0.0, 0.0, 0.0);
+  ball_vec3 spin = ball__has(m, BALL_EFFECT_SPIN) ? state->spin : ball_v3(0.0, 0.0, 0.0);
   ball__segment_start(&sim->seg, sim->time, state->position, state->velocity, spin, 0);
+  sim->next.valid = 0;
   sim->prev_position = state->position;
-  sim->origin = -1;
+}
+
+ball_status ball__bound(const ball_model *m, const ball_sim *sim) {
+  if (!m || !sim) return BALL_EINVAL;
+  return ball__model_same(m, &sim->model) ? BALL_OK : BALL_EMODEL;
 }
 
 ball_status ball_sim_init(const ball_model *m, ball_sim *sim) {
   ball_state st0;
   ball_status st;
-  int r;
   if (!m || !sim) return BALL_EINVAL;
   st = ball_model_check(m, NULL);
   if (st != BALL_OK) return st;
   memset(sim, 0, sizeof *sim);
-  sim->last_racket = -1;
-  for (r = 0; r < BALL_MAX_RACKETS; r++) sim->tracks[r].count = 0;
+  sim->model = *m;
   st0.position = m->initial_position;
   st0.velocity = m->initial_velocity;
   st0.spin = m->initial_spin;
@@ -274,11 +313,39 @@ ball_status ball_sim_init(const ball_model *m, ball_sim *sim) {
   return BALL_OK;
 }
 
-ball_status ball_sim_set_state(const ball_model *m, ball_sim *sim, const ball_state *state) {
+ball_status ball_sim_set_model(const ball_model *m, ball_sim *sim) {
   ball_status st;
-  if (!m || !sim || !state) return BALL_EINVAL;
+  ball_state now;
+  int r;
+  if (!m || !sim) return BALL_EINVAL;
   st = ball_model_check(m, NULL);
   if (st != BALL_OK) return st;
+  if (!isfinite(sim->time) || !segment_finite(&sim->seg)) return BALL_ENONFINITE;
+  if (sim->time < sim->seg.t0) return BALL_ERANGE;
+  /* the ball where it is now must be a valid state of the new model */
+  ball__eval(m, &sim->seg, sim->time, &now);
+  st = check_state(m, &now);
+  if (st != BALL_OK) return st;
+  sim->model = *m;
+  sim->next.valid = 0;
+  for (r = 0; r < BALL_MAX_RACKETS; r++) {
+    ball_racket_track *tr = &sim->tracks[r];
+    if (r >= m->n_rackets) {
+      memset(tr, 0, sizeof *tr);
+    } else if (tr->count > m->history) {
+      /* keep the newest samples that fit the new history */
+      memmove(tr->samples, tr->samples + (tr->count - m->history),
+              (size_t)m->history * sizeof tr->samples[0]);
+      tr->count = m->history;
+    }
+  }
+  return BALL_OK;
+}
+
+ball_status ball_sim_set_state(const ball_model *m, ball_sim *sim, const ball_state *state) {
+  ball_status st = ball__bound(m, sim);
+  if (st != BALL_OK) return st;
+  if (!state) return BALL_EINVAL;
   st = check_state(m, state);
   if (st != BALL_OK) return st;
   start_state(m, sim, state);
@@ -286,7 +353,9 @@ ball_status ball_sim_set_state(const ball_model *m, ball_sim *sim, const ball_st
 }
 
 ball_status ball_sim_state(const ball_model *m, const ball_sim *sim, ball_state *out) {
-  if (!m || !sim || !out) return BALL_EINVAL;
+  ball_status st = ball__bound(m, sim);
+  if (st != BALL_OK) return st;
+  if (!out) return BALL_EINVAL;
   if (!isfinite(sim->time) || !segment_finite(&sim->seg)) return BALL_ENONFINITE;
   if (sim->time < sim->seg.t0) return BALL_ERANGE;
   ball__eval(m, &sim->seg, sim->time, out);
@@ -297,8 +366,9 @@ ball_status ball_sim_state(const ball_model *m, const ball_sim *sim, ball_state 
  * track samples are not touched by a step, so the whole sim is not copied). */
 typedef struct step_undo {
   ball_segment seg;
-  int origin, sleep, last_racket;
-  unsigned long warnings[BALL_WARN_COUNT], events_dropped;
+  ball_contact next;
+  int sleep;
+  unsigned long warnings[BALL_WARN_COUNT];
   int has_prev[BALL_MAX_RACKETS];
   ball_racket_pose prev_pose[BALL_MAX_RACKETS];
 } step_undo;
@@ -306,11 +376,9 @@ typedef struct step_undo {
 static void undo_save(step_undo *u, const ball_sim *sim) {
   int r;
   u->seg = sim->seg;
-  u->origin = sim->origin;
+  u->next = sim->next;
   u->sleep = sim->sleep;
-  u->last_racket = sim->last_racket;
   memcpy(u->warnings, sim->warnings, sizeof u->warnings);
-  u->events_dropped = sim->events_dropped;
   for (r = 0; r < BALL_MAX_RACKETS; r++) {
     u->has_prev[r] = sim->tracks[r].has_prev;
     u->prev_pose[r] = sim->tracks[r].prev_pose;
@@ -321,11 +389,9 @@ static void undo_restore(const step_undo *u, ball_sim *sim, double t) {
   int r;
   sim->time = t;
   sim->seg = u->seg;
-  sim->origin = u->origin;
+  sim->next = u->next;
   sim->sleep = u->sleep;
-  sim->last_racket = u->last_racket;
   memcpy(sim->warnings, u->warnings, sizeof u->warnings);
-  sim->events_dropped = u->events_dropped;
   for (r = 0; r < BALL_MAX_RACKETS; r++) {
     sim->tracks[r].has_prev = u->has_prev[r];
     sim->tracks[r].prev_pose = u->prev_pose[r];
@@ -335,8 +401,9 @@ static void undo_restore(const step_undo *u, ball_sim *sim, double t) {
 static int events_finite(const ball_event *ev, int n) {
   int i;
   for (i = 0; i < n; i++)
-    if (!isfinite(ev[i].time) || !v3_finite(ev[i].point) || !v3_finite(ev[i].velocity_in) ||
-        !v3_finite(ev[i].velocity_out) || !v3_finite(ev[i].spin_out))
+    if (!isfinite(ev[i].time) || !ball_v3_finite(ev[i].point) || !ball_v3_finite(ev[i].velocity_in) ||
+        !ball_v3_finite(ev[i].velocity_out) || !ball_v3_finite(ev[i].spin_out) ||
+        !segment_finite(&ev[i].segment))
       return 0;
   return 1;
 }
@@ -345,16 +412,17 @@ ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event 
                       int *n_events) {
   ball_status st;
   double t_prev, t_end;
-  int n = 0;
+  int changed = 0;
   ball_state s;
   step_undo undo;
+  sink k;
   if (n_events) *n_events = 0;
   if (!m || !sim || cap < 0 || (cap > 0 && !events)) return BALL_EINVAL;
   if (!isfinite(dt)) return BALL_ENONFINITE;
   if (dt < 0.0) return BALL_ERANGE;
-  st = ball__model_check_stages(m, m->effects, NULL);
+  st = ball__bound(m, sim); /* the model was checked when it was bound */
   if (st != BALL_OK) return st;
-  if (!isfinite(sim->time) || !segment_finite(&sim->seg) || !v3_finite(sim->prev_position))
+  if (!isfinite(sim->time) || !segment_finite(&sim->seg) || !ball_v3_finite(sim->prev_position))
     return BALL_ENONFINITE;
   t_prev = sim->time;
   t_end = t_prev + dt;
@@ -362,83 +430,124 @@ ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event 
   if (dt == 0.0) return BALL_OK;
   /* a frame whose flight would overflow is refused before anything changes */
   ball__eval(m, &sim->seg, t_end, &s);
-  if (!v3_finite(s.position) || !v3_finite(s.velocity) || !v3_finite(s.spin)) return BALL_ERANGE;
+  if (!state_finite(&s)) return BALL_ERANGE;
   undo_save(&undo, sim);
+  k.events = events;
+  k.cap = cap;
+  k.n = 0;
+  k.missed = &sim->warnings[BALL_WARN_EVENT_OVERFLOW];
 
-  if (m->scheme == BALL_SCHEME_EXACT)
-    step_exact(m, sim, t_prev, t_end, events, cap, &n);
-  else
-    step_sampled(m, sim, t_end, dt, events, cap, &n);
+  if (m->scheme == BALL_SCHEME_EXACT) {
+    int c = exact_advance(m, &sim->seg, &sim->next, t_prev, t_end, &k, &s);
+    if (c < 0) sim->warnings[BALL_WARN_CONTACT_LIMIT]++;
+    changed = c != 0;
+  } else {
+    changed = step_sampled(m, sim, t_end, dt, &k, &s) > 0;
+  }
   sim->time = t_end;
 
   if (ball__has(m, BALL_EFFECT_RACKETS) && m->n_rackets > 0) {
     ball_event ev;
-    if (ball__racket_stage(m, sim, t_prev, dt, &ev)) {
-      sim->origin = 2 + BALL_MAX_WALLS + ev.index;
-      emit(sim, events, cap, &n, &ev);
+    if (ball__racket_stage(m, sim, t_prev, dt, &s, &ev)) {
+      emit(&k, &ev);
+      changed = 1;
+      sim->next.valid = 0;
       /* the rest of the frame on the new path (a swept hit lands inside it) */
-      if (m->scheme == BALL_SCHEME_EXACT && ev.time < t_end)
-        step_exact(m, sim, ev.time, t_end, events, cap, &n);
+      if (m->scheme == BALL_SCHEME_EXACT && ev.time < t_end) {
+        if (exact_advance(m, &sim->seg, &sim->next, ev.time, t_end, &k, &s) < 0)
+          sim->warnings[BALL_WARN_CONTACT_LIMIT]++;
+      } else {
+        ball__eval(m, &sim->seg, t_end, &s);
+      }
     }
   }
-  ball__eval(m, &sim->seg, t_end, &s);
   /* a response that overflowed (speeds near DBL_MAX): refuse the frame and
    * give the sim back as it was */
-  if (!segment_finite(&sim->seg) || !v3_finite(s.position) || !v3_finite(s.velocity) ||
-      !v3_finite(s.spin) || !events_finite(events, n)) {
+  if (changed && (!segment_finite(&sim->seg) || !state_finite(&s) || !events_finite(events, k.n))) {
     undo_restore(&undo, sim, t_prev);
     return BALL_ERANGE;
   }
   sim->prev_position = s.position;
   sim->frame++;
-  if (n_events) *n_events = n;
+  if (n_events) *n_events = k.n;
   return BALL_OK;
 }
 
-/* FNV-1a over the state that decides the ball's future. */
-static unsigned long long hash_bytes(unsigned long long h, const void *data, size_t len) {
-  const unsigned char *p = (const unsigned char *)data;
-  size_t i;
-  for (i = 0; i < len; i++) {
-    h ^= p[i];
-    h *= 1099511628211ULL;
+/* ---- prediction ---- */
+
+ball_status ball_predict(const ball_model *m, const ball_segment *seg_in, double t_from,
+                         double t_end, double dt, ball_prediction *out) {
+  ball_segment seg;
+  ball_contact next;
+  ball_state s;
+  ball_status st;
+  unsigned long missed = 0;
+  sink k;
+  double t;
+  if (!m || !seg_in || !out) return BALL_EINVAL;
+  if ((out->cap_states > 0 && !out->states) || (out->cap_events > 0 && !out->events) ||
+      out->cap_states < 0 || out->cap_events < 0)
+    return BALL_EINVAL;
+  if (!isfinite(t_from) || !isfinite(t_end) || !isfinite(dt) || !segment_finite(seg_in))
+    return BALL_ENONFINITE;
+  if (!(dt > 0.0) || t_end < t_from || t_from < seg_in->t0) return BALL_ERANGE;
+  st = ball_model_check(m, NULL);
+  if (st != BALL_OK) return st;
+  seg = *seg_in;
+  next.valid = 0;
+  k.events = out->events;
+  k.cap = out->cap_events;
+  k.n = 0;
+  k.missed = &missed;
+  out->n_states = 0;
+  t = t_from;
+  ball__eval(m, &seg, t, &s);
+  if (!state_finite(&s)) return BALL_ERANGE;
+  if (out->cap_states > 0) out->states[out->n_states++] = s;
+  /* frames of dt as ball_step takes them (the clock summed, not k dt), the
+   * last one cut at t_end */
+  while (t < t_end) {
+    double t_next = t + dt;
+    int grid = 1;
+    if (!(t_next <= t_end)) {
+      t_next = t_end;
+      grid = 0;
+    }
+    if (t_next == t) break; /* dt below the clock's resolution */
+    exact_advance(m, &seg, &next, t, t_next, &k, &s);
+    if (!segment_finite(&seg) || !state_finite(&s)) return BALL_ERANGE;
+    if (grid && out->n_states < out->cap_states) out->states[out->n_states++] = s;
+    t = t_next;
   }
-  return h;
+  out->n_events = k.n;
+  out->events_missed = (int)missed;
+  out->end = seg;
+  return BALL_OK;
 }
 
-static unsigned long long hash_double(unsigned long long h, double v) {
-  if (v == 0.0) v = 0.0; /* -0 and +0 hash alike */
-  return hash_bytes(h, &v, sizeof v);
-}
+/* ---- hash ---- */
 
-static unsigned long long hash_vec(unsigned long long h, ball_vec3 v) {
-  return hash_double(hash_double(hash_double(h, v.x), v.y), v.z);
-}
-
-unsigned long long ball_sim_hash(const ball_sim *sim) {
-  unsigned long long h = 14695981039346656037ULL;
-  long ints[4];
+uint64_t ball_sim_hash(const ball_sim *sim) {
+  uint64_t h = BALL__HASH_SEED;
   int r, i;
   if (!sim) return 0;
-  h = hash_double(h, sim->time);
-  h = hash_double(h, sim->seg.t0);
-  h = hash_vec(h, sim->seg.p0);
-  h = hash_vec(h, sim->seg.v0);
-  h = hash_vec(h, sim->seg.s0);
-  h = hash_vec(h, sim->prev_position);
-  ints[0] = sim->seg.grounded;
-  ints[1] = sim->sleep;
-  ints[2] = sim->last_racket;
-  ints[3] = (long)sim->frame;
-  h = hash_bytes(h, ints, sizeof ints);
+  h = ball__hash_double(h, sim->time);
+  h = ball__hash_word(h, sim->frame);
+  h = ball__hash_double(h, sim->seg.t0);
+  h = ball__hash_vec(h, sim->seg.p0);
+  h = ball__hash_vec(h, sim->seg.v0);
+  h = ball__hash_vec(h, sim->seg.s0);
+  h = ball__hash_word(h, (uint64_t)(int64_t)sim->seg.grounded);
+  h = ball__hash_vec(h, sim->prev_position);
+  h = ball__hash_word(h, (uint64_t)(int64_t)sim->sleep);
   for (r = 0; r < BALL_MAX_RACKETS; r++) {
     const ball_racket_track *tr = &sim->tracks[r];
-    h = hash_bytes(h, &tr->count, sizeof tr->count);
+    h = ball__hash_word(h, (uint64_t)(int64_t)tr->count);
     for (i = 0; i < tr->count && i < BALL_MAX_HISTORY; i++) {
-      h = hash_double(h, tr->samples[i].t);
-      h = hash_vec(h, tr->samples[i].center);
-      h = hash_vec(h, tr->samples[i].normal);
+      h = ball__hash_double(h, tr->samples[i].t);
+      h = ball__hash_vec(h, tr->samples[i].center);
+      h = ball__hash_vec(h, tr->samples[i].normal);
     }
   }
-  return h;
+  return ball__hash_word(h, ball_model_hash(&sim->model));
 }

@@ -34,12 +34,12 @@ static void pose_at(const ball__swept_motion *mo, double t, ball_vec3 *ball, bal
     *ball = s.position;
   } else {
     double w = mo->tb > mo->ta ? (t - mo->ta) / (mo->tb - mo->ta) : 1.0;
-    *ball = v3_lerp(mo->p0, mo->p1, w);
+    *ball = ball_v3_lerp(mo->p0, mo->p1, w);
   }
-  *c = v3_lerp(mo->c0, mo->c1, u);
-  nn = v3_lerp(mo->n0, mo->n1, u); /* normalised lerp; n1 is in n0's hemisphere */
-  len = v3_norm(nn);
-  *n = v3_scale(nn, 1.0 / len);
+  *c = ball_v3_lerp(mo->c0, mo->c1, u);
+  nn = ball_v3_lerp(mo->n0, mo->n1, u); /* normalised lerp; n1 is in n0's hemisphere */
+  len = ball_v3_norm(nn);
+  *n = ball_v3_scale(nn, 1.0 / len);
 }
 
 typedef struct probe {
@@ -54,9 +54,9 @@ static probe probe_at(const ball__swept_motion *mo, double t) {
   probe pr;
   double rho, d;
   pose_at(mo, t, &p, &c, &n);
-  w = v3_sub(p, c);
-  d = v3_dot(w, n);
-  rho = v3_norm(v3_sub(w, v3_scale(n, d)));
+  w = ball_v3_sub(p, c);
+  d = ball_v3_dot(w, n);
+  rho = ball_v3_norm(ball_v3_sub(w, ball_v3_scale(n, d)));
   pr.t = t;
   pr.side = d;
   pr.radial = rho;
@@ -136,7 +136,7 @@ static double motion_bound(const ball__swept_motion *mo, double ang) {
   pose_at(mo, mo->ta, &p_prev, &c_prev, &n_prev);
   for (i = 1; i <= k; i++) {
     pose_at(mo, mo->ta + (mo->tb - mo->ta) * i / k, &p, &c, &n);
-    len += v3_norm(v3_sub(p, p_prev)) + v3_norm(v3_sub(c, c_prev));
+    len += ball_v3_norm(ball_v3_sub(p, p_prev)) + ball_v3_norm(ball_v3_sub(c, c_prev));
     p_prev = p;
     c_prev = c;
   }
@@ -147,15 +147,15 @@ static double motion_bound(const ball__swept_motion *mo, double ang) {
 int ball__swept_toi(const ball__swept_motion *mo_in, double *t_hit, ball_vec3 *center,
                     ball_vec3 *face_normal) {
   ball__swept_motion mo = *mo_in;
-  double l0 = v3_norm(mo.n0), l1 = v3_norm(mo.n1), grain, bound, ang, step;
+  double l0 = ball_v3_norm(mo.n0), l1 = ball_v3_norm(mo.n1), grain, bound, ang, step;
   ball_vec3 p, c, n;
   probe a, b, hit;
   int steps, i, found = 0;
   if (!(l0 > 0.0) || !(l1 > 0.0) || !(mo.tb >= mo.ta)) return 0;
-  mo.n0 = v3_scale(mo.n0, 1.0 / l0);
-  mo.n1 = v3_scale(mo.n1, 1.0 / l1);
-  if (v3_dot(mo.n0, mo.n1) < 0.0) mo.n1 = v3_scale(mo.n1, -1.0); /* a disc has two faces */
-  ang = acos(fmin(1.0, fmax(-1.0, v3_dot(mo.n0, mo.n1))));
+  mo.n0 = ball_v3_scale(mo.n0, 1.0 / l0);
+  mo.n1 = ball_v3_scale(mo.n1, 1.0 / l1);
+  if (ball_v3_dot(mo.n0, mo.n1) < 0.0) mo.n1 = ball_v3_scale(mo.n1, -1.0); /* a disc has two faces */
+  ang = acos(fmin(1.0, fmax(-1.0, ball_v3_dot(mo.n0, mo.n1))));
   grain = 0.25 * fmin(mo.ball_radius > 0.0 ? mo.ball_radius : mo.disc_radius, mo.disc_radius);
   if (grain < SWEPT_MIN_GRAIN) grain = SWEPT_MIN_GRAIN;
   bound = motion_bound(&mo, ang);
@@ -198,13 +198,13 @@ int ball__swept_toi(const ball__swept_motion *mo_in, double *t_hit, ball_vec3 *c
   *center = p;
   if (face_normal) {
     /* the face the ball arrived on (Fig. 9); the start position if undecided */
-    double side = hit.side != 0.0 ? hit.side : v3_dot(v3_sub(p, c), n);
+    double side = hit.side != 0.0 ? hit.side : ball_v3_dot(ball_v3_sub(p, c), n);
     if (side == 0.0) {
       ball_vec3 p0, c0, n0;
       pose_at(&mo, mo.ta, &p0, &c0, &n0);
-      side = v3_dot(v3_sub(p0, c0), n0);
+      side = ball_v3_dot(ball_v3_sub(p0, c0), n0);
     }
-    *face_normal = side < 0.0 ? v3_scale(n, -1.0) : n;
+    *face_normal = side < 0.0 ? ball_v3_scale(n, -1.0) : n;
   }
   return 1;
 }
@@ -214,12 +214,12 @@ ball_status ball_swept_disc(const ball_swept_query *q, int *hit, double *toi, ba
   double t;
   ball_vec3 c;
   if (!q || !hit) return BALL_EINVAL;
-  if (!v3_finite(q->p0) || !v3_finite(q->p1) || !v3_finite(q->c0) || !v3_finite(q->c1) ||
-      !v3_finite(q->n0) || !v3_finite(q->n1) || !isfinite(q->ball_radius) ||
+  if (!ball_v3_finite(q->p0) || !ball_v3_finite(q->p1) || !ball_v3_finite(q->c0) || !ball_v3_finite(q->c1) ||
+      !ball_v3_finite(q->n0) || !ball_v3_finite(q->n1) || !isfinite(q->ball_radius) ||
       !isfinite(q->disc_radius))
     return BALL_ENONFINITE;
   if (q->ball_radius < 0.0 || q->disc_radius < 0.0) return BALL_ERANGE;
-  if (!(v3_norm(q->n0) >= 1e-9) || !(v3_norm(q->n1) >= 1e-9)) return BALL_ERANGE;
+  if (!(ball_v3_norm(q->n0) >= 1e-9) || !(ball_v3_norm(q->n1) >= 1e-9)) return BALL_ERANGE;
   mo.model = NULL;
   mo.seg = NULL;
   mo.ta = 0.0;

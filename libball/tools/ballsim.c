@@ -61,7 +61,7 @@ static void print_help(FILE *f) {
           "  summary: frames=N time=T events=N floor=N net=N wall=N racket=N sounds=N\n"
           "  samples: arrived=N accepted=N duplicate=N stale=N invalid=N\n"
           "  final: position=X,Y,Z velocity=X,Y,Z spin=X,Y,Z grounded=0|1\n"
-          "  warnings: event_overflow=N contact_limit=N stale_racket=N events_dropped=N\n"
+          "  warnings: event_overflow=N contact_limit=N stale_racket=N\n"
           "\n"
           "Exit status: 0 on success, 1 for a scene or runtime error (printed as\n"
           "FILE:LINE:COLUMN: FIELD: MESSAGE), 2 for bad arguments.\n");
@@ -237,7 +237,7 @@ int main(int argc, char **argv) {
     ball_scene_default(&scene);
   }
 
-  if (o.fps > 0.0) scene.model.frame_time = 1.0 / o.fps;
+  if (o.fps > 0.0) scene.frame_time = 1.0 / o.fps;
   if (o.scheme >= 0) scene.model.scheme = (ball_scheme)o.scheme;
   duration = o.duration > 0.0 ? o.duration : scene.duration;
   st = ball_model_check(&scene.model, &field);
@@ -246,7 +246,7 @@ int main(int argc, char **argv) {
             ball_strerror(st));
     return 1;
   }
-  dt = scene.model.frame_time * scene.model.time_base;
+  dt = scene.frame_time * scene.time_base;
   frames_d = ceil(duration / dt * (1.0 - 1e-12));
   if (!(dt > 0.0) || !isfinite(dt) || !(frames_d <= MAX_FRAMES)) {
     fprintf(stderr, "ballsim: %g s at a step of %g s is more than %.0f frames\n", duration, dt, MAX_FRAMES);
@@ -275,7 +275,7 @@ int main(int argc, char **argv) {
   }
 
   printf("scene: %s (%s) scheme=%s fps=%.6g dt=%.9g frames=%lu effects=", scene.name[0] ? scene.name : "unnamed",
-         o.scene_path ? o.scene_path : "built-in", ball_scheme_name(scene.model.scheme), 1.0 / scene.model.frame_time,
+         o.scene_path ? o.scene_path : "built-in", ball_scheme_name(scene.model.scheme), 1.0 / scene.frame_time,
          dt, frames);
   print_effects(scene.model.effects);
   printf("\n");
@@ -293,13 +293,11 @@ int main(int argc, char **argv) {
         return runtime_error("racket script", st);
       }
       for (i = 0; i < n_samples; ++i) {
-        const ball_racket_track *tr = &sim.tracks[samples[i].racket];
-        double newest = tr->count > 0 ? tr->samples[tr->count - 1].t : -HUGE_VAL;
         /* rejected samples are normal under jitter: count them and go on */
         st = ball_racket_push(&scene.model, &sim, samples[i].racket, &samples[i].sample);
         n_arrived++;
-        if (st == BALL_OK && samples[i].sample.t > newest) n_accepted++;
-        else if (st == BALL_OK) n_duplicate++; /* a copy of a kept sample: ignored */
+        if (st == BALL_OK) n_accepted++;
+        else if (st == BALL_EDUPLICATE) n_duplicate++; /* a copy of a kept sample: ignored */
         else if (st == BALL_ESTALE) n_stale++;
         else n_invalid++;
       }
@@ -350,9 +348,9 @@ int main(int argc, char **argv) {
   printf("final: position=%.6f,%.6f,%.6f velocity=%.6f,%.6f,%.6f spin=%.6f,%.6f,%.6f grounded=%d\n", state.position.x,
          state.position.y, state.position.z, state.velocity.x, state.velocity.y, state.velocity.z, state.spin.x,
          state.spin.y, state.spin.z, sim.seg.grounded);
-  printf("warnings: event_overflow=%lu contact_limit=%lu stale_racket=%lu events_dropped=%lu\n",
+  printf("warnings: event_overflow=%lu contact_limit=%lu stale_racket=%lu\n",
          sim.warnings[BALL_WARN_EVENT_OVERFLOW], sim.warnings[BALL_WARN_CONTACT_LIMIT],
-         sim.warnings[BALL_WARN_STALE_RACKET], sim.events_dropped);
+         sim.warnings[BALL_WARN_STALE_RACKET]);
   if (fflush(stdout) != 0) return 1;
   return 0;
 }

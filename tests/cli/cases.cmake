@@ -133,7 +133,7 @@ macro(read_samples)
   endif()
 endmacro()
 
-set(summary_re "\nsummary: frames=[0-9]+ time=[0-9.]+ events=[0-9]+ floor=[0-9]+ net=[0-9]+ wall=[0-9]+ racket=[0-9]+ sounds=[0-9]+\nsamples: arrived=[0-9]+ accepted=[0-9]+ duplicate=[0-9]+ stale=[0-9]+ invalid=0\nfinal: position=[^ ]+ velocity=[^ ]+ spin=[^ ]+ grounded=[01]\nwarnings: event_overflow=0 contact_limit=0 stale_racket=0 events_dropped=0\n$")
+set(summary_re "\nsummary: frames=[0-9]+ time=[0-9.]+ events=[0-9]+ floor=[0-9]+ net=[0-9]+ wall=[0-9]+ racket=[0-9]+ sounds=[0-9]+\nsamples: arrived=[0-9]+ accepted=[0-9]+ duplicate=[0-9]+ stale=[0-9]+ invalid=0\nfinal: position=[^ ]+ velocity=[^ ]+ spin=[^ ]+ grounded=[01]\nwarnings: event_overflow=0 contact_limit=0 stale_racket=0\n$")
 
 # Runs ballsim with the given arguments; expects exit status 0 and the
 # summary block at the end of stdout. Sets RC, OUT and ERR.

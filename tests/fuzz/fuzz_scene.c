@@ -47,7 +47,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     int f, n;
     check(ball_sim_init(&scene.model, &sim) == BALL_OK);
     for (f = 0; f < 30; f++) {
-      st = ball_step(&scene.model, &sim, scene.model.frame_time * scene.model.time_base, ev, 8, &n);
+      st = ball_step(&scene.model, &sim, scene.frame_time * scene.time_base, ev, 8, &n);
       if (st != BALL_OK) break; /* e.g. a frame that would overflow: refused, not wrong */
       check(ball_sim_state(&scene.model, &sim, &s) == BALL_OK);
       check(isfinite(s.position.x) && isfinite(s.position.y) && isfinite(s.position.z));

@@ -6,3 +6,8 @@ add_test(NAME hard_core_never_allocates
   COMMAND ${CMAKE_COMMAND} -DNM=${CMAKE_NM} -DLIB=$<TARGET_FILE:ball_static>
     -P ${CMAKE_CURRENT_LIST_DIR}/no_alloc.cmake)
 set_tests_properties(hard_core_never_allocates PROPERTIES LABELS unit)
+
+# "Public API only": nothing outside libball/src includes libball/src/internal.h.
+add_test(NAME hard_public_api_only
+  COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -P ${CMAKE_CURRENT_LIST_DIR}/public_api_only.cmake)
+set_tests_properties(hard_public_api_only PROPERTIES LABELS unit)

@@ -167,7 +167,7 @@ static inline void core_simulate(const ball_model *m, double dt, unsigned long f
     }
     run->frames++;
   }
-  assert_int_equal(sim.events_dropped, 0);
+  assert_int_equal(sim.warnings[BALL_WARN_EVENT_OVERFLOW], 0);
   if (sim_out) *sim_out = sim;
 }
 

@@ -52,7 +52,22 @@ static int event_same(const ball_event *a, const ball_event *b) {
          same_bits(&a->point, &b->point, sizeof a->point) &&
          same_bits(&a->velocity_in, &b->velocity_in, sizeof a->velocity_in) &&
          same_bits(&a->velocity_out, &b->velocity_out, sizeof a->velocity_out) &&
-         same_bits(&a->spin_out, &b->spin_out, sizeof a->spin_out);
+         same_bits(&a->spin_out, &b->spin_out, sizeof a->spin_out) &&
+         same_bits(&a->segment.t0, &b->segment.t0, sizeof a->segment.t0) &&
+         same_bits(&a->segment.p0, &b->segment.p0, sizeof a->segment.p0) &&
+         same_bits(&a->segment.v0, &b->segment.v0, sizeof a->segment.v0) &&
+         same_bits(&a->segment.s0, &b->segment.s0, sizeof a->segment.s0) &&
+         a->segment.grounded == b->segment.grounded;
+}
+
+/* The sims' state, every byte but what is not state: the model each is
+ * bound to, and the contact cache (a model without the floor caches "no
+ * contact", one with an unreachable floor a contact in 1e150 s). */
+static int sims_same(const ball_sim *a, const ball_sim *b) {
+  ball_sim x = *a, y = *b;
+  memset(&x.next, 0, sizeof x.next);
+  memset(&y.next, 0, sizeof y.next);
+  return memcmp(&x, &y, offsetof(ball_sim, model)) == 0;
 }
 
 /* Steps both models side by side; returns the first frame where the sims or
@@ -64,12 +79,12 @@ static int first_difference(const ball_model *a, const ball_model *b, int *event
   *events = 0;
   assert_ok(ball_sim_init(a, &sa));
   assert_ok(ball_sim_init(b, &sb));
-  if (memcmp(&sa, &sb, sizeof sa) != 0) return 0;
+  if (!sims_same(&sa, &sb)) return 0;
   for (f = 1; f <= FRAMES; f++) {
     assert_ok(ball_step(a, &sa, 1.0 / FPS, ea, BALL_MAX_CONTACTS, &na));
     assert_ok(ball_step(b, &sb, 1.0 / FPS, eb, BALL_MAX_CONTACTS, &nb));
     *events += na;
-    if (na != nb || memcmp(&sa, &sb, sizeof sa) != 0) return f;
+    if (na != nb || !sims_same(&sa, &sb)) return f;
     for (k = 0; k < na; k++)
       if (!event_same(&ea[k], &eb[k])) return f;
   }

@@ -304,8 +304,8 @@ static void test_dt_10_seconds_sampled_snaps_to_floor_eq5(void **state) {
   (void)state;
   plain_model(&m, BALL_EFFECT_FLOOR);
   m.scheme = BALL_SCHEME_SAMPLED;
-  core_start(&m, &sim, core_v3(0.0, 0.0, 0.0), core_v3(1.0, 0.0, 0.0));
   m.bounce_threshold = 0.0;
+  core_start(&m, &sim, core_v3(0.0, 0.0, 0.0), core_v3(1.0, 0.0, 0.0));
   assert_int_equal(ball_step(&m, &sim, 10.0, ev, 4, &n), BALL_OK);
   assert_int_equal(n, 1);
   assert_near(ev[0].velocity_in.y, -98.1, 1e-12);

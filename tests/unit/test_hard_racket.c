@@ -229,7 +229,7 @@ static void test_samples_with_equal_timestamps(void **state) {
     s = core_sample(0.0, core_v3(1.0, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
     assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
     copy = sim;
-    assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
+    assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_EDUPLICATE);
     assert_memory_equal(&sim, &copy, sizeof sim);
     s.center.x = 0.99;
     assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ESTALE);

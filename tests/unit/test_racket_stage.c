@@ -85,7 +85,7 @@ static void eq7_hit_event_fields_and_restart_at_q_plus_v0_dt(void **state) {
   assert_near(ev[0].velocity_out.x, -0.5, 1e-12);
   assert_near(ev[0].velocity_out.y, 0.0, 0.0);
   assert_int_equal(ev[0].sound, 1); /* 0.5 m/s > 0.4 */
-  assert_int_equal(sim.last_racket, 0);
+  assert_int_equal(ev[0].index, 0);
   assert_int_equal(sim.sleep, 3);
   /* eq 7: P0 = Q + V0 dt */
   assert_near(sim.seg.p0.x, ev[0].point.x - 0.5 * 0.01, 1e-15);

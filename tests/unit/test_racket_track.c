@@ -55,8 +55,14 @@ static void bad_samples_rejected_with_track_unchanged(void **state) {
   assert_rejected(&m, &sim, 0, sample(0.2, 3, 1, 1, x), BALL_ESTALE);   /* same time, other data */
   assert_rejected(&m, &sim, -1, sample(0.3, 3, 1, 1, x), BALL_EINVAL);
   assert_rejected(&m, &sim, 2, sample(0.3, 3, 1, 1, x), BALL_EINVAL);  /* n_rackets = 2 */
-  assert_rejected(&m, &sim, 0, sample(0.2, 2, 1, 1, core_v3(0, 1, 0)), BALL_OK); /* exact duplicate */
-  assert_rejected(&m, &sim, 0, sample(0.1, 1, 1, 1, core_v3(0, 3, 0)), BALL_OK); /* late duplicate */
+  assert_rejected(&m, &sim, 0, sample(0.2, 2, 1, 1, core_v3(0, 1, 0)), BALL_EDUPLICATE); /* exact duplicate */
+  assert_rejected(&m, &sim, 0, sample(0.1, 1, 1, 1, core_v3(0, 3, 0)), BALL_EDUPLICATE); /* late duplicate */
+  {
+    /* a model other than the bound one: refused, the track unchanged */
+    ball_model other = m;
+    other.history = 4;
+    assert_rejected(&other, &sim, 0, sample(0.3, 3, 1, 1, x), BALL_EMODEL);
+  }
   assert_int_equal(ball_racket_push(NULL, &sim, 0, &(ball_racket_sample){0.3, {0, 0, 0}, {1, 0, 0}}), BALL_EINVAL);
   assert_int_equal(ball_racket_push(&m, &sim, 0, NULL), BALL_EINVAL);
   assert_int_equal(sim.tracks[0].count, 2);
@@ -133,8 +139,11 @@ static void eq15_extrapolation_past_newest_sample_capped_at_extrapolation_time(v
   /* 0.2 s past, capped at extrapolation_time = 0.05: x = 1.5 */
   assert_ok(ball_racket_estimate(&m, &sim, 0, 0.3, &p));
   assert_near(p.center.x, 1.5, 1e-12);
-  /* extrapolation_time 0: the racket holds at its newest sample */
+  /* extrapolation_time 0: the racket holds at its newest sample (after
+   * binding the sim to the changed model; unbound, it is refused) */
   m.extrapolation_time = 0.0;
+  assert_int_equal(ball_racket_estimate(&m, &sim, 0, 0.13, &p), BALL_EMODEL);
+  assert_ok(ball_sim_set_model(&m, &sim));
   assert_ok(ball_racket_estimate(&m, &sim, 0, 0.13, &p));
   assert_near(p.center.x, 1.0, 0.0);
 }
@@ -223,7 +232,7 @@ static void racket_check_names_bad_fields(void **state) {
   track_model(&m);
   m.rackets[0].partner = 0; /* itself */
   assert_int_equal(ball_model_check(&m, &field), BALL_ERANGE);
-  assert_string_equal(field, "rackets.partner");
+  assert_string_equal(field, "rackets[0].partner");
   track_model(&m);
   m.response = BALL_RESPONSE_MIXED;
   m.friendly_factor = 1.5; /* eq 10 needs [0, 1] */

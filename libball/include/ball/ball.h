@@ -10,6 +10,7 @@
 #define BALL_BALL_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 #ifdef __cplusplus
 extern "C" {
@@ -45,6 +46,8 @@ typedef enum ball_status {
   BALL_EPARSE,      /* a scene file that is not valid */
   BALL_EIO,         /* a file that cannot be read */
   BALL_ENOMEM,      /* an allocation failed (scene loader only) */
+  BALL_EDUPLICATE,  /* a racket sample identical to one already kept: ignored */
+  BALL_EMODEL,      /* the model differs from the one the sim was bound to (ball_sim_set_model) */
   BALL_STATUS_COUNT
 } ball_status;
 
@@ -175,9 +178,6 @@ typedef struct ball_model {
   int history;                                /* racket samples kept, the paper's n, [2, BALL_MAX_HISTORY] */
   double extrapolation_time;                  /* eq 15, s (>= 0) */
   double stale_time;                          /* a racket silent this long does not collide, s (> 0) */
-  /* time (section 4) */
-  double frame_time;          /* real seconds per frame, s (> 0) */
-  double time_base;           /* sim seconds per real second (> 0); scales the ball's speed */
   /* what to simulate and how */
   unsigned effects;           /* ball_effect bits */
   ball_scheme scheme;         /* static obstacle detection */
@@ -192,7 +192,9 @@ typedef struct ball_model {
  * x = 11.885 m, 0.914 m high), exact scheme, every effect but rackets. */
 BALL_API void ball_model_default(ball_model *model);
 
-/* Checks every field; on failure *field (if not NULL) names the first bad one. */
+/* Checks every field; on failure *field (if not NULL) names the first bad
+ * one, with its index where it has one: "floor_damping", "net.lo",
+ * "walls[3].lo", "rackets[1].radius". */
 BALL_API ball_status ball_model_check(const ball_model *model, const char **field);
 
 /* Applies a game level preset (section 4) over the racket fields of model. */
@@ -211,6 +213,52 @@ BALL_API const char *ball_normal_mode_name(ball_normal_mode mode);
 BALL_API const char *ball_response_name(ball_response response);
 BALL_API const char *ball_level_name(ball_level level);
 BALL_API const char *ball_effect_name(ball_effect effect); /* a single bit */
+
+/* ---- the field table ---------------------------------------------------- */
+
+/* Every field of ball_model, ball_plane and ball_racket_def once: its name,
+ * its key in a scene file, its type, range, default, unit and equation.
+ * ball_model_default, ball_model_check, the scene loader and the docs' key
+ * table are all made from it. */
+typedef enum ball_field_type {
+  BALL_FIELD_REAL = 0,  /* double */
+  BALL_FIELD_INT,       /* int */
+  BALL_FIELD_BOOL,      /* int, 0 or 1 */
+  BALL_FIELD_ENUM,      /* an enum held as int: 0 .. hi, named by ball_field.enum_name */
+  BALL_FIELD_AXIS,      /* int: 0 (the plane x = position) or 2 (z = position) */
+  BALL_FIELD_EFFECTS,   /* unsigned: ball_effect bits */
+  BALL_FIELD_VEC3,      /* ball_vec3, every component finite */
+  BALL_FIELD_PLANE,     /* a ball_plane (the net): see ball_plane_fields */
+  BALL_FIELD_PLANES,    /* the walls: ball_plane[BALL_MAX_WALLS], n_walls in use */
+  BALL_FIELD_RACKETS,   /* the rackets: ball_racket_def[BALL_MAX_RACKETS], n_rackets in use */
+  BALL_FIELD_TYPE_COUNT
+} ball_field_type;
+
+#define BALL_FIELD_LO_OPEN 1u  /* the range excludes lo */
+#define BALL_FIELD_HI_OPEN 2u  /* the range excludes hi */
+#define BALL_FIELD_INF_OK 4u   /* +Inf is allowed (it is hi) */
+
+typedef struct ball_field {
+  const char *name;      /* member name: "floor_damping" */
+  const char *key;       /* scene file key: "floor.damping"; relative for plane and racket members */
+  ball_field_type type;
+  size_t offset;         /* offsetof the member in its struct */
+  double lo, hi;         /* range of REAL and INT (hi of ENUM: the last value) */
+  unsigned flags;        /* BALL_FIELD_* */
+  unsigned stages;       /* effect bits of the stages that read it; 0: every step reads it */
+  double def[3];         /* default (vectors: x, y, z); planes: the default net's */
+  const char *unit;      /* "m/s^2", "1" (non-dimensional), "" (none) */
+  const char *equation;  /* "eq 5", "Fig. 3", "" */
+  const char *range;     /* the range in words: "> 0", "[0, 1]" */
+  const char *doc;       /* one line */
+  const char *(*enum_name)(int value); /* ENUM: the value's name */
+} ball_field;
+
+/* The fields of ball_model, of a ball_plane (net, walls) and of a
+ * ball_racket_def, in struct order; *count gets how many. Never NULL. */
+BALL_API const ball_field *ball_model_fields(int *count);
+BALL_API const ball_field *ball_plane_fields(int *count);
+BALL_API const ball_field *ball_racket_fields(int *count);
 
 /* ---- flight segments and prediction (eq 3, 4) ------------------------ */
 
@@ -298,6 +346,8 @@ typedef struct ball_event {
   ball_vec3 velocity_out;  /* V0 of the new segment, m/s */
   ball_vec3 spin_out;      /* S0 of the new segment, m/s */
   int sound;               /* 1: the server should broadcast a sound */
+  ball_segment segment;    /* the flight segment this collision starts (its p0 may be shifted
+                              off Q: eq 6's dt / 10, eq 7's V0 dt, or one ulp in exact mode) */
 } ball_event;
 
 typedef enum ball_warning {
@@ -314,21 +364,43 @@ typedef struct ball_racket_track {
   ball_racket_pose prev_pose;                   /* for the disc and swept tests */
 } ball_racket_track;
 
+/* The next contact with a static obstacle on a segment, found in closed
+ * form when the segment starts (exact scheme); a cache the sim keeps so
+ * that a frame without a contact costs one comparison. */
+typedef struct ball_contact {
+  int valid;         /* 0: not computed yet for the current segment */
+  int which;         /* -1: none ever; 0 floor, 1 net, 2 + i wall i */
+  double time;       /* sim time of the contact, s (+Inf when none) */
+  ball_vec3 point;   /* ball centre at the contact, m */
+} ball_contact;
+
 typedef struct ball_sim {
   double time;                 /* sim clock, s */
-  unsigned long frame;         /* steps taken */
+  uint64_t frame;              /* steps taken */
   ball_segment seg;            /* the current flight segment */
+  ball_contact next;           /* the next static contact on seg (exact scheme) */
   ball_vec3 prev_position;     /* ball centre at the end of the previous step (P_old), m */
-  int origin;                  /* what started seg: -1 start, 0 floor, 1 net, 2 + i wall i, 2 + BALL_MAX_WALLS + r racket r */
   int sleep;                   /* frames left without racket tests */
-  int last_racket;             /* racket of the last hit, -1 if none */
   ball_racket_track tracks[BALL_MAX_RACKETS];
   unsigned long warnings[BALL_WARN_COUNT];  /* counts, never printed */
-  unsigned long events_dropped;             /* events that did not fit the caller's array */
+  ball_model model;            /* a copy of the checked model the sim is bound to */
 } ball_sim;
 
-/* Starts a sim at time 0 with the model's initial state. */
+/* A portable hash of every model field that ball_step reads (those of the
+ * stages the effect mask turns on; level and initial_* are not read by a
+ * step): equal on every machine for equal field values, so a server and its
+ * clients can tell they run the same model. docs/model.md defines it. */
+BALL_API uint64_t ball_model_hash(const ball_model *model);
+
+/* Checks the model (ball_model_check), binds the sim to it and starts at
+ * time 0 with the model's initial state. */
 BALL_API ball_status ball_sim_init(const ball_model *model, ball_sim *sim);
+
+/* Checks a changed model and binds the sim to it, keeping the ball, the
+ * clock and the racket tracks (a new game level mid-match). A sim refuses to
+ * step with any model but the one it is bound to (BALL_EMODEL): the check is
+ * done once here, not on every step. */
+BALL_API ball_status ball_sim_set_model(const ball_model *model, ball_sim *sim);
 
 /* Sets the ball's state at the sim's current time (starts a new segment). */
 BALL_API ball_status ball_sim_set_state(const ball_model *model, ball_sim *sim,
@@ -340,13 +412,15 @@ BALL_API ball_status ball_sim_state(const ball_model *model, const ball_sim *sim
 
 /* Advances one frame of dt sim seconds (dt >= 0; 0 is a no-op) and writes up
  * to cap events; *n_events (may be NULL) gets how many were written. Events
- * that do not fit are counted in sim->events_dropped. */
+ * that do not fit are counted in sim->warnings[BALL_WARN_EVENT_OVERFLOW].
+ * BALL_EMODEL if model is not (field for field) the one the sim is bound to. */
 BALL_API ball_status ball_step(const ball_model *model, ball_sim *sim, double dt,
                                ball_event *events, int cap, int *n_events);
 
 /* Feeds a racket sample; samples may arrive late, duplicated or out of order:
- * one older than the newest kept is rejected with BALL_ESTALE, an exact
- * duplicate is accepted and ignored. */
+ * an exact duplicate of a kept sample is ignored with BALL_EDUPLICATE, one
+ * not newer than the newest kept is rejected with BALL_ESTALE; either way
+ * the sim is unchanged. */
 BALL_API ball_status ball_racket_push(const ball_model *model, ball_sim *sim, int racket,
                                       const ball_racket_sample *sample);
 
@@ -356,8 +430,36 @@ BALL_API ball_status ball_racket_push(const ball_model *model, ball_sim *sim, in
 BALL_API ball_status ball_racket_estimate(const ball_model *model, const ball_sim *sim,
                                           int racket, double t, ball_racket_pose *out);
 
-/* A hash of the sim's state, to detect desync between peers. */
-BALL_API unsigned long long ball_sim_hash(const ball_sim *sim);
+/* A portable hash of the sim's state (clock, frame, segment, previous
+ * position, sleep counter, racket samples, and ball_model_hash of the bound
+ * model; not the warning counters), to detect desync between peers: equal on
+ * every machine for equal states (docs/model.md defines it). 0 for NULL. */
+BALL_API uint64_t ball_sim_hash(const ball_sim *sim);
+
+/* ---- prediction (beyond the paper) ------------------------------------- */
+
+/* What ball_predict writes. Set the arrays and capacities, the rest is output. */
+typedef struct ball_prediction {
+  ball_state *states;  /* (cap_states) states at t_from + k dt, k = 0, 1, ... while <= t_end;
+                          NULL with cap_states 0 for none */
+  int cap_states;
+  int n_states;        /* out: states written (stops at cap_states) */
+  ball_event *events;  /* (cap_events) floor, net and wall contacts in (t_from, t_end], in
+                          time order; NULL with cap_events 0 for none */
+  int cap_events;
+  int n_events;        /* out: events written */
+  int events_missed;   /* out: contacts that did not fit */
+  ball_segment end;    /* out: the segment in effect at t_end */
+} ball_prediction;
+
+/* The ball's path from seg (in effect at t_from >= seg->t0) to t_end with
+ * static obstacles only (no rackets), event-driven: contacts in closed form
+ * (the exact scheme, whatever model->scheme says), then states at the fixed
+ * rate 1 / dt. Gives the states and events that ball_step gives at frames of
+ * dt in the exact scheme. The model is checked on every call (a bot may pass
+ * any model); no allocation. */
+BALL_API ball_status ball_predict(const ball_model *model, const ball_segment *seg, double t_from,
+                                  double t_end, double dt, ball_prediction *out);
 
 #ifdef __cplusplus
 }

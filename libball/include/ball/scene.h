@@ -105,6 +105,9 @@ typedef struct ball_scene {
   char name[64];        /* scene name ("name:" key, else empty) */
   ball_model model;     /* every parameter, checked with ball_model_check */
   double duration;      /* default run length for ballsim, s */
+  double frame_time;    /* real seconds per frame, s (> 0; time.frame_time or 1 / time.fps) */
+  double time_base;     /* sim seconds per real second (> 0): a frame advances the sim by
+                           frame_time * time_base (section 4's time base) */
   ball_racket_script scripts[BALL_MAX_RACKETS]; /* rackets[i].script; n_keyframes 0: none */
 } ball_scene;
 

@@ -15,7 +15,7 @@
 #include <cmocka.h>
 
 #include "core_common.h"
-#include "../../libball/src/internal.h"
+#include "../internal.h"
 
 #define TOL 1e-12
 
@@ -194,7 +194,7 @@ static void fig9_normal_inverted_toward_ball_previous_position(void **state) {
   face = ball__racket_face_normal(n, core_v3(-1.0, 0.0, 0.0));
   ball__response_physical(&m, core_v3(10, 0, 0), core_v3(0, 0, 0), face, core_v3(0, 0, 0), &v0, &s0);
   assert_vec(v0, -10.0, 0.0, 0.0, TOL);
-  face = ball__racket_face_normal(v3_scale(n, -1.0), core_v3(-1.0, 0.0, 0.0));
+  face = ball__racket_face_normal(ball_v3_scale(n, -1.0), core_v3(-1.0, 0.0, 0.0));
   ball__response_physical(&m, core_v3(10, 0, 0), core_v3(0, 0, 0), face, core_v3(0, 0, 0), &v0, &s0);
   assert_vec(v0, -10.0, 0.0, 0.0, TOL);
 }

@@ -10,7 +10,7 @@
 #include <cmocka.h>
 
 #include "core_common.h"
-#include "../../libball/src/internal.h"
+#include "../internal.h"
 
 #define TOI_TOL 1e-12
 

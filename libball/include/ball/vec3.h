@@ -1,0 +1,53 @@
+/* libball: small vector helpers over ball_vec3, for the library and its
+ * users (tools, validation, the server, bots): one copy instead of one per
+ * program. Header only, C99 and C++; no state, no checks (a NaN in gives a
+ * NaN out). */
+#ifndef BALL_VEC3_H
+#define BALL_VEC3_H
+
+#include <math.h>
+
+#include "ball/ball.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+static inline ball_vec3 ball_v3(double x, double y, double z) {
+  ball_vec3 r;
+  r.x = x;
+  r.y = y;
+  r.z = z;
+  return r;
+}
+static inline ball_vec3 ball_v3_add(ball_vec3 a, ball_vec3 b) { return ball_v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+static inline ball_vec3 ball_v3_sub(ball_vec3 a, ball_vec3 b) { return ball_v3(a.x - b.x, a.y - b.y, a.z - b.z); }
+static inline ball_vec3 ball_v3_scale(ball_vec3 a, double s) { return ball_v3(a.x * s, a.y * s, a.z * s); }
+static inline double ball_v3_dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline ball_vec3 ball_v3_cross(ball_vec3 a, ball_vec3 b) {
+  return ball_v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static inline double ball_v3_norm(ball_vec3 a) { return sqrt(ball_v3_dot(a, a)); }
+static inline double ball_v3_dist(ball_vec3 a, ball_vec3 b) { return ball_v3_norm(ball_v3_sub(a, b)); }
+/* a / |a|; a itself when |a| is 0 */
+static inline ball_vec3 ball_v3_unit(ball_vec3 a) {
+  double n = ball_v3_norm(a);
+  return n > 0.0 ? ball_v3_scale(a, 1.0 / n) : a;
+}
+static inline int ball_v3_finite(ball_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
+/* a + (b - a) u */
+static inline ball_vec3 ball_v3_lerp(ball_vec3 a, ball_vec3 b, double u) {
+  return ball_v3(a.x + (b.x - a.x) * u, a.y + (b.y - a.y) * u, a.z + (b.z - a.z) * u);
+}
+/* component 0 (x), 1 (y) or 2 (z) */
+static inline double ball_v3_axis(ball_vec3 a, int axis) { return axis == 0 ? a.x : axis == 1 ? a.y : a.z; }
+/* largest absolute component difference */
+static inline double ball_v3_max_diff(ball_vec3 a, ball_vec3 b) {
+  return fmax(fabs(a.x - b.x), fmax(fabs(a.y - b.y), fabs(a.z - b.z)));
+}
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif /* BALL_VEC3_H */
