@@ -1,42 +1,9 @@
 /* Flight between collisions (eq 1-4) and prediction on a segment. */
 #include "internal.h"
 
-double ball__drag_b(const ball_model *m) {
-  if (!ball__has(m, BALL_EFFECT_DRAG) || m->air_friction == 0.0) return INFINITY;
-  return m->mass / m->air_friction; /* eq 2: b = m / beta; may overflow to +Inf */
-}
-
-/* b and 1/b together: the two divisions are independent, so they overlap. */
-static void drag_of(const ball_model *m, double *b, double *k) {
-  *b = ball__drag_b(m);
-  *k = isinf(*b) ? 0.0 : m->air_friction / m->mass;
-}
-
-/* eq 3 for both horizontal terms at once: *d = b (1 - e^(-t/b)) and
- * *f = e^(-t/b), from one transcendental call. For t/b < ln 2, expm1 gives
- * both without cancellation (f = 1 + expm1 >= 1/2 is exact to an ulp);
- * beyond, f = e^(-t/b) <= 1/2 and 1 - f is as exact. k = 1/b, 0 for no drag. */
-static void drag_terms(double b, double k, double t, double *d, double *f) {
-  double x;
-  if (t == 0.0 || k == 0.0) {
-    *d = t;
-    *f = 1.0;
-    return;
-  }
-  x = t * k;
-  if (x < 0.69314718055994531) {
-    double e = expm1(-x);
-    *d = -b * e;
-    *f = 1.0 + e;
-  } else {
-    *f = exp(-x);
-    *d = b * (1.0 - *f);
-  }
-}
-
 double ball__drag_distance(double b, double t) {
   double d, f;
-  drag_terms(b, isinf(b) ? 0.0 : 1.0 / b, t, &d, &f);
+  ball__drag_terms(b, isinf(b) ? 0.0 : 1.0 / b, t, &d, &f);
   return d;
 }
 
@@ -46,26 +13,9 @@ double ball__spin_air_damping(const ball_model *m, double t) {
 }
 
 void ball__eval(const ball_model *m, const ball_segment *seg, double t, ball_state *out) {
-  double tau = t - seg->t0, b, k, d, f;
-  drag_of(m, &b, &k);
-  drag_terms(b, k, tau, &d, &f);
-  /* eq 3: horizontal with drag, vertical under gravity alone */
-  out->position.x = seg->p0.x + seg->v0.x * d;
-  out->position.z = seg->p0.z + seg->v0.z * d;
-  out->velocity.x = seg->v0.x * f;
-  out->velocity.z = seg->v0.z * f;
-  if (seg->grounded) {
-    out->position.y = seg->p0.y;
-    out->velocity.y = 0.0;
-  } else {
-    out->position.y = seg->p0.y + seg->v0.y * tau - 0.5 * m->gravity * tau * tau;
-    out->velocity.y = seg->v0.y - m->gravity * tau;
-  }
-  if (ball__has(m, BALL_EFFECT_SPIN) &&
-      (seg->s0.x != 0.0 || seg->s0.y != 0.0 || seg->s0.z != 0.0))
-    out->spin = ball_v3_scale(seg->s0, ball__spin_air_damping(m, tau)); /* eq 4 */
-  else
-    out->spin = ball_v3(0.0, 0.0, 0.0);
+  ball__flight fl;
+  ball__flight_of(m, &fl);
+  ball__eval_f(&fl, seg, t, out);
 }
 
 void ball__segment_start(ball_segment *seg, double t, ball_vec3 p0, ball_vec3 v0, ball_vec3 s0,
@@ -127,11 +77,20 @@ int ball__plane_tau(double b, double x0, double v, double target, double tau_fro
   return 1;
 }
 
-static ball_status check_args(const ball_model *m, const ball_segment *seg, double t) {
+/* t and every number of seg finite: x - x is 0 for a finite x and NaN for
+ * an infinite or NaN one, so one comparison of the sum decides (no branch
+ * per value on the evaluation's hot path). */
+static inline int finite_at(const ball_segment *s, double t) {
+  double z = ((t - t) + (s->t0 - s->t0)) +
+             ((s->p0.x - s->p0.x) + (s->p0.y - s->p0.y) + (s->p0.z - s->p0.z)) +
+             ((s->v0.x - s->v0.x) + (s->v0.y - s->v0.y) + (s->v0.z - s->v0.z)) +
+             ((s->s0.x - s->s0.x) + (s->s0.y - s->s0.y) + (s->s0.z - s->s0.z));
+  return z == 0.0;
+}
+
+static inline ball_status check_args(const ball_model *m, const ball_segment *seg, double t) {
   if (!m || !seg) return BALL_EINVAL;
-  if (!isfinite(t) || !isfinite(seg->t0) || !ball_v3_finite(seg->p0) || !ball_v3_finite(seg->v0) ||
-      !ball_v3_finite(seg->s0))
-    return BALL_ENONFINITE;
+  if (!finite_at(seg, t)) return BALL_ENONFINITE;
   if (t < seg->t0) return BALL_ERANGE;
   return BALL_OK;
 }
@@ -142,6 +101,28 @@ ball_status ball_segment_eval(const ball_model *m, const ball_segment *seg, doub
   if (st != BALL_OK) return st;
   if (!out) return BALL_EINVAL;
   ball__eval(m, seg, t, out);
+  return BALL_OK;
+}
+
+ball_status ball_flight_init(const ball_model *m, const ball_segment *seg, ball_flight *out) {
+  ball__flight fl;
+  ball_status st = check_args(m, seg, seg ? seg->t0 : 0.0);
+  if (st != BALL_OK) return st;
+  if (!out) return BALL_EINVAL;
+  ball__flight_of(m, &fl);
+  out->seg = *seg;
+  out->b = fl.b;
+  out->inv_b = fl.k;
+  out->gravity = fl.g;
+  out->spin_damping = fl.sdamp;
+  return BALL_OK;
+}
+
+ball_status ball_flight_eval(const ball_flight *fl, double t, ball_state *out) {
+  if (!fl || !out) return BALL_EINVAL;
+  if (!(t - t == 0.0)) return BALL_ENONFINITE;
+  if (t < fl->seg.t0) return BALL_ERANGE;
+  ball__eval_c(fl->b, fl->inv_b, fl->gravity, fl->spin_damping, &fl->seg, t, out);
   return BALL_OK;
 }
 

@@ -23,12 +23,81 @@ static inline int ball__has(const ball_model *m, unsigned effect) { return (m->e
 /* ---- flight (flight.c) ---- */
 
 /* b = m / beta, or +Inf when drag is off or beta = 0. */
-double ball__drag_b(const ball_model *m);
+static inline double ball__drag_b(const ball_model *m) {
+  if (!ball__has(m, BALL_EFFECT_DRAG) || m->air_friction == 0.0) return INFINITY;
+  return m->mass / m->air_friction; /* eq 2: b = m / beta; may overflow to +Inf */
+}
 /* b (1 - e^(-t/b)) without cancellation; t when b is infinite (eq 3). */
 double ball__drag_distance(double b, double t);
 /* sDamp / (sDamp + t) (eq 4), 1 when spin is off. */
 double ball__spin_air_damping(const ball_model *m, double t);
-/* State at sim time t on seg, no argument checks (eq 3, 4). */
+/* What an evaluation needs of the model, worked out once per step or
+ * prediction instead of once per evaluation (two divisions saved each). */
+typedef struct ball__flight {
+  double b;      /* m / beta, +Inf without drag */
+  double k;      /* 1 / b, 0 without drag */
+  double g;      /* gravity */
+  double sdamp;  /* sDamp of eq 4; 0 without spin */
+} ball__flight;
+static inline void ball__flight_of(const ball_model *m, ball__flight *f) {
+  f->b = ball__drag_b(m);
+  f->k = isinf(f->b) ? 0.0 : m->air_friction / m->mass; /* independent of b: the divisions overlap */
+  f->g = m->gravity;
+  f->sdamp = ball__has(m, BALL_EFFECT_SPIN) ? m->spin_damping : 0.0;
+}
+
+/* eq 3 for both horizontal terms at once: *d = b (1 - e^(-t/b)) and
+ * *f = e^(-t/b), from one transcendental call. For t/b < ln 2, expm1 gives
+ * both without cancellation (f = 1 + expm1 >= 1/2 is exact to an ulp);
+ * beyond, f = e^(-t/b) <= 1/2 and 1 - f is as exact. k = 1/b, 0 for no drag. */
+static inline void ball__drag_terms(double b, double k, double t, double *d, double *f) {
+  double x;
+  if (t == 0.0 || k == 0.0) {
+    *d = t;
+    *f = 1.0;
+    return;
+  }
+  x = t * k;
+  if (x < 0.69314718055994531) {
+    double e = expm1(-x);
+    *d = -b * e;
+    *f = 1.0 + e;
+  } else {
+    *f = exp(-x);
+    *d = b * (1.0 - *f);
+  }
+}
+
+/* State at sim time t on seg, no argument checks (eq 3, 4), from the
+ * constants b, k = 1/b, g, sDamp (0: no spin). Inline: it is the hot path
+ * of a step, a prediction, the swept test and ball_flight_eval. */
+static inline void ball__eval_c(double b, double k, double g, double sdamp, const ball_segment *seg,
+                                double t, ball_state *out) {
+  double tau = t - seg->t0, d, f;
+  ball__drag_terms(b, k, tau, &d, &f);
+  /* eq 3: horizontal with drag, vertical under gravity alone */
+  out->position.x = seg->p0.x + seg->v0.x * d;
+  out->position.z = seg->p0.z + seg->v0.z * d;
+  out->velocity.x = seg->v0.x * f;
+  out->velocity.z = seg->v0.z * f;
+  if (seg->grounded) {
+    out->position.y = seg->p0.y;
+    out->velocity.y = 0.0;
+  } else {
+    out->position.y = seg->p0.y + seg->v0.y * tau - 0.5 * g * tau * tau;
+    out->velocity.y = seg->v0.y - g * tau;
+  }
+  if (sdamp != 0.0 && (seg->s0.x != 0.0 || seg->s0.y != 0.0 || seg->s0.z != 0.0))
+    out->spin = ball_v3_scale(seg->s0, sdamp / (sdamp + tau)); /* eq 4 */
+  else
+    out->spin = ball_v3(0.0, 0.0, 0.0);
+}
+
+static inline void ball__eval_f(const ball__flight *fl, const ball_segment *seg, double t,
+                                ball_state *out) {
+  ball__eval_c(fl->b, fl->k, fl->g, fl->sdamp, seg, t, out);
+}
+/* The same, working the constants out of the model. */
 void ball__eval(const ball_model *m, const ball_segment *seg, double t, ball_state *out);
 /* Starts a new segment at time t. */
 void ball__segment_start(ball_segment *seg, double t, ball_vec3 p0, ball_vec3 v0, ball_vec3 s0, int grounded);

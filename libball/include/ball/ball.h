@@ -282,6 +282,25 @@ typedef struct ball_state {
 BALL_API ball_status ball_segment_eval(const ball_model *model, const ball_segment *seg,
                                        double t, ball_state *out);
 
+/* A segment prepared for many evaluations: the model's constants of eq 3
+ * and 4 worked out once (ball_flight_init), so that ball_flight_eval costs
+ * one expm1 and a few multiplications (docs/benchmarks.md). It gives what
+ * ball_segment_eval gives, to the bit. */
+typedef struct ball_flight {
+  ball_segment seg;     /* the segment, checked finite by ball_flight_init */
+  double b;             /* m / beta, s; +Inf without drag */
+  double inv_b;         /* 1 / b, 1/s; 0 without drag */
+  double gravity;       /* g, m/s^2 */
+  double spin_damping;  /* sDamp, s; 0 without spin */
+} ball_flight;
+
+BALL_API ball_status ball_flight_init(const ball_model *model, const ball_segment *seg,
+                                      ball_flight *out);
+
+/* State at sim time t >= seg.t0 (BALL_ERANGE before, BALL_ENONFINITE for a
+ * NaN or infinite t). */
+BALL_API ball_status ball_flight_eval(const ball_flight *flight, double t, ball_state *out);
+
 /* Earliest sim time >= t_from when the ball centre is at height y. */
 BALL_API ball_status ball_time_to_height(const ball_model *model, const ball_segment *seg,
                                          double t_from, double y, double *t);
