@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "ball/ball.h"
+#include "ball/vec3.h"
 
 namespace bv {
 
@@ -50,16 +51,6 @@ class Rng {
  private:
   std::mt19937_64 gen_;
 };
-
-inline ball_vec3 add(ball_vec3 a, ball_vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-inline ball_vec3 sub(ball_vec3 a, ball_vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-inline ball_vec3 scale(ball_vec3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-inline double dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-inline double norm(ball_vec3 a) { return std::sqrt(dot(a, a)); }
-inline ball_vec3 cross(ball_vec3 a, ball_vec3 b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-inline ball_vec3 lerp(ball_vec3 a, ball_vec3 b, double u) { return add(a, scale(sub(b, a), u)); }
 
 // printf into a std::string.
 std::string fmt(const char *format, ...) __attribute__((format(printf, 1, 2)));

@@ -90,20 +90,20 @@ ball_vec3 rect_nearest(const ball_plane &r, ball_vec3 p) {
 }
 
 ball_vec3 disc_nearest(ball_vec3 c, ball_vec3 n, double radius, ball_vec3 p) {
-  ball_vec3 w = sub(p, c);
-  ball_vec3 radial = sub(w, scale(n, dot(w, n)));
-  double rho = norm(radial);
-  if (rho > radius) radial = scale(radial, radius / rho);
-  return add(c, radial);
+  ball_vec3 w = ball_v3_sub(p, c);
+  ball_vec3 radial = ball_v3_sub(w, ball_v3_scale(n, ball_v3_dot(w, n)));
+  double rho = ball_v3_norm(radial);
+  if (rho > radius) radial = ball_v3_scale(radial, radius / rho);
+  return ball_v3_add(c, radial);
 }
 
 // A unit vector perpendicular to n.
 ball_vec3 perpendicular(ball_vec3 n, Rng &rng) {
   for (;;) {
     ball_vec3 u = rng.unit();
-    ball_vec3 p = sub(u, scale(n, dot(u, n)));
-    double l = norm(p);
-    if (l > 1e-3) return scale(p, 1.0 / l);
+    ball_vec3 p = ball_v3_sub(u, ball_v3_scale(n, ball_v3_dot(u, n)));
+    double l = ball_v3_norm(p);
+    if (l > 1e-3) return ball_v3_scale(p, 1.0 / l);
   }
 }
 
@@ -194,9 +194,9 @@ Outcome check_static(const Options &opt) {
       c = rect.axis == 0 ? ball_vec3{rect.position + along, y, h} : ball_vec3{h, y, rect.position + along};
       // place the surface at a chosen gap from the rectangle
       ball_vec3 q = rect_nearest(rect, c);
-      ball_vec3 dir = sub(c, q);
+      ball_vec3 dir = ball_v3_sub(c, q);
       double gap = sample_gap(rng, r);
-      if (norm(dir) > 1e-6 && r + gap > 0.0) c = add(q, scale(dir, (r + gap) / norm(dir)));
+      if (ball_v3_norm(dir) > 1e-6 && r + gap > 0.0) c = ball_v3_add(q, ball_v3_scale(dir, (r + gap) / ball_v3_norm(dir)));
       double d_lib;
       ball_status st = ball_sphere_rect_distance(&rect, c, r, &d_lib);
       if (st != BALL_OK) {
@@ -219,15 +219,15 @@ Outcome check_static(const Options &opt) {
     {
       ball_vec3 dc = rng.box({-2, 0, -2}, {2, 2, 2});
       ball_vec3 n = rng.unit();
-      ball_vec3 n_lib = scale(n, rng.uniform(0.5, 2.0));  // libball takes any length
+      ball_vec3 n_lib = ball_v3_scale(n, rng.uniform(0.5, 2.0));  // libball takes any length
       double R = rng.uniform(0.05, 0.4);
       ball_vec3 u = perpendicular(n, rng);
       double rho = rng.uniform(0.0, R + r + 0.3), hgt = rng.uniform(-r - 0.3, r + 0.3);
-      ball_vec3 c = add(dc, add(scale(u, rho), scale(n, hgt)));
+      ball_vec3 c = ball_v3_add(dc, ball_v3_add(ball_v3_scale(u, rho), ball_v3_scale(n, hgt)));
       ball_vec3 q = disc_nearest(dc, n, R, c);
-      ball_vec3 dir = sub(c, q);
+      ball_vec3 dir = ball_v3_sub(c, q);
       double gap = sample_gap(rng, r);
-      if (norm(dir) > 1e-6 && r + gap > 0.0) c = add(q, scale(dir, (r + gap) / norm(dir)));
+      if (ball_v3_norm(dir) > 1e-6 && r + gap > 0.0) c = ball_v3_add(q, ball_v3_scale(dir, (r + gap) / ball_v3_norm(dir)));
       double d_lib;
       ball_status st = ball_sphere_disc_distance(dc, n_lib, R, c, r, &d_lib);
       if (st != BALL_OK) {
@@ -267,24 +267,24 @@ struct Motion {
 // The disc normal at u under a motion: libball's normalised lerp, or FCL's
 // InterpMotion (constant angular velocity about n0 x n1: slerp).
 ball_vec3 normal_at(const Motion &mo, double u, bool slerp) {
-  ball_vec3 n0 = scale(mo.q.n0, 1.0 / norm(mo.q.n0)), n1 = scale(mo.q.n1, 1.0 / norm(mo.q.n1));
+  ball_vec3 n0 = ball_v3_scale(mo.q.n0, 1.0 / ball_v3_norm(mo.q.n0)), n1 = ball_v3_scale(mo.q.n1, 1.0 / ball_v3_norm(mo.q.n1));
   if (!slerp) {
-    ball_vec3 n = lerp(n0, n1, u);
-    return scale(n, 1.0 / norm(n));
+    ball_vec3 n = ball_v3_lerp(n0, n1, u);
+    return ball_v3_scale(n, 1.0 / ball_v3_norm(n));
   }
-  double c = std::max(-1.0, std::min(1.0, dot(n0, n1)));
+  double c = std::max(-1.0, std::min(1.0, ball_v3_dot(n0, n1)));
   double th = std::acos(c);
   if (th < 1e-15) return n0;
-  ball_vec3 w = sub(n1, scale(n0, c));
-  w = scale(w, 1.0 / norm(w));
-  return add(scale(n0, std::cos(th * u)), scale(w, std::sin(th * u)));
+  ball_vec3 w = ball_v3_sub(n1, ball_v3_scale(n0, c));
+  w = ball_v3_scale(w, 1.0 / ball_v3_norm(w));
+  return ball_v3_add(ball_v3_scale(n0, std::cos(th * u)), ball_v3_scale(w, std::sin(th * u)));
 }
 
 // Static libball distance at u along the motion (normal by lerp or slerp).
 double distance_at(const Motion &mo, double u, bool slerp) {
   double d = 0;
-  ball_sphere_disc_distance(lerp(mo.q.c0, mo.q.c1, u), normal_at(mo, u, slerp), mo.q.disc_radius,
-                            lerp(mo.q.p0, mo.q.p1, u), mo.q.ball_radius, &d);
+  ball_sphere_disc_distance(ball_v3_lerp(mo.q.c0, mo.q.c1, u), normal_at(mo, u, slerp), mo.q.disc_radius,
+                            ball_v3_lerp(mo.q.p0, mo.q.p1, u), mo.q.ball_radius, &d);
   return d;
 }
 
@@ -356,15 +356,15 @@ Motion random_motion(Rng &rng, bool rotating) {
   if (rotating) {  // a turn of up to 30 degrees about an axis in the disc plane
     ball_vec3 a = perpendicular(n0, rng);
     double th = rng.uniform(0.0, 30.0) * M_PI / 180.0;
-    ball_vec3 w = cross(a, n0);
-    n1 = add(scale(n0, std::cos(th)), scale(w, std::sin(th)));
+    ball_vec3 w = ball_v3_cross(a, n0);
+    n1 = ball_v3_add(ball_v3_scale(n0, std::cos(th)), ball_v3_scale(w, std::sin(th)));
   }
-  ball_vec3 dc = scale(rng.unit(), rng.uniform(0.0, 1.0));   // racket moves up to 1 m in the frame
-  ball_vec3 dp = scale(rng.unit(), rng.uniform(0.0, 2.0));   // the ball up to 2 m
+  ball_vec3 dc = ball_v3_scale(rng.unit(), rng.uniform(0.0, 1.0));   // racket moves up to 1 m in the frame
+  ball_vec3 dp = ball_v3_scale(rng.unit(), rng.uniform(0.0, 2.0));   // the ball up to 2 m
   double ts = rng.uniform(0.0, 1.0);
   ball_vec3 cs = rng.box({-2, 0, -2}, {2, 2, 2});            // disc centre at ts
-  q.c0 = sub(cs, scale(dc, ts));
-  q.c1 = add(q.c0, dc);
+  q.c0 = ball_v3_sub(cs, ball_v3_scale(dc, ts));
+  q.c1 = ball_v3_add(q.c0, dc);
   Motion tmp = mo;
   tmp.q.n0 = n0;
   tmp.q.n1 = n1;
@@ -372,11 +372,11 @@ Motion random_motion(Rng &rng, bool rotating) {
   ball_vec3 u = perpendicular(ns, rng);
   double rho = rng.uniform(0.0, q.disc_radius + q.ball_radius + 0.1);
   double side = (rng.chance(0.5) ? 1 : -1) * (q.ball_radius + rng.uniform(-0.05, 0.05));
-  ball_vec3 ps = add(cs, add(scale(u, rho), scale(ns, side)));
-  q.p0 = sub(ps, scale(dp, ts));
-  q.p1 = add(q.p0, dp);
-  q.n0 = scale(n0, rng.uniform(0.5, 2.0));  // libball takes any length
-  q.n1 = scale(n1, rng.uniform(0.5, 2.0));
+  ball_vec3 ps = ball_v3_add(cs, ball_v3_add(ball_v3_scale(u, rho), ball_v3_scale(ns, side)));
+  q.p0 = ball_v3_sub(ps, ball_v3_scale(dp, ts));
+  q.p1 = ball_v3_add(q.p0, dp);
+  q.n0 = ball_v3_scale(n0, rng.uniform(0.5, 2.0));  // libball takes any length
+  q.n1 = ball_v3_scale(n1, rng.uniform(0.5, 2.0));
   return mo;
 }
 
@@ -577,8 +577,8 @@ Outcome check_swept(const Options &opt) {
         // does FCL's own static test see the overlap libball found?
         fcl::Sphered sphere(mo.q.ball_radius);
         fcl::Cylinderd cyl(mo.q.disc_radius, kThin);
-        bool fcl_sees = fcl_collide(&sphere, at(lerp(mo.q.p0, mo.q.p1, u_lib)), &cyl,
-                                    axis_pose(lerp(mo.q.c0, mo.q.c1, u_lib), normal_at(mo, u_lib, rotating)));
+        bool fcl_sees = fcl_collide(&sphere, at(ball_v3_lerp(mo.q.p0, mo.q.p1, u_lib)), &cyl,
+                                    axis_pose(ball_v3_lerp(mo.q.c0, mo.q.c1, u_lib), normal_at(mo, u_lib, rotating)));
         if (tr.jumped && fcl_sees && std::fabs(tr.jump_toc - toi) < 1e-6) {
           why_jump++;
           max_jump_diff = std::max(max_jump_diff, std::fabs(tr.jump_toc - toi));

@@ -61,13 +61,13 @@ ball_model random_model(Rng &rng) {
   return m;
 }
 
-double dist(ball_vec3 a, ball_vec3 b) { return norm(sub(a, b)); }
+double dist(ball_vec3 a, ball_vec3 b) { return ball_v3_norm(ball_v3_sub(a, b)); }
 
 // Cubic Hermite interpolation between two MuJoCo states h apart, s in [0, 1].
 ball_vec3 hermite(ball_vec3 p0, ball_vec3 v0, ball_vec3 p1, ball_vec3 v1, double h, double s) {
   double s2 = s * s, s3 = s2 * s;
   double h00 = 2 * s3 - 3 * s2 + 1, h10 = s3 - 2 * s2 + s, h01 = -2 * s3 + 3 * s2, h11 = s3 - s2;
-  return add(add(scale(p0, h00), scale(v0, h10 * h)), add(scale(p1, h01), scale(v1, h11 * h)));
+  return ball_v3_add(ball_v3_add(ball_v3_scale(p0, h00), ball_v3_scale(v0, h10 * h)), ball_v3_add(ball_v3_scale(p1, h01), ball_v3_scale(v1, h11 * h)));
 }
 
 double axis_of(ball_vec3 p, int axis) { return axis == 0 ? p.x : axis == 1 ? p.y : p.z; }
@@ -116,7 +116,7 @@ Outcome check_flight(const Options &opt) {
     ball_segment seg{};
     seg.t0 = rng.uniform(0.0, 50.0);
     seg.p0 = rng.box({-5, 0, -2}, {30, 3, 13});
-    seg.v0 = scale(rng.unit(), rng.uniform(0.0, 80.0));
+    seg.v0 = ball_v3_scale(rng.unit(), rng.uniform(0.0, 80.0));
     double T = rng.uniform(0.01, 10.0);
     const char *field = nullptr;
     if (ball_model_check(&m, &field) != BALL_OK) {
@@ -142,7 +142,7 @@ Outcome check_flight(const Options &opt) {
       continue;
     }
     double dp = dist(s.position, mj.position()), dv = dist(s.velocity, mj.velocity());
-    double scale_p = std::max(1.0, norm(s.position));
+    double scale_p = std::max(1.0, ball_v3_norm(s.position));
     max_rel_dp = std::max(max_rel_dp, dp / scale_p);
     if (dp > max_dp || dv > max_dv) {
       if (dp > max_dp) worst = i;
@@ -160,7 +160,7 @@ Outcome check_flight(const Options &opt) {
     }
     if (i == worst)
       worst_case = fmt("worst position case: flight %d, b %.4g s, |V0| %.4g m/s, T %.4g s, phase-1 step %.3g s", i,
-                       m.air_friction > 0 ? m.mass / m.air_friction : INFINITY, norm(seg.v0), T, ph[0].h);
+                       m.air_friction > 0 ? m.mass / m.air_friction : INFINITY, ball_v3_norm(seg.v0), T, ph[0].h);
   }
   out.lines.insert(out.lines.begin(),
                    {fmt("%d flights (speeds 0-80 m/s, b 0.05-1000 s or no drag, 0.01-10 s), MuJoCo RK4, "
@@ -196,7 +196,7 @@ Outcome check_contacts(const Options &opt) {
     seg.t0 = rng.uniform(0.0, 50.0);
     seg.p0 = {rng.uniform(0.0, 24.0), floor_y + rng.uniform(0.01, 4.0), rng.uniform(-2.0, 13.0)};
     if (std::fabs(seg.p0.x - net_x) < 1e-3) seg.p0.x += 0.01;
-    seg.v0 = scale(rng.unit(), rng.uniform(0.5, 80.0));
+    seg.v0 = ball_v3_scale(rng.unit(), rng.uniform(0.5, 80.0));
     // most cases head for the net plane
     if (rng.chance(0.8) && (net_x - seg.p0.x) * seg.v0.x < 0) seg.v0.x = -seg.v0.x;
     const char *field = nullptr;

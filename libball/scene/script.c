@@ -3,6 +3,7 @@
  * delay, jitter, loss, duplicates, noise). A client of the public API like
  * the scene loader; no dependency but libm. See docs/scenes.md. */
 #include "ball/scene.h"
+#include "ball/vec3.h"
 
 #include <math.h>
 #include <string.h>
@@ -14,40 +15,6 @@
 #define SCRIPT_MAX_NORMAL_NOISE 1.0 /* rad */
 #define SCRIPT_MIN_NORMAL 1e-9   /* shortest keyframe normal accepted */
 #define SCRIPT_PI 3.14159265358979323846
-
-/* ---- vectors ---- */
-
-static ball_vec3 vec(double x, double y, double z) {
-  ball_vec3 v;
-  v.x = x;
-  v.y = y;
-  v.z = z;
-  return v;
-}
-static ball_vec3 vadd(ball_vec3 a, ball_vec3 b) { return vec(a.x + b.x, a.y + b.y, a.z + b.z); }
-static ball_vec3 vscale(ball_vec3 a, double k) { return vec(a.x * k, a.y * k, a.z * k); }
-static double vdot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static ball_vec3 vlerp(ball_vec3 a, ball_vec3 b, double u) {
-  return vec(a.x + (b.x - a.x) * u, a.y + (b.y - a.y) * u, a.z + (b.z - a.z) * u);
-}
-static int vfinite(ball_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
-
-/* a / |a| without overflow; the zero vector stays zero. */
-static ball_vec3 vunit(ball_vec3 a) {
-  double s = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
-  double len;
-  if (!(s > 0.0)) return vec(0.0, 0.0, 0.0);
-  a = vscale(a, 1.0 / s);
-  len = sqrt(vdot(a, a));
-  return vscale(a, 1.0 / len);
-}
-
-static double vlength(ball_vec3 a) {
-  double s = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
-  if (!(s > 0.0)) return 0.0;
-  a = vscale(a, 1.0 / s);
-  return s * sqrt(vdot(a, a));
-}
 
 /* ---- the random stream ---- */
 
@@ -98,9 +65,9 @@ ball_status ball_script_check(const ball_racket_script *s, const char **field) {
     const ball_script_keyframe *k = &s->keyframes[i];
     CHECK_FINITE(k->t, "keyframes.t");
     CHECK(i == 0 || k->t > s->keyframes[i - 1].t, "keyframes.t", BALL_ERANGE);
-    CHECK(vfinite(k->center), "keyframes.center", BALL_ENONFINITE);
-    CHECK(vfinite(k->normal), "keyframes.normal", BALL_ENONFINITE);
-    CHECK(vlength(k->normal) >= SCRIPT_MIN_NORMAL, "keyframes.normal", BALL_ERANGE);
+    CHECK(ball_v3_finite(k->center), "keyframes.center", BALL_ENONFINITE);
+    CHECK(ball_v3_finite(k->normal), "keyframes.normal", BALL_ENONFINITE);
+    CHECK(ball_v3_length(k->normal) >= SCRIPT_MIN_NORMAL, "keyframes.normal", BALL_ERANGE);
   }
   CHECK_FINITE(s->repeat, "repeat");
   CHECK(s->repeat == 0.0 || s->repeat > s->keyframes[s->n_keyframes - 1].t - s->keyframes[0].t, "repeat",
@@ -124,8 +91,8 @@ ball_status ball_script_check(const ball_racket_script *s, const char **field) {
 
 /* Normalised lerp of two keyframe normals; the first one if they cancel. */
 static ball_vec3 normal_lerp(ball_vec3 a, ball_vec3 b, double u) {
-  ball_vec3 ua = vunit(a), n = vunit(vlerp(ua, vunit(b), u));
-  return vdot(n, n) > 0.0 ? n : ua;
+  ball_vec3 ua = ball_v3_unit(a), n = ball_v3_unit(ball_v3_lerp(ua, ball_v3_unit(b), u));
+  return ball_v3_dot(n, n) > 0.0 ? n : ua;
 }
 
 /* The pose without argument checks. */
@@ -141,26 +108,26 @@ static void script_pose(const ball_racket_script *s, double t, ball_vec3 *center
       double gap = t_first + s->repeat - t_last;
       double w = (t - t_last) / gap;
       if (w > 1.0) w = 1.0;
-      *center = vlerp(k[n - 1].center, k[0].center, w);
+      *center = ball_v3_lerp(k[n - 1].center, k[0].center, w);
       *normal = normal_lerp(k[n - 1].normal, k[0].normal, w);
       return;
     }
   }
   if (t <= t_first) {
     *center = k[0].center;
-    *normal = vunit(k[0].normal);
+    *normal = ball_v3_unit(k[0].normal);
     return;
   }
   if (t >= t_last) {
     *center = k[n - 1].center;
-    *normal = vunit(k[n - 1].normal);
+    *normal = ball_v3_unit(k[n - 1].normal);
     return;
   }
   for (i = 1; i < n - 1 && k[i].t <= t; ++i) {
   }
   {
     double w = (t - k[i - 1].t) / (k[i].t - k[i - 1].t);
-    *center = vlerp(k[i - 1].center, k[i].center, w);
+    *center = ball_v3_lerp(k[i - 1].center, k[i].center, w);
     *normal = normal_lerp(k[i - 1].normal, k[i].normal, w);
   }
 }
@@ -238,11 +205,11 @@ static void take_sample(ball_script_player *p, int r, unsigned long k) {
   out.index = k;
   out.sample.t = sample_time(s, k);
   script_pose(s, out.sample.t, &c, &n);
-  out.sample.center = vadd(c, vscale(vec(g[0], g[1], g[2]), s->noise));
+  out.sample.center = ball_v3_add(c, ball_v3_scale(ball_v3(g[0], g[1], g[2]), s->noise));
   /* tilt: the Gaussian's part across the normal, sigma normal_noise per axis */
-  tilt = vec(g[3], g[4], g[5]);
-  tilt = vadd(tilt, vscale(n, -vdot(tilt, n)));
-  out.sample.normal = s->normal_noise > 0.0 ? vunit(vadd(n, vscale(tilt, s->normal_noise))) : n;
+  tilt = ball_v3(g[3], g[4], g[5]);
+  tilt = ball_v3_add(tilt, ball_v3_scale(n, -ball_v3_dot(tilt, n)));
+  out.sample.normal = s->normal_noise > 0.0 ? ball_v3_unit(ball_v3_add(n, ball_v3_scale(tilt, s->normal_noise))) : n;
   out.copy = 0;
   out.arrival = out.sample.t + s->delay + s->jitter * u_jit0;
   insert_pending(p, &out);

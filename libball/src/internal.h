@@ -117,8 +117,8 @@ static inline double ball__floor_y(const ball_model *m) { return m->floor_level 
  * counter, the detection mode and the response; on a hit it starts a new
  * segment in sim->seg, writes *ev and returns 1; otherwise returns 0.
  * Updates each track's prev_pose for the next frame. */
-int ball__racket_stage(const ball_model *m, ball_sim *sim, double t_prev, double dt,
-                       const ball_state *s_end, ball_event *ev);
+int ball__racket_stage(const ball_model *m, const ball__flight *fl, ball_sim *sim, double t_prev,
+                       double dt, const ball_state *s_end, ball_event *ev);
 /* BALL_OK if m is the model sim is bound to (BALL_EMODEL if not). */
 ball_status ball__bound(const ball_model *m, const ball_sim *sim);
 
@@ -168,11 +168,11 @@ void ball__racket_pose(const ball_model *m, const ball_racket_track *tr, double 
                        ball_racket_pose *out);
 
 /* The swept test over [ta, tb] (swept.c). The ball follows seg (analytic,
- * when model is not NULL) or moves linearly p0 -> p1; the disc moves linearly
+ * when flight is not NULL) or moves linearly p0 -> p1; the disc moves linearly
  * c0 -> c1 and turns n0 -> n1 (normalised lerp) over [tc0, tc1]. */
 typedef struct ball__swept_motion {
-  const ball_model *model;  /* NULL: linear ball motion */
-  const ball_segment *seg;  /* the ball's segment (model not NULL) */
+  const ball__flight *flight; /* NULL: linear ball motion */
+  const ball_segment *seg;  /* the ball's segment (flight not NULL) */
   double ta, tb;            /* interval searched, s */
   ball_vec3 p0, p1;         /* ball centre at ta and tb (linear motion), m */
   double ball_radius;       /* m */
@@ -186,5 +186,8 @@ typedef struct ball__swept_motion {
  * the side the ball came from; 0 if none. */
 int ball__swept_toi(const ball__swept_motion *mo, double *t_hit, ball_vec3 *center,
                     ball_vec3 *face_normal);
+/* 1 when no contact is possible over the interval (bounding spheres of the
+ * ball's path and the disc's: the early reject ball__swept_toi starts with). */
+int ball__swept_cannot_touch(const ball__swept_motion *mo);
 
 #endif /* BALL_INTERNAL_H */

@@ -81,7 +81,7 @@ ball_status ball_racket_push(const ball_model *m, ball_sim *sim, int racket,
                              const ball_racket_sample *sample) {
   ball_racket_track *tr;
   ball_racket_sample s;
-  double scale, len;
+  double len;
   int i, keep;
   ball_status st = ball__bound(m, sim);
   if (st != BALL_OK) return st;
@@ -90,14 +90,11 @@ ball_status ball_racket_push(const ball_model *m, ball_sim *sim, int racket,
   if (m->history < 2 || m->history > BALL_MAX_HISTORY) return BALL_ERANGE;
   if (!isfinite(sample->t) || !ball_v3_finite(sample->center) || !ball_v3_finite(sample->normal))
     return BALL_ENONFINITE;
-  /* normalise without overflow: scale by the largest component first */
-  scale = fmax(fabs(sample->normal.x), fmax(fabs(sample->normal.y), fabs(sample->normal.z)));
-  if (!(scale > 0.0)) return BALL_ERANGE;
-  s = *sample;
-  s.normal = ball_v3_scale(sample->normal, 1.0 / scale);
-  len = ball_v3_norm(s.normal) * scale;
+  /* normalised without overflow (ball_v3_length scales first) */
+  len = ball_v3_length(sample->normal);
   if (!(len >= 1e-9)) return BALL_ERANGE;
-  s.normal = ball_v3_scale(s.normal, 1.0 / ball_v3_norm(s.normal));
+  s = *sample;
+  s.normal = ball_v3_unit(sample->normal);
   tr = &sim->tracks[racket];
   if (tr->count < 0 || tr->count > BALL_MAX_HISTORY) return BALL_EINVAL;
   for (i = 0; i < tr->count; i++)
@@ -237,8 +234,8 @@ static ball_vec3 test_normal(const ball_model *m, const ball_racket_pose *pose) 
   return pose->normal;
 }
 
-static int test_racket(const ball_model *m, const ball_sim *sim, int i, double t_prev,
-                       const ball_state *s_end, const ball_racket_pose *old,
+static int test_racket(const ball_model *m, const ball__flight *fl, const ball_sim *sim, int i,
+                       double t_prev, const ball_state *s_end, const ball_racket_pose *old,
                        const ball_racket_pose *now, racket_hit *h) {
   double t = sim->time;
   const ball_state *s = s_end;
@@ -270,7 +267,7 @@ static int test_racket(const ball_model *m, const ball_sim *sim, int i, double t
      * this frame (the path before it is no longer known) */
     ball__swept_motion mo;
     double th;
-    mo.model = m;
+    mo.flight = fl;
     mo.seg = &sim->seg;
     mo.ta = sim->seg.t0 > t_prev ? sim->seg.t0 : t_prev;
     mo.tb = t;
@@ -293,12 +290,12 @@ static int test_racket(const ball_model *m, const ball_sim *sim, int i, double t
 }
 
 /* The response (section 3.1) to a hit by racket i: the new segment and the event. */
-static void respond(const ball_model *m, ball_sim *sim, int i, double dt, const racket_hit *h,
-                    ball_event *ev) {
+static void respond(const ball_model *m, const ball__flight *fl, ball_sim *sim, int i, double dt,
+                    const racket_hit *h, ball_event *ev) {
   ball_state in;
   ball_vec3 v0, s0 = ball_v3(0.0, 0.0, 0.0), p0 = h->q;
   const ball_racket_pose *pose = &h->pose;
-  ball__eval(m, &sim->seg, h->t, &in);
+  ball__eval_f(fl, &sim->seg, h->t, &in);
   if (m->response == BALL_RESPONSE_RACKET) {
     v0 = ball__response_racket(m, pose->velocity, h->face); /* eq 7 */
     p0 = ball_v3_add(h->q, ball_v3_scale(v0, dt));                    /* eq 7: P = Q + V0 dt */
@@ -334,8 +331,8 @@ static void respond(const ball_model *m, ball_sim *sim, int i, double dt, const 
   ev->segment = sim->seg;
 }
 
-int ball__racket_stage(const ball_model *m, ball_sim *sim, double t_prev, double dt,
-                       const ball_state *s_end, ball_event *ev) {
+int ball__racket_stage(const ball_model *m, const ball__flight *fl, ball_sim *sim, double t_prev,
+                       double dt, const ball_state *s_end, ball_event *ev) {
   ball_racket_pose now[BALL_MAX_RACKETS];
   int ok[BALL_MAX_RACKETS];
   int i, best = -1, hit = 0;
@@ -361,14 +358,14 @@ int ball__racket_stage(const ball_model *m, ball_sim *sim, double t_prev, double
         old = tr->prev_pose;
       else if (estimate(m, sim, i, t_prev, &old) != BALL_OK)
         old = now[i];
-      if (test_racket(m, sim, i, t_prev, s_end, &old, &now[i], &h) &&
+      if (test_racket(m, fl, sim, i, t_prev, s_end, &old, &now[i], &h) &&
           (best < 0 || h.key < best_h.key)) {
         best = i;
         best_h = h;
       }
     }
     if (best >= 0) {
-      respond(m, sim, best, dt, &best_h, ev);
+      respond(m, fl, sim, best, dt, &best_h, ev);
       hit = 1;
     }
   }

@@ -101,15 +101,15 @@ static const ball_plane *plane_of(const ball_model *m, int which) {
  * tau_from on seg, approaching from the side the ball is on; *q the centre
  * then, one ulp back on the approach side (a point ball restarting exactly
  * in the plane would find the same plane again at once: docs/hard-cases.md). */
-static int plane_contact(const ball_model *m, const ball_segment *seg, const ball_plane *pl,
-                         double b, double tau_from, double *tau, ball_vec3 *q) {
+static int plane_contact(const ball_model *m, const ball__flight *fl, const ball_segment *seg,
+                         const ball_plane *pl, double tau_from, double *tau, ball_vec3 *q) {
   int a = pl->axis;
   double v = ball_v3_axis(seg->v0, a), target;
   ball_state s;
   if (v == 0.0) return 0;
   target = pl->position - (v > 0.0 ? m->radius : -m->radius);
-  if (!ball__plane_tau(b, ball_v3_axis(seg->p0, a), v, target, tau_from, tau)) return 0;
-  ball__eval(m, seg, seg->t0 + *tau, &s);
+  if (!ball__plane_tau(fl->b, ball_v3_axis(seg->p0, a), v, target, tau_from, tau)) return 0;
+  ball__eval_f(fl, seg, seg->t0 + *tau, &s);
   *q = s.position;
   if (a == 0)
     q->x = nextafter(target, v > 0.0 ? -INFINITY : INFINITY);
@@ -139,8 +139,9 @@ static int floor_contact(const ball_model *m, const ball_segment *seg, double ta
 }
 
 /* The earliest static contact on seg at or after t_from: into *c. */
-static void find_next(const ball_model *m, const ball_segment *seg, double t_from, ball_contact *c) {
-  double b = ball__drag_b(m), tau_from = t_from - seg->t0, tau, best = INFINITY;
+static void find_next(const ball_model *m, const ball__flight *fl, const ball_segment *seg,
+                      double t_from, ball_contact *c) {
+  double tau_from = t_from - seg->t0, tau, best = INFINITY;
   ball_vec3 q, best_q = ball_v3(0.0, 0.0, 0.0);
   int i, which = WHICH_NONE;
   if (ball__has(m, BALL_EFFECT_FLOOR) && floor_contact(m, seg, tau_from, &tau)) {
@@ -148,14 +149,14 @@ static void find_next(const ball_model *m, const ball_segment *seg, double t_fro
     which = WHICH_FLOOR;
   }
   if (ball__has(m, BALL_EFFECT_NET) && m->has_net &&
-      plane_contact(m, seg, &m->net, b, tau_from, &tau, &q) && tau < best) {
+      plane_contact(m, fl, seg, &m->net, tau_from, &tau, &q) && tau < best) {
     best = tau;
     best_q = q;
     which = WHICH_NET;
   }
   if (ball__has(m, BALL_EFFECT_WALLS))
     for (i = 0; i < m->n_walls; i++)
-      if (plane_contact(m, seg, &m->walls[i], b, tau_from, &tau, &q) && tau < best) {
+      if (plane_contact(m, fl, seg, &m->walls[i], tau_from, &tau, &q) && tau < best) {
         best = tau;
         best_q = q;
         which = WHICH_WALL(i);
@@ -167,9 +168,10 @@ static void find_next(const ball_model *m, const ball_segment *seg, double t_fro
 }
 
 /* The contact c on seg: its response starts the next segment. */
-static void resolve(const ball_model *m, ball_segment *seg, const ball_contact *c, ball_event *ev) {
+static void resolve(const ball_model *m, const ball__flight *fl, ball_segment *seg,
+                    const ball_contact *c, ball_event *ev) {
   ball_state s;
-  ball__eval(m, seg, c->time, &s);
+  ball__eval_f(fl, seg, c->time, &s);
   if (c->which == WHICH_FLOOR)
     floor_bounce(m, seg, c->time, s.position, &s, ev);
   else
@@ -180,15 +182,15 @@ static void resolve(const ball_model *m, ball_segment *seg, const ball_contact *
  * contact (computed here when not valid): every contact in time order, up to
  * BALL_MAX_CONTACTS; *end gets the state at t_end. Returns the contacts
  * resolved, or -1 when the limit was reached. */
-static int exact_advance(const ball_model *m, ball_segment *seg, ball_contact *next, double t_from,
-                         double t_end, sink *k, ball_state *end) {
+static int exact_advance(const ball_model *m, const ball__flight *fl, ball_segment *seg,
+                         ball_contact *next, double t_from, double t_end, sink *k, ball_state *end) {
   int contacts;
   double t_cur = t_from;
   for (contacts = 0; contacts < BALL_MAX_CONTACTS; contacts++) {
     ball_event ev;
-    if (!next->valid) find_next(m, seg, t_cur, next);
+    if (!next->valid) find_next(m, fl, seg, t_cur, next);
     if (!(next->time <= t_end)) {
-      ball__eval(m, seg, t_end, end);
+      ball__eval_f(fl, seg, t_end, end);
       /* a floor root rounded just past the frame's end while the ball there
        * is already below the floor: the contact is now */
       if (!(next->which == WHICH_FLOOR && end->position.y < ball__floor_y(m) && end->velocity.y <= 0.0))
@@ -196,17 +198,17 @@ static int exact_advance(const ball_model *m, ball_segment *seg, ball_contact *n
       next->time = t_end;
     }
     t_cur = next->time;
-    resolve(m, seg, next, &ev);
+    resolve(m, fl, seg, next, &ev);
     emit(k, &ev);
     next->valid = 0;
   }
   /* Too many contacts (a ball trapped in a corner): rather than let it escape
    * through an obstacle, it stays where its last contact left it and loses
    * the rest of the frame. */
-  ball__eval(m, seg, t_cur, end);
+  ball__eval_f(fl, seg, t_cur, end);
   ball__segment_start(seg, t_end, end->position, end->velocity, end->spin, seg->grounded);
   next->valid = 0;
-  ball__eval(m, seg, t_end, end);
+  ball__eval_f(fl, seg, t_end, end);
   return -1;
 }
 
@@ -232,8 +234,8 @@ static int plane_crossing(const ball_model *m, const ball_plane *pl, ball_vec3 p
 
 /* One sampled frame ending at t_end, *st the state there (updated on a
  * collision). Returns the collisions. */
-static int step_sampled(const ball_model *m, ball_sim *sim, double t_end, double dt, sink *k,
-                        ball_state *st) {
+static int step_sampled(const ball_model *m, const ball__flight *fl, ball_sim *sim, double t_end,
+                        double dt, sink *k, ball_state *st) {
   ball_event ev;
   ball_vec3 q, best_q = ball_v3(0.0, 0.0, 0.0);
   double s, best = INFINITY;
@@ -256,14 +258,14 @@ static int step_sampled(const ball_model *m, ball_sim *sim, double t_end, double
     /* eq 6: velocity now, restart at Q pushed dt / 10 along the new velocity */
     plane_bounce(m, &sim->seg, plane_of(m, which), which, t_end, best_q, best_q, st, dt / 10.0, &ev);
     emit(k, &ev);
-    ball__eval(m, &sim->seg, t_end, st);
+    ball__eval_f(fl, &sim->seg, t_end, st);
     n++;
   }
   /* Fig. 1, eq 5: below the floor at the end of the frame */
   if (ball__has(m, BALL_EFFECT_FLOOR) && !sim->seg.grounded && st->position.y < ball__floor_y(m)) {
     floor_bounce(m, &sim->seg, t_end, st->position, st, &ev);
     emit(k, &ev);
-    ball__eval(m, &sim->seg, t_end, st);
+    ball__eval_f(fl, &sim->seg, t_end, st);
     n++;
   }
   return n;
@@ -414,6 +416,7 @@ ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event 
   double t_prev, t_end;
   int changed = 0;
   ball_state s;
+  ball__flight fl;
   step_undo undo;
   sink k;
   if (n_events) *n_events = 0;
@@ -429,7 +432,8 @@ ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event 
   if (!isfinite(t_end) || sim->seg.t0 > t_prev) return BALL_ERANGE;
   if (dt == 0.0) return BALL_OK;
   /* a frame whose flight would overflow is refused before anything changes */
-  ball__eval(m, &sim->seg, t_end, &s);
+  ball__flight_of(m, &fl);
+  ball__eval_f(&fl, &sim->seg, t_end, &s);
   if (!state_finite(&s)) return BALL_ERANGE;
   undo_save(&undo, sim);
   k.events = events;
@@ -438,26 +442,26 @@ ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event 
   k.missed = &sim->warnings[BALL_WARN_EVENT_OVERFLOW];
 
   if (m->scheme == BALL_SCHEME_EXACT) {
-    int c = exact_advance(m, &sim->seg, &sim->next, t_prev, t_end, &k, &s);
+    int c = exact_advance(m, &fl, &sim->seg, &sim->next, t_prev, t_end, &k, &s);
     if (c < 0) sim->warnings[BALL_WARN_CONTACT_LIMIT]++;
     changed = c != 0;
   } else {
-    changed = step_sampled(m, sim, t_end, dt, &k, &s) > 0;
+    changed = step_sampled(m, &fl, sim, t_end, dt, &k, &s) > 0;
   }
   sim->time = t_end;
 
   if (ball__has(m, BALL_EFFECT_RACKETS) && m->n_rackets > 0) {
     ball_event ev;
-    if (ball__racket_stage(m, sim, t_prev, dt, &s, &ev)) {
+    if (ball__racket_stage(m, &fl, sim, t_prev, dt, &s, &ev)) {
       emit(&k, &ev);
       changed = 1;
       sim->next.valid = 0;
       /* the rest of the frame on the new path (a swept hit lands inside it) */
       if (m->scheme == BALL_SCHEME_EXACT && ev.time < t_end) {
-        if (exact_advance(m, &sim->seg, &sim->next, ev.time, t_end, &k, &s) < 0)
+        if (exact_advance(m, &fl, &sim->seg, &sim->next, ev.time, t_end, &k, &s) < 0)
           sim->warnings[BALL_WARN_CONTACT_LIMIT]++;
       } else {
-        ball__eval(m, &sim->seg, t_end, &s);
+        ball__eval_f(&fl, &sim->seg, t_end, &s);
       }
     }
   }
@@ -481,6 +485,7 @@ ball_status ball_predict(const ball_model *m, const ball_segment *seg_in, double
   ball_contact next;
   ball_state s;
   ball_status st;
+  ball__flight fl;
   unsigned long missed = 0;
   sink k;
   double t;
@@ -501,7 +506,8 @@ ball_status ball_predict(const ball_model *m, const ball_segment *seg_in, double
   k.missed = &missed;
   out->n_states = 0;
   t = t_from;
-  ball__eval(m, &seg, t, &s);
+  ball__flight_of(m, &fl);
+  ball__eval_f(&fl, &seg, t, &s);
   if (!state_finite(&s)) return BALL_ERANGE;
   if (out->cap_states > 0) out->states[out->n_states++] = s;
   /* frames of dt as ball_step takes them (the clock summed, not k dt), the
@@ -514,7 +520,7 @@ ball_status ball_predict(const ball_model *m, const ball_segment *seg_in, double
       grid = 0;
     }
     if (t_next == t) break; /* dt below the clock's resolution */
-    exact_advance(m, &seg, &next, t, t_next, &k, &s);
+    exact_advance(m, &fl, &seg, &next, t, t_next, &k, &s);
     if (!segment_finite(&seg) || !state_finite(&s)) return BALL_ERANGE;
     if (grid && out->n_states < out->cap_states) out->states[out->n_states++] = s;
     t = t_next;

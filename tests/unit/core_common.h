@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "ball/ball.h"
+#include "ball/vec3.h"
 
 /* |got - want| <= tol, with both expressions and numbers in the failure
  * message. A NaN on either side fails. */
@@ -57,28 +58,6 @@ static inline void core_model_free(ball_model *m) {
   m->initial_spin.z = 0.0;
 }
 
-static inline ball_vec3 core_v3(double x, double y, double z) {
-  ball_vec3 r;
-  r.x = x;
-  r.y = y;
-  r.z = z;
-  return r;
-}
-
-static inline ball_vec3 core_add(ball_vec3 a, ball_vec3 b) {
-  return core_v3(a.x + b.x, a.y + b.y, a.z + b.z);
-}
-static inline ball_vec3 core_sub(ball_vec3 a, ball_vec3 b) {
-  return core_v3(a.x - b.x, a.y - b.y, a.z - b.z);
-}
-static inline ball_vec3 core_scale(ball_vec3 a, double k) { return core_v3(a.x * k, a.y * k, a.z * k); }
-static inline double core_dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static inline double core_norm(ball_vec3 a) { return sqrt(core_dot(a, a)); }
-static inline ball_vec3 core_unit(ball_vec3 a) { return core_scale(a, 1.0 / core_norm(a)); }
-static inline ball_vec3 core_cross(ball_vec3 a, ball_vec3 b) {
-  return core_v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-
 /* The default tennis net (x = 11.885 m, z in [0, 10.97] m, y in [0, 0.914] m)
  * with the given netDamping, switched on in the model (not in the effects). */
 static inline void core_tennis_net(ball_model *m, double damping) {
@@ -108,8 +87,8 @@ static inline void core_court_scene(ball_model *m) {
   m->effects = BALL_EFFECT_DRAG | BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_WALLS |
                BALL_EFFECT_SOUND;
   assert_ok(ball_model_add_wall(m, &back));
-  m->initial_position = core_v3(3.0, 1.5, 2.0);
-  m->initial_velocity = core_v3(12.0, 3.0, 0.5);
+  m->initial_position = ball_v3(3.0, 1.5, 2.0);
+  m->initial_velocity = ball_v3(12.0, 3.0, 0.5);
 }
 
 /* Starts sim at time 0 with the ball at p moving at v, no spin (the model's
@@ -117,7 +96,7 @@ static inline void core_court_scene(ball_model *m) {
 static inline void core_start(ball_model *m, ball_sim *sim, ball_vec3 p, ball_vec3 v) {
   m->initial_position = p;
   m->initial_velocity = v;
-  m->initial_spin = core_v3(0.0, 0.0, 0.0);
+  m->initial_spin = ball_v3(0.0, 0.0, 0.0);
   assert_ok(ball_sim_init(m, sim));
 }
 

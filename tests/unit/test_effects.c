@@ -39,8 +39,8 @@ static void full_scene(ball_model *m, ball_scheme scheme) {
   m->effects |= BALL_EFFECT_SPIN;
   m->scheme = scheme;
   assert_ok(ball_model_add_wall(m, &side));
-  m->initial_velocity = core_v3(12.0, 3.0, -0.5);
-  m->initial_spin = core_v3(0.5, 0.0, 2.0);
+  m->initial_velocity = ball_v3(12.0, 3.0, -0.5);
+  m->initial_spin = ball_v3(0.5, 0.0, 2.0);
 }
 
 static int same_bits(const void *a, const void *b, size_t n) { return memcmp(a, b, n) == 0; }
@@ -94,7 +94,7 @@ static int first_difference(const ball_model *a, const ball_model *b, int *event
 typedef void (*edit_fn)(ball_model *m);
 
 static void drag_without(ball_model *m) { m->air_friction = 0.0; }
-static void spin_without(ball_model *m) { m->initial_spin = core_v3(0.0, 0.0, 0.0); }
+static void spin_without(ball_model *m) { m->initial_spin = ball_v3(0.0, 0.0, 0.0); }
 static void floor_without(ball_model *m) { m->floor_level = -1e300; }
 static void net_without(ball_model *m) { m->has_net = 0; }
 static void walls_without(ball_model *m) { m->n_walls = 0; }

@@ -21,7 +21,7 @@
 #define TOL 1e-12
 
 static ball_segment hand_segment(double t0) {
-  return core_segment(t0, core_v3(1.0, 2.0, -1.0), core_v3(4.0, 3.0, -2.0), core_v3(0.0, 0.0, 5.0));
+  return core_segment(t0, ball_v3(1.0, 2.0, -1.0), ball_v3(4.0, 3.0, -2.0), ball_v3(0.0, 0.0, 5.0));
 }
 
 static void eq3_position_and_velocity_match_hand_values_b2_t1(void **state) {
@@ -87,8 +87,8 @@ static void eq3_beta_zero_is_exactly_the_parabola(void **state) {
  * truth. Tolerance: 4 ulps at t = 1 and 1e-15 relative at t = 1e9. */
 static void eq3_huge_b_has_no_cancellation_matches_series(void **state) {
   ball_model m;
-  ball_segment seg = core_segment(0.0, core_v3(0.0, 0.0, 0.0), core_v3(1.0, 0.0, 0.0),
-                                  core_v3(0.0, 0.0, 0.0));
+  ball_segment seg = core_segment(0.0, ball_v3(0.0, 0.0, 0.0), ball_v3(1.0, 0.0, 0.0),
+                                  ball_v3(0.0, 0.0, 0.0));
   ball_state s;
   double b = 1e12, t, series;
   (void)state;
@@ -113,8 +113,8 @@ static void eq3_huge_b_has_no_cancellation_matches_series(void **state) {
 /* b = 1e-12 s: the ball stops dead after ~b; the distance is b (1 - e^(-t/b)). */
 static void eq3_tiny_b_stops_at_v0_times_b(void **state) {
   ball_model m;
-  ball_segment seg = core_segment(0.0, core_v3(1.0, 0.0, 0.0), core_v3(1e6, 0.0, 0.0),
-                                  core_v3(0.0, 0.0, 0.0));
+  ball_segment seg = core_segment(0.0, ball_v3(1.0, 0.0, 0.0), ball_v3(1e6, 0.0, 0.0),
+                                  ball_v3(0.0, 0.0, 0.0));
   ball_state s;
   (void)state;
   core_model_free(&m);

@@ -26,8 +26,8 @@ static void hand_model(ball_model *m) {
   m->bounce_threshold = 0.3;
   m->sound_threshold = 0.5;
   m->effects |= BALL_EFFECT_SOUND;
-  m->initial_position = core_v3(1.0, 2.0, -1.0);
-  m->initial_velocity = core_v3(4.0, 3.0, -2.0);
+  m->initial_position = ball_v3(1.0, 2.0, -1.0);
+  m->initial_velocity = ball_v3(4.0, 3.0, -2.0);
 }
 
 /* Steps until the first event; returns it (fails if none within 10 s). */
@@ -116,8 +116,8 @@ static void eq5_radius_puts_the_contact_at_floor_level_plus_radius(void **state)
  * m/s, out at 0.75 * that = 2.3266457884688851 m/s. Thresholds either side. */
 static void drop_model(ball_model *m, double bounce_threshold, double sound_threshold) {
   hand_model(m);
-  m->initial_position = core_v3(0.0, 0.4905, 0.0);
-  m->initial_velocity = core_v3(1.5, 0.0, 0.0);
+  m->initial_position = ball_v3(0.0, 0.4905, 0.0);
+  m->initial_velocity = ball_v3(1.5, 0.0, 0.0);
   m->bounce_threshold = bounce_threshold;
   m->sound_threshold = sound_threshold;
 }
@@ -184,11 +184,11 @@ static void eq13_eq14_spin_at_the_floor_adds_velocity_and_damps_spin(void **stat
   ball_event ev;
   (void)state;
   drop_model(&m, 0.3, 0.5);
-  m.initial_velocity = core_v3(0.0, 0.0, 0.0);
+  m.initial_velocity = ball_v3(0.0, 0.0, 0.0);
   m.effects |= BALL_EFFECT_SPIN;
   m.spin_damping = 2.0;
   m.spin_floor_damping = 0.8;
-  m.initial_spin = core_v3(1.0, 0.0, 2.0);
+  m.initial_spin = ball_v3(1.0, 0.0, 2.0);
   ev = first_event(&m, &sim, 1.0 / 60.0);
   assert_near(ev.velocity_out.x, -1.3815567048066971, TOL);
   assert_near(ev.velocity_out.y, 2.3266457884688851, TOL);
@@ -234,8 +234,8 @@ static void eq5_dropped_ball_comes_to_rest_after_derived_bounce_count_exact(void
   hand_model(&m);
   m.floor_level = 0.25;
   m.radius = 0.05;
-  m.initial_position = core_v3(0.0, 2.0, 0.0);
-  m.initial_velocity = core_v3(0.5, 0.0, 0.0);
+  m.initial_position = ball_v3(0.0, 2.0, 0.0);
+  m.initial_velocity = ball_v3(0.5, 0.0, 0.0);
   v = sqrt(2.0 * m.gravity * (2.0 - 0.3));
   for (speed = v * m.floor_damping, expected = 1; speed >= m.bounce_threshold; expected++)
     speed *= m.floor_damping;
@@ -270,7 +270,7 @@ static void eq5_dropped_ball_comes_to_rest_within_derived_bounds_sampled(void **
   hand_model(&m);
   m.scheme = BALL_SCHEME_SAMPLED;
   m.bounce_threshold = 0.6;
-  m.initial_position = core_v3(0.0, 2.0, 0.0);
+  m.initial_position = ball_v3(0.0, 2.0, 0.0);
   v = sqrt(2.0 * m.gravity * 2.0);
   assert_true(m.bounce_threshold > m.floor_damping * m.gravity * dt / (1.0 - m.floor_damping));
   for (speed = v * m.floor_damping, lo = 1; speed >= m.bounce_threshold; lo++)

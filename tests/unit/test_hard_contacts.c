@@ -98,7 +98,7 @@ static void test_ball_at_rest_exactly_on_floor_stays_there_eq5(void **state) {
     model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, 0.033);
     m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
     m.floor_level = -1.5;
-    core_start(&m, &sim, core_v3(3.0, -1.5 + 0.033, 4.0), core_v3(0.0, 0.0, 0.0));
+    core_start(&m, &sim, ball_v3(3.0, -1.5 + 0.033, 4.0), ball_v3(0.0, 0.0, 0.0));
     for (f = 0; f < 600; f++) {
       run(&m, &sim, 1, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
@@ -125,7 +125,7 @@ static void test_ball_sliding_on_floor_follows_eq3(void **state) {
   memset(&t, 0, sizeof t);
   model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_DRAG, 0.0);
   b = m.mass / m.air_friction;
-  core_start(&m, &sim, core_v3(0.0, 0.0, 4.0), core_v3(5.0, 0.0, 0.0));
+  core_start(&m, &sim, ball_v3(0.0, 0.0, 4.0), ball_v3(5.0, 0.0, 0.0));
   run(&m, &sim, 120, 1.0 / 64.0, &t);
   state_of(&m, &sim, &st);
   AT_MOST(t.total, 1);
@@ -156,7 +156,7 @@ static void test_ball_starting_inside_the_net_gets_out_fig3(void **state) {
       tally t;
       memset(&t, 0, sizeof t);
       model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET, radii[i]);
-      core_start(&m, &sim, core_v3(11.885, 0.5, 3.0), core_v3(speeds[j], 0.0, 0.0));
+      core_start(&m, &sim, ball_v3(11.885, 0.5, 3.0), ball_v3(speeds[j], 0.0, 0.0));
       run(&m, &sim, 60, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
       AT_MOST(t.kind[BALL_EVENT_NET], 1);
@@ -185,7 +185,7 @@ static void test_ball_parallel_to_net_plane_never_hits_it_fig3(void **state) {
       memset(&t, 0, sizeof t);
       model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, radii[i]);
       m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
-      core_start(&m, &sim, core_v3(11.885 - radii[i], 0.5, 3.0), core_v3(0.0, 2.0, 4.0));
+      core_start(&m, &sim, ball_v3(11.885 - radii[i], 0.5, 3.0), ball_v3(0.0, 2.0, 4.0));
       run(&m, &sim, 120, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
       assert_int_equal(t.kind[BALL_EVENT_NET], 0);
@@ -215,7 +215,7 @@ static void test_grazing_the_net_top_edge_fig3(void **state) {
       m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
       m.net.position = 2.0;
       m.net.top = 1.0;
-      core_start(&m, &sim, core_v3(0.0, 1.25 + offsets[i], 5.0), core_v3(8.0, 0.0, 0.0));
+      core_start(&m, &sim, ball_v3(0.0, 1.25 + offsets[i], 5.0), ball_v3(8.0, 0.0, 0.0));
       run(&m, &sim, 32, 1.0 / 64.0, &t);
       assert_int_equal(t.kind[BALL_EVENT_NET], offsets[i] > 0.0 ? 0 : 1);
       if (t.total) {
@@ -242,7 +242,7 @@ static void test_grazing_the_net_side_edges_fig3(void **state) {
       model_of(&m, BALL_EFFECT_NET, 0.0);
       m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
       m.net.position = 2.0;
-      core_start(&m, &sim, core_v3(0.0, 0.75, zs[i]), core_v3(8.0, 0.0, 0.0));
+      core_start(&m, &sim, ball_v3(0.0, 0.75, zs[i]), ball_v3(8.0, 0.0, 0.0));
       run(&m, &sim, 32, 1.0 / 64.0, &t);
       assert_int_equal(t.kind[BALL_EVENT_NET], (i % 2) ? 0 : 1);
     }
@@ -268,7 +268,7 @@ static void test_net_then_floor_in_one_frame_eq5_eq6(void **state) {
     double y1 = 0.3 - 4.0 * t_net * t_net, vy1 = -0.2 * 8.0 * t_net;
     double tau2 = (vy1 + sqrt(vy1 * vy1 + 16.0 * (y1 - r))) / 8.0; /* 4 tau^2 - vy1 tau - (y1 - r) = 0 */
     model_of(&m, BALL_EFFECT_NET | BALL_EFFECT_FLOOR, r);
-    core_start(&m, &sim, core_v3(11.885 - 1.0, 0.3, 3.0), core_v3(10.0, 0.0, 0.0));
+    core_start(&m, &sim, ball_v3(11.885 - 1.0, 0.3, 3.0), ball_v3(10.0, 0.0, 0.0));
     assert_int_equal(ball_step(&m, &sim, 0.5, ev, 8, &n), BALL_OK);
     assert_true(n >= 2);
     assert_int_equal(ev[0].kind, BALL_EVENT_NET);
@@ -308,7 +308,7 @@ static void test_corner_of_two_walls_reflects_both_axes_eq6(void **state) {
       wall(&m, 0, 5.0, -10.0, 10.0, 0.5);
       wall(&m, 2, 5.0, -10.0, 10.0, 0.5);
       /* with the floor: fall 4 tc^2 to touch it at tc */
-      core_start(&m, &sim, core_v3(4.0, r + (with_floor ? 4.0 * tc * tc : 3.0), 4.0), core_v3(2.0, 0.0, 2.0));
+      core_start(&m, &sim, ball_v3(4.0, r + (with_floor ? 4.0 * tc * tc : 3.0), 4.0), ball_v3(2.0, 0.0, 2.0));
       assert_int_equal(ball_step(&m, &sim, tc + 0.1, ev, 8, &n), BALL_OK);
       assert_int_equal(n, with_floor ? 3 : 2);
       for (k = 0; k < n; k++) assert_near(ev[k].time, tc, 1e-15);
@@ -342,7 +342,7 @@ static void test_sampled_two_walls_in_one_frame_keeps_ball_inside_fig3(void **st
   wall(&m, 0, 5.0, -10.0, 10.0, 1.0);
   wall(&m, 2, 5.0, -10.0, 10.0, 1.0);
   m.walls[0].bottom = m.walls[1].bottom = -1e6;
-  core_start(&m, &sim, core_v3(4.0, 3.0, 4.5), core_v3(2.0, 0.0, 2.0));
+  core_start(&m, &sim, ball_v3(4.0, 3.0, 4.5), ball_v3(2.0, 0.0, 2.0));
   for (f = 0; f < 10; f++) {
     assert_int_equal(ball_step(&m, &sim, 0.6, NULL, 0, NULL), BALL_OK);
     state_of(&m, &sim, &st);
@@ -374,9 +374,9 @@ static void test_ball_wedged_between_wall_and_floor_eq5_eq6(void **state) {
       memset(&t, 0, sizeof t);
       model_of(&m, BALL_EFFECT_WALLS | BALL_EFFECT_FLOOR, r);
       wall(&m, 0, 5.0, -10.0, 10.0, 0.5);
-      if (k == 0) core_start(&m, &sim, core_v3(5.0 - r, r, 0.0), core_v3(2.0, 0.0, 0.0));
-      if (k == 1) core_start(&m, &sim, core_v3(5.0 - r, r, 0.0), core_v3(0.0, 0.0, 0.0));
-      if (k == 2) core_start(&m, &sim, core_v3(4.0 - r, r + 4.0 * 0.25, 0.0), core_v3(2.0, 0.0, 0.0));
+      if (k == 0) core_start(&m, &sim, ball_v3(5.0 - r, r, 0.0), ball_v3(2.0, 0.0, 0.0));
+      if (k == 1) core_start(&m, &sim, ball_v3(5.0 - r, r, 0.0), ball_v3(0.0, 0.0, 0.0));
+      if (k == 2) core_start(&m, &sim, ball_v3(4.0 - r, r + 4.0 * 0.25, 0.0), ball_v3(2.0, 0.0, 0.0));
       for (f = 0; f < 120; f++) {
         run(&m, &sim, 1, 1.0 / 60.0, &t);
         state_of(&m, &sim, &st);
@@ -420,7 +420,7 @@ static void test_resting_ball_stops_after_ten_bounces_eq5(void **state) {
   double t_expect = 0.5;
   (void)state;
   model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_SOUND, 0.0);
-  core_start(&m, &sim, core_v3(0.0, 1.0, 0.0), core_v3(0.0, 0.0, 0.0));
+  core_start(&m, &sim, ball_v3(0.0, 1.0, 0.0), ball_v3(0.0, 0.0, 0.0));
   for (f = 0; f < 60 * 20; f++) {
     assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n), BALL_OK);
     for (i = 0; i < n; i++, k++) {
@@ -454,7 +454,7 @@ static void test_resting_ball_with_zero_threshold_never_sinks_eq5(void **state) 
     model_of(&m, BALL_EFFECT_FLOOR, 0.0);
     m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
     m.bounce_threshold = 0.0;
-    core_start(&m, &sim, core_v3(0.0, 1.0, 0.0), core_v3(0.0, 0.0, 0.0));
+    core_start(&m, &sim, ball_v3(0.0, 1.0, 0.0), ball_v3(0.0, 0.0, 0.0));
     for (f = 0; f < 60 * 10; f++) {
       run(&m, &sim, 1, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
@@ -472,7 +472,7 @@ static void test_resting_ball_with_zero_threshold_never_sinks_eq5(void **state) 
     memset(&t, 0, sizeof t);
     model_of(&m, BALL_EFFECT_FLOOR, 0.0);
     m.bounce_threshold = 0.0;
-    core_start(&m, &sim, core_v3(0.0, 0.0, 0.0), core_v3(0.0, 0.0, 0.0));
+    core_start(&m, &sim, ball_v3(0.0, 0.0, 0.0), ball_v3(0.0, 0.0, 0.0));
     for (f = 0; f < 60; f++) {
       run(&m, &sim, 1, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
@@ -497,7 +497,7 @@ static void test_ball_rolling_into_the_net_bounces_once_eq6(void **state) {
     double r = radii[i];
     memset(&t, 0, sizeof t);
     model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, r);
-    core_start(&m, &sim, core_v3(10.0, r, 3.0), core_v3(5.0, 0.0, 0.0));
+    core_start(&m, &sim, ball_v3(10.0, r, 3.0), ball_v3(5.0, 0.0, 0.0));
     for (f = 0; f < 240; f++) {
       run(&m, &sim, 1, 1.0 / 60.0, &t);
       state_of(&m, &sim, &st);
@@ -529,7 +529,7 @@ static void test_contact_limit_keeps_ball_between_walls(void **state) {
     wall(&m, 0, 0.0, -10.0, 10.0, 1.0);
     wall(&m, 0, 0.05, -10.0, 10.0, 1.0);
     m.walls[0].bottom = m.walls[1].bottom = -1e9;
-    core_start(&m, &sim, core_v3(0.025, 5.0, 0.0), core_v3(100.0, 0.0, 0.0));
+    core_start(&m, &sim, ball_v3(0.025, 5.0, 0.0), ball_v3(100.0, 0.0, 0.0));
     for (f = 0; f < 30; f++) {
       assert_int_equal(ball_step(&m, &sim, dts[i], NULL, 0, NULL), BALL_OK);
       state_of(&m, &sim, &st);

@@ -22,7 +22,7 @@ static void plain_model(ball_model *m, unsigned effects) {
 }
 
 static ball_segment segment(ball_vec3 p0, ball_vec3 v0) {
-  return core_segment(0.0, p0, v0, core_v3(0.0, 0.0, 0.0));
+  return core_segment(0.0, p0, v0, ball_v3(0.0, 0.0, 0.0));
 }
 
 /* Restarts the ball at p moving at v at the sim's current time. */
@@ -30,7 +30,7 @@ static void restart(const ball_model *m, ball_sim *sim, ball_vec3 p, ball_vec3 v
   ball_state st;
   st.position = p;
   st.velocity = v;
-  st.spin = core_v3(0.0, 0.0, 0.0);
+  st.spin = ball_v3(0.0, 0.0, 0.0);
   assert_int_equal(ball_sim_set_state(m, sim, &st), BALL_OK);
 }
 
@@ -46,7 +46,7 @@ static void state_of(const ball_model *m, const ball_sim *sim, ball_state *st) {
 /* eq 3 with b infinite: x = X0 + V0x t exactly; the plane time is distance / speed. */
 static void test_beta_zero_gives_straight_line_eq3(void **state) {
   ball_model m;
-  ball_segment s = segment(core_v3(1.0, 2.0, 3.0), core_v3(4.0, 5.0, 6.0));
+  ball_segment s = segment(ball_v3(1.0, 2.0, 3.0), ball_v3(4.0, 5.0, 6.0));
   ball_state out;
   double t;
   (void)state;
@@ -67,7 +67,7 @@ static void test_beta_zero_gives_straight_line_eq3(void **state) {
 static void test_beta_tiny_matches_no_drag_without_cancellation_eq3(void **state) {
   static const double betas[] = {1e-300, 4.9406564584124654e-324, 1e-18};
   ball_model m;
-  ball_segment s = segment(core_v3(1.0, 2.0, 3.0), core_v3(4.0, 5.0, 6.0));
+  ball_segment s = segment(ball_v3(1.0, 2.0, 3.0), ball_v3(4.0, 5.0, 6.0));
   ball_state out;
   size_t i;
   (void)state;
@@ -91,7 +91,7 @@ static void test_beta_tiny_matches_no_drag_without_cancellation_eq3(void **state
  * most, the horizontal velocity is 0, and a plane 1 m ahead is never reached. */
 static void test_beta_huge_stops_ball_at_once_eq3(void **state) {
   ball_model m;
-  ball_segment s = segment(core_v3(1.0, 2.0, 3.0), core_v3(4.0, 5.0, 6.0));
+  ball_segment s = segment(ball_v3(1.0, 2.0, 3.0), ball_v3(4.0, 5.0, 6.0));
   ball_state out;
   double t;
   int k;
@@ -127,7 +127,7 @@ static void test_beta_huge_ball_drops_in_place(void **state) {
   (void)state;
   plain_model(&m, BALL_EFFECT_DRAG | BALL_EFFECT_FLOOR | BALL_EFFECT_NET);
   m.air_friction = 1e300;
-  core_start(&m, &sim, core_v3(11.0, 0.5, 3.0), core_v3(30.0, 0.0, 0.0));
+  core_start(&m, &sim, ball_v3(11.0, 0.5, 3.0), ball_v3(30.0, 0.0, 0.0));
   for (f = 0; f < 60; f++) {
     int i;
     assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, ev, 8, &n), BALL_OK);
@@ -146,12 +146,12 @@ static void test_beta_huge_ball_drops_in_place(void **state) {
  * the vertical part is -4.9e18 m, spin is S0 sDamp / (sDamp + t): all finite. */
 static void test_time_1e9_on_a_segment_is_finite_eq3_eq4(void **state) {
   ball_model m;
-  ball_segment s = segment(core_v3(1.0, 2.0, 3.0), core_v3(4.0, 5.0, 6.0));
+  ball_segment s = segment(ball_v3(1.0, 2.0, 3.0), ball_v3(4.0, 5.0, 6.0));
   ball_state out;
   double b, t;
   (void)state;
   plain_model(&m, BALL_EFFECT_DRAG | BALL_EFFECT_SPIN);
-  s.s0 = core_v3(10.0, 0.0, 0.0);
+  s.s0 = ball_v3(10.0, 0.0, 0.0);
   b = m.mass / m.air_friction;
   assert_int_equal(ball_segment_eval(&m, &s, 1e9, &out), BALL_OK);
   assert_finite3(out.position);
@@ -214,7 +214,7 @@ static void test_drop_on_a_clock_at_1e9_seconds_lands_exactly_eq3(void **state) 
   plain_model(&m, BALL_EFFECT_FLOOR);
   assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
   assert_int_equal(ball_step(&m, &sim, 1e9, NULL, 0, NULL), BALL_OK);
-  restart(&m, &sim, core_v3(2.0, 1.0, 3.0), core_v3(0.0, 0.0, 0.0));
+  restart(&m, &sim, ball_v3(2.0, 1.0, 3.0), ball_v3(0.0, 0.0, 0.0));
   for (f = 0; f < 60 && !got; f++) {
     assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, ev, 4, &n), BALL_OK);
     if (n > 0) {
@@ -245,8 +245,8 @@ static void test_dt_of_1e_minus_9_seconds_resolves_a_bounce_like_one_frame_eq5(v
   (void)state;
   plain_model(&m, BALL_EFFECT_FLOOR);
   m.bounce_threshold = 0.1;
-  core_start(&m, &a, core_v3(0.0, 1e-6, 0.0), core_v3(0.0, -1.0, 0.0));
-  core_start(&m, &b, core_v3(0.0, 1e-6, 0.0), core_v3(0.0, -1.0, 0.0));
+  core_start(&m, &a, ball_v3(0.0, 1e-6, 0.0), ball_v3(0.0, -1.0, 0.0));
+  core_start(&m, &b, ball_v3(0.0, 1e-6, 0.0), ball_v3(0.0, -1.0, 0.0));
   tc = (-1.0 + sqrt(1.0 + 2.0 * 9.81 * 1e-6)) / 9.81; /* ~9.99990e-7 s */
   vin = -1.0 - 9.81 * tc;
   for (f = 0; f < 4000; f++) {
@@ -278,7 +278,7 @@ static void test_dt_10_seconds_exact_matches_64_hz(void **state) {
   int f;
   (void)state;
   ball_model_default(&m);
-  m.initial_spin = core_v3(0.0, 0.0, -20.0);
+  m.initial_spin = ball_v3(0.0, 0.0, -20.0);
   assert_int_equal(ball_sim_init(&m, &a), BALL_OK);
   assert_int_equal(ball_sim_init(&m, &b), BALL_OK);
   assert_int_equal(ball_step(&m, &a, 10.0, NULL, 0, NULL), BALL_OK);
@@ -305,7 +305,7 @@ static void test_dt_10_seconds_sampled_snaps_to_floor_eq5(void **state) {
   plain_model(&m, BALL_EFFECT_FLOOR);
   m.scheme = BALL_SCHEME_SAMPLED;
   m.bounce_threshold = 0.0;
-  core_start(&m, &sim, core_v3(0.0, 0.0, 0.0), core_v3(1.0, 0.0, 0.0));
+  core_start(&m, &sim, ball_v3(0.0, 0.0, 0.0), ball_v3(1.0, 0.0, 0.0));
   assert_int_equal(ball_step(&m, &sim, 10.0, ev, 4, &n), BALL_OK);
   assert_int_equal(n, 1);
   assert_near(ev[0].velocity_in.y, -98.1, 1e-12);
@@ -412,17 +412,17 @@ static void test_overflowing_bounce_is_refused_unchanged_eq5_eq13(void **state) 
   (void)state;
   ball_model_default(&m);
   assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
-  s0.position = core_v3(0.0, 1e-4, 3.0);
-  s0.velocity = core_v3(0.0, -DBL_MAX, -DBL_MAX);
-  s0.spin = core_v3(-DBL_MAX, 0.0, 0.0);
+  s0.position = ball_v3(0.0, 1e-4, 3.0);
+  s0.velocity = ball_v3(0.0, -DBL_MAX, -DBL_MAX);
+  s0.spin = ball_v3(-DBL_MAX, 0.0, 0.0);
   assert_int_equal(ball_sim_set_state(&m, &sim, &s0), BALL_OK);
   copy = sim;
   assert_int_equal(ball_step(&m, &sim, 0.05, ev, 8, &n), BALL_ERANGE);
   assert_int_equal(n, 0);
   assert_memory_equal(&sim, &copy, sizeof sim);
   /* the same shot a million times slower bounces normally */
-  s0.velocity = core_v3(0.0, -DBL_MAX * 1e-6, -DBL_MAX * 1e-6);
-  s0.spin = core_v3(-DBL_MAX * 1e-6, 0.0, 0.0);
+  s0.velocity = ball_v3(0.0, -DBL_MAX * 1e-6, -DBL_MAX * 1e-6);
+  s0.spin = ball_v3(-DBL_MAX * 1e-6, 0.0, 0.0);
   assert_int_equal(ball_sim_set_state(&m, &sim, &s0), BALL_OK);
   assert_int_equal(ball_step(&m, &sim, 1e-300, ev, 8, &n), BALL_OK);
   assert_int_equal(n, 1);
@@ -440,7 +440,7 @@ static void test_speed_zero_drops_straight_eq3(void **state) {
   int n;
   (void)state;
   ball_model_default(&m);
-  core_start(&m, &sim, core_v3(3.0, 2.0, 4.0), core_v3(0.0, 0.0, 0.0));
+  core_start(&m, &sim, ball_v3(3.0, 2.0, 4.0), ball_v3(0.0, 0.0, 0.0));
   assert_int_equal(ball_step(&m, &sim, 1.0, ev, 4, &n), BALL_OK);
   assert_true(n >= 1);
   assert_near(ev[0].time, sqrt(4.0 / 9.81), 1e-15);
@@ -464,7 +464,7 @@ static void test_speed_1e300_and_subnormal_never_reach_the_net_eq3(void **state)
       ball_state st;
       int n, f;
       plain_model(&m, BALL_EFFECT_NET | BALL_EFFECT_FLOOR | (drag ? BALL_EFFECT_DRAG : 0u));
-      core_start(&m, &sim, core_v3(11.0, 0.0, 3.0), core_v3(speeds[i], 0.0, speeds[i]));
+      core_start(&m, &sim, ball_v3(11.0, 0.0, 3.0), ball_v3(speeds[i], 0.0, speeds[i]));
       for (f = 0; f < 121; f++) {
         int k;
         assert_int_equal(ball_step(&m, &sim, f < 120 ? 1.0 / 60.0 : 1e6, ev, 4, &n), BALL_OK);
@@ -492,7 +492,7 @@ static void test_speed_1e6_does_not_tunnel_through_the_net_fig3(void **state) {
     ball_model_default(&m);
     m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
     m.radius = 0.033;
-    core_start(&m, &sim, core_v3(11.0, 0.5, 3.0), core_v3(1e6, 0.0, 0.0));
+    core_start(&m, &sim, ball_v3(11.0, 0.5, 3.0), ball_v3(1e6, 0.0, 0.0));
     for (f = 0; f < 30; f++) {
       int i;
       assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, ev, 8, &n), BALL_OK);
@@ -523,7 +523,7 @@ static void test_speed_1e6_upward_returns_eq3(void **state) {
   int n;
   (void)state;
   plain_model(&m, BALL_EFFECT_FLOOR);
-  core_start(&m, &sim, core_v3(0.0, 0.0, 0.0), core_v3(0.0, 1e6, 0.0));
+  core_start(&m, &sim, ball_v3(0.0, 0.0, 0.0), ball_v3(0.0, 1e6, 0.0));
   assert_int_equal(ball_apex(&m, &sim.seg, &t_apex, &apex), BALL_OK);
   assert_near(apex.y, 1e12 / (2.0 * 9.81), 1e-4);
   assert_int_equal(ball_step(&m, &sim, 3e5, ev, 4, &n), BALL_OK);
@@ -563,7 +563,7 @@ static void test_positions_at_1e7_metres_stay_in_their_box(void **state) {
     w.damping = 1.0;
     assert_int_equal(ball_model_add_wall(&m, &w), BALL_OK);
   }
-  core_start(&m, &sim, core_v3(c, c + 1.0, c), core_v3(3.0, 0.0, 2.5));
+  core_start(&m, &sim, ball_v3(c, c + 1.0, c), ball_v3(3.0, 0.0, 2.5));
   for (f = 0; f < 6000; f++) {
     ball_event ev[16];
     assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, ev, 16, &n), BALL_OK);

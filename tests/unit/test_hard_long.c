@@ -62,8 +62,8 @@ static void box_model(ball_model *m, ball_scheme scheme) {
     w.damping = 1.0;
     assert_int_equal(ball_model_add_wall(m, &w), BALL_OK);
   }
-  m->initial_position = core_v3(0.0, 3.0, 0.0);
-  m->initial_velocity = core_v3(7.3, 4.1, -5.9);
+  m->initial_position = ball_v3(0.0, 3.0, 0.0);
+  m->initial_velocity = ball_v3(7.3, 4.1, -5.9);
 }
 
 static double energy(const ball_model *m, const ball_state *s) {
@@ -137,9 +137,9 @@ static void test_long_sampled_run_stays_finite_and_inside_eq5(void **state) {
     if (f % 100000 == 0) {
       /* a new serve every 1e5 frames, so the ball is moving most of the run */
       ball_state s0;
-      s0.position = core_v3(0.0, 3.0, 0.0);
-      s0.velocity = core_v3(7.3 + (double)(f / 100000), 4.1, -5.9);
-      s0.spin = core_v3(0.0, 0.0, 0.0);
+      s0.position = ball_v3(0.0, 3.0, 0.0);
+      s0.velocity = ball_v3(7.3 + (double)(f / 100000), 4.1, -5.9);
+      s0.spin = ball_v3(0.0, 0.0, 0.0);
       assert_int_equal(ball_sim_set_state(&m, &sim, &s0), BALL_OK);
     }
     if (ball_step(&m, &sim, 1.0 / 60.0, NULL, 0, NULL) != BALL_OK) fail_msg("frame %ld: step failed", f);
@@ -180,16 +180,16 @@ static void test_long_racket_rally_never_breaks_eq8_eq9(void **state) {
   m.rackets[0].partner = 1;
   m.rackets[1].partner = 0;
   m.v_up = 49.0 * dt * m.gravity / 2.0; /* eq 8: t0 = 2 V_up / g = 49 frames */
-  m.initial_position = core_v3(1.1, 1.0, 5.485);
-  m.initial_velocity = core_v3(0.0, 0.0, 0.0);
+  m.initial_position = ball_v3(1.1, 1.0, 5.485);
+  m.initial_velocity = ball_v3(0.0, 0.0, 0.0);
   assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
   heap0 = heap_in_use();
   for (f = 0; f < frames; f++) {
     if (f % 6 == 0)
       for (r = 0; r < 2; r++) {
         smp.t = sim.time;
-        smp.center = r == 0 ? core_v3(1.0, 1.0, 5.485) : core_v3(22.77, 1.0, 5.485);
-        smp.normal = core_v3(r == 0 ? 1.0 : -1.0, 0.0, 0.0);
+        smp.center = r == 0 ? ball_v3(1.0, 1.0, 5.485) : ball_v3(22.77, 1.0, 5.485);
+        smp.normal = ball_v3(r == 0 ? 1.0 : -1.0, 0.0, 0.0);
         if (ball_racket_push(&m, &sim, r, &smp) != BALL_OK) fail_msg("frame %ld: sample refused", f);
       }
     if (ball_step(&m, &sim, dt, ev, 8, &n) != BALL_OK) fail_msg("frame %ld: step failed", f);

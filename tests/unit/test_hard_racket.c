@@ -28,9 +28,9 @@ static void racket_model(ball_model *m, ball_detect detect, ball_response respon
   m->detect = detect;
   m->normal_mode = BALL_NORMAL_REAL;
   m->response = response;
-  m->initial_position = core_v3(0.0, 1.5, 0.0);
-  m->initial_velocity = core_v3(v, 0.0, 0.0);
-  m->initial_spin = core_v3(0.0, 0.0, 0.0);
+  m->initial_position = ball_v3(0.0, 1.5, 0.0);
+  m->initial_velocity = ball_v3(v, 0.0, 0.0);
+  m->initial_spin = ball_v3(0.0, 0.0, 0.0);
 }
 
 /* Steps frames; checks finite state and events; counts racket hits and
@@ -90,7 +90,7 @@ static void test_still_racket_hits_once_with_defined_direction_eq7_eq11(void **s
         racket_model(&m, detects[d], resp ? BALL_RESPONSE_PHYSICAL : BALL_RESPONSE_RACKET, 10.0);
         m.normal_mode = mode ? BALL_NORMAL_VELOCITY : BALL_NORMAL_REAL;
         assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
-        s = core_sample(-0.1, core_v3(1.0, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
+        s = core_sample(-0.1, ball_v3(1.0, 1.45, 0.0), ball_v3(-1.0, 0.0, 0.0));
         assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
         s.t = 0.0;
         assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
@@ -127,8 +127,8 @@ static void test_racket_turning_fast_stays_finite_fig4(void **state) {
       m.history = 4;
       assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
       for (i = 0, t = -0.1; i < 4; i++, t += 0.05) {
-        ball_vec3 n = i % 2 ? core_v3(turns[k][0], turns[k][1], turns[k][2]) : core_v3(-1.0, 0.0, 0.0);
-        s = core_sample(t, core_v3(1.0, 1.45, 0.0), n);
+        ball_vec3 n = i % 2 ? ball_v3(turns[k][0], turns[k][1], turns[k][2]) : ball_v3(-1.0, 0.0, 0.0);
+        s = core_sample(t, ball_v3(1.0, 1.45, 0.0), n);
         assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
       }
       step_frames(&m, &sim, 40, &r);
@@ -154,27 +154,27 @@ static void test_zero_tiny_huge_and_nan_normals(void **state) {
   (void)state;
   racket_model(&m, BALL_DETECT_DISC, BALL_RESPONSE_PHYSICAL, 10.0);
   assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
-  s = core_sample(0.0, core_v3(1.0, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
+  s = core_sample(0.0, ball_v3(1.0, 1.45, 0.0), ball_v3(-1.0, 0.0, 0.0));
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
   copy = sim;
   for (i = 0; i < sizeof bad_range / sizeof bad_range[0]; i++) {
-    s = core_sample(0.1, core_v3(1.0, 1.45, 0.0), core_v3(bad_range[i][0], bad_range[i][1], bad_range[i][2]));
+    s = core_sample(0.1, ball_v3(1.0, 1.45, 0.0), ball_v3(bad_range[i][0], bad_range[i][1], bad_range[i][2]));
     assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ERANGE);
   }
-  s.normal = core_v3(NAN, 0.0, 1.0);
+  s.normal = ball_v3(NAN, 0.0, 1.0);
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ENONFINITE);
-  s.normal = core_v3(0.0, INFINITY, 0.0);
+  s.normal = ball_v3(0.0, INFINITY, 0.0);
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ENONFINITE);
-  s.normal = core_v3(0.0, 1.0, 0.0);
+  s.normal = ball_v3(0.0, 1.0, 0.0);
   s.center.y = NAN;
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ENONFINITE);
   assert_memory_equal(&sim, &copy, sizeof sim);
-  s = core_sample(0.1, core_v3(1.0, 1.45, 0.0), core_v3(DBL_MAX, -DBL_MAX, DBL_MAX));
+  s = core_sample(0.1, ball_v3(1.0, 1.45, 0.0), ball_v3(DBL_MAX, -DBL_MAX, DBL_MAX));
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
   assert_int_equal(ball_racket_estimate(&m, &sim, 0, 0.1, &pose), BALL_OK);
   assert_near(pose.normal.x, 1.0 / sqrt(3.0), 1e-15);
   assert_near(pose.normal.y, -1.0 / sqrt(3.0), 1e-15);
-  s = core_sample(0.2, core_v3(1.0, 1.45, 0.0), core_v3(0.0, 1e-8, 0.0));
+  s = core_sample(0.2, ball_v3(1.0, 1.45, 0.0), ball_v3(0.0, 1e-8, 0.0));
   assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
   assert_int_equal(ball_racket_estimate(&m, &sim, 0, 0.2, &pose), BALL_OK);
   assert_near(pose.normal.y, 1.0, 1e-15);
@@ -202,7 +202,7 @@ static void test_racket_overtaking_from_behind_eq7_eq11_fig9(void **state) {
       assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
       for (i = 0; i < 2; i++) {
         ball_racket_sample s =
-            core_sample(-0.1 + 0.1 * i, core_v3(-2.0 + 2.0 * i, 1.45, 0.0), core_v3(1.0, 0.0, 0.0));
+            core_sample(-0.1 + 0.1 * i, ball_v3(-2.0 + 2.0 * i, 1.45, 0.0), ball_v3(1.0, 0.0, 0.0));
         assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
       }
       step_frames(&m, &sim, 50, &r);
@@ -226,7 +226,7 @@ static void test_samples_with_equal_timestamps(void **state) {
     memset(&r, 0, sizeof r);
     racket_model(&m, BALL_DETECT_DISC, resp ? BALL_RESPONSE_PHYSICAL : BALL_RESPONSE_RACKET, 10.0);
     assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
-    s = core_sample(0.0, core_v3(1.0, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
+    s = core_sample(0.0, ball_v3(1.0, 1.45, 0.0), ball_v3(-1.0, 0.0, 0.0));
     assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
     copy = sim;
     assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_EDUPLICATE);
@@ -241,9 +241,9 @@ static void test_samples_with_equal_timestamps(void **state) {
     memset(&r, 0, sizeof r);
     assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
     {
-      ball_racket_sample a = core_sample(0.5, core_v3(1.0, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
+      ball_racket_sample a = core_sample(0.5, ball_v3(1.0, 1.45, 0.0), ball_v3(-1.0, 0.0, 0.0));
       ball_racket_sample b =
-          core_sample(nextafter(0.5, 1.0), core_v3(0.99, 1.45, 0.0), core_v3(-1.0, 0.0, 0.0));
+          core_sample(nextafter(0.5, 1.0), ball_v3(0.99, 1.45, 0.0), ball_v3(-1.0, 0.0, 0.0));
       assert_int_equal(ball_racket_push(&m, &sim, 0, &a), BALL_OK);
       assert_int_equal(ball_racket_push(&m, &sim, 0, &b), BALL_OK);
     }
@@ -275,7 +275,7 @@ static void test_racket_inside_the_ball(void **state) {
       m.stale_time = 10.0;
       assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
       for (i = 0; i < 2; i++) {
-        ball_racket_sample s = core_sample(-0.1 + 0.1 * i, core_v3(0.0, 1.5, 0.0), core_v3(0.0, 1.0, 0.0));
+        ball_racket_sample s = core_sample(-0.1 + 0.1 * i, ball_v3(0.0, 1.5, 0.0), ball_v3(0.0, 1.0, 0.0));
         assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
       }
       step_frames(&m, &sim, 60, &r);

@@ -14,7 +14,7 @@
 static void running(ball_model *m, ball_sim *sim) {
   int f;
   core_model_free(m);
-  m->initial_velocity = core_v3(3.0, 2.0, 1.0);
+  m->initial_velocity = ball_v3(3.0, 2.0, 1.0);
   assert_ok(ball_sim_init(m, sim));
   for (f = 0; f < 60; f++) assert_ok(ball_step(m, sim, 1.0 / 60.0, NULL, 0, NULL));
   assert_true(sim->seg.t0 > 0.0); /* it has bounced */
@@ -113,7 +113,7 @@ static void model_rejected(const ball_model *bad, const bad_field *want) {
   {
     ball_state st;
     memset(&st, 0, sizeof st);
-    st.position = core_v3(0.0, 1.0, 0.0);
+    st.position = ball_v3(0.0, 1.0, 0.0);
     if (read_by_a_step(bad, want->field)) {
       assert_int_equal(ball_sim_set_state(bad, &sim, &st), BALL_EMODEL);
       assert_memory_equal(&sim, &before, sizeof sim);
@@ -197,9 +197,9 @@ static void set_state_below_floor_or_nonfinite_is_rejected_unchanged(void **stat
   m.floor_level = 0.2;
   assert_ok(ball_sim_set_model(&m, &sim));
   memcpy(&before, &sim, sizeof sim);
-  st.position = core_v3(0.0, 0.29, 0.0); /* centre below floor_level + radius */
-  st.velocity = core_v3(1.0, 0.0, 0.0);
-  st.spin = core_v3(0.0, 0.0, 0.0);
+  st.position = ball_v3(0.0, 0.29, 0.0); /* centre below floor_level + radius */
+  st.velocity = ball_v3(1.0, 0.0, 0.0);
+  st.spin = ball_v3(0.0, 0.0, 0.0);
   assert_int_equal(ball_sim_set_state(&m, &sim, &st), BALL_ERANGE);
   assert_memory_equal(&sim, &before, sizeof sim);
   st.position.y = 0.3;
@@ -259,7 +259,7 @@ static void prediction_rejects_nan_and_times_before_the_segment(void **state) {
   double t = 42.0;
   (void)state;
   core_model_free(&m);
-  seg = core_segment(1.0, core_v3(0.0, 1.0, 0.0), core_v3(1.0, 1.0, 0.0), core_v3(0.0, 0.0, 0.0));
+  seg = core_segment(1.0, ball_v3(0.0, 1.0, 0.0), ball_v3(1.0, 1.0, 0.0), ball_v3(0.0, 0.0, 0.0));
   memset(&out, 0x5A, sizeof out);
   memcpy(&out_before, &out, sizeof out);
   assert_int_equal(ball_segment_eval(&m, &seg, NAN, &out), BALL_ENONFINITE);

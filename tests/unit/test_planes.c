@@ -26,8 +26,8 @@ static void net_model(ball_model *m) {
   core_model_free(m);
   core_tennis_net(m, 0.2);
   m->effects |= BALL_EFFECT_NET | BALL_EFFECT_WALLS;
-  m->initial_position = core_v3(10.0, 0.5, 5.0);
-  m->initial_velocity = core_v3(8.0, 2.0, 1.0);
+  m->initial_position = ball_v3(10.0, 0.5, 5.0);
+  m->initial_velocity = ball_v3(8.0, 2.0, 1.0);
 }
 
 /* Runs `frames` frames and returns how many events; the first in *first. */
@@ -109,8 +109,8 @@ static void eq6_sampled_net_hit_shifts_dt_over_10_along_new_velocity(void **stat
   assert_true(sim.seg.p0.x < 11.885);
   assert_true(sim.seg.t0 == ev.time);
   /* the same from the far side: the shift lands the ball beyond the net */
-  m.initial_position = core_v3(13.77, 0.5, 5.0);
-  m.initial_velocity = core_v3(-8.0, 2.0, 1.0);
+  m.initial_position = ball_v3(13.77, 0.5, 5.0);
+  m.initial_velocity = ball_v3(-8.0, 2.0, 1.0);
   assert_true(run_events(&m, &sim, 0.1, 3, &ev) == 1);
   assert_true(ev.velocity_out.x > 0.0);
   assert_near(ev.point.x, 11.885, TOL);
@@ -130,22 +130,22 @@ static void fig3_ball_beside_or_above_the_net_passes(void **state) {
     net_model(&m);
     m.scheme = (ball_scheme)scheme;
     /* beside: z = 11 + 0.236 at the net, outside [0, 10.97] */
-    m.initial_position = core_v3(10.0, 0.5, 11.0);
+    m.initial_position = ball_v3(10.0, 0.5, 11.0);
     assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 30, &ev), 0);
     assert_ok(ball_sim_state(&m, &sim, &s));
     assert_true(s.position.x > 11.885);
     /* on the other side of z = 0 */
-    m.initial_position = core_v3(10.0, 0.5, -0.5);
-    m.initial_velocity = core_v3(8.0, 2.0, -1.0);
+    m.initial_position = ball_v3(10.0, 0.5, -0.5);
+    m.initial_velocity = ball_v3(8.0, 2.0, -1.0);
     assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 30, &ev), 0);
     /* above: y at the net = 1.0 + 0.193 > 0.914 */
-    m.initial_position = core_v3(10.0, 1.0, 5.0);
-    m.initial_velocity = core_v3(8.0, 2.0, 1.0);
+    m.initial_position = ball_v3(10.0, 1.0, 5.0);
+    m.initial_velocity = ball_v3(8.0, 2.0, 1.0);
     assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 30, &ev), 0);
     assert_ok(ball_sim_state(&m, &sim, &s));
     assert_true(s.position.x > 11.885);
     /* just under the top: a hit */
-    m.initial_position = core_v3(10.0, 0.7, 5.0);
+    m.initial_position = ball_v3(10.0, 0.7, 5.0);
     assert_true(run_events(&m, &sim, 1.0 / 60.0, 30, &ev) >= 1);
     assert_int_equal(ev.kind, BALL_EVENT_NET);
   }
@@ -166,8 +166,8 @@ static void eq6_walls_on_z_and_x_planes_reflect_the_normal_component(void **stat
   m.effects |= BALL_EFFECT_WALLS;
   assert_ok(ball_model_add_wall(&m, &xwall));
   assert_ok(ball_model_add_wall(&m, &zwall));
-  m.initial_position = core_v3(0.0, 1.0, 0.0);
-  m.initial_velocity = core_v3(1.0, 2.0, 6.0);
+  m.initial_position = ball_v3(0.0, 1.0, 0.0);
+  m.initial_velocity = ball_v3(1.0, 2.0, 6.0);
   /* one hit in 0.67 s (the floor comes at 0.78 s) */
   assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 40, &ev), 1);
   assert_int_equal(ev.kind, BALL_EVENT_WALL);
@@ -180,7 +180,7 @@ static void eq6_walls_on_z_and_x_planes_reflect_the_normal_component(void **stat
   assert_near(ev.velocity_out.y, -3.6443222615039418 * 0.5, TOL);
   assert_near(ev.velocity_out.z, -4.5 * 0.5, TOL);
 
-  m.initial_velocity = core_v3(-4.0, 2.0, 0.0);
+  m.initial_velocity = ball_v3(-4.0, 2.0, 0.0);
   assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 40, &ev), 1);
   assert_int_equal(ev.kind, BALL_EVENT_WALL);
   assert_int_equal(ev.index, 0);
@@ -218,8 +218,8 @@ static void fig3_radius_moves_the_contact_plane_toward_the_ball(void **state) {
     assert_int_equal(ev.kind, BALL_EVENT_NET);
     assert_near(ev.point.x, 11.885 - 0.1, TOL);
     if (scheme == BALL_SCHEME_EXACT) assert_near(ev.time, 0.23658195427363626, TOL);
-    m.initial_position = core_v3(13.77, 0.5, 5.0);
-    m.initial_velocity = core_v3(-8.0, 2.0, 1.0);
+    m.initial_position = ball_v3(13.77, 0.5, 5.0);
+    m.initial_velocity = ball_v3(-8.0, 2.0, 1.0);
     assert_true(run_events(&m, &sim, 1.0 / 60.0, 30, &ev) >= 1);
     assert_int_equal(ev.kind, BALL_EVENT_NET);
     assert_near(ev.point.x, 11.885 + 0.1, TOL);
@@ -229,8 +229,8 @@ static void fig3_radius_moves_the_contact_plane_toward_the_ball(void **state) {
     m.scheme = (ball_scheme)scheme;
     m.effects |= BALL_EFFECT_WALLS;
     assert_ok(ball_model_add_wall(&m, &zwall));
-    m.initial_position = core_v3(0.0, 1.0, 0.0);
-    m.initial_velocity = core_v3(1.0, 2.0, 6.0);
+    m.initial_position = ball_v3(0.0, 1.0, 0.0);
+    m.initial_velocity = ball_v3(1.0, 2.0, 6.0);
     assert_true(run_events(&m, &sim, 1.0 / 60.0, 40, &ev) >= 1);
     assert_int_equal(ev.kind, BALL_EVENT_WALL);
     assert_near(ev.point.z, 2.9, TOL);

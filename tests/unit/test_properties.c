@@ -49,7 +49,7 @@ static double uni(rng *r, double lo, double hi) {
   return lo + (hi - lo) * ((double)(next_u64(r) >> 11) * (1.0 / 9007199254740992.0));
 }
 static int coin(rng *r, double p) { return uni(r, 0.0, 1.0) < p; }
-static ball_vec3 uvec(rng *r, double a) { return core_v3(uni(r, -a, a), uni(r, -a, a), uni(r, -a, a)); }
+static ball_vec3 uvec(rng *r, double a) { return ball_v3(uni(r, -a, a), uni(r, -a, a), uni(r, -a, a)); }
 static double norm(ball_vec3 v) { return hypot(hypot(v.x, v.y), v.z); } /* no underflow at 1e-160 */
 static int finite3(ball_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
@@ -139,14 +139,14 @@ static void random_scene(rng *r, ball_model *m, const scene_opts *o) {
       w.damping = coin(r, 0.2) ? 1.0 : uni(r, 0.0, 1.0);
       if (ball_model_add_wall(m, &w) != BALL_OK) fail_msg("random wall rejected");
     }
-  m->initial_position = core_v3(x0, m->floor_level + m->radius + (coin(r, 0.2) ? 0.0 : uni(r, 0.0, 5.0)), z0);
+  m->initial_position = ball_v3(x0, m->floor_level + m->radius + (coin(r, 0.2) ? 0.0 : uni(r, 0.0, 5.0)), z0);
   /* not overlapping the net at the start: P3 is about crossing it */
   if (m->effects & BALL_EFFECT_NET) {
     double *c = m->net.axis == 0 ? &m->initial_position.x : &m->initial_position.z;
     if (fabs(*c - m->net.position) < m->radius + 1e-6) *c = m->net.position - m->radius - 0.01;
   }
   m->initial_velocity = uvec(r, 30.0);
-  m->initial_spin = o->spin ? uvec(r, 30.0) : core_v3(0.0, 0.0, 0.0);
+  m->initial_spin = o->spin ? uvec(r, 30.0) : ball_v3(0.0, 0.0, 0.0);
 }
 
 static double random_dt(rng *r) {
@@ -356,9 +356,9 @@ static void test_random_exact_scenes_are_frame_rate_independent(void **state) {
       continue;
     }
     for (k = 1; k < 3; k++) {
-      double dp = norm(core_v3(out[k].position.x - out[0].position.x, out[k].position.y - out[0].position.y,
+      double dp = norm(ball_v3(out[k].position.x - out[0].position.x, out[k].position.y - out[0].position.y,
                            out[k].position.z - out[0].position.z));
-      double dv = norm(core_v3(out[k].velocity.x - out[0].velocity.x, out[k].velocity.y - out[0].velocity.y,
+      double dv = norm(ball_v3(out[k].velocity.x - out[0].velocity.x, out[k].velocity.y - out[0].velocity.y,
                            out[k].velocity.z - out[0].velocity.z));
       if (!(dp <= 1e-6 && dv <= 1e-6))
         FAIL_SEED(seed, "dt %g vs 1/8: positions differ by %.3g m, velocities by %.3g m/s", dts[k], dp, dv);
@@ -428,9 +428,9 @@ static void test_bad_inputs_leave_the_sim_unchanged(void **state) {
     copy = sim;
     if (ball_sim_init(&bad, &sim) == BALL_OK) FAIL_SEED(seed, "sim_init with a broken model was accepted");
     if (memcmp(&sim, &copy, sizeof sim) != 0) FAIL_SEED(seed, "a refused sim_init changed the sim");
-    s.position = core_v3(0.0, m.floor_level + m.radius + 1.0, 0.0);
-    s.velocity = core_v3(1.0, 1.0, 1.0);
-    s.spin = core_v3(0.0, 0.0, 0.0);
+    s.position = ball_v3(0.0, m.floor_level + m.radius + 1.0, 0.0);
+    s.velocity = ball_v3(1.0, 1.0, 1.0);
+    s.spin = ball_v3(0.0, 0.0, 0.0);
     {
       ball_sim trial = sim;
       if (ball_sim_set_state(&bad, &trial, &s) != BALL_OK && memcmp(&trial, &copy, sizeof sim) != 0)

@@ -35,7 +35,7 @@ typedef struct swing {
 
 static ball_vec3 rnd(core_rng *r, double lo, double hi) {
   double x = core_uniform(r, lo, hi), y = core_uniform(r, lo, hi);
-  return core_v3(x, y, core_uniform(r, lo, hi));
+  return ball_v3(x, y, core_uniform(r, lo, hi));
 }
 
 static void study_model(ball_model *m, ball_detect detect) {
@@ -60,40 +60,40 @@ static void make_swing(const ball_model *m, core_rng *r, double dt, swing *sw) {
   const double b = m->mass / m->air_friction, g = m->gravity;
   double tc = core_uniform(r, 0.5, 0.8), delay = core_uniform(r, -0.03, 0.03);
   int overtake = core_uniform(r, 0, 1) < 0.2, k;
-  ball_vec3 x = core_v3(0, 1, 0), vb, v0, vr, acc, offset, n_c, spin;
+  ball_vec3 x = ball_v3(0, 1, 0), vb, v0, vr, acc, offset, n_c, spin;
   if (overtake) {
-    vb = core_v3(core_uniform(r, 1, 5), core_uniform(r, -2, 2), core_uniform(r, -1, 1));
-    vr = core_v3(core_uniform(r, 10, 30), core_uniform(r, -3, 3), core_uniform(r, -3, 3));
+    vb = ball_v3(core_uniform(r, 1, 5), core_uniform(r, -2, 2), core_uniform(r, -1, 1));
+    vr = ball_v3(core_uniform(r, 10, 30), core_uniform(r, -3, 3), core_uniform(r, -3, 3));
   } else {
-    vb = core_v3(-core_uniform(r, 10, 30), core_uniform(r, -3, 3), core_uniform(r, -2, 2));
-    vr = core_v3(core_uniform(r, 5, 30), core_uniform(r, -5, 5), core_uniform(r, -5, 5));
+    vb = ball_v3(-core_uniform(r, 10, 30), core_uniform(r, -3, 3), core_uniform(r, -2, 2));
+    vr = ball_v3(core_uniform(r, 5, 30), core_uniform(r, -5, 5), core_uniform(r, -5, 5));
   }
   acc = rnd(r, -30, 30);
   offset = rnd(r, -0.25, 0.25);
-  n_c = core_unit(core_add(core_v3(1, 0, 0), rnd(r, -0.5, 0.5)));
+  n_c = ball_v3_unit(ball_v3_add(ball_v3(1, 0, 0), rnd(r, -0.5, 0.5)));
   spin = rnd(r, -6, 6); /* how fast the normal turns, 1/s */
   /* the ball's segment from t = 0 that has velocity vb at X at time tc (eq 3) */
-  v0 = core_v3(vb.x * exp(tc / b), vb.y + g * tc, vb.z * exp(tc / b));
+  v0 = ball_v3(vb.x * exp(tc / b), vb.y + g * tc, vb.z * exp(tc / b));
   {
     double d = -b * expm1(-tc / b);
-    sw->seg = core_segment(0.0, core_v3(x.x - v0.x * d, x.y - (v0.y * tc - 0.5 * g * tc * tc), x.z - v0.z * d),
-                           v0, core_v3(0, 0, 0));
+    sw->seg = core_segment(0.0, ball_v3(x.x - v0.x * d, x.y - (v0.y * tc - 0.5 * g * tc * tc), x.z - v0.z * d),
+                           v0, ball_v3(0, 0, 0));
   }
   sw->n = 0;
   for (k = 0; k * dt <= RUN_TIME + 1e-9 && k < MAX_SAMPLES; k++) {
     double t = k * dt, u = t - tc - delay;
     ball_racket_sample *s = &sw->s[sw->n++];
     s->t = t;
-    s->center = core_add(core_add(core_add(x, offset), core_scale(vr, u)), core_scale(acc, 0.5 * u * u));
-    s->normal = core_unit(core_add(n_c, core_scale(spin, u)));
+    s->center = ball_v3_add(ball_v3_add(ball_v3_add(x, offset), ball_v3_scale(vr, u)), ball_v3_scale(acc, 0.5 * u * u));
+    s->normal = ball_v3_unit(ball_v3_add(n_c, ball_v3_scale(spin, u)));
   }
 }
 
 /* ---- ground truth: the same motions, finely sampled ---- */
 
 static double disc_distance(ball_vec3 p, ball_vec3 c, ball_vec3 n) {
-  ball_vec3 w = core_sub(p, c);
-  double d = core_dot(w, n), rho = core_norm(core_sub(w, core_scale(n, d)));
+  ball_vec3 w = ball_v3_sub(p, c);
+  double d = ball_v3_dot(w, n), rho = ball_v3_norm(ball_v3_sub(w, ball_v3_scale(n, d)));
   return (rho <= DISC_R ? fabs(d) : hypot(d, rho - DISC_R)) - BALL_R;
 }
 
@@ -103,14 +103,14 @@ static double ground_truth(const ball_model *m, const swing *sw, double *closest
   *closest = INFINITY;
   for (k = 1; k < sw->n; k++) {
     const ball_racket_sample *a = &sw->s[k - 1], *bs = &sw->s[k];
-    ball_vec3 nb = core_dot(a->normal, bs->normal) < 0 ? core_scale(bs->normal, -1) : bs->normal;
+    ball_vec3 nb = ball_v3_dot(a->normal, bs->normal) < 0 ? ball_v3_scale(bs->normal, -1) : bs->normal;
     ball_state s0, s1;
     int i, steps;
     /* skip frames where the ball stays far from both poses' reach */
     ball_segment_eval(m, &sw->seg, a->t, &s0);
     ball_segment_eval(m, &sw->seg, bs->t, &s1);
-    if (core_norm(core_sub(s0.position, a->center)) + core_norm(core_sub(s1.position, bs->center)) >
-        core_norm(core_sub(s1.position, s0.position)) + core_norm(core_sub(bs->center, a->center)) +
+    if (ball_v3_norm(ball_v3_sub(s0.position, a->center)) + ball_v3_norm(ball_v3_sub(s1.position, bs->center)) >
+        ball_v3_norm(ball_v3_sub(s1.position, s0.position)) + ball_v3_norm(ball_v3_sub(bs->center, a->center)) +
             4.0 * (DISC_R + BALL_R))
       continue;
     steps = (int)ceil((bs->t - a->t) / GT_STEP);
@@ -118,8 +118,8 @@ static double ground_truth(const ball_model *m, const swing *sw, double *closest
       double t = a->t + (bs->t - a->t) * i / steps, u = (t - a->t) / (bs->t - a->t), dist;
       ball_state s;
       ball_segment_eval(m, &sw->seg, t, &s);
-      dist = disc_distance(s.position, core_add(a->center, core_scale(core_sub(bs->center, a->center), u)),
-                           core_unit(core_add(a->normal, core_scale(core_sub(nb, a->normal), u))));
+      dist = disc_distance(s.position, ball_v3_add(a->center, ball_v3_scale(ball_v3_sub(bs->center, a->center), u)),
+                           ball_v3_unit(ball_v3_add(a->normal, ball_v3_scale(ball_v3_sub(nb, a->normal), u))));
       if (dist < *closest) *closest = dist;
       if (dist <= 0.0) return t;
     }

@@ -36,13 +36,13 @@ typedef struct plan {
 } plan;
 
 static double x_hit(int racket) { return racket == 0 ? X_HIT_LEFT : X_HIT_RIGHT; }
-static ball_vec3 ready(int racket) { return core_v3(x_hit(racket), READY_Y, COURT_Z); }
-static ball_vec3 ready_normal(int racket) { return core_v3(racket == 0 ? 1.0 : -1.0, 0, 0); }
+static ball_vec3 ready(int racket) { return ball_v3(x_hit(racket), READY_Y, COURT_Z); }
+static ball_vec3 ready_normal(int racket) { return ball_v3(racket == 0 ? 1.0 : -1.0, 0, 0); }
 
 /* eq 8, 9 by hand: from q to (goal x, q y, goal z) with v_up, times friendly. */
 static ball_vec3 friendly_velocity(const ball_model *m, ball_vec3 q, ball_vec3 goal, double v_up, double friendly) {
   double b = m->mass / m->air_friction, t0 = 2.0 * v_up / m->gravity, f = 1.0 / (-b * expm1(-t0 / b));
-  return core_scale(core_v3((goal.x - q.x) * f, v_up, (goal.z - q.z) * f), friendly);
+  return ball_v3_scale(ball_v3((goal.x - q.x) * f, v_up, (goal.z - q.z) * f), friendly);
 }
 
 /* The racket's scripted pose at t: ready, approach, the swing through X at T, return. */
@@ -52,14 +52,14 @@ static void racket_pose(int racket, const plan *p, double t, ball_vec3 *c, ball_
   *n = ready_normal(racket);
   if (!p->active || t <= p->t - 0.6 || t >= p->t + 0.7) return;
   if (t < p->t - 0.25) {
-    ball_vec3 from = core_sub(p->x, core_scale(p->u, 0.25)); /* where the stroke begins */
-    *c = core_add(r, core_scale(core_sub(from, r), (t - (p->t - 0.6)) / 0.35));
+    ball_vec3 from = ball_v3_sub(p->x, ball_v3_scale(p->u, 0.25)); /* where the stroke begins */
+    *c = ball_v3_add(r, ball_v3_scale(ball_v3_sub(from, r), (t - (p->t - 0.6)) / 0.35));
   } else if (t <= p->t + 0.25) {
-    *c = core_add(p->x, core_scale(p->u, t - p->t));
+    *c = ball_v3_add(p->x, ball_v3_scale(p->u, t - p->t));
     *n = p->n;
   } else {
-    ball_vec3 e = core_add(p->x, core_scale(p->u, 0.25));
-    *c = core_add(e, core_scale(core_sub(r, e), (t - (p->t + 0.25)) / 0.45));
+    ball_vec3 e = ball_v3_add(p->x, ball_v3_scale(p->u, 0.25));
+    *c = ball_v3_add(e, ball_v3_scale(ball_v3_sub(r, e), (t - (p->t + 0.25)) / 0.45));
   }
 }
 
@@ -101,32 +101,32 @@ static void make_plan(const ball_model *m, int receiver, double t, const ball_st
     /* the racket's velocity does not matter (eq 9); slower than the ball
      * leaves, so the swing does not follow it into a second hit */
     p->u = friendly_velocity(m, s->position, goal, m->v_up, 0.5);
-    p->n = core_unit(p->u);
+    p->n = ball_v3_unit(p->u);
   } else if (m->response == BALL_RESPONSE_MIXED) {
     /* eq 10 solved for the racket velocity that gives a lob to the partner
      * (V_up 5.5 m/s): V_racket = (V_lob - ff V_f) / (1 - ff) */
     double ff = m->friendly_factor;
     ball_vec3 vf = friendly_velocity(m, s->position, goal, m->v_up, 1.0);
     ball_vec3 lob = friendly_velocity(m, s->position, goal, 5.5, 1.0);
-    p->u = core_scale(core_sub(lob, core_scale(vf, ff)), 1.0 / (1.0 - ff));
-    p->n = core_unit(p->u);
+    p->u = ball_v3_scale(ball_v3_sub(lob, ball_v3_scale(vf, ff)), 1.0 / (1.0 - ff));
+    p->n = ball_v3_unit(p->u);
   } else {
     /* eq 11 with V_racket = s n + w, w the brush orthogonal to n:
      * V0 = V + (s - 2 n.V) n + w + S x n. Solve n for V0 = V_des (a lob to
      * the partner, V_up 5.5 m/s), then s. */
     ball_vec3 v_des = friendly_velocity(m, s->position, goal, 5.5, 1.0), w, rhs;
-    ball_vec3 n = core_unit(core_sub(v_des, v));
+    ball_vec3 n = ball_v3_unit(ball_v3_sub(v_des, v));
     int it;
     double k;
     for (it = 0; it < 20; it++) {
-      w = core_sub(core_v3(0, 1.5, 0), core_scale(n, n.y * 1.5));
-      rhs = core_sub(core_sub(core_sub(v_des, v), w), core_cross(s->spin, n));
-      n = core_unit(rhs);
+      w = ball_v3_sub(ball_v3(0, 1.5, 0), ball_v3_scale(n, n.y * 1.5));
+      rhs = ball_v3_sub(ball_v3_sub(ball_v3_sub(v_des, v), w), ball_v3_cross(s->spin, n));
+      n = ball_v3_unit(rhs);
     }
-    w = core_sub(core_v3(0, 1.5, 0), core_scale(n, n.y * 1.5));
-    k = core_norm(core_sub(core_sub(core_sub(v_des, v), w), core_cross(s->spin, n)));
+    w = ball_v3_sub(ball_v3(0, 1.5, 0), ball_v3_scale(n, n.y * 1.5));
+    k = ball_v3_norm(ball_v3_sub(ball_v3_sub(ball_v3_sub(v_des, v), w), ball_v3_cross(s->spin, n)));
     p->n = n;
-    p->u = core_add(core_scale(n, k + 2.0 * core_dot(n, v)), w);
+    p->u = ball_v3_add(ball_v3_scale(n, k + 2.0 * ball_v3_dot(n, v)), w);
   }
 }
 
@@ -148,7 +148,7 @@ static int rally(ball_level level, int *hits, double *max_spin) {
   m.rackets[1].partner = 0;
   m.extrapolation_time = 0.1; /* eq 15 bridges the 10 Hz samples */
   m.stale_time = 1.0;
-  m.initial_position = core_v3(X_HIT_LEFT + 1.0, READY_Y, COURT_Z); /* served in front of racket 0 */
+  m.initial_position = ball_v3(X_HIT_LEFT + 1.0, READY_Y, COURT_Z); /* served in front of racket 0 */
   m.initial_velocity = friendly_velocity(&m, m.initial_position, ready(1), m.v_up, 1.0);
   assert_ok(ball_model_check(&m, NULL));
   assert_ok(ball_sim_init(&m, &sim));
@@ -170,7 +170,7 @@ static int rally(ball_level level, int *hits, double *max_spin) {
       if (ev[k].kind == BALL_EVENT_NET) return crossings; /* into the net: rally over */
       if (ev[k].kind != BALL_EVENT_RACKET) continue;
       (*hits)++;
-      if (core_norm(ev[k].spin_out) > *max_spin) *max_spin = core_norm(ev[k].spin_out);
+      if (ball_v3_norm(ev[k].spin_out) > *max_spin) *max_spin = ball_v3_norm(ev[k].spin_out);
       /* the hitter's swing runs on and returns to ready; plan the receiver's */
       receiver = 1 - ev[k].index;
       if (!predict(&m, &sim, receiver, &t_hit, &at)) return crossings;

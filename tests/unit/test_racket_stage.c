@@ -21,7 +21,7 @@ static void still_racket_model(ball_model *m, int sleep_frames) {
   m->v_max = 40.0;
   m->sleep_frames = sleep_frames;
   m->stale_time = 10.0;
-  m->initial_position = core_v3(0, 1, 0);
+  m->initial_position = ball_v3(0, 1, 0);
 }
 
 /* Frames (1-based) in which a racket event came, over `frames` steps of dt. */
@@ -113,8 +113,8 @@ static int overtake(ball_detect detect, ball_event *hit) {
   m.collision_distance = 0.183;
   m.response = BALL_RESPONSE_PHYSICAL;
   m.stale_time = 10.0;
-  m.initial_position = core_v3(0, 1, 0);
-  m.initial_velocity = core_v3(2, 0, 0);
+  m.initial_position = ball_v3(0, 1, 0);
+  m.initial_velocity = ball_v3(2, 0, 0);
   assert_ok(ball_sim_init(&m, &sim));
   for (f = 0; f <= 3; f++) {
     double t = f * dt;

@@ -22,7 +22,7 @@ static void track_model(ball_model *m) {
 static ball_racket_sample sample(double t, double x, double y, double z, ball_vec3 n) {
   ball_racket_sample s;
   s.t = t;
-  s.center = core_v3(x, y, z);
+  s.center = ball_v3(x, y, z);
   s.normal = n;
   return s;
 }
@@ -38,7 +38,7 @@ static void assert_rejected(const ball_model *m, ball_sim *sim, int racket, ball
 static void bad_samples_rejected_with_track_unchanged(void **state) {
   ball_model m;
   ball_sim sim;
-  ball_vec3 x = core_v3(1, 0, 0);
+  ball_vec3 x = ball_v3(1, 0, 0);
   (void)state;
   track_model(&m);
   assert_ok(ball_sim_init(&m, &sim));
@@ -48,15 +48,15 @@ static void bad_samples_rejected_with_track_unchanged(void **state) {
   assert_rejected(&m, &sim, 0, sample(INFINITY, 3, 1, 1, x), BALL_ENONFINITE);
   assert_rejected(&m, &sim, 0, sample(0.3, 3, NAN, 1, x), BALL_ENONFINITE);
   assert_rejected(&m, &sim, 0, sample(0.3, 3, 1, -INFINITY, x), BALL_ENONFINITE);
-  assert_rejected(&m, &sim, 0, sample(0.3, 3, 1, 1, core_v3(NAN, 0, 0)), BALL_ENONFINITE);
-  assert_rejected(&m, &sim, 0, sample(0.3, 3, 1, 1, core_v3(1e-10, 0, 0)), BALL_ERANGE);
-  assert_rejected(&m, &sim, 0, sample(0.3, 3, 1, 1, core_v3(0, 0, 0)), BALL_ERANGE);
+  assert_rejected(&m, &sim, 0, sample(0.3, 3, 1, 1, ball_v3(NAN, 0, 0)), BALL_ENONFINITE);
+  assert_rejected(&m, &sim, 0, sample(0.3, 3, 1, 1, ball_v3(1e-10, 0, 0)), BALL_ERANGE);
+  assert_rejected(&m, &sim, 0, sample(0.3, 3, 1, 1, ball_v3(0, 0, 0)), BALL_ERANGE);
   assert_rejected(&m, &sim, 0, sample(0.15, 3, 1, 1, x), BALL_ESTALE);  /* older than the newest */
   assert_rejected(&m, &sim, 0, sample(0.2, 3, 1, 1, x), BALL_ESTALE);   /* same time, other data */
   assert_rejected(&m, &sim, -1, sample(0.3, 3, 1, 1, x), BALL_EINVAL);
   assert_rejected(&m, &sim, 2, sample(0.3, 3, 1, 1, x), BALL_EINVAL);  /* n_rackets = 2 */
-  assert_rejected(&m, &sim, 0, sample(0.2, 2, 1, 1, core_v3(0, 1, 0)), BALL_EDUPLICATE); /* exact duplicate */
-  assert_rejected(&m, &sim, 0, sample(0.1, 1, 1, 1, core_v3(0, 3, 0)), BALL_EDUPLICATE); /* late duplicate */
+  assert_rejected(&m, &sim, 0, sample(0.2, 2, 1, 1, ball_v3(0, 1, 0)), BALL_EDUPLICATE); /* exact duplicate */
+  assert_rejected(&m, &sim, 0, sample(0.1, 1, 1, 1, ball_v3(0, 3, 0)), BALL_EDUPLICATE); /* late duplicate */
   {
     /* a model other than the bound one: refused, the track unchanged */
     ball_model other = m;
@@ -175,7 +175,7 @@ static void stale_racket_does_not_collide_and_is_counted(void **state) {
   m.detect = BALL_DETECT_SPHERE;
   m.collision_distance = 0.5;
   m.effects = BALL_EFFECT_RACKETS;
-  m.initial_position = core_v3(0, 1, 0);
+  m.initial_position = ball_v3(0, 1, 0);
   assert_ok(ball_sim_init(&m, &sim));
   /* the racket sits on the ball, but its only sample is older than stale_time */
   assert_ok(ball_racket_push(&m, &sim, 0, &(ball_racket_sample){-1.0, {0, 1, 0}, {1, 0, 0}}));

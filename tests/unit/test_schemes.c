@@ -23,8 +23,8 @@ static void drop_scene(ball_model *m, ball_scheme scheme) {
   m->floor_damping = 0.75;
   m->bounce_threshold = 0.3;
   m->scheme = scheme;
-  m->initial_position = core_v3(0.0, 2.0, 0.0);
-  m->initial_velocity = core_v3(3.0, 0.0, 1.0);
+  m->initial_position = ball_v3(0.0, 2.0, 0.0);
+  m->initial_velocity = ball_v3(3.0, 0.0, 1.0);
 }
 
 static void bounce_times(ball_scheme scheme, double fps, double *times) {
@@ -185,9 +185,9 @@ static void eq5_eq6_energy_never_increases_at_a_collision_exact(void **state) {
     m.net.damping = shot % 10 == 2 ? 1.0 : core_uniform(&rng, 0.0, 1.0);
     m.radius = core_uniform(&rng, 0.0, 0.1);
     m.air_friction = shot % 3 == 0 ? 0.0 : core_uniform(&rng, 0.0, 0.05);
-    m.initial_position = core_v3(core_uniform(&rng, 0.0, 11.0), core_uniform(&rng, 0.2, 3.0),
+    m.initial_position = ball_v3(core_uniform(&rng, 0.0, 11.0), core_uniform(&rng, 0.2, 3.0),
                                  core_uniform(&rng, 0.5, 10.5));
-    m.initial_velocity = core_v3(core_uniform(&rng, -5.0, 30.0), core_uniform(&rng, -5.0, 8.0),
+    m.initial_velocity = ball_v3(core_uniform(&rng, -5.0, 30.0), core_uniform(&rng, -5.0, 8.0),
                                  core_uniform(&rng, -6.0, 6.0));
     core_simulate(&m, 1.0 / 30.0, 240, &run, NULL);
     for (k = 0; k < run.n; k++) {
@@ -224,8 +224,8 @@ static void eq5_sampled_snap_adds_at_most_m_g_depth(void **state) {
   for (shot = 0; shot < 100; shot++) {
     drop_scene(&m, BALL_SCHEME_SAMPLED);
     m.floor_damping = core_uniform(&rng, 0.2, 1.0);
-    m.initial_position = core_v3(0.0, core_uniform(&rng, 0.1, 4.0), 0.0);
-    m.initial_velocity = core_v3(core_uniform(&rng, -10.0, 10.0), core_uniform(&rng, -5.0, 8.0),
+    m.initial_position = ball_v3(0.0, core_uniform(&rng, 0.1, 4.0), 0.0);
+    m.initial_velocity = ball_v3(core_uniform(&rng, -10.0, 10.0), core_uniform(&rng, -5.0, 8.0),
                                  core_uniform(&rng, -10.0, 10.0));
     assert_ok(ball_sim_init(&m, &sim));
     for (f = 0; f < 150; f++) {

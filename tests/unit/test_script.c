@@ -34,7 +34,7 @@ static void keyframe(ball_racket_script *s, int i, double t, ball_vec3 center, b
 static void still_script(ball_racket_script *s, double rate) {
   ball_script_default(s);
   s->n_keyframes = 1;
-  keyframe(s, 0, 0.0, core_v3(1.0, 2.0, 3.0), core_v3(1.0, 0.0, 0.0));
+  keyframe(s, 0, 0.0, ball_v3(1.0, 2.0, 3.0), ball_v3(1.0, 0.0, 0.0));
   s->rate = rate;
 }
 
@@ -42,8 +42,8 @@ static void still_script(ball_racket_script *s, double rate) {
 static void swing_script(ball_racket_script *s) {
   ball_script_default(s);
   s->n_keyframes = 2;
-  keyframe(s, 0, 0.2, core_v3(0.0, 1.0, 0.0), core_v3(1.0, 0.0, 0.0));
-  keyframe(s, 1, 0.6, core_v3(2.0, 1.5, 0.5), core_v3(0.0, 1.0, 0.0));
+  keyframe(s, 0, 0.2, ball_v3(0.0, 1.0, 0.0), ball_v3(1.0, 0.0, 0.0));
+  keyframe(s, 1, 0.6, ball_v3(2.0, 1.5, 0.5), ball_v3(0.0, 1.0, 0.0));
   s->repeat = 1.0;
 }
 
@@ -82,9 +82,9 @@ static void keyframes_interpolate_linearly_and_hold_outside(void **state) {
   (void)state;
   ball_script_default(&s);
   s.n_keyframes = 3;
-  keyframe(&s, 0, 0.0, core_v3(0.0, 0.0, 0.0), core_v3(1.0, 0.0, 0.0));
-  keyframe(&s, 1, 1.0, core_v3(2.0, 4.0, -2.0), core_v3(0.0, 3.0, 0.0)); /* any length: normalised */
-  keyframe(&s, 2, 3.0, core_v3(2.0, 0.0, 0.0), core_v3(0.0, 1.0, 0.0));
+  keyframe(&s, 0, 0.0, ball_v3(0.0, 0.0, 0.0), ball_v3(1.0, 0.0, 0.0));
+  keyframe(&s, 1, 1.0, ball_v3(2.0, 4.0, -2.0), ball_v3(0.0, 3.0, 0.0)); /* any length: normalised */
+  keyframe(&s, 2, 3.0, ball_v3(2.0, 0.0, 0.0), ball_v3(0.0, 1.0, 0.0));
   /* t = 0.25: a quarter of the way, centre (0.5, 1, -0.5); normal
    * (0.75, 0.25, 0) / |.| = (3, 1, 0) / sqrt(10) */
   assert_int_equal(ball_script_pose(&s, 0.25, &c, &n), BALL_OK);
@@ -113,9 +113,9 @@ static void repeat_wraps_from_last_keyframe_back_to_first(void **state) {
   (void)state;
   ball_script_default(&s);
   s.n_keyframes = 3;
-  keyframe(&s, 0, 0.0, core_v3(0.0, 0.0, 0.0), core_v3(1.0, 0.0, 0.0));
-  keyframe(&s, 1, 1.0, core_v3(2.0, 4.0, -2.0), core_v3(0.0, 1.0, 0.0));
-  keyframe(&s, 2, 3.0, core_v3(2.0, 0.0, 0.0), core_v3(0.0, 1.0, 0.0));
+  keyframe(&s, 0, 0.0, ball_v3(0.0, 0.0, 0.0), ball_v3(1.0, 0.0, 0.0));
+  keyframe(&s, 1, 1.0, ball_v3(2.0, 4.0, -2.0), ball_v3(0.0, 1.0, 0.0));
+  keyframe(&s, 2, 3.0, ball_v3(2.0, 0.0, 0.0), ball_v3(0.0, 1.0, 0.0));
   s.repeat = 4.0; /* span 3 s, then 1 s from keyframe 2 back to keyframe 0 */
   /* t = 3.5: half way from (2, 0, 0) back to (0, 0, 0): (1, 0, 0); normal
    * (0.5, 0.5, 0) / |.| */
@@ -376,7 +376,7 @@ static void bad_scripts_and_polls_are_rejected(void **state) {
   assert_int_equal(ball_script_check(&s, &field), BALL_ENONFINITE);
   assert_string_equal(field, "delay");
   still_script(&s, 60.0);
-  s.keyframes[0].normal = core_v3(0.0, 0.0, 0.0);
+  s.keyframes[0].normal = ball_v3(0.0, 0.0, 0.0);
   assert_int_equal(ball_script_check(&s, &field), BALL_ERANGE);
   assert_string_equal(field, "keyframes.normal");
   still_script(&s, 60.0);

@@ -29,10 +29,21 @@ static inline ball_vec3 ball_v3_cross(ball_vec3 a, ball_vec3 b) {
 }
 static inline double ball_v3_norm(ball_vec3 a) { return sqrt(ball_v3_dot(a, a)); }
 static inline double ball_v3_dist(ball_vec3 a, ball_vec3 b) { return ball_v3_norm(ball_v3_sub(a, b)); }
-/* a / |a|; a itself when |a| is 0 */
+/* |a| without overflow or underflow: scaled by the largest component first
+ * (|(3e300, 4e300, 0)| = 5e300, not +Inf) */
+static inline double ball_v3_length(ball_vec3 a) {
+  double s = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
+  if (!(s > 0.0) || isinf(s)) return s > 0.0 ? s : 0.0;
+  a = ball_v3_scale(a, 1.0 / s);
+  return s * sqrt(ball_v3_dot(a, a));
+}
+/* a / |a| without overflow (scaled first, as ball_v3_length); the zero
+ * vector stays zero */
 static inline ball_vec3 ball_v3_unit(ball_vec3 a) {
-  double n = ball_v3_norm(a);
-  return n > 0.0 ? ball_v3_scale(a, 1.0 / n) : a;
+  double s = fmax(fabs(a.x), fmax(fabs(a.y), fabs(a.z)));
+  if (!(s > 0.0)) return ball_v3(0.0, 0.0, 0.0);
+  a = ball_v3_scale(a, 1.0 / s);
+  return ball_v3_scale(a, 1.0 / sqrt(ball_v3_dot(a, a)));
 }
 static inline int ball_v3_finite(ball_vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 /* a + (b - a) u */

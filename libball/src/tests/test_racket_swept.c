@@ -29,8 +29,8 @@ static ball_swept_query query(ball_vec3 p0, ball_vec3 p1, double r, ball_vec3 c0
 }
 
 static void swept_ball_straight_at_still_disc_toi_by_hand(void **state) {
-  ball_vec3 o = core_v3(0, 0, 0), x = core_v3(1, 0, 0), pt;
-  ball_swept_query q = query(core_v3(2, 0.05, 0), core_v3(-2, 0.05, 0), 0.1, o, o, x, x, 0.15);
+  ball_vec3 o = ball_v3(0, 0, 0), x = ball_v3(1, 0, 0), pt;
+  ball_swept_query q = query(ball_v3(2, 0.05, 0), ball_v3(-2, 0.05, 0), 0.1, o, o, x, x, 0.15);
   double toi = -1;
   int hit = 0;
   (void)state;
@@ -43,8 +43,8 @@ static void swept_ball_straight_at_still_disc_toi_by_hand(void **state) {
 }
 
 static void swept_point_ball_passes_through_disc_toi_by_hand(void **state) {
-  ball_vec3 o = core_v3(0, 0, 0), x = core_v3(1, 0, 0);
-  ball_swept_query q = query(core_v3(1, 0.05, 0), core_v3(-3, 0.05, 0), 0.0, o, o, x, x, 0.15);
+  ball_vec3 o = ball_v3(0, 0, 0), x = ball_v3(1, 0, 0);
+  ball_swept_query q = query(ball_v3(1, 0.05, 0), ball_v3(-3, 0.05, 0), 0.0, o, o, x, x, 0.15);
   double toi = -1;
   int hit = 0;
   (void)state;
@@ -59,11 +59,11 @@ static void swept_point_ball_passes_through_disc_toi_by_hand(void **state) {
 }
 
 static void swept_racket_overtaking_ball_from_behind_toi_by_hand(void **state) {
-  ball_vec3 x = core_v3(1, 0, 0);
+  ball_vec3 x = ball_v3(1, 0, 0);
   /* ball 0.5 -> 1.5 (1 m per frame), racket 0 -> 3 behind it: the gap
    * 0.5 - 0.05 closes at 2 per frame: toi = 0.225; at the frame's end the
    * racket is 1.5 m ahead of the ball, so the sphere test sees nothing */
-  ball_swept_query q = query(core_v3(0.5, 0, 0), core_v3(1.5, 0, 0), 0.05, core_v3(0, 0, 0), core_v3(3, 0, 0), x, x,
+  ball_swept_query q = query(ball_v3(0.5, 0, 0), ball_v3(1.5, 0, 0), 0.05, ball_v3(0, 0, 0), ball_v3(3, 0, 0), x, x,
                              0.15);
   double toi = -1;
   int hit = 0;
@@ -82,8 +82,8 @@ static void swept_turning_disc_toi_by_hand(void **state) {
    * bringing its plane onto the ball. Contact when
    * 0.1 (1-u) / sqrt(u^2 + (1-u)^2) = 0.02, i.e. sqrt(24) (1-u) = u:
    * u = sqrt(24) / (1 + sqrt(24)); the centre is then 0.098 m off the axis, on the face. */
-  ball_vec3 p = core_v3(0, 0.1, 0), o = core_v3(0, 0, 0);
-  ball_swept_query q = query(p, p, 0.02, o, o, core_v3(0, 1, 0), core_v3(1, 0, 0), 0.15);
+  ball_vec3 p = ball_v3(0, 0.1, 0), o = ball_v3(0, 0, 0);
+  ball_swept_query q = query(p, p, 0.02, o, o, ball_v3(0, 1, 0), ball_v3(1, 0, 0), 0.15);
   double toi = -1, want = sqrt(24.0) / (1.0 + sqrt(24.0));
   int hit = 0;
   (void)state;
@@ -91,13 +91,13 @@ static void swept_turning_disc_toi_by_hand(void **state) {
   assert_int_equal(hit, 1);
   assert_near(toi, want, TOI_TOL);
   /* a normal given with the opposite sign is the same disc */
-  q.n0 = core_v3(0, -1, 0);
-  q.n1 = core_v3(-1, 0, 0);
+  q.n0 = ball_v3(0, -1, 0);
+  q.n1 = ball_v3(-1, 0, 0);
   assert_ok(ball_swept_disc(&q, &hit, &toi, NULL));
   assert_int_equal(hit, 1);
   assert_near(toi, want, TOI_TOL);
   /* turning only 5.7 degrees it stays clear: the ball is 0.1 / sqrt(1.01) > 0.02 from the plane */
-  q.n1 = core_v3(-0.1, -1, 0);
+  q.n1 = ball_v3(-0.1, -1, 0);
   assert_ok(ball_swept_disc(&q, &hit, &toi, NULL));
   assert_int_equal(hit, 0);
 }
@@ -105,8 +105,8 @@ static void swept_turning_disc_toi_by_hand(void **state) {
 static void swept_ball_hits_the_rim_edge_on(void **state) {
   /* the disc lies in the plane x = 0; the ball moves along -y inside that
    * plane and meets the rim when y = 0.15 + 0.05: toi = (0.5 - 0.2) / 1 */
-  ball_vec3 o = core_v3(0, 0, 0), x = core_v3(1, 0, 0);
-  ball_swept_query q = query(core_v3(0, 0.5, 0), core_v3(0, -0.5, 0), 0.05, o, o, x, x, 0.15);
+  ball_vec3 o = ball_v3(0, 0, 0), x = ball_v3(1, 0, 0);
+  ball_swept_query q = query(ball_v3(0, 0.5, 0), ball_v3(0, -0.5, 0), 0.05, o, o, x, x, 0.15);
   double toi = -1;
   int hit = 0;
   (void)state;
@@ -120,8 +120,8 @@ static void swept_shallow_rim_graze_found_between_substeps(void **state) {
    * to the disc is hypot(0.03, 0.02) = 0.0360555 m; with radius 0.0362 it
    * overlaps for only |z| < 0.003. First contact (30 digits):
    * z = -sqrt((0.15 + sqrt(r^2 - 0.03^2))^2 - 0.17^2), toi = (z + 1) / 2 */
-  ball_vec3 o = core_v3(0, 0, 0), x = core_v3(1, 0, 0);
-  ball_swept_query q = query(core_v3(0.03, 0.17, -1), core_v3(0.03, 0.17, 1), 0.0362, o, o, x, x, 0.15);
+  ball_vec3 o = ball_v3(0, 0, 0), x = ball_v3(1, 0, 0);
+  ball_swept_query q = query(ball_v3(0.03, 0.17, -1), ball_v3(0.03, 0.17, 1), 0.0362, o, o, x, x, 0.15);
   double toi = -1;
   int hit = 0;
   (void)state;
@@ -135,8 +135,8 @@ static void swept_shallow_rim_graze_found_between_substeps(void **state) {
 }
 
 static void swept_touching_at_start_is_contact_at_zero(void **state) {
-  ball_vec3 o = core_v3(0, 0, 0), x = core_v3(1, 0, 0);
-  ball_swept_query q = query(core_v3(0.01, 0, 0), core_v3(1, 0, 0), 0.05, o, o, x, x, 0.15);
+  ball_vec3 o = ball_v3(0, 0, 0), x = ball_v3(1, 0, 0);
+  ball_swept_query q = query(ball_v3(0.01, 0, 0), ball_v3(1, 0, 0), 0.05, o, o, x, x, 0.15);
   double toi = -1;
   int hit = 0;
   (void)state;
@@ -146,8 +146,8 @@ static void swept_touching_at_start_is_contact_at_zero(void **state) {
 }
 
 static void swept_rejects_bad_queries(void **state) {
-  ball_vec3 o = core_v3(0, 0, 0), x = core_v3(1, 0, 0);
-  ball_swept_query q = query(core_v3(1, 0, 0), core_v3(-1, 0, 0), 0.05, o, o, x, x, 0.15), bad;
+  ball_vec3 o = ball_v3(0, 0, 0), x = ball_v3(1, 0, 0);
+  ball_swept_query q = query(ball_v3(1, 0, 0), ball_v3(-1, 0, 0), 0.05, o, o, x, x, 0.15), bad;
   double toi = 42;
   int hit = 7;
   (void)state;
@@ -155,7 +155,7 @@ static void swept_rejects_bad_queries(void **state) {
   bad.p1.x = NAN;
   assert_int_equal(ball_swept_disc(&bad, &hit, &toi, NULL), BALL_ENONFINITE);
   bad = q;
-  bad.n1 = core_v3(1e-12, 0, 0);
+  bad.n1 = ball_v3(1e-12, 0, 0);
   assert_int_equal(ball_swept_disc(&bad, &hit, &toi, NULL), BALL_ERANGE);
   bad = q;
   bad.ball_radius = -0.1;
@@ -170,13 +170,15 @@ static void swept_analytic_flight_ball_dropped_on_still_disc_toi_to_1e9(void **s
    * path onto a horizontal disc at the origin; its surface (radius 0.02)
    * touches when 1 - g t^2 / 2 = 0.02: t = sqrt(0.98 / 4.905) = 0.44698559976987065 s */
   ball_model m;
-  ball_segment seg = core_segment(10.0, core_v3(0, 1, 0), core_v3(0, 0, 0), core_v3(0, 0, 0));
+  ball__flight fl;
+  ball_segment seg = core_segment(10.0, ball_v3(0, 1, 0), ball_v3(0, 0, 0), ball_v3(0, 0, 0));
   ball__swept_motion mo;
   double t = 0;
   ball_vec3 c, face;
   (void)state;
   core_model_free(&m);
-  mo.model = &m;
+  ball__flight_of(&m, &fl);
+  mo.flight = &fl;
   mo.seg = &seg;
   mo.ta = 10.0;
   mo.tb = 10.5;
@@ -185,8 +187,8 @@ static void swept_analytic_flight_ball_dropped_on_still_disc_toi_to_1e9(void **s
   mo.ball_radius = 0.02;
   mo.tc0 = 10.0;
   mo.tc1 = 10.5;
-  mo.c0 = mo.c1 = core_v3(0, 0, 0);
-  mo.n0 = mo.n1 = core_v3(0, -1, 0); /* tracked upside down: the face turns to the ball */
+  mo.c0 = mo.c1 = ball_v3(0, 0, 0);
+  mo.n0 = mo.n1 = ball_v3(0, -1, 0); /* tracked upside down: the face turns to the ball */
   mo.disc_radius = 0.15;
   assert_int_equal(ball__swept_toi(&mo, &t, &c, &face), 1);
   assert_near(t, 10.0 + 0.44698559976987065, 1e-9);
@@ -194,7 +196,7 @@ static void swept_analytic_flight_ball_dropped_on_still_disc_toi_to_1e9(void **s
   assert_near(face.y, 1.0, 0.0);
   /* the same disc rising at 1 m/s meets it earlier:
    * 1 - g t^2 / 2 = 0.02 + t  ->  t = (-1 + sqrt(1 + 2 g 0.98)) / g */
-  mo.c1 = core_v3(0, 0.5, 0);
+  mo.c1 = ball_v3(0, 0.5, 0);
   assert_int_equal(ball__swept_toi(&mo, &t, &c, &face), 1);
   assert_near(t, 10.0 + (-1.0 + sqrt(1.0 + 2.0 * 9.81 * 0.98)) / 9.81, 1e-9);
 }
