@@ -132,7 +132,7 @@ ball_status ball_camera_from_preset(const ball_model *model, ball_camera_preset 
     case BALL_CAMERA_BEHIND1: {
       double sgn = preset == BALL_CAMERA_BEHIND0 ? 1.0 : -1.0;
       c.fov = 50.0;
-      c.target = add(centre, add(scale(along, sgn * 0.1 * len), v3(0.0, 0.3, 0.0)));
+      c.target = add(centre, v3(0.0, 0.3, 0.0));
       c.eye = add(centre, add(scale(along, -sgn * 0.75 * len), v3(0.0, 0.3 * len + 1.0, 0.0)));
       break;
     }

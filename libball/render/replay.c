@@ -44,6 +44,7 @@ ball_status ball_replay_frame(ball_replay *r, double t, ball_frame *f) {
   ball_event events[EVENT_CAP];
   ball_state s;
   ball_status st;
+  double te;
   int i, n;
   if (!r || !f) return BALL_EINVAL;
   if (!isfinite(t)) return BALL_ENONFINITE;
@@ -54,9 +55,9 @@ ball_status ball_replay_frame(ball_replay *r, double t, ball_frame *f) {
     for (i = 0; i < n; ++i) keep_event(r, &events[i]);
     keep_position(r);
   }
-  /* on the current segment: the frame's own state when t is the frame's time */
-  if ((st = ball_segment_eval(m, &r->run.sim.seg, t > r->run.sim.time ? t : r->run.sim.time, &s)) != BALL_OK)
-    return st;
+  /* on the current segment; at a frame's time (to TIME_SLACK) the frame's own state */
+  te = t > r->run.sim.time + TIME_SLACK ? t : r->run.sim.time;
+  if ((st = ball_segment_eval(m, &r->run.sim.seg, te, &s)) != BALL_OK) return st;
   memset(f, 0, sizeof *f);
   f->time = t;
   f->ball = s.position;

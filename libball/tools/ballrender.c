@@ -61,7 +61,8 @@ static void print_help(FILE *f) {
           "\n"
           "Output: one line per frame written:\n"
           "  frame t=T file=PATH ball=X,Y,Z pixel=PX,PY\n"
-          "(the ball centre in m and where it is in the image, x right and y down).\n"
+          "(the ball centre in m, to the last bit, and where it is in the image in\n"
+          "pixels, x right and y down from the top-left corner).\n"
           "Exit status: 0 on success, 1 for a scene or runtime error (a scene error is\n"
           "FILE:LINE:COLUMN: FIELD: MESSAGE), 2 for bad arguments.\n");
 }
@@ -299,7 +300,7 @@ int main(int argc, char **argv) {
       return 1;
     }
     if (ball_camera_project(&cam, o.width, o.height, frame.ball, &px, &py, NULL) != BALL_OK) px = py = NAN;
-    printf("frame t=%.3f file=%s ball=%.9g,%.9g,%.9g pixel=%.2f,%.2f\n", times[i], path, frame.ball.x, frame.ball.y,
+    printf("frame t=%.3f file=%s ball=%.17g,%.17g,%.17g pixel=%.3f,%.3f\n", times[i], path, frame.ball.x, frame.ball.y,
            frame.ball.z, px, py);
   }
   ball_renderer_destroy(renderer);
