@@ -59,14 +59,14 @@ void view_arena_of(const ball_model *m, view_arena *a) {
   for (i = 0; i < m->n_walls; ++i) grow_plane(a, &m->walls[i]);
   for (i = 0; i < m->n_rackets; ++i)
     if (m->rackets[i].partner < 0) grow(a, m->rackets[i].target.x, m->rackets[i].target.z);
+  /* whole metres, so that a small change of the scene (the ball's start a
+   * few centimetres off) keeps the floor and the preset cameras where they are */
   for (i = 0; i < 2; ++i) {
-    double c = 0.5 * (a->lo[i] + a->hi[i]);
-    a->lo[i] -= MARGIN;
-    a->hi[i] += MARGIN;
-    if (a->hi[i] - c < MIN_HALF_SIZE) {
-      a->lo[i] = c - MIN_HALF_SIZE;
-      a->hi[i] = c + MIN_HALF_SIZE;
-    }
+    double c = floor(0.5 * (a->lo[i] + a->hi[i]) + 0.5);
+    a->lo[i] = floor(a->lo[i] - MARGIN);
+    a->hi[i] = ceil(a->hi[i] + MARGIN);
+    if (a->lo[i] > c - MIN_HALF_SIZE) a->lo[i] = c - MIN_HALF_SIZE;
+    if (a->hi[i] < c + MIN_HALF_SIZE) a->hi[i] = c + MIN_HALF_SIZE;
   }
   if (!m->has_net) a->long_axis = (a->hi[1] - a->lo[1]) > (a->hi[0] - a->lo[0]) ? 1 : 0;
 }

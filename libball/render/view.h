@@ -10,7 +10,7 @@
 
 /* The floor area a model's scene uses, and its court. */
 typedef struct view_arena {
-  double lo[2], hi[2];  /* floor rectangle, x and z, m (court and obstacles plus a margin) */
+  double lo[2], hi[2];  /* floor rectangle, x and z, whole m (court and obstacles plus a margin) */
   int long_axis;        /* 0: x, 1: z; the axis across the net, else the longer side */
   double height;        /* the highest thing to keep in view (net, walls, ball start), m */
   int has_court;        /* 1: a net: court lines around it */
