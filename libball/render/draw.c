@@ -72,7 +72,11 @@ ball_status ball_renderer_create(int width, int height, ball_renderer **out) {
 
 void ball_renderer_destroy(ball_renderer *r) {
   if (!r) return;
-  if (r->ctx) OSMesaDestroyContext(r->ctx);
+  if (r->ctx) {
+    /* release it first: a context destroyed while current keeps its framebuffer */
+    if (OSMesaGetCurrentContext() == r->ctx) OSMesaMakeCurrent(NULL, NULL, GL_UNSIGNED_BYTE, 0, 0);
+    OSMesaDestroyContext(r->ctx);
+  }
   free(r->big);
   free(r->rgb);
   free(r);

@@ -6,6 +6,8 @@ target_compile_options(render_probe PRIVATE ${BALL_C_WARNINGS})
 target_link_libraries(render_probe PRIVATE ball_render m)
 
 ball_add_cmocka(test_render SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_render.c LIBS ball_render m LABELS render)
+set(BALL_RENDER_LSAN "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_LIST_DIR}/lsan.supp")
+set_property(TEST test_render APPEND PROPERTY ENVIRONMENT ${BALL_RENDER_LSAN})
 
 set(BALL_RENDER_WORK ${CMAKE_CURRENT_BINARY_DIR}/render_work)
 
@@ -17,7 +19,8 @@ foreach(c ${BALL_GOLDEN_CASES})
     COMMAND ${CMAKE_COMMAND} -DBALLRENDER=$<TARGET_FILE:ballrender> -DPROBE=$<TARGET_FILE:render_probe>
       -DSOURCE=${PROJECT_SOURCE_DIR} -DWORK=${BALL_RENDER_WORK}/golden -DCASE=${name}
       -P ${CMAKE_CURRENT_LIST_DIR}/goldens.cmake)
-  set_tests_properties(render_golden_${name} PROPERTIES LABELS "render;golden" TIMEOUT 60)
+  set_tests_properties(render_golden_${name} PROPERTIES LABELS "render;golden" TIMEOUT 60
+    ENVIRONMENT ${BALL_RENDER_LSAN})
 endforeach()
 
 set(BALL_RENDER_CASES
@@ -40,5 +43,5 @@ foreach(case ${BALL_RENDER_CASES})
       -DPROBE=$<TARGET_FILE:render_probe> -DSOURCE=${PROJECT_SOURCE_DIR} -DHERE=${CMAKE_CURRENT_LIST_DIR}
       -DWORK=${BALL_RENDER_WORK}/${case} -DCASE=${case}
       -P ${CMAKE_CURRENT_LIST_DIR}/cases.cmake)
-  set_tests_properties(render_${case} PROPERTIES LABELS "render;cli" TIMEOUT 60)
+  set_tests_properties(render_${case} PROPERTIES LABELS "render;cli" TIMEOUT 60 ENVIRONMENT ${BALL_RENDER_LSAN})
 endforeach()
