@@ -71,20 +71,6 @@ void view_arena_of(const ball_model *m, view_arena *a) {
   if (!m->has_net) a->long_axis = (a->hi[1] - a->lo[1]) > (a->hi[0] - a->lo[0]) ? 1 : 0;
 }
 
-static ball_vec3 v3(double x, double y, double z) {
-  ball_vec3 v;
-  v.x = x;
-  v.y = y;
-  v.z = z;
-  return v;
-}
-static ball_vec3 add(ball_vec3 a, ball_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-static ball_vec3 scale(ball_vec3 a, double s) { return v3(a.x * s, a.y * s, a.z * s); }
-static double dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static ball_vec3 cross(ball_vec3 a, ball_vec3 b) {
-  return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
-
 ball_status ball_camera_from_preset(const ball_model *model, ball_camera_preset preset, double aspect,
                                     ball_camera *out) {
   view_arena a;
@@ -189,8 +175,6 @@ void view_projection(const ball_camera *cam, double aspect, double m[16]) {
   m[11] = -1.0;
   m[14] = 2.0 * VIEW_FAR * VIEW_NEAR / (VIEW_NEAR - VIEW_FAR);
 }
-
-static int finite3(ball_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
 ball_status ball_camera_project(const ball_camera *cam, int width, int height, ball_vec3 p, double *px, double *py,
                                 double *depth) {

@@ -92,17 +92,6 @@ ball_status ball_render_pixels(const ball_renderer *r, const unsigned char **rgb
 
 /* ---- geometry ---------------------------------------------------------- */
 
-static ball_vec3 v3(double x, double y, double z) {
-  ball_vec3 v;
-  v.x = x;
-  v.y = y;
-  v.z = z;
-  return v;
-}
-static double dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-static ball_vec3 cross(ball_vec3 a, ball_vec3 b) {
-  return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
-}
 static ball_vec3 unit(ball_vec3 v) {
   double n = sqrt(dot(v, v));
   return n > 0.0 ? v3(v.x / n, v.y / n, v.z / n) : v3(0.0, 1.0, 0.0);
@@ -256,8 +245,6 @@ static void downsample(ball_renderer *r) {
                                           row1[8 * x + 4 + c] + 2) / 4);
   }
 }
-
-static int finite3(ball_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
 static ball_status check_frame(const ball_model *m, const ball_camera *cam, const ball_frame *f) {
   int i;

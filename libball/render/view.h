@@ -3,6 +3,8 @@
 #ifndef BALL_RENDER_VIEW_H
 #define BALL_RENDER_VIEW_H
 
+#include <math.h>
+
 #include "ball/render.h"
 
 #define VIEW_NEAR 0.2   /* near clipping plane, m */
@@ -18,6 +20,22 @@ typedef struct view_arena {
 } view_arena;
 
 void view_arena_of(const ball_model *model, view_arena *arena);
+
+/* Vectors, for camera.c and draw.c. */
+static inline ball_vec3 v3(double x, double y, double z) {
+  ball_vec3 v;
+  v.x = x;
+  v.y = y;
+  v.z = z;
+  return v;
+}
+static inline ball_vec3 add(ball_vec3 a, ball_vec3 b) { return v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+static inline ball_vec3 scale(ball_vec3 a, double s) { return v3(a.x * s, a.y * s, a.z * s); }
+static inline double dot(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+static inline ball_vec3 cross(ball_vec3 a, ball_vec3 b) {
+  return v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+static inline int finite3(ball_vec3 v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
 /* Column-major 4x4 matrices, as glLoadMatrixd takes them. 0 for a camera
  * whose target is its eye or whose up is along the view. */

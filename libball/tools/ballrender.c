@@ -15,7 +15,9 @@
 #include "ball/render.h"
 #include "ball/scene.h"
 
-#define EXIT_USAGE 2
+#define TOOL_NAME "ballrender"
+#include "args.h"
+
 #define MAX_FRAMES 10000
 #define MAX_TIME 86400.0 /* s */
 #define DEFAULT_WIDTH 640
@@ -65,28 +67,6 @@ static void print_help(FILE *f) {
           "pixels, x right and y down from the top-left corner).\n"
           "Exit status: 0 on success, 1 for a scene or runtime error (a scene error is\n"
           "FILE:LINE:COLUMN: FIELD: MESSAGE), 2 for bad arguments.\n");
-}
-
-static int usage_error(const char *fmt, ...) {
-  va_list ap;
-  fprintf(stderr, "ballrender: ");
-  va_start(ap, fmt);
-  vfprintf(stderr, fmt, ap);
-  va_end(ap);
-  fprintf(stderr, " (see ballrender --help)\n");
-  return EXIT_USAGE;
-}
-
-/* A finite number, the whole text consumed (no leading blanks). */
-static int parse_number(const char *text, double *out) {
-  char *end;
-  double v;
-  if (!text || !(*text == '-' || *text == '+' || *text == '.' || (*text >= '0' && *text <= '9'))) return 0;
-  errno = 0;
-  v = strtod(text, &end);
-  if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v)) return 0;
-  *out = v;
-  return 1;
 }
 
 static int parse_size(const char *text, int *w, int *h) {

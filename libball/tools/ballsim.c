@@ -10,7 +10,9 @@
 #include "ball/ball.h"
 #include "ball/scene.h"
 
-#define EXIT_USAGE 2
+#define TOOL_NAME "ballsim"
+#include "args.h"
+
 #define MAX_FRAMES 1000000000.0
 #define EVENT_CAP (BALL_MAX_CONTACTS + BALL_MAX_RACKETS + 8)
 
@@ -65,26 +67,10 @@ static void print_help(FILE *f) {
           "FILE:LINE:COLUMN: FIELD: MESSAGE), 2 for bad arguments.\n");
 }
 
-static int usage_error(const char *fmt, ...) {
-  va_list ap;
-  fprintf(stderr, "ballsim: ");
-  va_start(ap, fmt);
-  vfprintf(stderr, fmt, ap);
-  va_end(ap);
-  fprintf(stderr, " (see ballsim --help)\n");
-  return EXIT_USAGE;
-}
-
 /* A finite number > 0, the whole text consumed. */
 static int parse_positive(const char *text, double *out) {
-  char *end;
   double v;
-  /* strtod would skip leading blanks: a strict number starts with a sign,
-   * a digit or a point */
-  if (!text || !(*text == '-' || *text == '+' || *text == '.' || (*text >= '0' && *text <= '9'))) return 0;
-  errno = 0;
-  v = strtod(text, &end);
-  if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v) || !(v > 0.0)) return 0;
+  if (!parse_number(text, &v) || !(v > 0.0)) return 0;
   *out = v;
   return 1;
 }
