@@ -10,6 +10,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "ball/scene.h"
+
 #define EXIT_USAGE 2
 
 /* "TOOL: message (see TOOL --help)" on stderr; returns EXIT_USAGE. */
@@ -34,6 +36,17 @@ static int parse_number(const char *text, double *out) {
   if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v)) return 0;
   *out = v;
   return 1;
+}
+
+/* Loads a scene file; on failure prints "file:line:column: field: message"
+ * to stderr and returns 0. */
+static int load_scene(const char *path, ball_scene *scene) {
+  ball_scene_error err;
+  char text[1024];
+  if (ball_scene_load_file(path, scene, &err) == BALL_OK) return 1;
+  ball_scene_error_format(&err, text, sizeof text);
+  fprintf(stderr, "%s\n", text);
+  return 0;
 }
 
 #endif

@@ -218,7 +218,6 @@ int main(int argc, char **argv) {
   static ball_scene scene;
   static ball_replay replay; /* about 200 kB: off the stack */
   static double times[MAX_FRAMES];
-  ball_scene_error err;
   ball_camera cam;
   ball_renderer *renderer = NULL;
   ball_status st;
@@ -227,13 +226,7 @@ int main(int argc, char **argv) {
   rc = parse_args(argc, argv, &o);
   if (rc >= 0) return rc;
 
-  st = ball_scene_load_file(o.scene_path, &scene, &err);
-  if (st != BALL_OK) {
-    char text[1024];
-    ball_scene_error_format(&err, text, sizeof text);
-    fprintf(stderr, "%s\n", text);
-    return 1;
-  }
+  if (!load_scene(o.scene_path, &scene)) return 1;
   rc = frame_times(&o, scene.duration, times, &n_times);
   if (rc >= 0) return rc;
   st = ball_camera_find(&scene, o.camera, (double)o.width / o.height, &cam);

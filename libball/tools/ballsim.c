@@ -206,14 +206,7 @@ int main(int argc, char **argv) {
   if (rc >= 0) return rc;
 
   if (o.scene_path) {
-    ball_scene_error err;
-    st = ball_scene_load_file(o.scene_path, &scene, &err);
-    if (st != BALL_OK) {
-      char text[1024];
-      ball_scene_error_format(&err, text, sizeof text);
-      fprintf(stderr, "%s\n", text);
-      return 1;
-    }
+    if (!load_scene(o.scene_path, &scene)) return 1;
   } else {
     ball_scene_default(&scene);
   }
