@@ -99,10 +99,15 @@ BALL_API void ball_renderer_destroy(ball_renderer *renderer);
  * otherwise), net and walls, the frame's rackets as oriented discs, the ball
  * as a lit sphere with its shadow on the floor, the trail and the event
  * markers, from cam, with fixed lighting. The ball is drawn with the model's
- * radius, but never smaller than 3 pixels across each way (a point ball
+ * radius, but never under 2 pixels of radius (a point ball
  * would not show). Draw calls on one renderer must come from one thread at a
  * time. BALL_EINVAL / BALL_ENONFINITE / BALL_ERANGE for a bad argument (the
- * pixels are then unchanged). */
+ * pixels are then unchanged).
+ *
+ * A watcher fills the frame from what it received: ball from
+ * ball_segment_eval(model, &latest_segment, t), each racket from its latest
+ * pose sample (visible 0 until one came), trail from the centres it kept,
+ * events from the collision events of the last second or so. */
 BALL_API ball_status ball_render_draw(ball_renderer *renderer, const ball_model *model, const ball_camera *cam,
                                       const ball_frame *frame);
 
