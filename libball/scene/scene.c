@@ -729,6 +729,90 @@ static const key_spec ball_keys[] = {
 };
 static const section ball_section = {ball_keys, NULL, 0, 1};
 
+/* ---- the render section (docs/render.md) ---------------------------------- */
+
+#define SCENE_DEFAULT_MARKERS 1.0 /* s */
+
+/* A camera's name: distinct from the cameras before it (ctx: the section). */
+static ball_status camera_name(scene_loader *L, const yaml_node_t *key, const yaml_node_t *v, const char *path,
+                               void *base, void *ctx) {
+  ball_scene_camera *c = (ball_scene_camera *)base;
+  const ball_scene_render *r = (const ball_scene_render *)ctx;
+  const char *text, *ch;
+  int i;
+  (void)key;
+  if (v->type != YAML_SCALAR_NODE || v->data.scalar.length == 0)
+    return fail(L, v, path, "expected a name, got %s", node_kind(v));
+  text = scalar_text(v);
+  if (v->data.scalar.length >= sizeof c->name)
+    return fail(L, v, path, "longer than %d characters", (int)sizeof c->name - 1);
+  for (ch = text; *ch; ++ch)
+    if (!((*ch >= 'a' && *ch <= 'z') || (*ch >= 'A' && *ch <= 'Z') || (*ch >= '0' && *ch <= '9') || *ch == '_' ||
+          *ch == '-'))
+      return fail(L, v, path, "\"%s\": a name takes letters, digits, '_' and '-' only", text);
+  for (i = 0; r->cameras + i < c; ++i)
+    if (strcmp(r->cameras[i].name, text) == 0) return fail(L, v, path, "camera \"%s\" named twice", text);
+  copy_string(c->name, sizeof c->name, text);
+  return BALL_OK;
+}
+
+static const key_spec camera_keys[] = {
+    SPECIAL_KEY("name", 1),
+    REQUIRED_KEY("eye", KEY_VEC3, ball_scene_camera, camera.eye),
+    REQUIRED_KEY("target", KEY_VEC3, ball_scene_camera, camera.target),
+    KEY("up", KEY_VEC3, ball_scene_camera, camera.up),
+    RANGED_KEY("fov", ball_scene_camera, camera.fov, 1.0, 179.0, 0, "in [1, 179] degrees"),
+    END_OF_KEYS,
+};
+static const section camera_section = {camera_keys, camera_name, 1, 0};
+
+static double dot3(ball_vec3 a, ball_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+static ball_status load_cameras(scene_loader *L, const yaml_node_t *node, const char *path, ball_scene_render *r) {
+  int i, n;
+  ball_status st;
+  if ((st = get_list(L, node, path, "cameras", BALL_SCENE_MAX_CAMERAS, &n)) != BALL_OK) return st;
+  for (i = 0; i < n; ++i) {
+    ball_scene_camera *c = &r->cameras[i];
+    yaml_node_t *item = list_item(L, node, i);
+    char sub[SCENE_PATH_SIZE];
+    ball_vec3 d;
+    double dd, du, cross;
+    snprintf(sub, sizeof sub, "%s[%d]", path, i);
+    memset(c, 0, sizeof *c);
+    c->camera.up.y = 1.0;
+    c->camera.fov = 45.0;
+    if ((st = load_section(L, item, sub, &camera_section, c, r)) != BALL_OK) return st;
+    d.x = c->camera.target.x - c->camera.eye.x;
+    d.y = c->camera.target.y - c->camera.eye.y;
+    d.z = c->camera.target.z - c->camera.eye.z;
+    dd = dot3(d, d);
+    du = dot3(c->camera.up, c->camera.up);
+    if (!(dd > 1e-12) || !isfinite(dd)) return fail(L, item, sub, "target must be away from eye");
+    /* |d x up|^2 = |d|^2 |up|^2 - (d . up)^2: the up vector must not lie along d */
+    cross = dd * du - dot3(d, c->camera.up) * dot3(d, c->camera.up);
+    if (!(du > 0.0) || !isfinite(du) || !(cross > 1e-6 * dd * du))
+      return fail(L, item, sub, "up must not be zero or along target - eye");
+  }
+  r->n_cameras = n;
+  return BALL_OK;
+}
+
+static ball_status render_cameras(scene_loader *L, const yaml_node_t *key, const yaml_node_t *v, const char *path,
+                                  void *base, void *ctx) {
+  (void)key;
+  (void)ctx;
+  return load_cameras(L, v, path, (ball_scene_render *)base);
+}
+
+static const key_spec render_keys[] = {
+    RANGED_KEY("trail", ball_scene_render, trail, 0.0, 60.0, 0, "in [0, 60] s"),
+    RANGED_KEY("markers", ball_scene_render, markers, 0.0, 60.0, 0, "in [0, 60] s"),
+    SPECIAL_KEY("cameras", 0),
+    END_OF_KEYS,
+};
+static const section render_section = {render_keys, render_cameras, 0, 0};
+
 /* ---- mapping ball_model_check's field names back to scene keys ---------- */
 
 /* Model field (or prefix) -> scene path (or prefix). Fields not listed have
@@ -872,6 +956,7 @@ static ball_status root_key(scene_loader *L, const yaml_node_t *key, const yaml_
   else if (strcmp(k, "racket") == 0) st = load_section(L, v, path, &racket_section, base, NULL);
   else if (strcmp(k, "time") == 0) st = load_section(L, v, path, &time_section, &L->scene, &frame_node);
   else if (strcmp(k, "effects") == 0) st = load_effects(L, v);
+  else if (strcmp(k, "render") == 0) st = load_section(L, v, path, &render_section, &L->scene.render, NULL);
   else st = load_section(L, v, path, &ball_section, base, NULL);
   if (st != BALL_OK) return st;
   if (v->type != YAML_SCALAR_NODE) remember(L, k, NULL, v);
@@ -896,6 +981,7 @@ static const key_spec root_keys[] = {
     SPECIAL_KEY("effects", 0),
     ENUM_KEY("scheme", ball_model, scheme, scheme_name, BALL_SCHEME_COUNT, put_scheme),
     SPECIAL_KEY("ball", 0),
+    SPECIAL_KEY("render", 0),
     END_OF_KEYS,
 };
 static const section root_section = {root_keys, root_key, 0, 1};
@@ -1005,6 +1091,7 @@ static ball_status load_parser(yaml_parser_t *parser, const char *name, ball_sce
   L->scene.duration = SCENE_DEFAULT_DURATION;
   L->scene.frame_time = SCENE_DEFAULT_FRAME_TIME;
   L->scene.time_base = 1.0;
+  L->scene.render.markers = SCENE_DEFAULT_MARKERS;
 
   if (!yaml_parser_load(parser, &doc)) {
     const char *problem = parser->problem ? parser->problem : "cannot be parsed";
@@ -1126,6 +1213,7 @@ void ball_scene_default(ball_scene *scene) {
   scene->duration = 3.0;
   scene->frame_time = SCENE_DEFAULT_FRAME_TIME;
   scene->time_base = 1.0;
+  scene->render.markers = SCENE_DEFAULT_MARKERS;
 }
 
 void ball_scene_error_format(const ball_scene_error *err, char *buf, size_t size) {

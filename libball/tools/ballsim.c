@@ -10,11 +10,11 @@
 #include "ball/ball.h"
 #include "ball/scene.h"
 
-#define EXIT_USAGE 2
+#define TOOL_NAME "ballsim"
+#include "args.h"
+
 #define MAX_FRAMES 1000000000.0
 #define EVENT_CAP (BALL_MAX_CONTACTS + BALL_MAX_RACKETS + 8)
-#define SAMPLE_CAP 64
-#define ARRIVAL_SLACK 1e-9 /* s */
 
 typedef enum out_format { FORMAT_NONE = 0, FORMAT_CSV, FORMAT_JSONL } out_format;
 
@@ -67,26 +67,10 @@ static void print_help(FILE *f) {
           "FILE:LINE:COLUMN: FIELD: MESSAGE), 2 for bad arguments.\n");
 }
 
-static int usage_error(const char *fmt, ...) {
-  va_list ap;
-  fprintf(stderr, "ballsim: ");
-  va_start(ap, fmt);
-  vfprintf(stderr, fmt, ap);
-  va_end(ap);
-  fprintf(stderr, " (see ballsim --help)\n");
-  return EXIT_USAGE;
-}
-
 /* A finite number > 0, the whole text consumed. */
 static int parse_positive(const char *text, double *out) {
-  char *end;
   double v;
-  /* strtod would skip leading blanks: a strict number starts with a sign,
-   * a digit or a point */
-  if (!text || !(*text == '-' || *text == '+' || *text == '.' || (*text >= '0' && *text <= '9'))) return 0;
-  errno = 0;
-  v = strtod(text, &end);
-  if (end == text || *end != '\0' || errno == ERANGE || !isfinite(v) || !(v > 0.0)) return 0;
+  if (!parse_number(text, &v) || !(v > 0.0)) return 0;
   *out = v;
   return 1;
 }
@@ -205,7 +189,8 @@ static int runtime_error(const char *what, ball_status st) {
 int main(int argc, char **argv) {
   options o;
   ball_scene scene;
-  ball_sim sim;
+  static ball_scene_run run; /* about 60 kB: kept off the stack */
+  const ball_sim *sim = &run.sim;
   ball_state state;
   ball_event events[EVENT_CAP];
   unsigned long counts[BALL_EVENT_KIND_COUNT];
@@ -216,23 +201,12 @@ int main(int argc, char **argv) {
   FILE *out = NULL;
   ball_status st;
   int rc, i;
-  /* racket samples by what ball_racket_push made of them */
-  static ball_script_player player; /* about 50 kB: kept off the stack */
-  ball_script_sample samples[SAMPLE_CAP];
-  unsigned long n_arrived = 0, n_accepted = 0, n_duplicate = 0, n_stale = 0, n_invalid = 0;
 
   rc = parse_args(argc, argv, &o);
   if (rc >= 0) return rc;
 
   if (o.scene_path) {
-    ball_scene_error err;
-    st = ball_scene_load_file(o.scene_path, &scene, &err);
-    if (st != BALL_OK) {
-      char text[1024];
-      ball_scene_error_format(&err, text, sizeof text);
-      fprintf(stderr, "%s\n", text);
-      return 1;
-    }
+    if (!load_scene(o.scene_path, &scene)) return 1;
   } else {
     ball_scene_default(&scene);
   }
@@ -254,10 +228,8 @@ int main(int argc, char **argv) {
   }
   frames = (unsigned long)frames_d;
 
-  st = ball_sim_init(&scene.model, &sim);
+  st = ball_scene_run_init(&run, &scene);
   if (st != BALL_OK) return runtime_error("cannot start the sim", st);
-  st = ball_script_player_init(&player, scene.scripts, scene.model.n_rackets);
-  if (st != BALL_OK) return runtime_error("cannot start the racket scripts", st);
 
   if (o.out_path) {
     out = fopen(o.out_path, "w");
@@ -266,12 +238,12 @@ int main(int argc, char **argv) {
       return 1;
     }
     if (o.format == FORMAT_CSV) fprintf(out, "t,px,py,pz,vx,vy,vz,sx,sy,sz\n");
-    st = ball_sim_state(&scene.model, &sim, &state);
+    st = ball_sim_state(&scene.model, sim, &state);
     if (st != BALL_OK) {
       fclose(out);
       return runtime_error("cannot read the state", st);
     }
-    write_record(out, o.format, sim.time, &state);
+    write_record(out, o.format, sim->time, &state);
   }
 
   printf("scene: %s (%s) scheme=%s fps=%.6g dt=%.9g frames=%lu effects=", scene.name[0] ? scene.name : "unnamed",
@@ -282,30 +254,12 @@ int main(int argc, char **argv) {
 
   memset(counts, 0, sizeof counts);
   for (k = 0; k < frames; ++k) {
-    int n = 0, n_samples;
-    /* the samples that have arrived by the time this step advances to (to
-     * ARRIVAL_SLACK: the sim clock adds dt up frame by frame, and a sample
-     * taken on the frame clock must not come a frame late by rounding) */
-    do {
-      st = ball_script_poll(&player, sim.time + dt + ARRIVAL_SLACK, samples, SAMPLE_CAP, &n_samples);
-      if (st != BALL_OK) {
-        if (out) fclose(out);
-        return runtime_error("racket script", st);
-      }
-      for (i = 0; i < n_samples; ++i) {
-        /* rejected samples are normal under jitter: count them and go on */
-        st = ball_racket_push(&scene.model, &sim, samples[i].racket, &samples[i].sample);
-        n_arrived++;
-        if (st == BALL_OK) n_accepted++;
-        else if (st == BALL_EDUPLICATE) n_duplicate++; /* a copy of a kept sample: ignored */
-        else if (st == BALL_ESTALE) n_stale++;
-        else n_invalid++;
-      }
-    } while (n_samples == SAMPLE_CAP);
-    st = ball_step(&scene.model, &sim, dt, events, EVENT_CAP, &n);
+    int n = 0;
+    /* the racket samples that have arrived by the end of the step, then the step */
+    st = ball_scene_run_step(&run, &scene.model, events, EVENT_CAP, &n);
     if (st != BALL_OK) {
       if (out) fclose(out);
-      fprintf(stderr, "ballsim: step %lu at t=%.9g: %s\n", k + 1, sim.time, ball_strerror(st));
+      fprintf(stderr, "ballsim: step %lu at t=%.9g: %s\n", k + 1, sim->time, ball_strerror(st));
       return 1;
     }
     for (i = 0; i < n; ++i) {
@@ -321,12 +275,12 @@ int main(int argc, char **argv) {
       if (e->sound) n_sounds++;
     }
     if (out) {
-      st = ball_sim_state(&scene.model, &sim, &state);
+      st = ball_sim_state(&scene.model, sim, &state);
       if (st != BALL_OK) {
         fclose(out);
         return runtime_error("cannot read the state", st);
       }
-      write_record(out, o.format, sim.time, &state);
+      write_record(out, o.format, sim->time, &state);
     }
   }
 
@@ -338,19 +292,19 @@ int main(int argc, char **argv) {
     }
   }
 
-  st = ball_sim_state(&scene.model, &sim, &state);
+  st = ball_sim_state(&scene.model, sim, &state);
   if (st != BALL_OK) return runtime_error("cannot read the state", st);
   printf("summary: frames=%lu time=%.6f events=%lu floor=%lu net=%lu wall=%lu racket=%lu sounds=%lu\n", frames,
-         sim.time, n_events, counts[BALL_EVENT_FLOOR], counts[BALL_EVENT_NET], counts[BALL_EVENT_WALL],
+         sim->time, n_events, counts[BALL_EVENT_FLOOR], counts[BALL_EVENT_NET], counts[BALL_EVENT_WALL],
          counts[BALL_EVENT_RACKET], n_sounds);
-  printf("samples: arrived=%lu accepted=%lu duplicate=%lu stale=%lu invalid=%lu\n", n_arrived, n_accepted,
-         n_duplicate, n_stale, n_invalid);
+  printf("samples: arrived=%lu accepted=%lu duplicate=%lu stale=%lu invalid=%lu\n", run.arrived, run.accepted,
+         run.duplicate, run.stale, run.invalid);
   printf("final: position=%.6f,%.6f,%.6f velocity=%.6f,%.6f,%.6f spin=%.6f,%.6f,%.6f grounded=%d\n", state.position.x,
          state.position.y, state.position.z, state.velocity.x, state.velocity.y, state.velocity.z, state.spin.x,
-         state.spin.y, state.spin.z, sim.seg.grounded);
+         state.spin.y, state.spin.z, sim->seg.grounded);
   printf("warnings: event_overflow=%lu contact_limit=%lu stale_racket=%lu\n",
-         sim.warnings[BALL_WARN_EVENT_OVERFLOW], sim.warnings[BALL_WARN_CONTACT_LIMIT],
-         sim.warnings[BALL_WARN_STALE_RACKET]);
+         sim->warnings[BALL_WARN_EVENT_OVERFLOW], sim->warnings[BALL_WARN_CONTACT_LIMIT],
+         sim->warnings[BALL_WARN_STALE_RACKET]);
   if (fflush(stdout) != 0) return 1;
   return 0;
 }

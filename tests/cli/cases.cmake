@@ -11,27 +11,7 @@ macro(ballsim)
     RESULT_VARIABLE RC OUTPUT_VARIABLE OUT ERROR_VARIABLE ERR)
 endmacro()
 
-function(fail what)
-  message(FATAL_ERROR "${CASE}: ${what}\n--- exit status: ${RC}\n--- stdout:\n${OUT}\n--- stderr:\n${ERR}")
-endfunction()
-
-function(expect_rc want)
-  if(NOT "${RC}" STREQUAL "${want}")
-    fail("expected exit status ${want}")
-  endif()
-endfunction()
-
-function(expect_out regex)
-  if(NOT "${OUT}" MATCHES "${regex}")
-    fail("stdout does not match: ${regex}")
-  endif()
-endfunction()
-
-function(expect_err regex)
-  if(NOT "${ERR}" MATCHES "${regex}")
-    fail("stderr does not match: ${regex}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../expect.cmake)
 
 # lo <= value <= hi, as doubles.
 function(expect_between what value lo hi)

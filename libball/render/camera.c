@@ -1,0 +1,196 @@
+/* Cameras: presets placed from the model, lookup by name, projection. */
+#include <math.h>
+#include <string.h>
+
+#include "view.h"
+
+#define MARGIN 2.0             /* m of floor around the court and the obstacles */
+#define MIN_HALF_SIZE 3.0      /* m: the floor is at least 6 m each way */
+#define COURT_RATIO (23.77 / 10.97)  /* a doubles tennis court: length / width */
+#define PI 3.14159265358979323846
+
+static const char *const preset_names[BALL_CAMERA_PRESET_COUNT] = {"side", "top", "behind0", "behind1"};
+
+const char *ball_camera_preset_name(ball_camera_preset preset) {
+  if ((unsigned)preset >= BALL_CAMERA_PRESET_COUNT) return NULL;
+  return preset_names[preset];
+}
+
+static void grow(view_arena *a, double x, double z) {
+  if (x < a->lo[0]) a->lo[0] = x;
+  if (x > a->hi[0]) a->hi[0] = x;
+  if (z < a->lo[1]) a->lo[1] = z;
+  if (z > a->hi[1]) a->hi[1] = z;
+}
+
+/* x and z extent of a net or wall rectangle */
+static void grow_plane(view_arena *a, const ball_plane *p) {
+  if (p->axis == 0) {
+    grow(a, p->position, p->lo);
+    grow(a, p->position, p->hi);
+  } else {
+    grow(a, p->lo, p->position);
+    grow(a, p->hi, p->position);
+  }
+  if (p->top > a->height) a->height = p->top;
+}
+
+void view_arena_of(const ball_model *m, view_arena *a) {
+  int i;
+  memset(a, 0, sizeof *a);
+  a->lo[0] = a->hi[0] = m->initial_position.x;
+  a->lo[1] = a->hi[1] = m->initial_position.z;
+  a->height = m->initial_position.y > 2.0 ? m->initial_position.y : 2.0;
+  if (m->has_net) {
+    /* the net spans the court's width; the court is a tennis court of that width */
+    const ball_plane *n = &m->net;
+    int across = n->axis == 0 ? 0 : 1; /* the axis the net's plane cuts */
+    double half_len = 0.5 * (n->hi - n->lo) * COURT_RATIO;
+    a->has_court = 1;
+    a->court_lo[across] = n->position - half_len;
+    a->court_hi[across] = n->position + half_len;
+    a->court_lo[1 - across] = n->lo;
+    a->court_hi[1 - across] = n->hi;
+    grow(a, a->court_lo[0], a->court_lo[1]);
+    grow(a, a->court_hi[0], a->court_hi[1]);
+    grow_plane(a, n);
+    a->long_axis = across;
+  }
+  for (i = 0; i < m->n_walls; ++i) grow_plane(a, &m->walls[i]);
+  for (i = 0; i < m->n_rackets; ++i)
+    if (m->rackets[i].partner < 0) grow(a, m->rackets[i].target.x, m->rackets[i].target.z);
+  /* whole metres, so that a small change of the scene (the ball's start a
+   * few centimetres off) keeps the floor and the preset cameras where they are */
+  for (i = 0; i < 2; ++i) {
+    double c = floor(0.5 * (a->lo[i] + a->hi[i]) + 0.5);
+    a->lo[i] = floor(a->lo[i] - MARGIN);
+    a->hi[i] = ceil(a->hi[i] + MARGIN);
+    if (a->lo[i] > c - MIN_HALF_SIZE) a->lo[i] = c - MIN_HALF_SIZE;
+    if (a->hi[i] < c + MIN_HALF_SIZE) a->hi[i] = c + MIN_HALF_SIZE;
+  }
+  if (!m->has_net) a->long_axis = (a->hi[1] - a->lo[1]) > (a->hi[0] - a->lo[0]) ? 1 : 0;
+}
+
+ball_status ball_camera_from_preset(const ball_model *model, ball_camera_preset preset, double aspect,
+                                    ball_camera *out) {
+  view_arena a;
+  ball_vec3 along, side_dir, centre, up = ball_v3(0.0, 1.0, 0.0);
+  double len, wid, tan_v, tan_h, d;
+  ball_camera c;
+  if (!model || !out) return BALL_EINVAL;
+  if (!isfinite(aspect)) return BALL_ENONFINITE;
+  if (!(aspect > 0.0)) return BALL_ERANGE;
+  if ((unsigned)preset >= BALL_CAMERA_PRESET_COUNT) return BALL_ERANGE;
+  view_arena_of(model, &a);
+  along = a.long_axis == 0 ? ball_v3(1.0, 0.0, 0.0) : ball_v3(0.0, 0.0, 1.0);
+  /* the side camera's view direction: with up y, the long axis runs left to right */
+  side_dir = ball_v3_cross(up, along);
+  len = a.hi[a.long_axis] - a.lo[a.long_axis];
+  wid = a.hi[1 - a.long_axis] - a.lo[1 - a.long_axis];
+  centre = ball_v3(0.5 * (a.lo[0] + a.hi[0]), model->floor_level, 0.5 * (a.lo[1] + a.hi[1]));
+  memset(&c, 0, sizeof c);
+  c.up = up;
+  switch (preset) {
+    case BALL_CAMERA_SIDE: {
+      double elev = 28.0 * PI / 180.0;
+      c.fov = 40.0;
+      tan_v = tan(0.5 * c.fov * PI / 180.0);
+      tan_h = tan_v * aspect;
+      /* the length across the image, the height of the scene above it */
+      d = 0.5 * len / tan_h;
+      if (0.6 * a.height / tan_v > d) d = 0.6 * a.height / tan_v;
+      d += 0.5 * wid;
+      c.target = ball_v3_add(centre, ball_v3(0.0, 0.3 * a.height, 0.0));
+      c.eye = ball_v3_add(c.target, ball_v3_add(ball_v3_scale(side_dir, -d * cos(elev)), ball_v3(0.0, d * sin(elev), 0.0)));
+      break;
+    }
+    case BALL_CAMERA_TOP:
+      c.fov = 40.0;
+      tan_v = tan(0.5 * c.fov * PI / 180.0);
+      tan_h = tan_v * aspect;
+      d = 0.5 * len / tan_h;
+      if (0.5 * wid / tan_v > d) d = 0.5 * wid / tan_v;
+      c.target = centre;
+      c.eye = ball_v3_add(centre, ball_v3(0.0, d, 0.0));
+      c.up = ball_v3_cross(up, along); /* so that the long axis runs left to right */
+      break;
+    case BALL_CAMERA_BEHIND0:
+    case BALL_CAMERA_BEHIND1: {
+      double sgn = preset == BALL_CAMERA_BEHIND0 ? 1.0 : -1.0;
+      c.fov = 50.0;
+      c.target = ball_v3_add(centre, ball_v3(0.0, 0.3, 0.0));
+      c.eye = ball_v3_add(centre, ball_v3_add(ball_v3_scale(along, -sgn * 0.75 * len), ball_v3(0.0, 0.3 * len + 1.0, 0.0)));
+      break;
+    }
+    case BALL_CAMERA_PRESET_COUNT: return BALL_ERANGE;
+  }
+  *out = c;
+  return BALL_OK;
+}
+
+ball_status ball_camera_find(const ball_scene *scene, const char *name, double aspect, ball_camera *out) {
+  int i;
+  if (!scene || !name || !out) return BALL_EINVAL;
+  for (i = 0; i < scene->render.n_cameras && i < BALL_SCENE_MAX_CAMERAS; ++i) {
+    if (strcmp(scene->render.cameras[i].name, name) == 0) {
+      *out = scene->render.cameras[i].camera;
+      return BALL_OK;
+    }
+  }
+  for (i = 0; i < BALL_CAMERA_PRESET_COUNT; ++i)
+    if (strcmp(preset_names[i], name) == 0)
+      return ball_camera_from_preset(&scene->model, (ball_camera_preset)i, aspect, out);
+  return BALL_ENOTFOUND;
+}
+
+static ball_vec3 unit(ball_vec3 v, int *ok) {
+  double n = sqrt(ball_v3_dot(v, v));
+  if (!(n > 1e-12) || !isfinite(n)) {
+    *ok = 0;
+    return v;
+  }
+  return ball_v3_scale(v, 1.0 / n);
+}
+
+int view_matrix(const ball_camera *cam, double m[16]) {
+  int ok = 1;
+  ball_vec3 f = unit(ball_v3(cam->target.x - cam->eye.x, cam->target.y - cam->eye.y, cam->target.z - cam->eye.z), &ok);
+  ball_vec3 s = unit(ball_v3_cross(f, unit(cam->up, &ok)), &ok);
+  ball_vec3 u = ball_v3_cross(s, f);
+  if (!ok) return 0;
+  /* rows s, u, -f; translation -R eye (column-major) */
+  m[0] = s.x; m[4] = s.y; m[8] = s.z; m[12] = -ball_v3_dot(s, cam->eye);
+  m[1] = u.x; m[5] = u.y; m[9] = u.z; m[13] = -ball_v3_dot(u, cam->eye);
+  m[2] = -f.x; m[6] = -f.y; m[10] = -f.z; m[14] = ball_v3_dot(f, cam->eye);
+  m[3] = 0.0; m[7] = 0.0; m[11] = 0.0; m[15] = 1.0;
+  return 1;
+}
+
+void view_projection(const ball_camera *cam, double aspect, double m[16]) {
+  double f = 1.0 / tan(0.5 * cam->fov * PI / 180.0);
+  memset(m, 0, 16 * sizeof m[0]);
+  m[0] = f / aspect;
+  m[5] = f;
+  m[10] = (VIEW_FAR + VIEW_NEAR) / (VIEW_NEAR - VIEW_FAR);
+  m[11] = -1.0;
+  m[14] = 2.0 * VIEW_FAR * VIEW_NEAR / (VIEW_NEAR - VIEW_FAR);
+}
+
+ball_status ball_camera_project(const ball_camera *cam, int width, int height, ball_vec3 p, double *px, double *py,
+                                double *depth) {
+  double v[16], pr[16], e[4], clip[4];
+  int i;
+  if (!cam || !px || !py) return BALL_EINVAL;
+  if (!ball_v3_finite(cam->eye) || !ball_v3_finite(cam->target) || !ball_v3_finite(cam->up) || !isfinite(cam->fov) || !ball_v3_finite(p))
+    return BALL_ENONFINITE;
+  if (width < 1 || height < 1 || !(cam->fov >= 1.0 && cam->fov <= 179.0)) return BALL_ERANGE;
+  if (!view_matrix(cam, v)) return BALL_ERANGE;
+  view_projection(cam, (double)width / height, pr);
+  for (i = 0; i < 4; ++i) e[i] = v[i] * p.x + v[4 + i] * p.y + v[8 + i] * p.z + v[12 + i];
+  if (!(-e[2] > 0.0)) return BALL_ERANGE;
+  for (i = 0; i < 4; ++i) clip[i] = pr[i] * e[0] + pr[4 + i] * e[1] + pr[8 + i] * e[2] + pr[12 + i] * e[3];
+  *px = 0.5 * (clip[0] / clip[3] + 1.0) * width;
+  *py = (1.0 - 0.5 * (clip[1] / clip[3] + 1.0)) * height;
+  if (depth) *depth = -e[2];
+  return BALL_OK;
+}
