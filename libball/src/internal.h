@@ -183,7 +183,8 @@ typedef struct ball__swept_motion {
 } ball__swept_motion;
 /* First contact (distance to the disc, face or rim, <= the ball radius) in
  * [ta, tb]; 1 with *t_hit, the ball centre then and the face normal toward
- * the side the ball came from; 0 if none. */
+ * the side the ball came from; 0 if none. Callers run the early reject
+ * ball__swept_cannot_touch first (it needs p0, p1: the ball at ta and tb). */
 int ball__swept_toi(const ball__swept_motion *mo, double *t_hit, ball_vec3 *center,
                     ball_vec3 *face_normal);
 /* 1 when no contact is possible over the interval (bounding spheres of the

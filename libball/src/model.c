@@ -368,28 +368,19 @@ uint64_t ball_model_hash(const ball_model *m) {
   return hash_fields(BALL__HASH_SEED, m, model_fields, COUNT(model_fields), m->effects);
 }
 
-/* Bytes [from, to) of two models equal. */
-static int same_range(const ball_model *a, const ball_model *b, size_t from, size_t to) {
-  return memcmp((const char *)a + from, (const char *)b + from, to - from) == 0;
-}
-
-/* The parts of a model ball_step reads, as byte ranges: the dynamics and the
- * floor, the net, the walls in use, the rackets in use and their fields,
- * [effects, level). Only the stages the mask turns on are compared, so a
- * disabled effect's parameters cost nothing and may change freely; level
- * and initial_* are never read by a step. b is the bound copy (checked). */
-#define AT(member) offsetof(ball_model, member)
+/* The parts of a model ball_step reads, as byte ranges: every scalar field
+ * up to level (the dynamics, floor, net, racket and scheme fields), and the
+ * walls and rackets in use while their effect is on. level and initial_*
+ * are never read by a step. b is the bound copy (checked, so its counts are
+ * in range). One memcmp in the common case: the arrays sit at the end of
+ * the struct. */
 int ball__model_same(const ball_model *a, const ball_model *b) {
-  if (!same_range(a, b, AT(effects), AT(level)) || !same_range(a, b, 0, AT(has_net))) return 0;
-  if (b->effects & BALL_EFFECT_NET && !same_range(a, b, AT(has_net), AT(n_walls))) return 0;
-  if (b->effects & BALL_EFFECT_WALLS &&
-      (!same_range(a, b, AT(n_walls), AT(walls)) ||
-       memcmp(a->walls, b->walls, (size_t)b->n_walls * sizeof(ball_plane)) != 0))
+  if (memcmp(a, b, offsetof(ball_model, level)) != 0) return 0;
+  if (b->effects & BALL_EFFECT_WALLS && b->n_walls > 0 &&
+      memcmp(a->walls, b->walls, (size_t)b->n_walls * sizeof(ball_plane)) != 0)
     return 0;
-  if (b->effects & BALL_EFFECT_RACKETS &&
-      (!same_range(a, b, AT(n_rackets), AT(rackets)) ||
-       memcmp(a->rackets, b->rackets, (size_t)b->n_rackets * sizeof(ball_racket_def)) != 0 ||
-       !same_range(a, b, AT(detect), AT(effects))))
+  if (b->effects & BALL_EFFECT_RACKETS && b->n_rackets > 0 &&
+      memcmp(a->rackets, b->rackets, (size_t)b->n_rackets * sizeof(ball_racket_def)) != 0)
     return 0;
   return 1;
 }

@@ -71,6 +71,15 @@ static int history_of(const ball_model *m) {
   return m->history < 2 ? 2 : m->history > BALL_MAX_HISTORY ? BALL_MAX_HISTORY : m->history;
 }
 
+/* The fields a track reads are those of the model the sim is bound to (the
+ * cheap form of ball__bound for the calls that run once per sample; a step
+ * compares every field). */
+static int same_track_fields(const ball_model *m, const ball_sim *sim) {
+  const ball_model *b = &sim->model;
+  return m->n_rackets == b->n_rackets && m->history == b->history && m->stale_time == b->stale_time &&
+         m->extrapolation_time == b->extrapolation_time;
+}
+
 static int same_sample(const ball_racket_sample *a, const ball_racket_sample *b) {
   return a->t == b->t && a->center.x == b->center.x && a->center.y == b->center.y &&
          a->center.z == b->center.z && a->normal.x == b->normal.x && a->normal.y == b->normal.y &&
@@ -81,20 +90,22 @@ ball_status ball_racket_push(const ball_model *m, ball_sim *sim, int racket,
                              const ball_racket_sample *sample) {
   ball_racket_track *tr;
   ball_racket_sample s;
-  double len;
+  double scale, len;
   int i, keep;
-  ball_status st = ball__bound(m, sim);
-  if (st != BALL_OK) return st;
-  if (!sample) return BALL_EINVAL;
+  if (!m || !sim || !sample) return BALL_EINVAL;
+  if (!same_track_fields(m, sim)) return BALL_EMODEL;
   if (racket < 0 || racket >= m->n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
   if (m->history < 2 || m->history > BALL_MAX_HISTORY) return BALL_ERANGE;
-  if (!isfinite(sample->t) || !ball_v3_finite(sample->center) || !ball_v3_finite(sample->normal))
+  if (!(sample->t - sample->t == 0.0) || !ball_v3_finite(sample->center) || !ball_v3_finite(sample->normal))
     return BALL_ENONFINITE;
-  /* normalised without overflow (ball_v3_length scales first) */
-  len = ball_v3_length(sample->normal);
-  if (!(len >= 1e-9)) return BALL_ERANGE;
+  /* normalised without overflow: scaled by the largest component first */
+  scale = ball_v3_max_abs(sample->normal);
+  if (!(scale > 0.0)) return BALL_ERANGE;
   s = *sample;
-  s.normal = ball_v3_unit(sample->normal);
+  s.normal = ball_v3_scale(sample->normal, 1.0 / scale);
+  len = sqrt(ball_v3_dot(s.normal, s.normal));
+  if (!(len * scale >= 1e-9)) return BALL_ERANGE;
+  s.normal = ball_v3_scale(s.normal, 1.0 / len);
   tr = &sim->tracks[racket];
   if (tr->count < 0 || tr->count > BALL_MAX_HISTORY) return BALL_EINVAL;
   for (i = 0; i < tr->count; i++)
@@ -131,9 +142,8 @@ static ball_status estimate(const ball_model *m, const ball_sim *sim, int racket
 
 ball_status ball_racket_estimate(const ball_model *m, const ball_sim *sim, int racket, double t,
                                  ball_racket_pose *out) {
-  ball_status st = ball__bound(m, sim);
-  if (st != BALL_OK) return st;
-  if (!out) return BALL_EINVAL;
+  if (!m || !sim || !out) return BALL_EINVAL;
+  if (!same_track_fields(m, sim)) return BALL_EMODEL;
   if (racket < 0 || racket >= m->n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
   if (!isfinite(t)) return BALL_ENONFINITE;
   return estimate(m, sim, racket, t, out);
@@ -222,7 +232,7 @@ typedef struct racket_hit {
   double t;            /* hit time, s */
   ball_vec3 q;         /* ball centre at the hit (Q), m */
   ball_vec3 face;      /* racket normal facing the ball's side (Fig. 9) */
-  ball_racket_pose pose;
+  const ball_racket_pose *pose; /* the racket's pose now */
 } racket_hit;
 
 /* The normal the disc and swept tests use: the real one, or the velocity's
@@ -239,7 +249,7 @@ static int test_racket(const ball_model *m, const ball__flight *fl, const ball_s
                        const ball_racket_pose *now, racket_hit *h) {
   double t = sim->time;
   const ball_state *s = s_end;
-  h->pose = *now;
+  h->pose = now;
   if (m->detect == BALL_DETECT_SPHERE) {
     if (!ball__sphere_test(s->position, now->center, m->collision_distance)) return 0;
     h->key = ball_v3_norm(ball_v3_sub(s->position, now->center));
@@ -278,10 +288,17 @@ static int test_racket(const ball_model *m, const ball__flight *fl, const ball_s
     mo.tc1 = t;
     mo.c0 = old->center;
     mo.c1 = now->center;
-    mo.n0 = test_normal(m, old);
-    mo.n1 = test_normal(m, now);
     mo.disc_radius = m->rackets[i].radius;
     if (mo.ta > mo.tb) return 0;
+    if (mo.ta > t_prev) { /* the segment began in this frame: the ball at its start */
+      ball_state at;
+      ball__eval_f(fl, mo.seg, mo.ta, &at);
+      mo.p0 = at.position;
+    }
+    /* far from each other (nearly every frame): no probe at all */
+    if (ball__swept_cannot_touch(&mo)) return 0;
+    mo.n0 = test_normal(m, old);
+    mo.n1 = test_normal(m, now);
     if (!ball__swept_toi(&mo, &th, &h->q, &h->face)) return 0;
     h->key = th;
     h->t = th;
@@ -294,7 +311,7 @@ static void respond(const ball_model *m, const ball__flight *fl, ball_sim *sim, 
                     const racket_hit *h, ball_event *ev) {
   ball_state in;
   ball_vec3 v0, s0 = ball_v3(0.0, 0.0, 0.0), p0 = h->q;
-  const ball_racket_pose *pose = &h->pose;
+  const ball_racket_pose *pose = h->pose;
   ball__eval_f(fl, &sim->seg, h->t, &in);
   if (m->response == BALL_RESPONSE_RACKET) {
     v0 = ball__response_racket(m, pose->velocity, h->face); /* eq 7 */
@@ -334,11 +351,10 @@ static void respond(const ball_model *m, const ball__flight *fl, ball_sim *sim, 
 int ball__racket_stage(const ball_model *m, const ball__flight *fl, ball_sim *sim, double t_prev,
                        double dt, const ball_state *s_end, ball_event *ev) {
   ball_racket_pose now[BALL_MAX_RACKETS];
+  racket_hit hits[BALL_MAX_RACKETS];
   int ok[BALL_MAX_RACKETS];
   int i, best = -1, hit = 0;
-  racket_hit h, best_h;
   double t = sim->time;
-  memset(&best_h, 0, sizeof best_h);
   for (i = 0; i < m->n_rackets; i++) {
     ball_status st = estimate(m, sim, i, t, &now[i]);
     ok[i] = st == BALL_OK ? 1 : st == BALL_ESTALE ? -1 : 0;
@@ -348,24 +364,23 @@ int ball__racket_stage(const ball_model *m, const ball__flight *fl, ball_sim *si
     sim->sleep--; /* no racket tests for sleep_frames frames after a hit */
   } else {
     for (i = 0; i < m->n_rackets; i++) {
-      ball_racket_pose old;
+      ball_racket_pose estimated;
+      const ball_racket_pose *old = &now[i];
       const ball_racket_track *tr = &sim->tracks[i];
       if (ok[i] < 0) sim->warnings[BALL_WARN_STALE_RACKET]++; /* stale: does not collide */
       if (ok[i] <= 0) continue;
       /* R_old: the pose the sim used at the previous frame; else the track
        * re-estimated at t_prev; else the racket counts as still */
       if (tr->has_prev)
-        old = tr->prev_pose;
-      else if (estimate(m, sim, i, t_prev, &old) != BALL_OK)
-        old = now[i];
-      if (test_racket(m, fl, sim, i, t_prev, s_end, &old, &now[i], &h) &&
-          (best < 0 || h.key < best_h.key)) {
+        old = &tr->prev_pose;
+      else if (estimate(m, sim, i, t_prev, &estimated) == BALL_OK)
+        old = &estimated;
+      if (test_racket(m, fl, sim, i, t_prev, s_end, old, &now[i], &hits[i]) &&
+          (best < 0 || hits[i].key < hits[best].key))
         best = i;
-        best_h = h;
-      }
     }
     if (best >= 0) {
-      respond(m, fl, sim, best, dt, &best_h, ev);
+      respond(m, fl, sim, best, dt, &hits[best], ev);
       hit = 1;
     }
   }

@@ -365,11 +365,12 @@ ball_status ball_sim_state(const ball_model *m, const ball_sim *sim, ball_state 
 }
 
 /* What a step changes besides the clock, kept to undo a refused frame (the
- * track samples are not touched by a step, so the whole sim is not copied). */
+ * track samples are not touched by a step, so the whole sim is not copied;
+ * of the tracks only the prev poses of the rackets the stage tests). */
 typedef struct step_undo {
   ball_segment seg;
   ball_contact next;
-  int sleep;
+  int sleep, n_tracks;
   unsigned long warnings[BALL_WARN_COUNT];
   int has_prev[BALL_MAX_RACKETS];
   ball_racket_pose prev_pose[BALL_MAX_RACKETS];
@@ -381,7 +382,8 @@ static void undo_save(step_undo *u, const ball_sim *sim) {
   u->next = sim->next;
   u->sleep = sim->sleep;
   memcpy(u->warnings, sim->warnings, sizeof u->warnings);
-  for (r = 0; r < BALL_MAX_RACKETS; r++) {
+  u->n_tracks = sim->model.effects & BALL_EFFECT_RACKETS ? sim->model.n_rackets : 0;
+  for (r = 0; r < u->n_tracks; r++) {
     u->has_prev[r] = sim->tracks[r].has_prev;
     u->prev_pose[r] = sim->tracks[r].prev_pose;
   }
@@ -394,7 +396,7 @@ static void undo_restore(const step_undo *u, ball_sim *sim, double t) {
   sim->next = u->next;
   sim->sleep = u->sleep;
   memcpy(sim->warnings, u->warnings, sizeof u->warnings);
-  for (r = 0; r < BALL_MAX_RACKETS; r++) {
+  for (r = 0; r < u->n_tracks; r++) {
     sim->tracks[r].has_prev = u->has_prev[r];
     sim->tracks[r].prev_pose = u->prev_pose[r];
   }

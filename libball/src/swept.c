@@ -3,23 +3,30 @@
  *
  * The contact test is the exact distance from the ball centre to the disc
  * (face and rim: the disc grown by the ball radius is a rounded slab), so a
- * ball that hits the rim edge is found like one that hits the face. The
- * search walks the frame in sub-steps fine enough for the relative motion
- * (a quarter of the smaller of the two radii per sub-step, at most
- * SWEPT_MAX_STEPS). In each sub-step a contact is caught three ways:
- *   - the distance is <= 0 at the end of the sub-step;
+ * ball that hits the rim edge is found like one that hits the face.
+ *
+ * The search rests on one bound: L, the fastest the ball's distance to the
+ * disc can change (the ball's speed plus the speed of the fastest point of
+ * the disc; rate_bound). From a time where the ball is d clear, no contact
+ * can come sooner than d / L, so the search advances by that much
+ * (conservative advancement, as FCL does), and by at least a sub-step of
+ * 1/SWEPT_MIN_STEPS of the interval when it is close. Each step from a to b
+ * catches a contact three ways:
+ *   - the distance is <= 0 at b;
  *   - the signed distance of the centre to the disc plane changes sign and the
  *     crossing point lies within the disc (a thin or point ball tunnelling);
- *   - a graze: when the sub-step comes close, the minimum of the distance
- *     inside it (golden-section search) is <= 0.
- * The contact time is then refined by bisection to below 1e-13 of the frame. */
+ *   - a graze: the distance may dip below 0 between a and b (it cannot when
+ *     (d_a + d_b - L (b - a)) / 2 > 0); then the step is halved, earliest
+ *     half first, until that bound clears it or a touching time is found.
+ * The contact time is then refined (regula falsi with Illinois steps and
+ * bisection) until the clear and the touching time are adjacent doubles. The
+ * whole search makes at most SWEPT_MAX_PROBES distance evaluations. */
 #include "internal.h"
 
-#define SWEPT_MIN_STEPS 16
-#define SWEPT_MAX_STEPS 8192
-#define SWEPT_MIN_GRAIN 1e-4 /* m: sub-step length floor for tiny radii */
-#define SWEPT_BISECT 80      /* halvings: 2^-80 of a sub-step */
-#define SWEPT_GOLDEN 60      /* golden-section iterations for a graze */
+#define SWEPT_MIN_STEPS 64     /* a step near the disc is at most 1/64 of the interval */
+#define SWEPT_MAX_PROBES 2048  /* distance evaluations per search, at most */
+#define SWEPT_REFINE 200       /* refinement iterations, at most (about 15 are used) */
+#define SWEPT_GRAZE_DEPTH 48   /* halvings of a step in a graze search */
 
 /* The frame's motion at time t. */
 static void pose_at(const ball__swept_motion *mo, double t, ball_vec3 *ball, ball_vec3 *c,
@@ -49,10 +56,18 @@ typedef struct probe {
   double radial; /* distance of the centre from the disc axis, m */
 } probe;
 
-static probe probe_at(const ball__swept_motion *mo, double t) {
+typedef struct search {
+  const ball__swept_motion *mo;
+  double rate;   /* L, m/s */
+  int probes;    /* left in the budget */
+} search;
+
+static probe probe_at(search *se, double t) {
+  const ball__swept_motion *mo = se->mo;
   ball_vec3 p, c, n, w;
   probe pr;
   double rho, d;
+  se->probes--;
   pose_at(mo, t, &p, &c, &n);
   w = ball_v3_sub(p, c);
   d = ball_v3_dot(w, n);
@@ -63,85 +78,97 @@ static probe probe_at(const ball__swept_motion *mo, double t) {
   if (rho <= mo->disc_radius)
     pr.dist = fabs(d) - mo->ball_radius;
   else
-    pr.dist = hypot(d, rho - mo->disc_radius) - mo->ball_radius;
+    pr.dist = sqrt(d * d + (rho - mo->disc_radius) * (rho - mo->disc_radius)) - mo->ball_radius;
   return pr;
 }
 
-/* First contact in [a, b] where a is clear (dist > 0) and b touches:
- * bisection on "touching". */
-static probe refine(const ball__swept_motion *mo, probe a, probe b) {
-  int i;
-  for (i = 0; i < SWEPT_BISECT && b.t - a.t > 0.0; i++) {
+/* The root between a and b of f, where f(a) and f(b) have opposite signs
+ * ("a side" is f(a) > 0 for refine, the plane side for crossing): regula
+ * falsi with Illinois steps, and a bisection every third step, until a and
+ * b are adjacent doubles. Returns the end on b's side. */
+typedef double (*probe_value)(const probe *p);
+static double value_dist(const probe *p) { return p->dist; }
+static double value_side(const probe *p) { return p->side; }
+
+static probe root(search *se, probe a, probe b, probe_value f, int a_pos) {
+  double fa = f(&a), fb = f(&b);
+  int i, last = 0;
+  for (i = 0; i < SWEPT_REFINE && se->probes > 0; i++) {
     double tm = 0.5 * (a.t + b.t);
     probe m;
-    if (tm <= a.t || tm >= b.t) break;
-    m = probe_at(mo, tm);
-    if (m.dist <= 0.0)
-      b = m;
-    else
+    int m_on_a;
+    if (tm <= a.t || tm >= b.t) break; /* adjacent: done */
+    if (i % 3 != 2 && fa != fb) {
+      double ts = a.t + (b.t - a.t) * (fa / (fa - fb));
+      if (ts > a.t && ts < b.t) tm = ts;
+    }
+    m = probe_at(se, tm);
+    m_on_a = a_pos ? f(&m) > 0.0 : (f(&m) > 0.0) == (fa > 0.0);
+    if (m_on_a) {
       a = m;
-  }
-  b.side = a.side; /* the side the ball came from, for the face normal */
-  return b;
-}
-
-/* The plane crossing between a and b (sides of opposite signs), by bisection. */
-static probe crossing(const ball__swept_motion *mo, probe a, probe b) {
-  int i;
-  for (i = 0; i < SWEPT_BISECT; i++) {
-    double tm = 0.5 * (a.t + b.t);
-    probe m;
-    if (tm <= a.t || tm >= b.t) break;
-    m = probe_at(mo, tm);
-    if ((m.side > 0.0) == (a.side > 0.0))
-      a = m;
-    else
-      b = m;
-  }
-  return b;
-}
-
-/* Minimum of dist over [a, b] (golden section; the distance is unimodal over
- * a sub-step short against both radii). */
-static probe graze(const ball__swept_motion *mo, probe a, probe b) {
-  const double g = 0.6180339887498949;
-  double lo = a.t, hi = b.t;
-  probe x1 = probe_at(mo, hi - g * (hi - lo)), x2 = probe_at(mo, lo + g * (hi - lo));
-  probe best = a.dist < b.dist ? a : b;
-  int i;
-  for (i = 0; i < SWEPT_GOLDEN; i++) {
-    if (x1.dist <= 0.0 || x2.dist <= 0.0) break;
-    if (x1.dist < x2.dist) {
-      hi = x2.t;
-      x2 = x1;
-      x1 = probe_at(mo, hi - g * (hi - lo));
+      fa = f(&m);
+      if (last == 1) fb *= 0.5; /* Illinois: the stuck end weighs half */
+      last = 1;
     } else {
-      lo = x1.t;
-      x1 = x2;
-      x2 = probe_at(mo, lo + g * (hi - lo));
+      b = m;
+      fb = f(&m);
+      if (last == -1) fa *= 0.5;
+      last = -1;
     }
   }
-  if (x1.dist < best.dist) best = x1;
-  if (x2.dist < best.dist) best = x2;
-  return best;
+  (void)fb;
+  return b;
 }
 
-/* An upper bound of how far the ball moves relative to the disc over the
- * interval, from a few chords of each motion. */
-static double motion_bound(const ball__swept_motion *mo, double ang) {
-  ball_vec3 p, c, n, p_prev, c_prev, n_prev;
-  double len = 0.0;
-  int i;
-  const int k = 8;
-  pose_at(mo, mo->ta, &p_prev, &c_prev, &n_prev);
-  for (i = 1; i <= k; i++) {
-    pose_at(mo, mo->ta + (mo->tb - mo->ta) * i / k, &p, &c, &n);
-    len += ball_v3_norm(ball_v3_sub(p, p_prev)) + ball_v3_norm(ball_v3_sub(c, c_prev));
-    p_prev = p;
-    c_prev = c;
+/* First contact in (a, b] where a is clear and b touches. */
+static probe refine(search *se, probe a, probe b) {
+  probe hit = root(se, a, b, value_dist, 1);
+  hit.side = a.side; /* the side the ball came from, for the face normal */
+  return hit;
+}
+
+/* A contact inside (a, b) though both are clear: a graze of the rim, or a
+ * thin ball passing through the face between them. Earliest first. */
+static int graze(search *se, probe a, probe b, int depth, probe *hit) {
+  probe m;
+  if ((a.side > 0.0) != (b.side > 0.0) && a.side != 0.0) {
+    probe x = root(se, a, b, value_side, 0);
+    if (x.radial <= se->mo->disc_radius) {
+      /* the centre passes through the disc: contact at or before x */
+      x.dist = fmin(x.dist, 0.0);
+      *hit = refine(se, a, x);
+      return 1;
+    }
   }
-  /* chords undercut curves: a margin, plus the rim sweeping by the turn */
-  return 1.5 * len + ang * (mo->disc_radius + mo->ball_radius) + 1e-12;
+  if (0.5 * (a.dist + b.dist - se->rate * (b.t - a.t)) > 0.0) return 0; /* cannot dip to 0 */
+  if (depth >= SWEPT_GRAZE_DEPTH || se->probes <= 0) return 0;
+  m = probe_at(se, 0.5 * (a.t + b.t));
+  if (!(m.t > a.t && m.t < b.t)) return 0;
+  if (m.dist <= 0.0) {
+    *hit = refine(se, a, m);
+    return 1;
+  }
+  return graze(se, a, m, depth + 1, hit) || graze(se, m, b, depth + 1, hit);
+}
+
+/* L: the fastest the ball centre's distance to the disc can change, m/s:
+ * the ball's speed (at most its speed at ta plus g for every second, drag
+ * only slowing it) plus the disc centre's speed plus the rim's speed from
+ * the turn (a normalised lerp through an angle a turns at most 2 tan(a/2)
+ * per unit of its parameter). */
+static double rate_bound(const ball__swept_motion *mo, const ball_state *at_a) {
+  double span = mo->tc1 - mo->tc0, h = mo->tb - mo->ta, c_rate = 0.0, turn = 0.0, v;
+  double cosang = ball_v3_dot(mo->n0, mo->n1);
+  if (mo->flight)
+    v = ball_v3_norm(at_a->velocity) + (mo->seg->grounded ? 0.0 : mo->flight->g * h);
+  else
+    v = h > 0.0 ? ball_v3_norm(ball_v3_sub(mo->p1, mo->p0)) / h : 0.0;
+  if (span > 0.0) {
+    /* tan(a/2) = sin a / (1 + cos a) = |n0 x n1| / (1 + n0.n1), n0.n1 >= 0 */
+    turn = 2.0 * ball_v3_norm(ball_v3_cross(mo->n0, mo->n1)) / (1.0 + cosang) / span;
+    c_rate = ball_v3_norm(ball_v3_sub(mo->c1, mo->c0)) / span;
+  }
+  return (v + c_rate + turn * mo->disc_radius) * (1.0 + 1e-9) + 1e-300;
 }
 
 /* Early reject, before any probe: a contact needs the ball centre within
@@ -150,30 +177,21 @@ static double motion_bound(const ball__swept_motion *mo, double ang) {
  * linearly, the ball follows the chord between its ends within `sag`: for
  * the analytic path the chord's largest deviation is (tb - ta)^2 / 8 times
  * the largest acceleration, g vertically and |v_h| / b horizontally (eq 3's
- * second derivatives, largest at ta since drag only slows the ball). So if
- * the chord of the relative motion stays farther than the radii plus sag
- * from the origin, no contact can happen: the exact search is skipped, and
- * where a contact is possible it runs exactly as before. */
+ * second derivatives, largest at the segment's start since drag only slows
+ * the ball). So if the chord of the relative motion stays farther than the
+ * radii plus sag from the origin, no contact can happen and the search is
+ * skipped. The ball's ends are mo->p0, mo->p1 (the caller knows them). */
 int ball__swept_cannot_touch(const ball__swept_motion *mo) {
-  ball_vec3 pa, pb, ra, d;
+  ball_vec3 ra, d;
   double sag = 0.0, reach, u, dd, h = mo->tb - mo->ta;
   double span = mo->tc1 - mo->tc0;
   double ua = span > 0.0 ? (mo->ta - mo->tc0) / span : 1.0, ub = span > 0.0 ? (mo->tb - mo->tc0) / span : 1.0;
   if (mo->flight) {
-    ball_state sa, sb;
-    /* |v_h| at the segment's start bounds it everywhere on the segment */
     double vh = sqrt(mo->seg->v0.x * mo->seg->v0.x + mo->seg->v0.z * mo->seg->v0.z);
-    ball__eval_f(mo->flight, mo->seg, mo->ta, &sa);
-    ball__eval_f(mo->flight, mo->seg, mo->tb, &sb);
-    pa = sa.position;
-    pb = sb.position;
     sag = 0.125 * h * h * ((mo->seg->grounded ? 0.0 : mo->flight->g) + vh * mo->flight->k);
-  } else {
-    pa = mo->p0;
-    pb = mo->p1;
   }
-  ra = ball_v3_sub(pa, ball_v3_lerp(mo->c0, mo->c1, ua));
-  d = ball_v3_sub(ball_v3_sub(pb, ball_v3_lerp(mo->c0, mo->c1, ub)), ra);
+  ra = ball_v3_sub(mo->p0, ball_v3_lerp(mo->c0, mo->c1, ua));
+  d = ball_v3_sub(ball_v3_sub(mo->p1, ball_v3_lerp(mo->c0, mo->c1, ub)), ra);
   dd = ball_v3_dot(d, d);
   u = dd > 0.0 ? -ball_v3_dot(ra, d) / dd : 0.0;
   u = u < 0.0 ? 0.0 : u > 1.0 ? 1.0 : u;
@@ -184,49 +202,35 @@ int ball__swept_cannot_touch(const ball__swept_motion *mo) {
 int ball__swept_toi(const ball__swept_motion *mo_in, double *t_hit, ball_vec3 *center,
                     ball_vec3 *face_normal) {
   ball__swept_motion mo = *mo_in;
-  double l0 = ball_v3_norm(mo.n0), l1 = ball_v3_norm(mo.n1), grain, bound, ang, step;
+  double l0 = ball_v3_norm(mo.n0), l1 = ball_v3_norm(mo.n1), min_step;
   ball_vec3 p, c, n;
+  ball_state at_a;
   probe a, b, hit;
-  int steps, i, found = 0;
+  search se;
+  int found = 0;
   if (!(l0 > 0.0) || !(l1 > 0.0) || !(mo.tb >= mo.ta)) return 0;
-  if (ball__swept_cannot_touch(&mo)) return 0;
   mo.n0 = ball_v3_scale(mo.n0, 1.0 / l0);
   mo.n1 = ball_v3_scale(mo.n1, 1.0 / l1);
   if (ball_v3_dot(mo.n0, mo.n1) < 0.0) mo.n1 = ball_v3_scale(mo.n1, -1.0); /* a disc has two faces */
-  ang = acos(fmin(1.0, fmax(-1.0, ball_v3_dot(mo.n0, mo.n1))));
-  grain = 0.25 * fmin(mo.ball_radius > 0.0 ? mo.ball_radius : mo.disc_radius, mo.disc_radius);
-  if (grain < SWEPT_MIN_GRAIN) grain = SWEPT_MIN_GRAIN;
-  bound = motion_bound(&mo, ang);
-  steps = (int)fmin((double)SWEPT_MAX_STEPS, ceil(bound / grain));
-  if (steps < SWEPT_MIN_STEPS) steps = SWEPT_MIN_STEPS;
-  step = bound / steps; /* relative motion per sub-step, m */
+  if (mo.flight) ball__eval_f(mo.flight, mo.seg, mo.ta, &at_a);
+  se.mo = &mo;
+  se.rate = rate_bound(&mo, &at_a);
+  se.probes = SWEPT_MAX_PROBES;
+  min_step = (mo.tb - mo.ta) / SWEPT_MIN_STEPS;
 
-  a = probe_at(&mo, mo.ta);
+  a = probe_at(&se, mo.ta);
   hit = a;
-  if (a.dist <= 0.0) {
-    found = 1; /* touching at the start: contact at once (FCL's convention) */
-  }
-  for (i = 1; i <= steps && !found; i++) {
-    double tb = i == steps ? mo.tb : mo.ta + (mo.tb - mo.ta) * i / steps;
-    b = probe_at(&mo, tb);
+  if (a.dist <= 0.0) found = 1; /* touching at the start: contact at once (FCL's convention) */
+  while (!found && a.t < mo.tb && se.probes > 0) {
+    /* no contact can come sooner than dist / L: advance by that, at least a step */
+    double tb = a.t + fmax(a.dist / se.rate, min_step);
+    if (!(tb < mo.tb) || mo.tb - tb < 1e-3 * min_step) tb = mo.tb;
+    b = probe_at(&se, tb);
     if (b.dist <= 0.0) {
-      hit = refine(&mo, a, b);
+      hit = refine(&se, a, b);
       found = 1;
-    } else if ((a.side > 0.0) != (b.side > 0.0) && a.side != 0.0) {
-      probe x = crossing(&mo, a, b);
-      if (x.radial <= mo.disc_radius) {
-        /* the centre passes through the disc: contact at or before x */
-        x.dist = fmin(x.dist, 0.0);
-        hit = refine(&mo, a, x);
-        found = 1;
-      }
-    }
-    if (!found && fmin(a.dist, b.dist) < step) {
-      probe g = graze(&mo, a, b);
-      if (g.dist <= 0.0) {
-        hit = refine(&mo, a, g);
-        found = 1;
-      }
+    } else {
+      found = graze(&se, a, b, 0, &hit);
     }
     a = b;
   }
@@ -257,7 +261,7 @@ ball_status ball_swept_disc(const ball_swept_query *q, int *hit, double *toi, ba
       !isfinite(q->disc_radius))
     return BALL_ENONFINITE;
   if (q->ball_radius < 0.0 || q->disc_radius < 0.0) return BALL_ERANGE;
-  if (!(ball_v3_norm(q->n0) >= 1e-9) || !(ball_v3_norm(q->n1) >= 1e-9)) return BALL_ERANGE;
+  if (!(ball_v3_length(q->n0) >= 1e-9) || !(ball_v3_length(q->n1) >= 1e-9)) return BALL_ERANGE;
   mo.flight = NULL;
   mo.seg = NULL;
   mo.ta = 0.0;
@@ -269,10 +273,10 @@ ball_status ball_swept_disc(const ball_swept_query *q, int *hit, double *toi, ba
   mo.tc1 = 1.0;
   mo.c0 = q->c0;
   mo.c1 = q->c1;
-  mo.n0 = q->n0;
-  mo.n1 = q->n1;
+  mo.n0 = ball_v3_unit(q->n0);
+  mo.n1 = ball_v3_unit(q->n1);
   mo.disc_radius = q->disc_radius;
-  *hit = ball__swept_toi(&mo, &t, &c, NULL);
+  *hit = !ball__swept_cannot_touch(&mo) && ball__swept_toi(&mo, &t, &c, NULL);
   if (*hit) {
     if (toi) *toi = t;
     if (point) *point = c;

@@ -159,25 +159,23 @@ typedef struct ball_model {
   double spin_floor_damping;  /* spinFloorDamping of eq 13, 14, [0, 1] */
   /* net and walls (Fig. 3, eq 6) */
   int has_net;                /* 0 or 1 */
+  int n_walls;                /* walls in use (walls[] below), [0, BALL_MAX_WALLS] */
   ball_plane net;             /* the net; damping is netDamping */
-  int n_walls;                /* walls in use, [0, BALL_MAX_WALLS] */
-  ball_plane walls[BALL_MAX_WALLS];
   /* rackets (section 3, 3.1) */
-  int n_rackets;                              /* [0, BALL_MAX_RACKETS] */
-  ball_racket_def rackets[BALL_MAX_RACKETS];
+  int n_rackets;                              /* rackets in use (rackets[] below), [0, BALL_MAX_RACKETS] */
   ball_detect detect;                         /* racket collision test */
   ball_normal_mode normal_mode;               /* racket normal for the disc and swept tests */
   ball_response response;                     /* racket response */
   double collision_distance;                  /* d_COLL of the sphere test, m (> 0) */
-  int sleep_frames;                           /* frames without racket tests after a hit, >= 0 */
   double v_min, v_max;                        /* eq 7 speed clamp, m/s (0 <= v_min <= v_max) */
   double v_up;                                /* eq 8 vertical launch speed, m/s (> 0) */
-  int v_up_from_racket;                       /* 1: V_up = the racket's vertical speed (at least 1 m/s) */
   double friendly_factor;                     /* eq 9, 10, >= 0 (eq 10 uses [0, 1]) */
   double spin_rack_damping;                   /* eq 12, [0, 1] */
-  int history;                                /* racket samples kept, the paper's n, [2, BALL_MAX_HISTORY] */
   double extrapolation_time;                  /* eq 15, s (>= 0) */
   double stale_time;                          /* a racket silent this long does not collide, s (> 0) */
+  int sleep_frames;                           /* frames without racket tests after a hit, >= 0 */
+  int v_up_from_racket;                       /* 1: V_up = the racket's vertical speed (at least 1 m/s) */
+  int history;                                /* racket samples kept, the paper's n, [2, BALL_MAX_HISTORY] */
   /* what to simulate and how */
   unsigned effects;           /* ball_effect bits */
   ball_scheme scheme;         /* static obstacle detection */
@@ -186,6 +184,9 @@ typedef struct ball_model {
   ball_vec3 initial_position; /* m */
   ball_vec3 initial_velocity; /* m/s */
   ball_vec3 initial_spin;     /* m/s (the paper's spin is a tangential speed: V x n) */
+  /* the obstacles in use are the first n_walls and n_rackets of these */
+  ball_plane walls[BALL_MAX_WALLS];
+  ball_racket_def rackets[BALL_MAX_RACKETS];
 } ball_model;
 
 /* Defaults: a tennis ball over a tennis court (23.77 m x 10.97 m, net at
@@ -254,8 +255,9 @@ typedef struct ball_field {
   const char *(*enum_name)(int value); /* ENUM: the value's name */
 } ball_field;
 
-/* The fields of ball_model, of a ball_plane (net, walls) and of a
- * ball_racket_def, in struct order; *count gets how many. Never NULL. */
+/* The fields of ball_model (in the order of the docs' key table, by
+ * section), of a ball_plane (net, walls) and of a ball_racket_def; *count
+ * gets how many. Never NULL. */
 BALL_API const ball_field *ball_model_fields(int *count);
 BALL_API const ball_field *ball_plane_fields(int *count);
 BALL_API const ball_field *ball_racket_fields(int *count);
@@ -439,7 +441,9 @@ BALL_API ball_status ball_step(const ball_model *model, ball_sim *sim, double dt
 /* Feeds a racket sample; samples may arrive late, duplicated or out of order:
  * an exact duplicate of a kept sample is ignored with BALL_EDUPLICATE, one
  * not newer than the newest kept is rejected with BALL_ESTALE; either way
- * the sim is unchanged. */
+ * the sim is unchanged. It and ball_racket_estimate compare the fields a
+ * track reads (n_rackets, history, stale_time, extrapolation_time) with the
+ * bound model (BALL_EMODEL); ball_step compares all of them. */
 BALL_API ball_status ball_racket_push(const ball_model *model, ball_sim *sim, int racket,
                                       const ball_racket_sample *sample);
 
