@@ -522,8 +522,16 @@ ball_status ball_predict(const ball_model *m, const ball_segment *seg_in, double
       grid = 0;
     }
     if (t_next == t) break; /* dt below the clock's resolution */
-    exact_advance(m, &fl, &seg, &next, t, t_next, &k, &s);
-    if (!segment_finite(&seg) || !state_finite(&s)) return BALL_ERANGE;
+    /* most frames have no contact: the cached next one is later, and the
+     * ball is not below the floor by rounding (exact_advance's last rule) */
+    if (!next.valid) find_next(m, &fl, &seg, t, &next);
+    ball__eval_f(&fl, &seg, t_next, &s);
+    if (!(next.time > t_next) ||
+        (next.which == WHICH_FLOOR && s.position.y < ball__floor_y(m) && s.velocity.y <= 0.0)) {
+      exact_advance(m, &fl, &seg, &next, t, t_next, &k, &s);
+      if (!segment_finite(&seg)) return BALL_ERANGE;
+    }
+    if (!state_finite(&s)) return BALL_ERANGE;
     if (grid && out->n_states < out->cap_states) out->states[out->n_states++] = s;
     t = t_next;
   }
