@@ -540,6 +540,51 @@ static void test_contact_limit_keeps_ball_between_walls(void **state) {
   }
 }
 
+/* A point ball bouncing off a wall at an exact coordinate: x = 0 or z = 0,
+ * -0, 1e-300, the smallest subnormals. It restarts one ulp from the wall;
+ * there a time to the plane of -tiny / v underflows to -0 and passed the
+ * old "u >= 0" test, so the same wall was found again from the wrong side
+ * (64 contacts a frame with damping 1; with 0.8 one bounce became 7 events
+ * and the ball left at 1.95 m/s instead of 7.6). Now one event a bounce,
+ * leaving at damping x the arriving speed, both schemes, both axes. */
+static void test_point_ball_bounces_once_off_a_wall_at_an_exact_coordinate_eq6(void **state) {
+  static const double at[] = {0.0, -0.0, 1e-300, 4.9406564584124654e-324, -4.9406564584124654e-324};
+  int i, axis, scheme;
+  (void)state;
+  for (scheme = 0; scheme < BALL_SCHEME_COUNT; scheme++)
+    for (axis = 0; axis <= 2; axis += 2)
+      for (i = 0; i < 5; i++) {
+        ball_model m;
+        ball_sim sim;
+        ball_event ev[BALL_MAX_CONTACTS];
+        ball_plane w = {axis, at[i], -100.0, 100.0, -100.0, 100.0, 0.8};
+        ball_vec3 p = axis == 0 ? ball_v3(1.0, 10.0, 0.5) : ball_v3(0.5, 10.0, 1.0);
+        ball_vec3 v = axis == 0 ? ball_v3(-7.6, 0.0, 0.0) : ball_v3(0.0, 0.0, -7.6);
+        int f, n, events = 0;
+        core_model_free(&m);
+        m.air_friction = 0.0;
+        m.gravity = 1e-9; /* no fall to speak of; nothing else in the way */
+        m.effects = BALL_EFFECT_WALLS;
+        m.scheme = (ball_scheme)scheme;
+        assert_ok(ball_model_add_wall(&m, &w));
+        core_start(&m, &sim, p, v);
+        for (f = 0; f < 60; f++) {
+          assert_ok(ball_step(&m, &sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n));
+          if (n > 0) {
+            double out = axis == 0 ? ev[0].velocity_out.x : ev[0].velocity_out.z;
+            assert_int_equal(n, 1);
+            assert_int_equal(ev[0].kind, BALL_EVENT_WALL);
+            assert_near(out, 0.8 * 7.6, 1e-12);
+          }
+          events += n;
+          /* never behind the wall */
+          assert_true((axis == 0 ? sim.prev_position.x : sim.prev_position.z) >= at[i]);
+        }
+        assert_int_equal(events, 1);
+        assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
+      }
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_ball_at_rest_exactly_on_floor_stays_there_eq5),
@@ -556,6 +601,7 @@ int main(void) {
       cmocka_unit_test(test_resting_ball_with_zero_threshold_never_sinks_eq5),
       cmocka_unit_test(test_ball_rolling_into_the_net_bounces_once_eq6),
       cmocka_unit_test(test_contact_limit_keeps_ball_between_walls),
+      cmocka_unit_test(test_point_ball_bounces_once_off_a_wall_at_an_exact_coordinate_eq6),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -128,8 +128,17 @@ static void random_scene(rng *r, ball_model *m, const scene_opts *o) {
     for (k = 0; k < 4; k++) {
       ball_plane w;
       double c = k < 2 ? x0 : z0, other = k < 2 ? z0 : x0;
+      /* walls at exact coordinates a restart one ulp away can fall below
+       * (docs/hard-cases.md, "walls at 0"): 0, -0, 1e-300, +-4.9e-324 */
+      static const double exact[] = {0.0, -0.0, 1e-300, 4.9406564584124654e-324, -4.9406564584124654e-324};
       w.axis = k < 2 ? 0 : 2;
       w.position = c + (k % 2 ? 1.0 : -1.0) * uni(r, 1.0 + m->radius, 15.0);
+      if (k % 2 == 0 && coin(r, 0.15)) {
+        /* this wall at an exact coordinate, the start moved to keep its distance */
+        double at = exact[next_u64(r) % 5], shift = at - w.position;
+        w.position = at;
+        if (k < 2) x0 += shift; else z0 += shift;
+      }
       w.lo = o->full_walls ? other - 1e4 : other + uni(r, -10.0, 0.0);
       w.hi = o->full_walls ? other + 1e4 : w.lo + uni(r, 0.5, 20.0);
       /* full walls reach far below the floor too: the sampled scheme tests the
