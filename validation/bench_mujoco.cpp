@@ -82,11 +82,8 @@ int main(int argc, char **argv) {
   const int frames = 120;
 
   ball_model m;
-  ball_model_default(&m);
-  m.effects = BALL_EFFECT_DRAG;
-  ball_segment seg{};
-  seg.p0 = {0.0, 1.0, 3.0};
-  seg.v0 = {15.0, 10.0, 2.0};
+  ball_segment seg;
+  bv::sweep_flight(&m, &seg);
   ball_flight fl;
   if (ball_flight_init(&m, &seg, &fl) != BALL_OK) {
     std::fprintf(stderr, "ball_bench_mujoco: the flight is not valid\n");

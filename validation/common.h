@@ -52,6 +52,16 @@ class Rng {
   std::mt19937_64 gen_;
 };
 
+// The sweep's flight (the integrator sweep and the MuJoCo benchmark): a 2 s
+// shot with drag only (eq 3), from (0, 1, 3) at (15, 10, 2) m/s.
+inline void sweep_flight(ball_model *m, ball_segment *seg) {
+  ball_model_default(m);
+  m->effects = BALL_EFFECT_DRAG;
+  *seg = ball_segment{};
+  seg->p0 = {0.0, 1.0, 3.0};
+  seg->v0 = {15.0, 10.0, 2.0};
+}
+
 // printf into a std::string.
 std::string fmt(const char *format, ...) __attribute__((format(printf, 1, 2)));
 

@@ -323,11 +323,8 @@ Outcome check_sweep(const Options &opt) {
   Outcome out;
   out.check = "validate_sweep";
   ball_model m;
-  ball_model_default(&m);
-  m.effects = BALL_EFFECT_DRAG;
-  ball_segment seg{};
-  seg.p0 = {0.0, 1.0, 3.0};
-  seg.v0 = {15.0, 10.0, 2.0};
+  ball_segment seg;
+  bv::sweep_flight(&m, &seg);
   const double T = 2.0;  // s: a whole number of every step below
   const double steps[] = {1.0 / 6, 1.0 / 10, 1.0 / 15, 1.0 / 30, 1.0 / 60, 1.0 / 120, 1e-3, 1e-4};
   const char *step_names[] = {"1/6", "1/10", "1/15", "1/30", "1/60", "1/120", "1e-3", "1e-4"};

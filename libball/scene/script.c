@@ -2,7 +2,7 @@
  * or a remote player would send, under seeded network conditions (rate,
  * delay, jitter, loss, duplicates, noise). A client of the public API like
  * the scene loader; no dependency but libm. See docs/scenes.md. */
-#include "ball/scene.h"
+#include "ball/script.h"
 #include "ball/vec3.h"
 
 #include <math.h>

@@ -514,7 +514,7 @@ elseif(CASE STREQUAL "bad_script")
 elseif(CASE STREQUAL "bad_scenes")
   # file:line:column: field: message, for each kind of error
   expect_failure("${HERE}/bad_range.yaml" STATUS 1
-    STDERR "bad_range\\.yaml:5:12: floor\\.damping: out of range: must be in \\[0, 1\\]\n$")
+    STDERR "bad_range\\.yaml:5:12: floor\\.damping: out of range: must be in \\[0, 1\\], got 1\\.5\n$")
   expect_failure("${HERE}/bad_key.yaml" STATUS 1
     STDERR "bad_key\\.yaml:4:51: walls\\[1\\]\\.dampnig: unknown key \"dampnig\"\n$")
   expect_failure("${HERE}/bad_type.yaml" STATUS 1

@@ -1,6 +1,7 @@
 /* Scene files (docs/scenes.md): every example loads, every key lands in its
  * model field, bad files are rejected with the file, line, column and field,
  * and a failed load leaves the scene as it was. */
+#include <errno.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -370,6 +371,61 @@ static void errors_format_as_file_line_column_field_message(void **state) {
   assert_int_equal(err.line, 0);
 }
 
+/* The loader's limits (docs/scenes.md, "Limits"), checked before the work:
+ * a file over 1 MiB, nesting deeper than 32, more than 20,000 values. Each
+ * is refused at once with its reason, and a file within them loads. */
+static void limits_are_checked_before_the_work(void **state) {
+  static char big[1100000];
+  ball_scene s;
+  ball_scene_error err;
+  size_t i, n = 0;
+  (void)state;
+  /* 100,000 levels of nesting: refused at level 33, not after building the tree */
+  for (i = 0; i < 100000; i++) big[n++] = '[';
+  big[n] = '\0';
+  assert_int_equal(ball_scene_load_string(big, n, "deep.yaml", &s, &err), BALL_EPARSE);
+  assert_non_null(strstr(err.message, "deeper than 32"));
+  assert_int_equal(err.column, 33);
+  /* 32 levels (the top mapping, ball, 30 lists) are fine for the reader; the
+   * format then rejects the list */
+  n = 0;
+  n += (size_t)sprintf(big + n, "ball:\n  position: ");
+  for (i = 0; i < 30; i++) big[n++] = '[';
+  for (i = 0; i < 30; i++) big[n++] = ']';
+  big[n] = '\0';
+  assert_int_equal(ball_scene_load_string(big, n, "deep.yaml", &s, &err), BALL_EPARSE);
+  assert_null(strstr(err.message, "deeper"));
+  /* over 1 MiB */
+  memset(big, ' ', sizeof big - 1);
+  big[sizeof big - 1] = '\0';
+  memcpy(big, "mass: 0.1\n", 10);
+  assert_int_equal(ball_scene_load_string(big, sizeof big - 1, "big.yaml", &s, &err), BALL_EPARSE);
+  assert_non_null(strstr(err.message, "larger than 1048576 bytes"));
+  /* 30,000 values in a list, well under a megabyte */
+  n = (size_t)sprintf(big, "effects: [");
+  for (i = 0; i < 30000; i++) n += (size_t)sprintf(big + n, "0,");
+  n += (size_t)sprintf(big + n, "0]\n");
+  assert_int_equal(ball_scene_load_string(big, n, "many.yaml", &s, &err), BALL_EPARSE);
+  assert_non_null(strstr(err.message, "more than 20000 values"));
+}
+
+/* A directory is "Is a directory", not a YAML syntax error; a number is
+ * decimal: hexadecimal (which strtod would take), inf and nan are refused. */
+static void a_directory_and_hex_numbers_are_refused_clearly(void **state) {
+  ball_scene s;
+  ball_scene_error err;
+  const char *dir = getenv("BALL_SCENES");
+  (void)state;
+  assert_int_equal(ball_scene_load_file(dir && *dir ? dir : "libball/scenes", &s, &err), BALL_EIO);
+  assert_string_equal(err.message, strerror(EISDIR));
+  assert_rejected("mass: 0x10\n", 1, 7, "mass");
+  assert_rejected("mass: 0x1p-3\n", 1, 7, "mass");
+  assert_rejected("mass: -0X2\n", 1, 7, "mass");
+  assert_rejected("mass: inf\n", 1, 7, "mass");
+  assert_int_equal(load_text("mass: .5\nradius: -.0\ngravity: +9.5e0\n", &s, NULL), BALL_OK);
+  assert_true(s.model.mass == 0.5 && s.model.gravity == 9.5);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(every_example_scene_loads_and_passes_the_model_check),
@@ -378,6 +434,8 @@ int main(void) {
       cmocka_unit_test(every_key_lands_in_its_model_field),
       cmocka_unit_test(missing_keys_keep_the_defaults),
       cmocka_unit_test(fps_sets_the_frame_time_and_none_removes_the_net),
+      cmocka_unit_test(limits_are_checked_before_the_work),
+      cmocka_unit_test(a_directory_and_hex_numbers_are_refused_clearly),
       cmocka_unit_test(level_preset_applies_first_then_keys_override_it),
       cmocka_unit_test(unknown_keys_are_rejected_with_line_and_field),
       cmocka_unit_test(wrong_types_are_rejected_with_line_and_field),

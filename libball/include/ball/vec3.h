@@ -46,9 +46,11 @@ static inline double ball_v3_length(ball_vec3 a) {
  * vector stays zero */
 static inline ball_vec3 ball_v3_unit(ball_vec3 a) {
   double s = ball_v3_max_abs(a);
+  double n;
   if (!(s > 0.0)) return ball_v3(0.0, 0.0, 0.0);
   a = ball_v3_scale(a, 1.0 / s);
-  return ball_v3_scale(a, 1.0 / sqrt(ball_v3_dot(a, a)));
+  n = sqrt(ball_v3_dot(a, a));
+  return ball_v3(a.x / n, a.y / n, a.z / n); /* divided, not scaled by 1 / n: to half an ulp */
 }
 /* every component finite: x - x is 0 for a finite x and NaN for an infinite
  * or NaN one, so one comparison decides, without a branch per component
