@@ -26,6 +26,9 @@ set(BALL_CLI_CASES
   bad_options
   missing_scene
   bad_scenes
+  output_injection
+  big_numbers
+  keys
 )
 foreach(case ${BALL_CLI_CASES})
   add_test(NAME cli_${case}
@@ -38,3 +41,9 @@ foreach(case ${BALL_CLI_CASES})
       -P ${CMAKE_CURRENT_LIST_DIR}/cases.cmake)
   set_tests_properties(cli_${case} PROPERTIES LABELS cli TIMEOUT 60)
 endforeach()
+
+# docs/scenes.md's key table is the field table (ballsim --keys).
+add_test(NAME docs_scene_keys_current
+  COMMAND ${CMAKE_COMMAND} -DBALLSIM=$<TARGET_FILE:ballsim> -DDOC=${PROJECT_SOURCE_DIR}/docs/scenes.md
+    -P ${CMAKE_CURRENT_LIST_DIR}/keys_doc.cmake)
+set_tests_properties(docs_scene_keys_current PROPERTIES LABELS cli)
