@@ -255,6 +255,32 @@ static void flight_eval_is_segment_eval_to_the_bit(void **state) {
   }
 }
 
+/* One transcendental call per evaluation gives what the textbook pair
+ * -b expm1(-t/b), e^(-t/b) gives, to 1e-14 relative (issue 8's bound). */
+static void one_expm1_gives_the_two_textbook_terms(void **state) {
+  core_rng r;
+  int i;
+  (void)state;
+  r.s = 99;
+  for (i = 0; i < 100000; i++) {
+    ball_model m;
+    ball_segment seg = core_segment(0.0, ball_v3(0, 0, 0), ball_v3(1, 0, 0), ball_v3(0, 0, 0));
+    ball_state s;
+    double b, t, d_ref, f_ref;
+    core_model_free(&m);
+    m.mass = core_uniform(&r, 0.01, 2.0);
+    m.air_friction = pow(10.0, core_uniform(&r, -8.0, 2.0));
+    b = m.mass / m.air_friction;
+    t = b * pow(10.0, core_uniform(&r, -12.0, 1.5));
+    assert_ok(ball_segment_eval(&m, &seg, t, &s));
+    d_ref = -b * expm1(-t / b);
+    f_ref = exp(-t / b);
+    if (!(fabs(s.position.x - d_ref) <= 1e-14 * d_ref) || !(fabs(s.velocity.x - f_ref) <= 1e-14 * f_ref))
+      fail_msg("t/b = %.17g: distance %.17g vs %.17g, decay %.17g vs %.17g", t / b, s.position.x, d_ref,
+               s.velocity.x, f_ref);
+  }
+}
+
 static void flight_rejects_bad_input(void **state) {
   ball_model m;
   ball_segment seg = core_segment(1.0, ball_v3(0, 1, 0), ball_v3(1, 0, 0), ball_v3(0, 0, 0));
@@ -504,6 +530,7 @@ int main(void) {
       cmocka_unit_test(the_model_hash_sees_every_field_a_step_reads),
       cmocka_unit_test(the_sim_hash_follows_the_state),
       cmocka_unit_test(flight_eval_is_segment_eval_to_the_bit),
+      cmocka_unit_test(one_expm1_gives_the_two_textbook_terms),
       cmocka_unit_test(flight_rejects_bad_input),
       cmocka_unit_test(predict_gives_what_exact_steps_give),
       cmocka_unit_test(predict_ignores_the_scheme_and_the_rackets),
