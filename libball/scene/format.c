@@ -206,13 +206,13 @@ static ball_status script_keyframes(scene_loader *L, const yaml_node_t *key, con
 /* rackets[i].script: keyframes and network conditions (docs/scenes.md). */
 static const key_spec script_keys[] = {
     SPECIAL_KEY("keyframes", 1),
-    RANGED_KEY("repeat", ball_racket_script, repeat, 0.0, HUGE_VAL, 0u, ">= 0 (0: no repeat)"),
+    RANGED_KEY("repeat", ball_racket_script, repeat, 0.0, 4e9, 0u, "in [0, 4e9] s (0: no repeat)"),
     RANGED_KEY("rate", ball_racket_script, rate, 2.0, 120.0, 0u, "in [2, 120] Hz"),
     RANGED_KEY("delay", ball_racket_script, delay, 0.0, 60.0, 0u, "in [0, 60] s"),
     RANGED_KEY("jitter", ball_racket_script, jitter, 0.0, 0.5, 0u, "in [0, 0.5] s"),
     RANGED_KEY("loss", ball_racket_script, loss, 0.0, 1.0, BALL_FIELD_HI_OPEN, "in [0, 1)"),
     RANGED_KEY("duplicate", ball_racket_script, duplicate, 0.0, 1.0, 0u, "in [0, 1]"),
-    RANGED_KEY("noise", ball_racket_script, noise, 0.0, HUGE_VAL, 0u, ">= 0 m"),
+    RANGED_KEY("noise", ball_racket_script, noise, 0.0, 1e3, 0u, "in [0, 1000] m"),
     RANGED_KEY("normal_noise", ball_racket_script, normal_noise, 0.0, 1.0, 0u, "in [0, 1] rad"),
     KEY("seed", KEY_UINT64, ball_racket_script, seed),
     END_OF_KEYS,

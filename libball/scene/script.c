@@ -14,6 +14,8 @@
 #define SCRIPT_MAX_JITTER 0.5    /* s: keeps the samples in flight within BALL_SCRIPT_MAX_PENDING */
 #define SCRIPT_MAX_NORMAL_NOISE 1.0 /* rad */
 #define SCRIPT_MIN_NORMAL 1e-9   /* shortest keyframe normal accepted */
+#define SCRIPT_MAX_TIME 1e9      /* s: |keyframe time| */
+#define SCRIPT_MAX_NOISE 1e3     /* m: sigma of a centre's noise (a Gaussian draw stays within 10 sigma) */
 #define SCRIPT_PI 3.14159265358979323846
 
 /* ---- the random stream ---- */
@@ -57,19 +59,93 @@ void ball_script_default(ball_racket_script *s) {
   } while (0)
 #define CHECK_FINITE(value, name) CHECK(isfinite(value), name, BALL_ENONFINITE)
 
+/* Keyframe member names with their index, static: no buffer for *field. */
+#define KF_NAMES(p) {p "t", p "center", p "normal"}
+static const char *const keyframe_names[BALL_SCRIPT_MAX_KEYFRAMES][3] = {
+  KF_NAMES("keyframes[0]."),
+  KF_NAMES("keyframes[1]."),
+  KF_NAMES("keyframes[2]."),
+  KF_NAMES("keyframes[3]."),
+  KF_NAMES("keyframes[4]."),
+  KF_NAMES("keyframes[5]."),
+  KF_NAMES("keyframes[6]."),
+  KF_NAMES("keyframes[7]."),
+  KF_NAMES("keyframes[8]."),
+  KF_NAMES("keyframes[9]."),
+  KF_NAMES("keyframes[10]."),
+  KF_NAMES("keyframes[11]."),
+  KF_NAMES("keyframes[12]."),
+  KF_NAMES("keyframes[13]."),
+  KF_NAMES("keyframes[14]."),
+  KF_NAMES("keyframes[15]."),
+  KF_NAMES("keyframes[16]."),
+  KF_NAMES("keyframes[17]."),
+  KF_NAMES("keyframes[18]."),
+  KF_NAMES("keyframes[19]."),
+  KF_NAMES("keyframes[20]."),
+  KF_NAMES("keyframes[21]."),
+  KF_NAMES("keyframes[22]."),
+  KF_NAMES("keyframes[23]."),
+  KF_NAMES("keyframes[24]."),
+  KF_NAMES("keyframes[25]."),
+  KF_NAMES("keyframes[26]."),
+  KF_NAMES("keyframes[27]."),
+  KF_NAMES("keyframes[28]."),
+  KF_NAMES("keyframes[29]."),
+  KF_NAMES("keyframes[30]."),
+  KF_NAMES("keyframes[31]."),
+  KF_NAMES("keyframes[32]."),
+  KF_NAMES("keyframes[33]."),
+  KF_NAMES("keyframes[34]."),
+  KF_NAMES("keyframes[35]."),
+  KF_NAMES("keyframes[36]."),
+  KF_NAMES("keyframes[37]."),
+  KF_NAMES("keyframes[38]."),
+  KF_NAMES("keyframes[39]."),
+  KF_NAMES("keyframes[40]."),
+  KF_NAMES("keyframes[41]."),
+  KF_NAMES("keyframes[42]."),
+  KF_NAMES("keyframes[43]."),
+  KF_NAMES("keyframes[44]."),
+  KF_NAMES("keyframes[45]."),
+  KF_NAMES("keyframes[46]."),
+  KF_NAMES("keyframes[47]."),
+  KF_NAMES("keyframes[48]."),
+  KF_NAMES("keyframes[49]."),
+  KF_NAMES("keyframes[50]."),
+  KF_NAMES("keyframes[51]."),
+  KF_NAMES("keyframes[52]."),
+  KF_NAMES("keyframes[53]."),
+  KF_NAMES("keyframes[54]."),
+  KF_NAMES("keyframes[55]."),
+  KF_NAMES("keyframes[56]."),
+  KF_NAMES("keyframes[57]."),
+  KF_NAMES("keyframes[58]."),
+  KF_NAMES("keyframes[59]."),
+  KF_NAMES("keyframes[60]."),
+  KF_NAMES("keyframes[61]."),
+  KF_NAMES("keyframes[62]."),
+  KF_NAMES("keyframes[63].")};
+
 ball_status ball_script_check(const ball_racket_script *s, const char **field) {
   int i;
   CHECK(s != NULL, "script", BALL_EINVAL);
   CHECK(s->n_keyframes >= 1 && s->n_keyframes <= BALL_SCRIPT_MAX_KEYFRAMES, "keyframes", BALL_ERANGE);
   for (i = 0; i < s->n_keyframes; ++i) {
     const ball_script_keyframe *k = &s->keyframes[i];
-    CHECK_FINITE(k->t, "keyframes.t");
-    CHECK(i == 0 || k->t > s->keyframes[i - 1].t, "keyframes.t", BALL_ERANGE);
-    CHECK(ball_v3_finite(k->center), "keyframes.center", BALL_ENONFINITE);
-    CHECK(ball_v3_finite(k->normal), "keyframes.normal", BALL_ENONFINITE);
-    CHECK(ball_v3_length(k->normal) >= SCRIPT_MIN_NORMAL, "keyframes.normal", BALL_ERANGE);
+    const char *const *name = keyframe_names[i];
+    CHECK_FINITE(k->t, name[0]);
+    CHECK(fabs(k->t) <= SCRIPT_MAX_TIME, name[0], BALL_ERANGE);
+    CHECK(i == 0 || k->t > s->keyframes[i - 1].t, name[0], BALL_ERANGE);
+    CHECK(ball_v3_finite(k->center), name[1], BALL_ENONFINITE);
+    /* inside the world the library handles, so that every pose between two
+     * keyframes (and every noisy sample) is finite and a valid sample */
+    CHECK(ball_v3_max_abs(k->center) <= BALL_MAX_COORD - SCRIPT_MAX_NOISE * 10.0, name[1], BALL_ERANGE);
+    CHECK(ball_v3_finite(k->normal), name[2], BALL_ENONFINITE);
+    CHECK(ball_v3_length(k->normal) >= SCRIPT_MIN_NORMAL, name[2], BALL_ERANGE);
   }
   CHECK_FINITE(s->repeat, "repeat");
+  CHECK(s->repeat >= 0.0 && s->repeat <= 4.0 * SCRIPT_MAX_TIME, "repeat", BALL_ERANGE); /* > the longest span */
   CHECK(s->repeat == 0.0 || s->repeat > s->keyframes[s->n_keyframes - 1].t - s->keyframes[0].t, "repeat",
         BALL_ERANGE);
   CHECK_FINITE(s->rate, "rate");
@@ -83,7 +159,7 @@ ball_status ball_script_check(const ball_racket_script *s, const char **field) {
   CHECK_FINITE(s->duplicate, "duplicate");
   CHECK(s->duplicate >= 0.0 && s->duplicate <= 1.0, "duplicate", BALL_ERANGE);
   CHECK_FINITE(s->noise, "noise");
-  CHECK(s->noise >= 0.0, "noise", BALL_ERANGE);
+  CHECK(s->noise >= 0.0 && s->noise <= SCRIPT_MAX_NOISE, "noise", BALL_ERANGE);
   CHECK_FINITE(s->normal_noise, "normal_noise");
   CHECK(s->normal_noise >= 0.0 && s->normal_noise <= SCRIPT_MAX_NORMAL_NOISE, "normal_noise", BALL_ERANGE);
   return BALL_OK;

@@ -32,17 +32,18 @@ static const char *level_name(int v) { return ball_level_name((ball_level)v); }
   {#name, key, BALL_FIELD_ENUM, offsetof(st, name), 0, (count) - 1, 0, stages, {d0, 0, 0}, "", eq, "", doc, fn}
 
 static const ball_field model_fields[] = {
-    F(gravity, "gravity", REAL, ball_model, 0, INF, LO_OPEN, 0, 9.81, 0, 0, "m/s^2", "eq 1",
-      "> 0", "g, acts along -y"),
+    F(gravity, "gravity", REAL, ball_model, BALL_MIN_GRAVITY, BALL_MAX_GRAVITY, 0, 0, 9.81, 0, 0, "m/s^2",
+      "eq 1", "in [1e-6, 1e6]", "g, acts along -y"),
     F(mass, "mass", REAL, ball_model, 0, INF, LO_OPEN, DRAG, 0.057, 0, 0, "kg", "eq 2", "> 0",
       "m, the ball's mass (a tennis ball); b = mass / air_friction"),
     F(air_friction, "air_friction", REAL, ball_model, 0, INF, 0, DRAG, 0.02, 0, 0, "kg/s", "eq 2",
       ">= 0", "beta; b = m / beta = 2.85 s by default"),
-    F(radius, "radius", REAL, ball_model, 0, INF, 0, 0, 0, 0, 0, "m", "", ">= 0",
+    F(radius, "radius", REAL, ball_model, 0, BALL_MAX_LENGTH, 0, 0, 0, 0, 0, "m", "", "in [0, 1e6]",
       "ball radius; 0 is the paper's point ball"),
     F(spin_damping, "spin_damping", REAL, ball_model, 0, INF, LO_OPEN, SPIN, 2.0, 0, 0, "s", "eq 4",
       "> 0", "sDamp: spinAirDamping = sDamp / (sDamp + t)"),
-    F(floor_level, "floor.level", REAL, ball_model, -INF, INF, 0, FLOOR, 0, 0, 0, "m", "eq 5", "any number",
+    F(floor_level, "floor.level", REAL, ball_model, -BALL_MAX_COORD, BALL_MAX_COORD, 0, FLOOR, 0, 0, 0, "m", "eq 5",
+      "in [-1e9, 1e9]",
       "the floor is the plane y = level"),
     F(floor_damping, "floor.damping", REAL, ball_model, 0, 1, 0, FLOOR, 0.75, 0, 0, "1", "eq 5",
       "in [0, 1]", "floorDamping"),
@@ -70,28 +71,30 @@ static const ball_field model_fields[] = {
       "section 3", "racket normal of the disc and swept tests", normal_name),
     E(response, "racket.response", ball_model, BALL_RESPONSE_COUNT, RACKETS, BALL_RESPONSE_PHYSICAL,
       "eq 7-14", "racket response: eq 7, eq 8-9, eq 10, eq 11-14", response_name),
-    F(collision_distance, "racket.collision_distance", REAL, ball_model, 0, INF, LO_OPEN, RACKETS, 0.3,
-      0, 0, "m", "section 3", "> 0", "d_COLL of the sphere test"),
+    F(collision_distance, "racket.collision_distance", REAL, ball_model, 0, BALL_MAX_LENGTH, LO_OPEN, RACKETS,
+      0.3, 0, 0, "m", "section 3", "in (0, 1e6]", "d_COLL of the sphere test"),
     F(sleep_frames, "racket.sleep_frames", INT, ball_model, 0, 1000000, 0, RACKETS, 3, 0, 0, "frames",
       "eq 7", "in [0, 1000000]", "no racket test for this many frames after a hit"),
-    F(v_min, "racket.v_min", REAL, ball_model, 0, INF, 0, RACKETS, 5.0, 0, 0, "m/s", "eq 7", ">= 0",
+    F(v_min, "racket.v_min", REAL, ball_model, 0, BALL_MAX_SPEED, 0, RACKETS, 5.0, 0, 0, "m/s", "eq 7",
+      "in [0, 1e7]",
       "eq 7 speed clamp, lower end"),
-    F(v_max, "racket.v_max", REAL, ball_model, 0, INF, 0, RACKETS, 40.0, 0, 0, "m/s", "eq 7",
-      ">= v_min", "eq 7 speed clamp, upper end"),
-    F(v_up, "racket.v_up", REAL, ball_model, 0, INF, LO_OPEN, RACKETS, 4.0, 0, 0, "m/s", "eq 8", "> 0",
+    F(v_max, "racket.v_max", REAL, ball_model, 0, BALL_MAX_SPEED, 0, RACKETS, 40.0, 0, 0, "m/s", "eq 7",
+      "in [v_min, 1e7]", "eq 7 speed clamp, upper end"),
+    F(v_up, "racket.v_up", REAL, ball_model, 0, BALL_MAX_SPEED, LO_OPEN, RACKETS, 4.0, 0, 0, "m/s", "eq 8",
+      "in (0, 1e7]",
       "V_up, the autonomous ball's vertical launch speed"),
     F(v_up_from_racket, "racket.v_up_from_racket", BOOL, ball_model, 0, 1, 0, RACKETS, 0, 0, 0, "",
       "eq 8", "", "true: V_up is the racket's vertical speed (at least 1 m/s)"),
-    F(friendly_factor, "racket.friendly_factor", REAL, ball_model, 0, INF, 0, RACKETS, 1.0, 0, 0, "1",
-      "eq 9, 10", ">= 0, and <= 1 with response mixed (eq 10)", "friendlyFactor"),
+    F(friendly_factor, "racket.friendly_factor", REAL, ball_model, 0, 1000.0, 0, RACKETS, 1.0, 0, 0, "1",
+      "eq 9, 10", "in [0, 1000], and <= 1 with response mixed (eq 10)", "friendlyFactor"),
     F(spin_rack_damping, "racket.spin_rack_damping", REAL, ball_model, 0, 1, 0, RACKETS, 0.8, 0, 0,
       "1", "eq 12", "in [0, 1]", "spinRackDamping"),
     F(history, "racket.history", INT, ball_model, 2, BALL_MAX_HISTORY, 0, RACKETS, 3, 0, 0, "samples",
       "section 2", "in [2, 16]", "racket samples kept (the paper's n)"),
-    F(extrapolation_time, "racket.extrapolation_time", REAL, ball_model, 0, INF, 0, RACKETS, 0, 0, 0,
-      "s", "eq 15", ">= 0", "eq 15's extrapolationTime: the most a track looks past its newest sample"),
-    F(stale_time, "racket.stale_time", REAL, ball_model, 0, INF, LO_OPEN, RACKETS, 1.0, 0, 0, "s", "",
-      "> 0", "a racket silent this long does not collide"),
+    F(extrapolation_time, "racket.extrapolation_time", REAL, ball_model, 0, 1000.0, 0, RACKETS, 0, 0, 0,
+      "s", "eq 15", "in [0, 1000]", "eq 15's extrapolationTime: the most a track looks past its newest sample"),
+    F(stale_time, "racket.stale_time", REAL, ball_model, 0, 1e9, LO_OPEN, RACKETS, 1.0, 0, 0, "s", "",
+      "in (0, 1e9]", "a racket silent this long does not collide"),
     F(effects, "effects", EFFECTS, ball_model, 0, 0, 0, 0,
       BALL_EFFECT_DRAG | BALL_EFFECT_SPIN | BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_SOUND, 0,
       0, "", "", "", "the effects that run (ball_effect bits)"),
@@ -99,36 +102,40 @@ static const ball_field model_fields[] = {
       "static obstacles: the paper's per-frame tests or closed-form contact times", scheme_name),
     E(level, "level", ball_model, BALL_LEVEL_COUNT, INIT, BALL_LEVEL_CUSTOM, "section 4",
       "the game level preset the model started from (informative)", level_name),
-    F(initial_position, "ball.position", VEC3, ball_model, 0, 0, 0, INIT, -0.5, 2.6, 3.0, "m", "", "finite; not below the floor (y >= floor.level + radius) while floor is on",
+    F(initial_position, "ball.position", VEC3, ball_model, -BALL_MAX_COORD, BALL_MAX_COORD, 0, INIT, -0.5, 2.6,
+      3.0, "m", "", "each in [-1e9, 1e9]; not below the floor (y >= floor.level + radius) while floor is on",
       "where the ball starts"),
-    F(initial_velocity, "ball.velocity", VEC3, ball_model, 0, 0, 0, INIT, 24.0, 0.0, 1.2, "m/s", "",
-      "finite", "the ball's initial velocity: a serve over the default net"),
-    F(initial_spin, "ball.spin", VEC3, ball_model, 0, 0, 0, INIT, 0, 0, 0, "m/s", "eq 4", "finite",
+    F(initial_velocity, "ball.velocity", VEC3, ball_model, -BALL_MAX_SPEED, BALL_MAX_SPEED, 0, INIT, 24.0, 0.0,
+      1.2, "m/s", "", "each in [-1e7, 1e7]", "the ball's initial velocity: a serve over the default net"),
+    F(initial_spin, "ball.spin", VEC3, ball_model, -BALL_MAX_SPEED, BALL_MAX_SPEED, 0, INIT, 0, 0, 0, "m/s",
+      "eq 4", "each in [-1e7, 1e7]",
       "the ball's initial spin (a tangential speed: V x n)"),
 };
 
 static const ball_field plane_fields[] = {
     F(axis, "axis", AXIS, ball_plane, 0, 2, 0, 0, 0, 0, 0, "", "Fig. 3", "x or z",
       "x: the plane x = position, spanning z in [lo, hi]; z: the plane z = position, x in [lo, hi]"),
-    F(position, "position", REAL, ball_plane, -INF, INF, 0, 0, 11.885, 0, 0, "m", "Fig. 3", "any number",
-      "the plane's coordinate"),
-    F(lo, "lo", REAL, ball_plane, -INF, INF, 0, 0, 0.0, 0, 0, "m", "Fig. 3", "< hi",
+    F(position, "position", REAL, ball_plane, -BALL_MAX_COORD, BALL_MAX_COORD, 0, 0, 11.885, 0, 0, "m", "Fig. 3",
+      "in [-1e9, 1e9]", "the plane's coordinate"),
+    F(lo, "lo", REAL, ball_plane, -BALL_MAX_COORD, BALL_MAX_COORD, 0, 0, 0.0, 0, 0, "m", "Fig. 3", "< hi",
       "horizontal extent along the other axis, from"),
-    F(hi, "hi", REAL, ball_plane, -INF, INF, 0, 0, 10.97, 0, 0, "m", "Fig. 3", "> lo",
+    F(hi, "hi", REAL, ball_plane, -BALL_MAX_COORD, BALL_MAX_COORD, 0, 0, 10.97, 0, 0, "m", "Fig. 3", "> lo",
       "horizontal extent along the other axis, to"),
-    F(bottom, "bottom", REAL, ball_plane, -INF, INF, 0, 0, 0.0, 0, 0, "m", "Fig. 3", "< top",
+    F(bottom, "bottom", REAL, ball_plane, -BALL_MAX_COORD, BALL_MAX_COORD, 0, 0, 0.0, 0, 0, "m", "Fig. 3", "< top",
       "vertical extent, from"),
-    F(top, "top", REAL, ball_plane, -INF, INF, 0, 0, 0.914, 0, 0, "m", "Fig. 3", "> bottom",
+    F(top, "top", REAL, ball_plane, -BALL_MAX_COORD, BALL_MAX_COORD, 0, 0, 0.914, 0, 0, "m", "Fig. 3", "> bottom",
       "vertical extent, to"),
     F(damping, "damping", REAL, ball_plane, 0, 1, 0, 0, 0.2, 0, 0, "1", "eq 6", "in [0, 1]", "netDamping"),
 };
 
 static const ball_field racket_fields[] = {
-    F(radius, "radius", REAL, ball_racket_def, 0, INF, LO_OPEN, 0, 0.15, 0, 0, "m", "Fig. 4", "> 0",
+    F(radius, "radius", REAL, ball_racket_def, 0, BALL_MAX_LENGTH, LO_OPEN, 0, 0.15, 0, 0, "m", "Fig. 4",
+      "in (0, 1e6]",
       "r_disc"),
     F(partner, "partner", INT, ball_racket_def, -1, BALL_MAX_RACKETS - 1, 0, 0, -1, 0, 0, "", "eq 8",
       "-1 (fly to target) or the index of another racket in the list", "the racket the autonomous ball flies to; -1: to target"),
-    F(target, "target", VEC3, ball_racket_def, 0, 0, 0, 0, 20.0, 0.0, 5.485, "m", "eq 8", "finite",
+    F(target, "target", VEC3, ball_racket_def, -BALL_MAX_COORD, BALL_MAX_COORD, 0, 0, 20.0, 0.0, 5.485, "m",
+      "eq 8", "each in [-1e9, 1e9]",
       "goal point when partner is -1 (its y is ignored)"),
 };
 
@@ -232,8 +239,11 @@ static ball_status check_value(const void *base, const ball_field *f) {
       return k == 0 || k == 2 ? BALL_OK : BALL_ERANGE;
     case BALL_FIELD_EFFECTS:
       return (*(const unsigned *)p & ~(unsigned)BALL_EFFECT_ALL) == 0 ? BALL_OK : BALL_ERANGE;
-    case BALL_FIELD_VEC3:
-      return ball_v3_finite(*(const ball_vec3 *)p) ? BALL_OK : BALL_ENONFINITE;
+    case BALL_FIELD_VEC3: {
+      const ball_vec3 *w = (const ball_vec3 *)p;
+      if (!ball_v3_finite(*w)) return BALL_ENONFINITE;
+      return in_range(f, w->x) && in_range(f, w->y) && in_range(f, w->z) ? BALL_OK : BALL_ERANGE;
+    }
     default:
       return BALL_OK; /* containers are checked member by member */
   }

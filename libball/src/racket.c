@@ -98,6 +98,7 @@ ball_status ball_racket_push(const ball_model *m, ball_sim *sim, int racket,
   if (m->history < 2 || m->history > BALL_MAX_HISTORY) return BALL_ERANGE;
   if (!(sample->t - sample->t == 0.0) || !ball_v3_finite(sample->center) || !ball_v3_finite(sample->normal))
     return BALL_ENONFINITE;
+  if (ball_v3_max_abs(sample->center) > BALL_MAX_COORD) return BALL_ERANGE; /* outside the world */
   /* normalised without overflow: scaled by the largest component first */
   scale = ball_v3_max_abs(sample->normal);
   if (!(scale > 0.0)) return BALL_ERANGE;

@@ -284,6 +284,9 @@ static int state_finite(const ball_state *s) {
 
 static ball_status check_state(const ball_model *m, const ball_state *state) {
   if (!state_finite(state)) return BALL_ENONFINITE;
+  if (ball_v3_max_abs(state->position) > BALL_MAX_COORD || ball_v3_max_abs(state->velocity) > BALL_MAX_SPEED ||
+      ball_v3_max_abs(state->spin) > BALL_MAX_SPEED)
+    return BALL_ERANGE;
   if (ball__has(m, BALL_EFFECT_FLOOR) && state->position.y < ball__floor_y(m)) return BALL_ERANGE;
   return BALL_OK;
 }

@@ -483,7 +483,7 @@ typedef struct effect_case {
 
 static void drag_without(ball_model *m) { m->air_friction = 0.0; }
 static void spin_without(ball_model *m) { m->initial_spin = ball_v3(0.0, 0.0, 0.0); }
-static void floor_without(ball_model *m) { m->floor_level = -1e300; }
+static void floor_without(ball_model *m) { m->floor_level = -BALL_MAX_COORD; }
 static void net_without(ball_model *m) { m->has_net = 0; }
 static void walls_without(ball_model *m) { m->n_walls = 0; }
 static void rackets_without(ball_model *m) { m->n_rackets = 0; }

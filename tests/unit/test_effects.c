@@ -7,7 +7,7 @@
  *   spin    (eq 4, 13, 14) -> a ball with zero spin: eq 4 keeps it zero,
  *           eq 13 adds 0 x n = 0 at the floor, eq 14 keeps 0;
  *   floor   (eq 5) -> there is no "no floor" parameter: a floor so far down
- *           (floor_level = -1e300 m) that the ball never reaches it;
+ *           (floor_level = -1e9 m) that the ball never reaches it;
  *   net     (Fig. 3, eq 6) -> has_net = 0;
  *   walls   -> n_walls = 0;
  *   rackets -> n_rackets = 0;
@@ -95,7 +95,7 @@ typedef void (*edit_fn)(ball_model *m);
 
 static void drag_without(ball_model *m) { m->air_friction = 0.0; }
 static void spin_without(ball_model *m) { m->initial_spin = ball_v3(0.0, 0.0, 0.0); }
-static void floor_without(ball_model *m) { m->floor_level = -1e300; }
+static void floor_without(ball_model *m) { m->floor_level = -BALL_MAX_COORD; }
 static void net_without(ball_model *m) { m->has_net = 0; }
 static void walls_without(ball_model *m) { m->n_walls = 0; }
 static void rackets_without(ball_model *m) { m->n_rackets = 0; }

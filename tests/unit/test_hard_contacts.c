@@ -563,7 +563,7 @@ static void test_point_ball_bounces_once_off_a_wall_at_an_exact_coordinate_eq6(v
         int f, n, events = 0;
         core_model_free(&m);
         m.air_friction = 0.0;
-        m.gravity = 1e-9; /* no fall to speak of; nothing else in the way */
+        m.gravity = BALL_MIN_GRAVITY; /* no fall to speak of; nothing else in the way */
         m.effects = BALL_EFFECT_WALLS;
         m.scheme = (ball_scheme)scheme;
         assert_ok(ball_model_add_wall(&m, &w));

@@ -461,6 +461,102 @@ static void test_bad_inputs_leave_the_sim_unchanged(void **state) {
   }
 }
 
+/* P8, every range that ball_model_check accepts is one the stepper handles
+ * (issue 9: gravity up to 9e307 was accepted and the ball then sank). Each
+ * case starts from the default court (every effect but rackets on, a net
+ * and a box of four walls) and puts each real field, vector component and
+ * plane coordinate at an end of its range (the field table's lo or hi, the
+ * nearest double inside an open end) with probability 1/3; cases that the
+ * cross-field rules refuse are drawn again. Then 240 frames of 1/60 s, 20 of
+ * 1 s and 2 of 1e3 s, both schemes: every step OK, every state finite and
+ * never below the floor. */
+/* which: -1 the low end only, +1 the high end only, 0 either (fields whose
+ * ends must keep a cross-field rule: lo < hi, bottom < top, v_min <= v_max,
+ * the ball above the floor). */
+static double range_end(rng *r, const ball_field *f, double value, int which) {
+  int hi = which ? which > 0 : coin(r, 0.5);
+  double lo_end = f->flags & BALL_FIELD_LO_OPEN ? nextafter(f->lo, INFINITY) : f->lo;
+  double hi_end = f->flags & BALL_FIELD_HI_OPEN ? nextafter(f->hi, -INFINITY) : f->hi;
+  if (!coin(r, 1.0 / 3.0)) return value;
+  if (hi && isfinite(hi_end)) return hi_end;
+  if (!hi && isfinite(lo_end)) return lo_end;
+  if (isfinite(hi_end)) return hi_end;
+  if (isfinite(lo_end)) return lo_end;
+  return coin(r, 0.5) ? DBL_MAX : -DBL_MAX;
+}
+
+static int end_side(const char *name) {
+  static const char *const low[] = {"lo", "bottom", "v_min", "floor_level"};
+  static const char *const high[] = {"hi", "top", "v_max"};
+  size_t i;
+  for (i = 0; i < sizeof low / sizeof low[0]; i++)
+    if (strcmp(name, low[i]) == 0) return -1;
+  for (i = 0; i < sizeof high / sizeof high[0]; i++)
+    if (strcmp(name, high[i]) == 0) return 1;
+  return 0;
+}
+
+static void ends_of(rng *r, void *base, const ball_field *f, int n) {
+  int i;
+  for (i = 0; i < n; i++) {
+    double *d = (double *)((char *)base + f[i].offset);
+    if (f[i].type == BALL_FIELD_REAL) *d = range_end(r, &f[i], *d, end_side(f[i].name));
+    if (f[i].type == BALL_FIELD_VEC3) {
+      d[0] = range_end(r, &f[i], d[0], 0);
+      /* the ball's start stays above the floor: only its high end */
+      d[1] = range_end(r, &f[i], d[1], strcmp(f[i].name, "initial_position") == 0 ? 1 : 0);
+      d[2] = range_end(r, &f[i], d[2], 0);
+    }
+  }
+}
+
+static void test_models_at_the_ends_of_their_ranges_run(void **state) {
+  uint64_t first;
+  long count, i, accepted = 0;
+  (void)state;
+  seeds(8000000, 3000, &first, &count);
+  for (i = 0; i < count; i++) {
+    uint64_t seed = first + (uint64_t)i;
+    rng r;
+    ball_model m;
+    ball_sim sim;
+    int n, np, nr, k, w, scheme;
+    const ball_field *f = ball_model_fields(&n);
+    const ball_field *pf = ball_plane_fields(&np);
+    const ball_field *rf = ball_racket_fields(&nr);
+    r.s = seed;
+    ball_model_default(&m);
+    m.effects = BALL_EFFECT_ALL & ~(unsigned)BALL_EFFECT_RACKETS;
+    for (w = 0; w < 4; w++) {
+      ball_plane p = {w % 2 ? 2 : 0, w < 2 ? (w ? -1.0 : 25.0) : (w == 3 ? -1.0 : 12.0), -5.0, 30.0, 0.0, 5.0, 0.8};
+      p.position = w < 2 ? (w == 0 ? 25.0 : -1.0) : (w == 2 ? 12.0 : -1.0);
+      if (ball_model_add_wall(&m, &p) != BALL_OK) fail_msg("wall");
+    }
+    ends_of(&r, &m, f, n);
+    ends_of(&r, &m.net, pf, np);
+    for (w = 0; w < m.n_walls; w++) ends_of(&r, &m.walls[w], pf, np);
+    ends_of(&r, &m.rackets[0], rf, nr);
+    if (ball_model_check(&m, NULL) != BALL_OK) continue; /* a cross-field rule: drawn again */
+    accepted++;
+    for (scheme = 0; scheme < BALL_SCHEME_COUNT; scheme++) {
+      m.scheme = (ball_scheme)scheme;
+      if (ball_sim_init(&m, &sim) != BALL_OK) FAIL_SEED(seed, "init refused a checked model");
+      for (k = 0; k < 262; k++) {
+        double dt = k < 240 ? 1.0 / 60.0 : k < 260 ? 1.0 : 1e3;
+        ball_status st = ball_step(&m, &sim, dt, NULL, 0, NULL);
+        ball_state s;
+        if (st != BALL_OK) FAIL_SEED(seed, "%s scheme, frame %d: %s", ball_scheme_name(m.scheme), k, ball_strerror(st));
+        if (ball_sim_state(&m, &sim, &s) != BALL_OK || !ball_v3_finite(s.position) || !ball_v3_finite(s.velocity))
+          FAIL_SEED(seed, "frame %d: not finite", k);
+        if (s.position.y < m.floor_level + m.radius - 1e-9 * (1.0 + fabs(m.floor_level) + m.radius))
+          FAIL_SEED(seed, "%s scheme, frame %d: below the floor (%.17g < %.17g)", ball_scheme_name(m.scheme), k,
+                    s.position.y, m.floor_level + m.radius);
+      }
+    }
+  }
+  if (accepted < count / 4) fail_msg("only %ld of %ld cases passed the model check", accepted, count);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(test_random_scenes_stay_finite_above_floor_and_off_the_net),
@@ -470,6 +566,7 @@ int main(void) {
       cmocka_unit_test(test_random_spin_bounces_obey_the_eq13_bound),
       cmocka_unit_test(test_random_exact_scenes_are_frame_rate_independent),
       cmocka_unit_test(test_bad_inputs_leave_the_sim_unchanged),
+      cmocka_unit_test(test_models_at_the_ends_of_their_ranges_run),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

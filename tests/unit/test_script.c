@@ -378,7 +378,20 @@ static void bad_scripts_and_polls_are_rejected(void **state) {
   still_script(&s, 60.0);
   s.keyframes[0].normal = ball_v3(0.0, 0.0, 0.0);
   assert_int_equal(ball_script_check(&s, &field), BALL_ERANGE);
-  assert_string_equal(field, "keyframes.normal");
+  assert_string_equal(field, "keyframes[0].normal");
+  /* issue 9: keyframes far out gave infinite poses; the world's limits hold */
+  still_script(&s, 60.0);
+  s.keyframes[0].center.x = 1e308;
+  assert_int_equal(ball_script_check(&s, &field), BALL_ERANGE);
+  assert_string_equal(field, "keyframes[0].center");
+  still_script(&s, 60.0);
+  s.keyframes[0].t = -2e9;
+  assert_int_equal(ball_script_check(&s, &field), BALL_ERANGE);
+  assert_string_equal(field, "keyframes[0].t");
+  still_script(&s, 60.0);
+  s.noise = 1e308;
+  assert_int_equal(ball_script_check(&s, &field), BALL_ERANGE);
+  assert_string_equal(field, "noise");
   still_script(&s, 60.0);
   s.loss = 1.0;
   assert_int_equal(ball_script_check(&s, &field), BALL_ERANGE);
@@ -507,6 +520,50 @@ static void example_scenes_with_scripts_load(void **state) {
   }
 }
 
+/* issue 9: every script ball_script_check accepts gives finite poses and
+ * samples ball_racket_push takes: keyframes at the limits, the largest
+ * noise, the longest repeat (the example was keyframes at +-1e308, which
+ * gave 600 infinite samples). */
+static void scripts_at_the_limits_give_finite_valid_samples(void **state) {
+  static ball_script_player player;
+  ball_racket_script s;
+  ball_script_sample out[64];
+  ball_model m;
+  ball_sim sim;
+  const double c = 1e9 - 1e4;
+  int n, i, k, pushed = 0;
+  (void)state;
+  ball_script_default(&s);
+  s.n_keyframes = 2;
+  s.keyframes[0].t = -1e9;
+  s.keyframes[0].center = ball_v3(-c, c, -c);
+  s.keyframes[0].normal = ball_v3(1, 0, 0);
+  s.keyframes[1].t = 1e9;
+  s.keyframes[1].center = ball_v3(c, -c, c);
+  s.keyframes[1].normal = ball_v3(0, 1, 0);
+  s.noise = 1e3;
+  s.normal_noise = 1.0;
+  s.repeat = 2e9 + 1.0;
+  s.rate = 120.0;
+  assert_int_equal(ball_script_check(&s, NULL), BALL_OK);
+  ball_model_default(&m);
+  m.effects |= BALL_EFFECT_RACKETS;
+  m.n_rackets = 1;
+  assert_ok(ball_sim_init(&m, &sim));
+  assert_ok(ball_script_player_init(&player, &s, 1));
+  for (k = 1; k <= 60; k++) {
+    assert_ok(ball_script_poll(&player, k / 60.0, out, 64, &n));
+    for (i = 0; i < n; i++) {
+      ball_status st;
+      assert_true(ball_v3_finite(out[i].sample.center) && ball_v3_finite(out[i].sample.normal));
+      st = ball_racket_push(&m, &sim, 0, &out[i].sample);
+      assert_true(st == BALL_OK || st == BALL_ESTALE || st == BALL_EDUPLICATE);
+      pushed += st == BALL_OK;
+    }
+  }
+  assert_true(pushed > 50);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(keyframes_interpolate_linearly_and_hold_outside),
@@ -520,6 +577,7 @@ int main(void) {
       cmocka_unit_test(jitter_delivers_out_of_order_within_its_bounds),
       cmocka_unit_test(noise_has_the_stated_sigma),
       cmocka_unit_test(bad_scripts_and_polls_are_rejected),
+      cmocka_unit_test(scripts_at_the_limits_give_finite_valid_samples),
       cmocka_unit_test(script_keys_land_in_the_scene),
       cmocka_unit_test(bad_script_fields_are_rejected_with_line_and_field),
       cmocka_unit_test(example_scenes_with_scripts_load),

@@ -33,6 +33,14 @@ extern "C" {
 #define BALL_MAX_HISTORY 16   /* racket samples a track can keep (the paper's n) */
 #define BALL_MAX_CONTACTS 64  /* exact-mode contacts resolved in one step */
 
+/* The world the library handles (docs/scenes.md, "Ranges"): every range
+ * ball_model_check accepts is one the stepper computes in without overflow. */
+#define BALL_MAX_COORD 1e9    /* m: |coordinate| of a position, a plane, a target, a racket sample */
+#define BALL_MAX_LENGTH 1e6   /* m: a radius (of the ball, a racket, the sphere test) */
+#define BALL_MAX_SPEED 1e7    /* m/s: |component| of a velocity or a spin given to the library */
+#define BALL_MIN_GRAVITY 1e-6 /* m/s^2 */
+#define BALL_MAX_GRAVITY 1e6  /* m/s^2 */
+
 /* ---- status ---------------------------------------------------------- */
 
 typedef enum ball_status {
@@ -423,7 +431,9 @@ BALL_API ball_status ball_sim_init(const ball_model *model, ball_sim *sim);
  * done once here, not on every step. */
 BALL_API ball_status ball_sim_set_model(const ball_model *model, ball_sim *sim);
 
-/* Sets the ball's state at the sim's current time (starts a new segment). */
+/* Sets the ball's state at the sim's current time (starts a new segment).
+ * BALL_ERANGE for a position beyond BALL_MAX_COORD, a velocity or spin
+ * component beyond BALL_MAX_SPEED, or a ball below the floor. */
 BALL_API ball_status ball_sim_set_state(const ball_model *model, ball_sim *sim,
                                         const ball_state *state);
 
