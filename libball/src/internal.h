@@ -167,6 +167,31 @@ int ball__disc_test(ball_vec3 p_old, ball_vec3 p, ball_vec3 r_old, ball_vec3 r, 
 void ball__racket_pose(const ball_model *m, const ball_racket_track *tr, double t,
                        ball_racket_pose *out);
 
+/* ---- the first contact search (contact.c) ---- */
+
+/* The distance between the ball and an obstacle at a time. */
+typedef struct ball__probe {
+  double t;     /* s */
+  double dist;  /* ball surface to the obstacle, m (<= 0: touching) */
+  double side;  /* signed distance of the centre to a thin obstacle's plane, for the crossing
+                   test; the same value everywhere for an obstacle that has no crossing */
+  int inside;   /* 1: here the centre is within the thin obstacle (a crossing counts) */
+} ball__probe;
+typedef ball__probe (*ball__probe_fn)(const void *ctx, double t);
+
+typedef struct ball__contact_query {
+  ball__probe_fn probe;
+  const void *ctx;
+  double ta, tb; /* the interval searched, s */
+  double rate;   /* L: the fastest |d dist / dt| can be over it, m/s (> 0) */
+} ball__contact_query;
+
+/* The first time in [ta, tb] the distance is <= 0 (or the centre crosses a
+ * thin obstacle inside it): 1 with *hit the first touching probe (its side:
+ * the last clear one's); 0 if none. Rigorous given the rate; at most
+ * 2048 evaluations. *probes_used (may be NULL) gets how many it made. */
+int ball__first_contact(const ball__contact_query *q, ball__probe *hit, int *probes_used);
+
 /* The swept test over [ta, tb] (swept.c). The ball follows seg (analytic,
  * when flight is not NULL) or moves linearly p0 -> p1; the disc moves linearly
  * c0 -> c1 and turns n0 -> n1 (normalised lerp) over [tc0, tc1]. */
@@ -180,6 +205,7 @@ typedef struct ball__swept_motion {
   ball_vec3 c0, c1;         /* disc centre, m */
   ball_vec3 n0, n1;         /* disc normal (need not be unit) */
   double disc_radius;       /* m */
+  int *probes_used;         /* NULL, or where the search counts its distance evaluations */
 } ball__swept_motion;
 /* First contact (distance to the disc, face or rim, <= the ball radius) in
  * [ta, tb]; 1 with *t_hit, the ball centre then and the face normal toward

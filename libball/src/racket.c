@@ -280,6 +280,7 @@ static int test_racket(const ball_model *m, const ball__flight *fl, const ball_s
     double th;
     mo.flight = fl;
     mo.seg = &sim->seg;
+    mo.probes_used = NULL;
     mo.ta = sim->seg.t0 > t_prev ? sim->seg.t0 : t_prev;
     mo.tb = t;
     mo.p0 = sim->prev_position;

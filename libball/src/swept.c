@@ -3,30 +3,14 @@
  *
  * The contact test is the exact distance from the ball centre to the disc
  * (face and rim: the disc grown by the ball radius is a rounded slab), so a
- * ball that hits the rim edge is found like one that hits the face.
- *
- * The search rests on one bound: L, the fastest the ball's distance to the
- * disc can change (the ball's speed plus the speed of the fastest point of
- * the disc; rate_bound). From a time where the ball is d clear, no contact
- * can come sooner than d / L, so the search advances by that much
- * (conservative advancement, as FCL does), and by at least a sub-step of
- * 1/SWEPT_MIN_STEPS of the interval when it is close. Each step from a to b
- * catches a contact three ways:
- *   - the distance is <= 0 at b;
- *   - the signed distance of the centre to the disc plane changes sign and the
- *     crossing point lies within the disc (a thin or point ball tunnelling);
- *   - a graze: the distance may dip below 0 between a and b (it cannot when
- *     (d_a + d_b - L (b - a)) / 2 > 0); then the step is halved, earliest
- *     half first, until that bound clears it or a touching time is found.
- * The contact time is then refined (regula falsi with Illinois steps and
- * bisection) until the clear and the touching time are adjacent doubles. The
- * whole search makes at most SWEPT_MAX_PROBES distance evaluations. */
+ * ball that hits the rim edge is found like one that hits the face; a thin
+ * or point ball through the face is a crossing of the disc's plane inside
+ * it. The search is contact.c's, on a rate bound of the ball's speed plus
+ * the speed of the disc's fastest point (rate_bound); before it, the early
+ * reject by bounding spheres (ball__swept_cannot_touch) skips nearly every
+ * frame of a rally. */
 #include "internal.h"
 
-#define SWEPT_MIN_STEPS 64     /* a step near the disc is at most 1/64 of the interval */
-#define SWEPT_MAX_PROBES 2048  /* distance evaluations per search, at most */
-#define SWEPT_REFINE 200       /* refinement iterations, at most (about 15 are used) */
-#define SWEPT_GRAZE_DEPTH 48   /* halvings of a step in a graze search */
 
 /* The frame's motion at time t. */
 static void pose_at(const ball__swept_motion *mo, double t, ball_vec3 *ball, ball_vec3 *c,
@@ -49,106 +33,25 @@ static void pose_at(const ball__swept_motion *mo, double t, ball_vec3 *ball, bal
   *n = ball_v3_scale(nn, 1.0 / len);
 }
 
-typedef struct probe {
-  double t;
-  double dist;   /* ball surface to disc, m (< 0: overlapping) */
-  double side;   /* signed distance of the centre to the disc plane, m */
-  double radial; /* distance of the centre from the disc axis, m */
-} probe;
-
-typedef struct search {
-  const ball__swept_motion *mo;
-  double rate;   /* L, m/s */
-  int probes;    /* left in the budget */
-} search;
-
-static probe probe_at(search *se, double t) {
-  const ball__swept_motion *mo = se->mo;
+/* The distance from the ball (the motion's sphere) to the disc at time t:
+ * the face or the rim, whichever is nearer. */
+static ball__probe disc_probe(const void *ctx, double t) {
+  const ball__swept_motion *mo = (const ball__swept_motion *)ctx;
   ball_vec3 p, c, n, w;
-  probe pr;
+  ball__probe pr;
   double rho, d;
-  se->probes--;
   pose_at(mo, t, &p, &c, &n);
   w = ball_v3_sub(p, c);
   d = ball_v3_dot(w, n);
   rho = ball_v3_norm(ball_v3_sub(w, ball_v3_scale(n, d)));
   pr.t = t;
   pr.side = d;
-  pr.radial = rho;
-  if (rho <= mo->disc_radius)
+  pr.inside = rho <= mo->disc_radius;
+  if (pr.inside)
     pr.dist = fabs(d) - mo->ball_radius;
   else
     pr.dist = sqrt(d * d + (rho - mo->disc_radius) * (rho - mo->disc_radius)) - mo->ball_radius;
   return pr;
-}
-
-/* The root between a and b of f, where f(a) and f(b) have opposite signs
- * ("a side" is f(a) > 0 for refine, the plane side for crossing): regula
- * falsi with Illinois steps, and a bisection every third step, until a and
- * b are adjacent doubles. Returns the end on b's side. */
-typedef double (*probe_value)(const probe *p);
-static double value_dist(const probe *p) { return p->dist; }
-static double value_side(const probe *p) { return p->side; }
-
-static probe root(search *se, probe a, probe b, probe_value f, int a_pos) {
-  double fa = f(&a), fb = f(&b);
-  int i, last = 0;
-  for (i = 0; i < SWEPT_REFINE && se->probes > 0; i++) {
-    double tm = 0.5 * (a.t + b.t);
-    probe m;
-    int m_on_a;
-    if (tm <= a.t || tm >= b.t) break; /* adjacent: done */
-    if (i % 3 != 2 && fa != fb) {
-      double ts = a.t + (b.t - a.t) * (fa / (fa - fb));
-      if (ts > a.t && ts < b.t) tm = ts;
-    }
-    m = probe_at(se, tm);
-    m_on_a = a_pos ? f(&m) > 0.0 : (f(&m) > 0.0) == (fa > 0.0);
-    if (m_on_a) {
-      a = m;
-      fa = f(&m);
-      if (last == 1) fb *= 0.5; /* Illinois: the stuck end weighs half */
-      last = 1;
-    } else {
-      b = m;
-      fb = f(&m);
-      if (last == -1) fa *= 0.5;
-      last = -1;
-    }
-  }
-  (void)fb;
-  return b;
-}
-
-/* First contact in (a, b] where a is clear and b touches. */
-static probe refine(search *se, probe a, probe b) {
-  probe hit = root(se, a, b, value_dist, 1);
-  hit.side = a.side; /* the side the ball came from, for the face normal */
-  return hit;
-}
-
-/* A contact inside (a, b) though both are clear: a graze of the rim, or a
- * thin ball passing through the face between them. Earliest first. */
-static int graze(search *se, probe a, probe b, int depth, probe *hit) {
-  probe m;
-  if ((a.side > 0.0) != (b.side > 0.0) && a.side != 0.0) {
-    probe x = root(se, a, b, value_side, 0);
-    if (x.radial <= se->mo->disc_radius) {
-      /* the centre passes through the disc: contact at or before x */
-      x.dist = fmin(x.dist, 0.0);
-      *hit = refine(se, a, x);
-      return 1;
-    }
-  }
-  if (0.5 * (a.dist + b.dist - se->rate * (b.t - a.t)) > 0.0) return 0; /* cannot dip to 0 */
-  if (depth >= SWEPT_GRAZE_DEPTH || se->probes <= 0) return 0;
-  m = probe_at(se, 0.5 * (a.t + b.t));
-  if (!(m.t > a.t && m.t < b.t)) return 0;
-  if (m.dist <= 0.0) {
-    *hit = refine(se, a, m);
-    return 1;
-  }
-  return graze(se, a, m, depth + 1, hit) || graze(se, m, b, depth + 1, hit);
 }
 
 /* L: the fastest the ball centre's distance to the disc can change, m/s:
@@ -202,39 +105,22 @@ int ball__swept_cannot_touch(const ball__swept_motion *mo) {
 int ball__swept_toi(const ball__swept_motion *mo_in, double *t_hit, ball_vec3 *center,
                     ball_vec3 *face_normal) {
   ball__swept_motion mo = *mo_in;
-  double l0 = ball_v3_norm(mo.n0), l1 = ball_v3_norm(mo.n1), min_step;
+  double l0 = ball_v3_norm(mo.n0), l1 = ball_v3_norm(mo.n1);
   ball_vec3 p, c, n;
   ball_state at_a;
-  probe a, b, hit;
-  search se;
-  int found = 0;
+  ball__probe hit;
+  ball__contact_query q;
   if (!(l0 > 0.0) || !(l1 > 0.0) || !(mo.tb >= mo.ta)) return 0;
   mo.n0 = ball_v3_scale(mo.n0, 1.0 / l0);
   mo.n1 = ball_v3_scale(mo.n1, 1.0 / l1);
   if (ball_v3_dot(mo.n0, mo.n1) < 0.0) mo.n1 = ball_v3_scale(mo.n1, -1.0); /* a disc has two faces */
   if (mo.flight) ball__eval_f(mo.flight, mo.seg, mo.ta, &at_a);
-  se.mo = &mo;
-  se.rate = rate_bound(&mo, &at_a);
-  se.probes = SWEPT_MAX_PROBES;
-  min_step = (mo.tb - mo.ta) / SWEPT_MIN_STEPS;
-
-  a = probe_at(&se, mo.ta);
-  hit = a;
-  if (a.dist <= 0.0) found = 1; /* touching at the start: contact at once (FCL's convention) */
-  while (!found && a.t < mo.tb && se.probes > 0) {
-    /* no contact can come sooner than dist / L: advance by that, at least a step */
-    double tb = a.t + fmax(a.dist / se.rate, min_step);
-    if (!(tb < mo.tb) || mo.tb - tb < 1e-3 * min_step) tb = mo.tb;
-    b = probe_at(&se, tb);
-    if (b.dist <= 0.0) {
-      hit = refine(&se, a, b);
-      found = 1;
-    } else {
-      found = graze(&se, a, b, 0, &hit);
-    }
-    a = b;
-  }
-  if (!found) return 0;
+  q.probe = disc_probe;
+  q.ctx = &mo;
+  q.ta = mo.ta;
+  q.tb = mo.tb;
+  q.rate = rate_bound(&mo, &at_a);
+  if (!ball__first_contact(&q, &hit, mo.probes_used)) return 0;
   pose_at(&mo, hit.t, &p, &c, &n);
   *t_hit = hit.t;
   *center = p;
@@ -264,6 +150,7 @@ ball_status ball_swept_disc(const ball_swept_query *q, int *hit, double *toi, ba
   if (!(ball_v3_length(q->n0) >= 1e-9) || !(ball_v3_length(q->n1) >= 1e-9)) return BALL_ERANGE;
   mo.flight = NULL;
   mo.seg = NULL;
+  mo.probes_used = NULL;
   mo.ta = 0.0;
   mo.tb = 1.0;
   mo.p0 = q->p0;

@@ -180,6 +180,7 @@ static void swept_analytic_flight_ball_dropped_on_still_disc_toi_to_1e9(void **s
   ball__flight_of(&m, &fl);
   mo.flight = &fl;
   mo.seg = &seg;
+  mo.probes_used = NULL;
   mo.ta = 10.0;
   mo.tb = 10.5;
   mo.p0 = seg.p0;
@@ -201,6 +202,96 @@ static void swept_analytic_flight_ball_dropped_on_still_disc_toi_to_1e9(void **s
   assert_near(t, 10.0 + (-1.0 + sqrt(1.0 + 2.0 * 9.81 * 0.98)) / 9.81, 1e-9);
 }
 
+/* issue 9: ball_swept_disc took 32 ms in one call on extreme but finite
+ * inputs. The search's work is bounded: at most 2048 distance evaluations
+ * (plus the root refinements' share of the budget), whatever the input. */
+static void swept_work_is_bounded_on_extreme_inputs(void **state) {
+  static const double big[] = {1e-300, 1e-9, 1.0, 1e9, 1e150, 1e300};
+  core_rng r;
+  int i, worst = 0;
+  (void)state;
+  r.s = 31337;
+  for (i = 0; i < 3000; i++) {
+    ball__swept_motion mo;
+    double t, s = big[(int)core_uniform(&r, 0.0, 6.0) % 6], rb = big[(int)core_uniform(&r, 0.0, 6.0) % 6];
+    ball_vec3 c, face;
+    int used = 0;
+    memset(&mo, 0, sizeof mo);
+    mo.ta = 0.0;
+    mo.tb = 1.0;
+    mo.tc0 = 0.0;
+    mo.tc1 = 1.0;
+    mo.p0 = ball_v3(core_uniform(&r, -s, s), core_uniform(&r, -s, s), core_uniform(&r, -s, s));
+    mo.p1 = ball_v3(core_uniform(&r, -s, s), core_uniform(&r, -s, s), core_uniform(&r, -s, s));
+    mo.c0 = ball_v3(core_uniform(&r, -s, s), core_uniform(&r, -s, s), core_uniform(&r, -s, s));
+    mo.c1 = ball_v3(core_uniform(&r, -s, s), core_uniform(&r, -s, s), core_uniform(&r, -s, s));
+    mo.n0 = ball_v3(core_uniform(&r, -1, 1), core_uniform(&r, -1, 1), 1.0);
+    mo.n1 = ball_v3(core_uniform(&r, -1, 1), 1.0, core_uniform(&r, -1, 1));
+    mo.ball_radius = core_uniform(&r, 0.0, 1.0) < 0.3 ? 0.0 : rb * 1e-3;
+    mo.disc_radius = rb;
+    mo.probes_used = &used;
+    (void)ball__swept_toi(&mo, &t, &c, &face);
+    assert_true(used <= 2048);
+    if (used > worst) worst = used;
+  }
+  assert_true(worst > 16); /* the inputs did make the search work */
+}
+
+/* The early reject never rejects a motion that touches: for random motions
+ * (the analytic flight with drag and linear ones) it rejects, the distance
+ * sampled densely over the interval stays above the ball's radius. */
+static void swept_early_reject_is_sound(void **state) {
+  core_rng r;
+  int i, rejected = 0, kept = 0;
+  (void)state;
+  r.s = 4242;
+  for (i = 0; i < 4000; i++) {
+    ball_model m;
+    ball__flight fl;
+    ball_segment seg;
+    ball__swept_motion mo;
+    ball_state sa, sb;
+    int k;
+    core_model_free(&m);
+    m.air_friction = core_uniform(&r, 0.0, 1.0) < 0.3 ? 0.0 : core_uniform(&r, 0.001, 1.0);
+    ball__flight_of(&m, &fl);
+    seg = core_segment(0.0, ball_v3(0, 1, 0),
+                       ball_v3(core_uniform(&r, -30, 30), core_uniform(&r, -10, 10), core_uniform(&r, -30, 30)),
+                       ball_v3(0, 0, 0));
+    memset(&mo, 0, sizeof mo);
+    mo.flight = core_uniform(&r, 0.0, 1.0) < 0.7 ? &fl : NULL;
+    mo.seg = &seg;
+    mo.ta = core_uniform(&r, 0.0, 0.5);
+    mo.tb = mo.ta + core_uniform(&r, 0.0, 0.5);
+    ball__eval_f(&fl, &seg, mo.ta, &sa);
+    ball__eval_f(&fl, &seg, mo.tb, &sb);
+    mo.p0 = sa.position;
+    mo.p1 = sb.position;
+    mo.tc0 = mo.ta - core_uniform(&r, 0.0, 0.1);
+    mo.tc1 = mo.tb;
+    mo.c0 = ball_v3_add(sa.position, ball_v3(core_uniform(&r, -2, 2), core_uniform(&r, -2, 2), core_uniform(&r, -2, 2)));
+    mo.c1 = ball_v3_add(sb.position, ball_v3(core_uniform(&r, -2, 2), core_uniform(&r, -2, 2), core_uniform(&r, -2, 2)));
+    mo.n0 = mo.n1 = ball_v3(1, 0, 0);
+    mo.ball_radius = core_uniform(&r, 0.0, 0.2);
+    mo.disc_radius = core_uniform(&r, 0.05, 0.5);
+    if (!ball__swept_cannot_touch(&mo)) {
+      kept++;
+      continue;
+    }
+    rejected++;
+    for (k = 0; k <= 2000; k++) {
+      double t = mo.ta + (mo.tb - mo.ta) * k / 2000.0, span = mo.tc1 - mo.tc0;
+      ball_vec3 p = mo.flight ? (ball__eval_f(&fl, &seg, t, &sa), sa.position)
+                              : ball_v3_lerp(mo.p0, mo.p1, mo.tb > mo.ta ? (t - mo.ta) / (mo.tb - mo.ta) : 1.0);
+      ball_vec3 c = ball_v3_lerp(mo.c0, mo.c1, (t - mo.tc0) / span);
+      /* the disc lies inside the sphere of its radius about its centre */
+      if (!(ball_v3_dist(p, c) > mo.ball_radius + mo.disc_radius))
+        fail_msg("motion %d rejected but within reach at t = %.17g", i, t);
+    }
+  }
+  assert_true(rejected > 500 && kept > 500);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(swept_ball_straight_at_still_disc_toi_by_hand),
@@ -212,6 +303,8 @@ int main(void) {
       cmocka_unit_test(swept_touching_at_start_is_contact_at_zero),
       cmocka_unit_test(swept_rejects_bad_queries),
       cmocka_unit_test(swept_analytic_flight_ball_dropped_on_still_disc_toi_to_1e9),
+      cmocka_unit_test(swept_work_is_bounded_on_extreme_inputs),
+      cmocka_unit_test(swept_early_reject_is_sound),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
