@@ -108,6 +108,25 @@ int ball__plane_tau(double b, double x0, double v, double target, double tau_fro
 /* The effective floor height for the ball centre: floor_level + radius. */
 static inline double ball__floor_y(const ball_model *m) { return m->floor_level + m->radius; }
 
+/* ---- the net and the walls (planes.c) ---- */
+
+/* q within the rectangle's extent (closed: its edges count). */
+static inline int ball__in_extent(const ball_plane *pl, ball_vec3 q) {
+  double h = pl->axis == 0 ? q.z : q.x;
+  return h >= pl->lo && h <= pl->hi && q.y >= pl->bottom && q.y <= pl->top;
+}
+/* The point of pl's rectangle nearest to c. */
+ball_vec3 ball__rect_nearest(const ball_plane *pl, ball_vec3 c);
+/* The first contact of the ball (the model's radius) with the rectangle
+ * grown by the radius at tau >= tau_from on seg, approaching it: 1 with
+ * *tau, the centre *q (for the face one ulp back on the approach side) and
+ * the contact normal *n (zero for the face, else from the nearest point). */
+int ball__plane_contact(const ball_model *m, const ball__flight *fl, const ball_segment *seg,
+                        const ball_plane *pl, double tau_from, double *tau, ball_vec3 *q, ball_vec3 *n);
+/* The same on the chord p_old -> p (the sampled scheme): *s in [0, 1]. */
+int ball__plane_chord(const ball_model *m, const ball_plane *pl, ball_vec3 p_old, ball_vec3 p, double *s,
+                      ball_vec3 *q, ball_vec3 *n);
+
 /* ---- rackets (racket.c, response.c) ---- */
 
 /* Racket stage of a step, run after the static obstacles when the RACKETS

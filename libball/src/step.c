@@ -58,22 +58,46 @@ static void floor_bounce(const ball_model *m, ball_segment *seg, double t, ball_
   ev->segment = *seg;
 }
 
-/* eq 6: the net (or a wall) at time t, ball at q; restart at r (q shifted
- * by the paper's dt / 10 push in the sampled scheme, one ulp in the exact one). */
-static void plane_bounce(const ball_model *m, ball_segment *seg, const ball_plane *pl, int which,
-                         double t, ball_vec3 q, ball_vec3 r, const ball_state *s, double shift,
-                         ball_event *ev) {
-  ball_vec3 v0 = s->velocity;
-  int grounded = seg->grounded;
-  if (pl->axis == 0)
-    v0.x = -v0.x;
-  else
-    v0.z = -v0.z;
-  v0 = ball_v3_scale(v0, pl->damping);
-  if (pl->axis == 0)
-    r.x += v0.x * shift;
-  else
-    r.z += v0.z * shift;
+/* eq 6: the velocity after the net (or a wall): the normal component
+ * reversed, all times netDamping. n is the contact normal of an edge or a
+ * corner (the grown rectangle's); zero for the face, where the reversal is
+ * the plane's axis exactly as the paper writes it. */
+static ball_vec3 plane_reflect(const ball_plane *pl, ball_vec3 n, ball_vec3 v) {
+  if (n.x == 0.0 && n.y == 0.0 && n.z == 0.0) {
+    if (pl->axis == 0)
+      v.x = -v.x;
+    else
+      v.z = -v.z;
+  } else {
+    v = ball_v3_sub(v, ball_v3_scale(n, 2.0 * ball_v3_dot(v, n)));
+  }
+  return ball_v3_scale(v, pl->damping);
+}
+
+/* The unit normal a contact's response turns about: n, or the axis. */
+static ball_vec3 plane_normal(const ball_plane *pl, ball_vec3 n) {
+  if (n.x != 0.0 || n.y != 0.0 || n.z != 0.0) return n;
+  return pl->axis == 0 ? ball_v3(1.0, 0.0, 0.0) : ball_v3(0.0, 0.0, 1.0);
+}
+
+/* eq 6 at time t: the event at the centre q, the new segment from r with
+ * v0 (plane_reflect's) and the arriving spin. n is the unit normal the
+ * response turned about; rim: an edge's or corner's contact. */
+static void plane_bounce(const ball_model *m, ball_segment *seg, int which, ball_vec3 n, int rim, double t,
+                         ball_vec3 q, ball_vec3 r, const ball_state *s, ball_vec3 v0, ball_event *ev) {
+  /* a grounded ball stays on the floor unless an edge sends it up or down */
+  int grounded = seg->grounded && v0.y == 0.0;
+  if (rim && n.y > 0.0 && ball_v3_dot(v0, n) < m->bounce_threshold) {
+    /* on a top edge, too slow to bounce off it (the floor's threshold, eq 5):
+     * the ball comes to rest there, balanced, instead of bouncing ever
+     * smaller within one instant (docs/model.md) */
+    v0 = ball_v3(0.0, 0.0, 0.0);
+    r = q;
+    /* a sampled frame may find the edge at a chord point under the floor: the
+     * floor holds the resting ball, as it holds a grounded one */
+    if (ball__has(m, BALL_EFFECT_FLOOR) && r.y < ball__floor_y(m)) r.y = ball__floor_y(m);
+    grounded = 1;
+  }
   ev->kind = which == WHICH_NET ? BALL_EVENT_NET : BALL_EVENT_WALL;
   ev->index = which == WHICH_NET ? 0 : which - WHICH_WALL(0);
   ev->time = t;
@@ -81,14 +105,9 @@ static void plane_bounce(const ball_model *m, ball_segment *seg, const ball_plan
   ev->velocity_in = s->velocity;
   ev->velocity_out = v0;
   ev->spin_out = s->spin;
-  ev->sound = sound(m, ball_v3_axis(v0, pl->axis));
+  ev->sound = sound(m, ball_v3_dot(v0, n));
   ball__segment_start(seg, t, r, v0, s->spin, grounded);
   ev->segment = *seg;
-}
-
-static int in_extent(const ball_plane *pl, ball_vec3 q) {
-  double h = pl->axis == 0 ? q.z : q.x;
-  return h >= pl->lo && h <= pl->hi && q.y >= pl->bottom && q.y <= pl->top;
 }
 
 static const ball_plane *plane_of(const ball_model *m, int which) {
@@ -96,27 +115,6 @@ static const ball_plane *plane_of(const ball_model *m, int which) {
 }
 
 /* ---- exact scheme: contacts in closed form on the analytic path ---- */
-
-/* First crossing of the ball's surface with the plane rectangle at tau >=
- * tau_from on seg, approaching from the side the ball is on; *q the centre
- * then, one ulp back on the approach side (a point ball restarting exactly
- * in the plane would find the same plane again at once: docs/hard-cases.md). */
-static int plane_contact(const ball_model *m, const ball__flight *fl, const ball_segment *seg,
-                         const ball_plane *pl, double tau_from, double *tau, ball_vec3 *q) {
-  int a = pl->axis;
-  double v = ball_v3_axis(seg->v0, a), target;
-  ball_state s;
-  if (v == 0.0) return 0;
-  target = pl->position - (v > 0.0 ? m->radius : -m->radius);
-  if (!ball__plane_tau(fl->b, ball_v3_axis(seg->p0, a), v, target, tau_from, tau)) return 0;
-  ball__eval_f(fl, seg, seg->t0 + *tau, &s);
-  *q = s.position;
-  if (a == 0)
-    q->x = nextafter(target, v > 0.0 ? -INFINITY : INFINITY);
-  else
-    q->z = nextafter(target, v > 0.0 ? -INFINITY : INFINITY);
-  return in_extent(pl, *q);
-}
 
 static double height(const ball_model *m, const ball_segment *seg, double tau) {
   return seg->p0.y + seg->v0.y * tau - 0.5 * m->gravity * tau * tau;
@@ -142,29 +140,32 @@ static int floor_contact(const ball_model *m, const ball_segment *seg, double ta
 static void find_next(const ball_model *m, const ball__flight *fl, const ball_segment *seg,
                       double t_from, ball_contact *c) {
   double tau_from = t_from - seg->t0, tau, best = INFINITY;
-  ball_vec3 q, best_q = ball_v3(0.0, 0.0, 0.0);
+  ball_vec3 q, n, best_q = ball_v3(0.0, 0.0, 0.0), best_n = ball_v3(0.0, 0.0, 0.0);
   int i, which = WHICH_NONE;
   if (ball__has(m, BALL_EFFECT_FLOOR) && floor_contact(m, seg, tau_from, &tau)) {
     best = tau;
     which = WHICH_FLOOR;
   }
   if (ball__has(m, BALL_EFFECT_NET) && m->has_net &&
-      plane_contact(m, fl, seg, &m->net, tau_from, &tau, &q) && tau < best) {
+      ball__plane_contact(m, fl, seg, &m->net, tau_from, &tau, &q, &n) && tau < best) {
     best = tau;
     best_q = q;
+    best_n = n;
     which = WHICH_NET;
   }
   if (ball__has(m, BALL_EFFECT_WALLS))
     for (i = 0; i < m->n_walls; i++)
-      if (plane_contact(m, fl, seg, &m->walls[i], tau_from, &tau, &q) && tau < best) {
+      if (ball__plane_contact(m, fl, seg, &m->walls[i], tau_from, &tau, &q, &n) && tau < best) {
         best = tau;
         best_q = q;
+        best_n = n;
         which = WHICH_WALL(i);
       }
   c->valid = 1;
   c->which = which;
   c->time = which == WHICH_NONE ? INFINITY : seg->t0 + best;
   c->point = best_q;
+  c->normal = best_n;
 }
 
 /* The contact c on seg: its response starts the next segment. */
@@ -172,10 +173,13 @@ static void resolve(const ball_model *m, const ball__flight *fl, ball_segment *s
                     const ball_contact *c, ball_event *ev) {
   ball_state s;
   ball__eval_f(fl, seg, c->time, &s);
-  if (c->which == WHICH_FLOOR)
+  if (c->which == WHICH_FLOOR) {
     floor_bounce(m, seg, c->time, s.position, &s, ev);
-  else
-    plane_bounce(m, seg, plane_of(m, c->which), c->which, c->time, s.position, c->point, &s, 0.0, ev);
+  } else {
+    const ball_plane *pl = plane_of(m, c->which);
+    plane_bounce(m, seg, c->which, plane_normal(pl, c->normal), ball_v3_norm(c->normal) > 0.0, c->time, s.position,
+                 c->point, &s, plane_reflect(pl, c->normal, s.velocity), ev);
+  }
 }
 
 /* The exact scheme over (t_from, t_end] on seg, next being seg's cached next
@@ -214,22 +218,30 @@ static int exact_advance(const ball_model *m, const ball__flight *fl, ball_segme
 
 /* ---- sampled scheme: the paper's per-frame tests (Fig. 1, Fig. 3) ---- */
 
-/* Fig. 3: the segment p_old -> p against the plane (moved by the radius
- * toward p_old); *s is where along the segment it crosses. */
-static int plane_crossing(const ball_model *m, const ball_plane *pl, ball_vec3 p_old, ball_vec3 p,
-                          double *s, ball_vec3 *q) {
-  int a = pl->axis;
-  double xo = ball_v3_axis(p_old, a), x = ball_v3_axis(p, a), target;
-  if (xo == x) return 0; /* segment parallel to the plane */
-  target = pl->position - (x > xo ? m->radius : -m->radius);
-  *s = (target - xo) / (x - xo);
-  if (!(*s >= 0.0 && *s <= 1.0)) return 0;
-  *q = ball_v3_lerp(p_old, p, *s);
-  if (a == 0)
-    q->x = target;
-  else
-    q->z = target;
-  return in_extent(pl, *q);
+/* The first plane (net or wall, but not `skip`) the segment from p0 to p1
+ * touches, at the fraction *s along it; WHICH_NONE if none. */
+static int first_plane_on(const ball_model *m, ball_vec3 p0, ball_vec3 p1, int skip, double *s, ball_vec3 *q,
+                          ball_vec3 *n) {
+  double f, best = INFINITY;
+  ball_vec3 qq, nn;
+  int i, which = WHICH_NONE;
+  if (ball__has(m, BALL_EFFECT_NET) && m->has_net && skip != WHICH_NET &&
+      ball__plane_chord(m, &m->net, p0, p1, &f, &qq, &nn)) {
+    best = f;
+    *q = qq;
+    *n = nn;
+    which = WHICH_NET;
+  }
+  if (ball__has(m, BALL_EFFECT_WALLS))
+    for (i = 0; i < m->n_walls; i++)
+      if (skip != WHICH_WALL(i) && ball__plane_chord(m, &m->walls[i], p0, p1, &f, &qq, &nn) && f < best) {
+        best = f;
+        *q = qq;
+        *n = nn;
+        which = WHICH_WALL(i);
+      }
+  *s = best;
+  return which;
 }
 
 /* One sampled frame ending at t_end, *st the state there (updated on a
@@ -237,26 +249,22 @@ static int plane_crossing(const ball_model *m, const ball_plane *pl, ball_vec3 p
 static int step_sampled(const ball_model *m, const ball__flight *fl, ball_sim *sim, double t_end,
                         double dt, sink *k, ball_state *st) {
   ball_event ev;
-  ball_vec3 q, best_q = ball_v3(0.0, 0.0, 0.0);
-  double s, best = INFINITY;
-  int i, which = WHICH_NONE, n = 0;
-  /* the first plane the frame's segment crosses (one plane collision a frame) */
-  if (ball__has(m, BALL_EFFECT_NET) && m->has_net &&
-      plane_crossing(m, &m->net, sim->prev_position, st->position, &s, &q)) {
-    best = s;
-    best_q = q;
-    which = WHICH_NET;
-  }
-  if (ball__has(m, BALL_EFFECT_WALLS))
-    for (i = 0; i < m->n_walls; i++)
-      if (plane_crossing(m, &m->walls[i], sim->prev_position, st->position, &s, &q) && s < best) {
-        best = s;
-        best_q = q;
-        which = WHICH_WALL(i);
-      }
+  ball_vec3 q = ball_v3(0.0, 0.0, 0.0), nrm = ball_v3(0.0, 0.0, 0.0);
+  double s;
+  int which, n = 0;
+  /* the first plane the frame's segment touches (one plane collision a frame) */
+  which = first_plane_on(m, sim->prev_position, st->position, WHICH_NONE, &s, &q, &nrm);
   if (which != WHICH_NONE) {
-    /* eq 6: velocity now, restart at Q pushed dt / 10 along the new velocity */
-    plane_bounce(m, &sim->seg, plane_of(m, which), which, t_end, best_q, best_q, st, dt / 10.0, &ev);
+    /* eq 6: velocity now, restart at Q pushed dt / 10 along the new normal
+     * velocity; with long frames that push can be metres, so it stops short
+     * of any other plane it would reach (the paper's push keeps the ball out
+     * of the net, never through a wall behind it) */
+    const ball_plane *pl = plane_of(m, which);
+    ball_vec3 un = plane_normal(pl, nrm), v0 = plane_reflect(pl, nrm, st->velocity), r, qs, ns;
+    double f;
+    r = ball_v3_add(q, ball_v3_scale(un, ball_v3_dot(v0, un) * dt / 10.0));
+    if (first_plane_on(m, q, r, which, &f, &qs, &ns) != WHICH_NONE && f <= 1.0) r = ball_v3_lerp(q, r, 0.5 * f);
+    plane_bounce(m, &sim->seg, which, un, ball_v3_norm(nrm) > 0.0, t_end, q, r, st, v0, &ev);
     emit(k, &ev);
     ball__eval_f(fl, &sim->seg, t_end, st);
     n++;

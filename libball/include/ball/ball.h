@@ -401,6 +401,7 @@ typedef struct ball_contact {
   int which;         /* -1: none ever; 0 floor, 1 net, 2 + i wall i */
   double time;       /* sim time of the contact, s (+Inf when none) */
   ball_vec3 point;   /* ball centre at the contact, m */
+  ball_vec3 normal;  /* contact normal at a net's or wall's edge or corner; zero for a face */
 } ball_contact;
 
 typedef struct ball_sim {
