@@ -16,7 +16,7 @@
  * The contact time is then refined (regula falsi with Illinois steps and a
  * bisection every third step) until the clear and the touching time are
  * adjacent doubles. The whole search makes at most BALL__CONTACT_MAX_PROBES
- * evaluations. */
+ * evaluations; out of them, it says so and where the ball was last clear. */
 #include "internal.h"
 
 #define BALL__CONTACT_MIN_STEPS 64   /* a step near the obstacle is at most 1/64 of the interval */
@@ -128,5 +128,9 @@ int ball__first_contact(const ball__contact_query *q, ball__probe *hit, int *pro
     a = b;
   }
   if (probes_used) *probes_used = BALL__CONTACT_MAX_PROBES - se.probes;
+  if (!found && a.t < q->tb && se.probes <= 0) {
+    *hit = a; /* out of evaluations: the last time known clear */
+    return 2;
+  }
   return found;
 }

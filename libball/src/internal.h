@@ -118,11 +118,14 @@ static inline int ball__in_extent(const ball_plane *pl, ball_vec3 q) {
 /* The point of pl's rectangle nearest to c. */
 ball_vec3 ball__rect_nearest(const ball_plane *pl, ball_vec3 c);
 /* The first contact of the ball (the model's radius) with the rectangle
- * grown by the radius at tau >= tau_from on seg, approaching it: 1 with
+ * grown by the radius at tau in [tau_from, tau_to] on seg (tau_to: a
+ * contact already known, +Inf if none; the edges are not searched past it),
+ * approaching it: 1 with
  * *tau, the centre *q (for the face one ulp back on the approach side) and
  * the contact normal *n (zero for the face, else from the nearest point). */
 int ball__plane_contact(const ball_model *m, const ball__flight *fl, const ball_segment *seg,
-                        const ball_plane *pl, double tau_from, double *tau, ball_vec3 *q, ball_vec3 *n);
+                        const ball_plane *pl, double tau_from, double tau_to, double *tau, ball_vec3 *q,
+                        ball_vec3 *n);
 /* The same on the chord p_old -> p (the sampled scheme): *s in [0, 1]. */
 int ball__plane_chord(const ball_model *m, const ball_plane *pl, ball_vec3 p_old, ball_vec3 p, double *s,
                       ball_vec3 *q, ball_vec3 *n);
@@ -208,7 +211,10 @@ typedef struct ball__contact_query {
 /* The first time in [ta, tb] the distance is <= 0 (or the centre crosses a
  * thin obstacle inside it): 1 with *hit the first touching probe (its side:
  * the last clear one's); 0 if none. Rigorous given the rate; at most
- * 2048 evaluations. *probes_used (may be NULL) gets how many it made. */
+ * 2048 evaluations. When they run out before [ta, tb] is cleared (a ball
+ * skimming an obstacle for long): 2 with *hit the last clear probe, which
+ * a caller that must not let the ball through treats as the contact.
+ * *probes_used (may be NULL) gets how many it made. */
 int ball__first_contact(const ball__contact_query *q, ball__probe *hit, int *probes_used);
 
 /* The swept test over [ta, tb] (swept.c). The ball follows seg (analytic,

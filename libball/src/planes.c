@@ -92,7 +92,7 @@ static int slab(const ball__flight *fl, double x0, double v, double lo, double h
 static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_segment *seg, const ball_plane *pl,
                      double tau_from, double tau_to, double *tau, ball_vec3 *q, ball_vec3 *n) {
   double r = m->radius, w0 = tau_from, w1 = tau_to, t0, t1, vy0, vy1, rate;
-  int a = pl->axis, h = a == 0 ? 2 : 0;
+  int a = pl->axis, h = a == 0 ? 2 : 0, found;
   path_ctx ctx;
   ball__contact_query cq;
   ball__probe hit, p0;
@@ -160,16 +160,21 @@ static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_seg
   cq.ta = seg->t0 + w0;
   cq.tb = seg->t0 + w1;
   cq.rate = rate;
-  if (!ball__first_contact(&cq, &hit, NULL)) return 0;
+  found = ball__first_contact(&cq, &hit, NULL);
+  if (!found) return 0;
   ball__eval_f(fl, seg, hit.t, &s);
   *tau = hit.t - seg->t0;
   *q = s.position;
   *n = ball_v3_unit(ball_v3_sub(s.position, ball__rect_nearest(pl, s.position)));
-  return 1;
+  /* out of evaluations (2): the ball skims the rim for long. Where it was
+   * last known clear it bounces if it moves toward the rim there, rather
+   * than risk passing through; moving away, it is left to go */
+  return found == 1 || ball_v3_dot(*n, s.velocity) < 0.0;
 }
 
 int ball__plane_contact(const ball_model *m, const ball__flight *fl, const ball_segment *seg,
-                        const ball_plane *pl, double tau_from, double *tau, ball_vec3 *q, ball_vec3 *n) {
+                        const ball_plane *pl, double tau_from, double tau_to, double *tau, ball_vec3 *q,
+                        ball_vec3 *n) {
   int a = pl->axis, face = 0;
   double v = ball_v3_axis(seg->v0, a), target, tau_face = INFINITY, tau_rim;
   ball_vec3 q_face = ball_v3(0.0, 0.0, 0.0), q_rim, n_rim;
@@ -191,7 +196,8 @@ int ball__plane_contact(const ball_model *m, const ball__flight *fl, const ball_
     }
   }
   /* the edges and corners, before the face (a point ball has none) */
-  if (m->radius > 0.0 && rim_exact(m, fl, seg, pl, tau_from, face ? tau_face : INFINITY, &tau_rim, &q_rim, &n_rim) &&
+  if (m->radius > 0.0 &&
+      rim_exact(m, fl, seg, pl, tau_from, fmin(tau_to, face ? tau_face : INFINITY), &tau_rim, &q_rim, &n_rim) &&
       !(face && tau_rim >= tau_face)) {
     *tau = tau_rim;
     *q = q_rim;
@@ -233,7 +239,7 @@ static ball__probe chord_probe(const void *ctx, double s) {
 
 int ball__plane_chord(const ball_model *m, const ball_plane *pl, ball_vec3 p_old, ball_vec3 p, double *s,
                       ball_vec3 *q, ball_vec3 *n) {
-  int a = pl->axis, face = 0;
+  int a = pl->axis, face = 0, found;
   double xo = ball_v3_axis(p_old, a), x = ball_v3_axis(p, a), target, s_face = INFINITY;
   ball_vec3 q_face = ball_v3(0.0, 0.0, 0.0);
   /* Fig. 3: the segment p_old -> p against the plane moved by the radius
@@ -271,9 +277,13 @@ int ball__plane_chord(const ball_model *m, const ball_plane *pl, ball_vec3 p_old
       ball_vec3 nq = ball_v3_sub(p_old, ball__rect_nearest(pl, p_old));
       if (!(ball_v3_dot(nq, ball_v3_sub(p, p_old)) < 0.0)) cq.tb = -1.0;
     }
-    if (cq.tb >= 0.0 && ball__first_contact(&cq, &hit, NULL)) {
+    found = cq.tb >= 0.0 ? ball__first_contact(&cq, &hit, NULL) : 0;
+    if (found) {
       ball_vec3 c = ball_v3_lerp(p_old, p, hit.t), near = ball__rect_nearest(pl, c);
-      if (!(face && hit.t >= s_face) && (!face_interior(pl, near) || !face)) {
+      /* out of evaluations (2): as rim_exact, a contact where the chord was
+       * last known clear if it heads toward the rim there */
+      if (found == 2 && !(ball_v3_dot(ball_v3_sub(c, near), ball_v3_sub(p, p_old)) < 0.0)) found = 0;
+      if (found && !(face && hit.t >= s_face) && (!face_interior(pl, near) || !face)) {
         *s = hit.t;
         *q = c;
         *n = face_interior(pl, near) ? ball_v3(0.0, 0.0, 0.0) : ball_v3_unit(ball_v3_sub(c, near));

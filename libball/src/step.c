@@ -147,7 +147,7 @@ static void find_next(const ball_model *m, const ball__flight *fl, const ball_se
     which = WHICH_FLOOR;
   }
   if (ball__has(m, BALL_EFFECT_NET) && m->has_net &&
-      ball__plane_contact(m, fl, seg, &m->net, tau_from, &tau, &q, &n) && tau < best) {
+      ball__plane_contact(m, fl, seg, &m->net, tau_from, best, &tau, &q, &n) && tau < best) {
     best = tau;
     best_q = q;
     best_n = n;
@@ -155,7 +155,7 @@ static void find_next(const ball_model *m, const ball__flight *fl, const ball_se
   }
   if (ball__has(m, BALL_EFFECT_WALLS))
     for (i = 0; i < m->n_walls; i++)
-      if (ball__plane_contact(m, fl, seg, &m->walls[i], tau_from, &tau, &q, &n) && tau < best) {
+      if (ball__plane_contact(m, fl, seg, &m->walls[i], tau_from, best, &tau, &q, &n) && tau < best) {
         best = tau;
         best_q = q;
         best_n = n;

@@ -120,7 +120,9 @@ int ball__swept_toi(const ball__swept_motion *mo_in, double *t_hit, ball_vec3 *c
   q.ta = mo.ta;
   q.tb = mo.tb;
   q.rate = rate_bound(&mo, &at_a);
-  if (!ball__first_contact(&q, &hit, mo.probes_used)) return 0;
+  /* out of evaluations (2) is no hit: a racket that skims the ball that
+   * long is not a stroke */
+  if (ball__first_contact(&q, &hit, mo.probes_used) != 1) return 0;
   pose_at(&mo, hit.t, &p, &c, &n);
   *t_hit = hit.t;
   *center = p;
