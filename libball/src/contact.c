@@ -1,6 +1,7 @@
 /* The first contact of a moving ball with an obstacle, given the distance
- * between them as a function of time (contact.h in internal.h): the search
- * the swept racket test and the rounded net and wall contacts share.
+ * between them as a function of time (internal.h): the swept racket test's
+ * search. (The net's and walls' edges use planes.c's own search: their
+ * distance is convex in space, which allows a second-order bound.)
  *
  * It rests on one bound: L, the fastest the distance can change. From a
  * time where the ball is d clear, no contact can come sooner than d / L, so

@@ -6,12 +6,15 @@
  * inverting eq 3, then the extent). The edges and corners are the points
  * of the grown rectangle that the face's test cannot see: a ball that first
  * touches the plane above the top edge or past a side edge and then moves
- * inward, or one that only skims an edge. They are found by contact.c's
- * search on the distance from the ball's centre to the rectangle, on the
+ * inward, or one that only skims an edge. They are found by the search
+ * below on the distance from the ball's centre to the rectangle, on the
  * analytic path (exact scheme) or on the frame's chord (sampled scheme),
- * over the time the ball is inside the rectangle's slab of thickness 2 r
- * (closed form), before the face's contact. The normal of an edge or corner
- * contact points from the rectangle's nearest point to the ball's centre. */
+ * over the time the ball is inside the grown rectangle's box (closed form
+ * on each axis), before the face's contact and any contact already known.
+ * The normal of an edge or corner contact points from the rectangle's
+ * nearest point to the ball's centre. */
+#include <string.h>
+
 #include "internal.h"
 
 static double clampd(double v, double lo, double hi) { return v < lo ? lo : v > hi ? hi : v; }
@@ -36,25 +39,83 @@ static int face_interior(const ball_plane *pl, ball_vec3 q) {
   return h > pl->lo && h < pl->hi && q.y > pl->bottom && q.y < pl->top;
 }
 
-/* ---- the exact scheme: on the analytic path ---- */
+/* ---- the search: advancement on a second-order bound ----
+ *
+ * d(t) = |c(t) - nearest| - r, the ball's distance to the rectangle, is the
+ * distance to a convex set along the centre's path: convex in space, so
+ * d'' >= -|c''| >= -A. From a time where it is d with d' = n.v (n the unit
+ * normal from the nearest point), d(t + tau) >= d + d' tau - A tau^2 / 2,
+ * which stays positive for tau < tau* = (d' + sqrt(d'^2 + 2 A d)) / A:
+ * the search steps by tau* (rigorous: it cannot step past a contact),
+ * a Newton step from the left on a chord (A = 0) or when the ball closes
+ * in, and a wide step when it moves away. It stops when the distance is
+ * within rounding of 0 while the ball moves in (the contact, at most a few
+ * ulps of the coordinates clear of it), or at tb. A ball that starts
+ * touching or overlapping and moves out is followed out in doubling steps;
+ * it is in contact again only if it moves in. */
 
-typedef struct path_ctx {
-  const ball__flight *fl;
-  const ball_segment *seg;
+typedef struct rim_ctx {
   const ball_plane *pl;
   double radius;
-} path_ctx;
+  const ball__flight *fl; /* the exact scheme: the path on seg */
+  const ball_segment *seg;
+  ball_vec3 p0, p1; /* the sampled scheme: the chord p0 -> p1 */
+} rim_ctx;
 
-static ball__probe path_probe(const void *ctx, double t) {
-  const path_ctx *c = (const path_ctx *)ctx;
+/* The centre and its velocity at t (time, or the chord's fraction). */
+typedef void (*state_fn)(const rim_ctx *ctx, double t, ball_vec3 *c, ball_vec3 *v);
+
+#define PLANES_MAX_STEPS 4096
+
+static int advance(state_fn at, const rim_ctx *x, double ta, double tb, double acc, double *t_hit, ball_vec3 *q,
+                   ball_vec3 *n) {
+  double t = ta, out_step = 0.0;
+  int i;
+  for (i = 0; i < PLANES_MAX_STEPS; i++) {
+    ball_vec3 c, v, near, diff;
+    double len, d, dp, eps, tau, disc;
+    at(x, t, &c, &v);
+    near = ball__rect_nearest(x->pl, c);
+    diff = ball_v3_sub(c, near);
+    len = ball_v3_norm(diff);
+    d = len - x->radius;
+    /* the centre in the rectangle itself (a ball started in the net): no
+     * normal, no way in; it is followed out */
+    dp = len > 0.0 ? ball_v3_dot(diff, v) / len : 0.0;
+    /* within rounding of the coordinates */
+    eps = 1e-13 * (1.0 + ball_v3_max_abs(c) + x->radius);
+    if (d <= eps) {
+      if (dp < 0.0) {
+        *t_hit = t;
+        *q = c;
+        *n = len > 0.0 ? ball_v3_scale(diff, 1.0 / len) : ball_v3(0.0, 0.0, 0.0);
+        return 1;
+      }
+      /* touching or overlapping, moving out: follow it out */
+      out_step = out_step > 0.0 ? 2.0 * out_step : 1e-15 * (1.0 + fabs(t));
+      tau = out_step;
+    } else {
+      out_step = 0.0;
+      disc = sqrt(dp * dp + 2.0 * acc * d);
+      if (dp <= 0.0)
+        tau = 2.0 * d / (disc - dp); /* the root of the bound, without cancellation */
+      else
+        tau = acc > 0.0 ? (dp + disc) / acc : INFINITY; /* moving away on a line: for good */
+    }
+    if (!(t + tau <= tb)) return 0;
+    if (t + tau == t) tau = 1e-15 * (1.0 + fabs(t)); /* below the clock's ulp: one ulp on */
+    t += tau;
+  }
+  return 0; /* a search that long does not converge: the ball skims; let it be */
+}
+
+/* ---- the exact scheme: on the analytic path ---- */
+
+static void path_state(const rim_ctx *x, double t, ball_vec3 *c, ball_vec3 *v) {
   ball_state s;
-  ball__probe p;
-  ball__eval_f(c->fl, c->seg, t, &s);
-  p.t = t;
-  p.dist = ball_v3_dist(s.position, ball__rect_nearest(c->pl, s.position)) - c->radius;
-  p.side = 1.0; /* a thick obstacle: no crossing test */
-  p.inside = 0;
-  return p;
+  ball__eval_f(x->fl, x->seg, t, &s);
+  *c = s.position;
+  *v = s.velocity;
 }
 
 /* tau at which b (1 - e^(-tau/b)) (or tau without drag) reaches d >= 0; +Inf
@@ -91,11 +152,9 @@ static int slab(const ball__flight *fl, double x0, double v, double lo, double h
  * centre *q and the contact normal *n. */
 static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_segment *seg, const ball_plane *pl,
                      double tau_from, double tau_to, double *tau, ball_vec3 *q, ball_vec3 *n) {
-  double r = m->radius, w0 = tau_from, w1 = tau_to, t0, t1, vy0, vy1, rate;
-  int a = pl->axis, h = a == 0 ? 2 : 0, found;
-  path_ctx ctx;
-  ball__contact_query cq;
-  ball__probe hit, p0;
+  double r = m->radius, w0 = tau_from, w1 = tau_to, t0, t1, acc, t_hit;
+  int a = pl->axis, h = a == 0 ? 2 : 0;
+  rim_ctx ctx;
   ball_state s;
   /* the window: inside the slabs of the grown rectangle's bounding box */
   if (!slab(fl, ball_v3_axis(seg->p0, a), ball_v3_axis(seg->v0, a), pl->position - r, pl->position + r, &t0, &t1))
@@ -121,55 +180,22 @@ static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_seg
     else w1 = fmax(w0, fl->b * log(fmax(vh * fl->b / 1e-15, 1.0)));
   }
   if (!(w0 <= w1)) return 0;
+  {
+    /* the ball's acceleration bounds d'' from below (the distance to a
+     * convex set is convex in space): |a| <= k |v_h(w0)| + g (eq 3) */
+    double vh;
+    ball__eval_f(fl, seg, seg->t0 + w0, &s);
+    vh = sqrt(s.velocity.x * s.velocity.x + s.velocity.z * s.velocity.z);
+    acc = (fl->k * vh + (seg->grounded ? 0.0 : fl->g)) * (1.0 + 1e-12);
+  }
+  memset(&ctx, 0, sizeof ctx);
   ctx.fl = fl;
   ctx.seg = seg;
   ctx.pl = pl;
   ctx.radius = r;
-  p0 = path_probe(&ctx, seg->t0 + w0);
-  if (p0.dist <= 0.0) {
-    /* touching where the window starts: a contact as soon as it moves
-     * inward (at once, or when gravity turns a ball that just bounced off
-     * this edge back into it); clear of it, the search goes on from there */
-    double dt = 1e-15 * (1.0 + fabs(seg->t0 + w0)), at = w0;
-    for (;;) {
-      ball_vec3 nq;
-      ball__eval_f(fl, seg, seg->t0 + at, &s);
-      nq = ball_v3_sub(s.position, ball__rect_nearest(pl, s.position));
-      if (ball_v3_dot(nq, s.velocity) < 0.0) {
-        *tau = at;
-        *q = s.position;
-        *n = ball_v3_unit(nq);
-        return 1;
-      }
-      if (!(w0 + dt <= w1) || dt > 1e9) return 0;
-      at = w0 + dt;
-      p0 = path_probe(&ctx, seg->t0 + at);
-      if (p0.dist > 0.0) break;
-      dt *= 2.0;
-    }
-    w0 = at;
-  }
-  /* the rate: the ball's speed bounds how fast its distance changes; the
-   * horizontal speed only decays, the vertical is linear in time */
-  ball__eval_f(fl, seg, seg->t0 + w0, &s);
-  vy0 = fabs(s.velocity.y);
-  vy1 = seg->grounded ? 0.0 : fabs(seg->v0.y - fl->g * w1);
-  rate = (sqrt(s.velocity.x * s.velocity.x + s.velocity.z * s.velocity.z) + fmax(vy0, vy1)) * (1.0 + 1e-9) + 1e-300;
-  cq.probe = path_probe;
-  cq.ctx = &ctx;
-  cq.ta = seg->t0 + w0;
-  cq.tb = seg->t0 + w1;
-  cq.rate = rate;
-  found = ball__first_contact(&cq, &hit, NULL);
-  if (!found) return 0;
-  ball__eval_f(fl, seg, hit.t, &s);
-  *tau = hit.t - seg->t0;
-  *q = s.position;
-  *n = ball_v3_unit(ball_v3_sub(s.position, ball__rect_nearest(pl, s.position)));
-  /* out of evaluations (2): the ball skims the rim for long. Where it was
-   * last known clear it bounces if it moves toward the rim there, rather
-   * than risk passing through; moving away, it is left to go */
-  return found == 1 || ball_v3_dot(*n, s.velocity) < 0.0;
+  if (!advance(path_state, &ctx, seg->t0 + w0, seg->t0 + w1, acc, &t_hit, q, n)) return 0;
+  *tau = t_hit - seg->t0;
+  return 1;
 }
 
 int ball__plane_contact(const ball_model *m, const ball__flight *fl, const ball_segment *seg,
@@ -220,26 +246,14 @@ int ball__plane_contact(const ball_model *m, const ball__flight *fl, const ball_
 
 /* ---- the sampled scheme: on the frame's chord ---- */
 
-typedef struct chord_ctx {
-  ball_vec3 p0, p1;
-  const ball_plane *pl;
-  double radius;
-} chord_ctx;
-
-static ball__probe chord_probe(const void *ctx, double s) {
-  const chord_ctx *c = (const chord_ctx *)ctx;
-  ball_vec3 p = ball_v3_lerp(c->p0, c->p1, s);
-  ball__probe pr;
-  pr.t = s;
-  pr.dist = ball_v3_dist(p, ball__rect_nearest(c->pl, p)) - c->radius;
-  pr.side = 1.0;
-  pr.inside = 0;
-  return pr;
+static void chord_state(const rim_ctx *x, double f, ball_vec3 *c, ball_vec3 *v) {
+  *c = ball_v3_lerp(x->p0, x->p1, f);
+  *v = ball_v3_sub(x->p1, x->p0);
 }
 
 int ball__plane_chord(const ball_model *m, const ball_plane *pl, ball_vec3 p_old, ball_vec3 p, double *s,
                       ball_vec3 *q, ball_vec3 *n) {
-  int a = pl->axis, face = 0, found;
+  int a = pl->axis, face = 0;
   double xo = ball_v3_axis(p_old, a), x = ball_v3_axis(p, a), target, s_face = INFINITY;
   ball_vec3 q_face = ball_v3(0.0, 0.0, 0.0);
   /* Fig. 3: the segment p_old -> p against the plane moved by the radius
@@ -258,35 +272,22 @@ int ball__plane_chord(const ball_model *m, const ball_plane *pl, ball_vec3 p_old
     if (!face) s_face = INFINITY;
   }
   if (m->radius > 0.0) {
-    chord_ctx ctx;
-    ball__contact_query cq;
-    ball__probe hit;
-    double len = ball_v3_dist(p_old, p);
+    /* the edges and corners on the chord: a line, so the search's bound has
+     * A = 0 and it is Newton's method from the left on a convex distance */
+    rim_ctx ctx;
+    double f;
+    ball_vec3 c, nn;
+    memset(&ctx, 0, sizeof ctx);
     ctx.p0 = p_old;
     ctx.p1 = p;
     ctx.pl = pl;
     ctx.radius = m->radius;
-    cq.probe = chord_probe;
-    cq.ctx = &ctx;
-    cq.ta = 0.0;
-    cq.tb = face ? s_face : 1.0;
-    cq.rate = len * (1.0 + 1e-9) + 1e-300;
-    /* a chord that starts touching and leaves (the ball just bounced off
-     * this rectangle) is no contact */
-    if (chord_probe(&ctx, 0.0).dist <= 0.0) {
-      ball_vec3 nq = ball_v3_sub(p_old, ball__rect_nearest(pl, p_old));
-      if (!(ball_v3_dot(nq, ball_v3_sub(p, p_old)) < 0.0)) cq.tb = -1.0;
-    }
-    found = cq.tb >= 0.0 ? ball__first_contact(&cq, &hit, NULL) : 0;
-    if (found) {
-      ball_vec3 c = ball_v3_lerp(p_old, p, hit.t), near = ball__rect_nearest(pl, c);
-      /* out of evaluations (2): as rim_exact, a contact where the chord was
-       * last known clear if it heads toward the rim there */
-      if (found == 2 && !(ball_v3_dot(ball_v3_sub(c, near), ball_v3_sub(p, p_old)) < 0.0)) found = 0;
-      if (found && !(face && hit.t >= s_face) && (!face_interior(pl, near) || !face)) {
-        *s = hit.t;
+    if (advance(chord_state, &ctx, 0.0, face ? s_face : 1.0, 0.0, &f, &c, &nn) && !(face && f >= s_face)) {
+      ball_vec3 near = ball__rect_nearest(pl, c);
+      if (!face_interior(pl, near) || !face) {
+        *s = f;
         *q = c;
-        *n = face_interior(pl, near) ? ball_v3(0.0, 0.0, 0.0) : ball_v3_unit(ball_v3_sub(c, near));
+        *n = face_interior(pl, near) ? ball_v3(0.0, 0.0, 0.0) : nn;
         return 1;
       }
     }

@@ -68,7 +68,11 @@ static ball_vec3 plane_reflect(const ball_plane *pl, ball_vec3 n, ball_vec3 v) {
       v.x = -v.x;
     else
       v.z = -v.z;
-  } else {
+  } else if (ball_v3_dot(v, n) < 0.0) {
+    /* only a velocity into the edge turns: the sampled scheme finds the
+     * contact on the frame's chord but responds with the velocity at the
+     * frame's end (eq 6), which gravity may already have turned away from
+     * an edge's slanted normal; reversing that would send the ball in */
     v = ball_v3_sub(v, ball_v3_scale(n, 2.0 * ball_v3_dot(v, n)));
   }
   return ball_v3_scale(v, pl->damping);
@@ -252,17 +256,27 @@ static int step_sampled(const ball_model *m, const ball__flight *fl, ball_sim *s
   ball_vec3 q = ball_v3(0.0, 0.0, 0.0), nrm = ball_v3(0.0, 0.0, 0.0);
   double s;
   int which, n = 0;
-  /* the first plane the frame's segment touches (one plane collision a frame) */
-  which = first_plane_on(m, sim->prev_position, st->position, WHICH_NONE, &s, &q, &nrm);
+  ball_vec3 p_end = st->position;
+  /* the first plane the frame's segment touches (one plane collision a
+   * frame); the segment ends where the ball is shown, on the floor if it
+   * fell below (Fig. 1's snap): under a low edge the chord that dips below
+   * the floor would pass where the ball cannot be, and the snap would then
+   * lift the ball into the edge */
+  if (ball__has(m, BALL_EFFECT_FLOOR) && p_end.y < ball__floor_y(m)) p_end.y = ball__floor_y(m);
+  which = first_plane_on(m, sim->prev_position, p_end, WHICH_NONE, &s, &q, &nrm);
   if (which != WHICH_NONE) {
     /* eq 6: velocity now, restart at Q pushed dt / 10 along the new normal
-     * velocity; with long frames that push can be metres, so it stops short
-     * of any other plane it would reach (the paper's push keeps the ball out
-     * of the net, never through a wall behind it) */
+     * velocity, horizontally as the paper's (V0x dt / 10, 0, 0): a lift off
+     * a top edge would add potential energy; with long frames that push can
+     * be metres, so it stops short of any other plane it would reach (the
+     * paper's push keeps the ball out of the net, never through a wall
+     * behind it) */
     const ball_plane *pl = plane_of(m, which);
-    ball_vec3 un = plane_normal(pl, nrm), v0 = plane_reflect(pl, nrm, st->velocity), r, qs, ns;
+    ball_vec3 un = plane_normal(pl, nrm), v0 = plane_reflect(pl, nrm, st->velocity), r, qs, ns, push;
     double f;
-    r = ball_v3_add(q, ball_v3_scale(un, ball_v3_dot(v0, un) * dt / 10.0));
+    push = ball_v3_scale(un, ball_v3_dot(v0, un) * dt / 10.0);
+    push.y = 0.0;
+    r = ball_v3_add(q, push);
     if (first_plane_on(m, q, r, which, &f, &qs, &ns) != WHICH_NONE && f <= 1.0) r = ball_v3_lerp(q, r, 0.5 * f);
     plane_bounce(m, &sim->seg, which, un, ball_v3_norm(nrm) > 0.0, t_end, q, r, st, v0, &ev);
     emit(k, &ev);

@@ -155,10 +155,12 @@ static void random_scene(rng *r, ball_model *m, const scene_opts *o) {
       if (ball_model_add_wall(m, &w) != BALL_OK) fail_msg("random wall rejected");
     }
   m->initial_position = ball_v3(x0, m->floor_level + m->radius + (coin(r, 0.2) ? 0.0 : uni(r, 0.0, 5.0)), z0);
-  /* not overlapping the net at the start: P3 is about crossing it */
+  /* not overlapping the net at the start: P3 and P9 are about crossing it.
+   * The net moves away from the ball (moving the ball could put it into a
+   * wall placed at 1 + r from it) */
   if (m->effects & BALL_EFFECT_NET) {
-    double *c = m->net.axis == 0 ? &m->initial_position.x : &m->initial_position.z;
-    if (fabs(*c - m->net.position) < m->radius + 1e-6) *c = m->net.position - m->radius - 0.01;
+    double c = m->net.axis == 0 ? m->initial_position.x : m->initial_position.z;
+    if (fabs(c - m->net.position) < m->radius + 1e-6) m->net.position = c + m->radius + 0.01;
   }
   m->initial_velocity = uvec(r, 30.0);
   m->initial_spin = o->spin ? uvec(r, 30.0) : ball_v3(0.0, 0.0, 0.0);
@@ -670,11 +672,13 @@ static void check_crossings(uint64_t seed, const scene_opts *o) {
        * it for the rest of the frame (docs/model.md): no last piece */
       if (sim.warnings[BALL_WARN_CONTACT_LIMIT] == limits) check_piece(seed, f, &m, &ps, &seg, t, sim.time, tol);
     } else {
-      /* the chord from the last frame's end to this one's (before the floor
-       * snap), or to the first net or wall contact on it */
+      /* the chord from the last frame's end to this one's (on the floor if
+       * it fell below: where the ball is shown), or to the first net or wall
+       * contact on it */
       ball_vec3 b;
       if (ball_segment_eval(&m, &seg, sim.time, &end) != BALL_OK) FAIL_SEED(seed, "frame %d: no end", f);
       b = end.position;
+      if ((m.effects & BALL_EFFECT_FLOOR) && b.y < m.floor_level + m.radius) b.y = m.floor_level + m.radius;
       for (i = 0; i < n; i++)
         if (ev[i].kind == BALL_EVENT_NET || ev[i].kind == BALL_EVENT_WALL) {
           b = ev[i].point;
