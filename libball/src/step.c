@@ -349,11 +349,20 @@ ball_status ball_sim_set_model(const ball_model *m, ball_sim *sim) {
   if (st != BALL_OK) return st;
   if (!isfinite(sim->time) || !segment_finite(&sim->seg)) return BALL_ENONFINITE;
   if (sim->time < sim->seg.t0) return BALL_ERANGE;
-  /* the ball where it is now must be a valid state of the new model */
-  ball__eval(m, &sim->seg, sim->time, &now);
+  /* the ball where it is now (by the model it flew under) must be a valid
+   * state of the new model, which takes over from now: a new segment starts
+   * here, so new drag, gravity or spin damping act from this time on, not
+   * over the segment's past */
+  ball__eval(&sim->model, &sim->seg, sim->time, &now);
   st = check_state(m, &now);
   if (st != BALL_OK) return st;
-  sim->model = *m;
+  {
+    int grounded = sim->seg.grounded && ball__has(m, BALL_EFFECT_FLOOR) && now.position.y == ball__floor_y(m);
+    ball_vec3 spin = ball__has(m, BALL_EFFECT_SPIN) ? now.spin : ball_v3(0.0, 0.0, 0.0);
+    if (grounded) now.velocity.y = 0.0;
+    sim->model = *m;
+    ball__segment_start(&sim->seg, sim->time, now.position, now.velocity, spin, grounded);
+  }
   sim->next.valid = 0;
   for (r = 0; r < BALL_MAX_RACKETS; r++) {
     ball_racket_track *tr = &sim->tracks[r];

@@ -63,12 +63,19 @@ static void set_model_rebinds_and_keeps_the_ball(void **state) {
   assert_int_equal(ball_sim_state(&m, &sim, &s1), BALL_EMODEL);
   assert_ok(ball_sim_set_model(&m, &sim));
   assert_ok(ball_sim_state(&m, &sim, &s1));
-  /* the segment is kept, so the state now is the same but for the vertical
-   * position, which eq 3 gives with the new g over the segment's age */
+  /* the ball is where it was, as fast (a new segment starts now: the new g
+   * acts from now on, not over the old segment's age) */
   assert_near(s1.position.x, s0.position.x, 0.0);
+  assert_near(s1.position.y, s0.position.y, 0.0);
+  assert_near(s1.position.z, s0.position.z, 0.0);
+  assert_near(s1.velocity.y, s0.velocity.y, 0.0);
   assert_near(s1.velocity.x, s0.velocity.x, 0.0);
   assert_near(sim.time, 0.5, 1e-12);
-  assert_ok(ball_step(&m, &sim, 1.0 / 60.0, NULL, 0, NULL));
+  /* 0.1 s later, eq 3 vertically with the moon's g from the change */
+  for (f = 0; f < 6; f++) assert_ok(ball_step(&m, &sim, 1.0 / 60.0, NULL, 0, NULL));
+  assert_ok(ball_sim_state(&m, &sim, &s1));
+  assert_near(s1.position.y, s0.position.y + s0.velocity.y * 0.1 - 0.5 * 1.62 * 0.01, 1e-12);
+  assert_near(s1.velocity.y, s0.velocity.y - 1.62 * 0.1, 1e-12);
   /* a model under which the ball is not a valid state: refused, unchanged */
   before = sim;
   m.floor_level = 50.0;
