@@ -153,8 +153,12 @@ struct Report {
   RacketResults rackets;
   StepResults step;
   std::vector<Check> checks;
-  double seconds = 0.0;  // the run's wall clock
+  double seconds = 0.0;     // the run's wall clock
+  std::string load_start;   // /proc/loadavg's 1-minute figure when the run began
 };
+
+// /proc/loadavg's 1-minute load average ("?" where there is none).
+std::string load_average();
 
 // The sections (accuracy_*.cpp). Each measures, adds its checks and writes
 // its data files into opt.data_dir.

@@ -41,6 +41,15 @@ FILE *open_data(const Options &opt, const std::string &name) {
   return f;
 }
 
+std::string load_average() {
+  char buf[64] = "?";
+  if (FILE *f = std::fopen("/proc/loadavg", "r")) {
+    if (std::fscanf(f, "%63s", buf) != 1) std::strcpy(buf, "?");
+    std::fclose(f);
+  }
+  return buf;
+}
+
 const char *step_name(double h) {
   static const struct {
     double h;
@@ -137,6 +146,7 @@ int main(int argc, char **argv) {
   std::printf("ball_accuracy %s, %d rounds, libball %d.%d.%d\n", opt.quick ? "quick" : "full", opt.rounds,
               BALL_VERSION_MAJOR, BALL_VERSION_MINOR, BALL_VERSION_PATCH);
   acc::Report rep;
+  rep.load_start = acc::load_average();
   double t_start = bv::now_s();
   for (const Section &s : sections) {
     if (!only.empty() && std::find(only.begin(), only.end(), s.name) == only.end()) continue;

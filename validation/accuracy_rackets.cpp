@@ -147,7 +147,7 @@ struct Stroke {
   ball_vec3 aim;        // the point on the floor the player aims at
   double v_up;          // the aimed shot's vertical launch speed (clears the net by 0.3 m)
   double delay;         // s: the racket passes its point late (or early)
-  ball_vec3 offset;     // m: off the face's centre, in the face's plane (unit: scaled below)
+  ball_vec3 offset;     // m: off the face's centre (projected into the face's plane)
   double speed_err;     // relative error of the racket speed
   ball_vec3 turn, tilt; // random unit directions for the swing's and the face's angle errors
   double turn_deg, tilt_deg;

@@ -128,6 +128,8 @@ void run_step(const Options &opt, Report &rep) {
       row.hits = ra.hits;
       row.frames = ra.frames;
       out.frames.push_back(row);
+      std::printf("  rally frame, %-6s: mean %.0f / %.0f ns, median frame %.0f ns, worst %.0f ns\n", row.what.c_str(),
+                  row.mean_ns.min, row.mean_ns.median, row.median_ns, row.worst_ns);
     }
     bench_run_free(&rn);
   }

@@ -154,6 +154,19 @@ bool MjBall::reset(ball_vec3 p, ball_vec3 v, double timestep) {
   });
 }
 
+bool MjBall::set_state(ball_vec3 p, ball_vec3 v) {
+  return guarded([&] {
+    d_->time = 0.0;
+    d_->qpos[0] = p.x;
+    d_->qpos[1] = p.y;
+    d_->qpos[2] = p.z;
+    d_->qvel[0] = v.x;
+    d_->qvel[1] = v.y;
+    d_->qvel[2] = v.z;
+    mj_forward(m_, d_);
+  });
+}
+
 bool MjBall::step(long n) {
   long w0 = g_warnings;
   bool ok = guarded([&] {
