@@ -56,7 +56,7 @@ void detection(const Options &opt, Report &rep) {
   for (double rate : kRates) {
     DetectRow row;
     row.rate = rate;
-    swing_rng rng = {20240601ULL};  // the same swings at every rate, sampled differently
+    seeded_rng rng = {20240601ULL};  // the same swings at every rate, sampled differently
     std::vector<swing> timed;
     for (int i = 0; i < opt.swings; i++) {
       swing sw;
@@ -283,7 +283,7 @@ Outcome play(const ball_model &step_m, const ball_model &court, const Stroke &s,
   ball_state st;
   ball_event ev[8];
   int n_ev;
-  swing_rng noise = {s.noise};
+  seeded_rng noise = {s.noise};
   st.position = s.seg.p0;
   st.velocity = s.seg.v0;
   st.spin = ball_v3(0.0, 0.0, 0.0);

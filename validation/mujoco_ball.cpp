@@ -144,14 +144,7 @@ bool MjBall::reset(ball_vec3 p, ball_vec3 v, double timestep) {
   return guarded([&] {
     mj_resetData(m_, d_);
     m_->opt.timestep = timestep;
-    d_->qpos[0] = p.x;
-    d_->qpos[1] = p.y;
-    d_->qpos[2] = p.z;
-    d_->qvel[0] = v.x;
-    d_->qvel[1] = v.y;
-    d_->qvel[2] = v.z;
-    mj_forward(m_, d_);
-  });
+  }) && set_state(p, v);
 }
 
 bool MjBall::set_state(ball_vec3 p, ball_vec3 v) {

@@ -14,6 +14,7 @@
 
 #include "ball/ball.h"
 #include "ball/vec3.h"
+#include "seeded.h"
 
 #define SWING_GT_STEP 2e-5       /* s: at <= 60 m/s relative speed, 1.2 mm */
 #define SWING_GT_RESOLUTION 1e-4 /* m: a graze shallower than this may slip between GT samples */
@@ -22,26 +23,15 @@
 #define SWING_BALL_R 0.033       /* m: a tennis ball */
 #define SWING_DISC_R 0.15        /* m: r_disc */
 
-/* A small deterministic generator (no libc rand: the same numbers on every
- * platform); the same one as the unit tests' core_rng. */
-typedef struct swing_rng {
-  unsigned long long s;
-} swing_rng;
-
-static inline double swing_uniform(swing_rng *r, double lo, double hi) {
-  r->s = r->s * 6364136223846793005ULL + 1442695040888963407ULL;
-  return lo + (hi - lo) * ((double)(r->s >> 11) / 9007199254740992.0);
-}
-
 typedef struct swing {
   ball_segment seg;                        /* the ball, from t = 0 */
   int n;                                   /* racket samples, one per frame from t = 0 */
   ball_racket_sample s[SWING_MAX_SAMPLES];
 } swing;
 
-static inline ball_vec3 swing_rnd3(swing_rng *r, double lo, double hi) {
-  double x = swing_uniform(r, lo, hi), y = swing_uniform(r, lo, hi);
-  return ball_v3(x, y, swing_uniform(r, lo, hi));
+static inline ball_vec3 swing_rnd3(seeded_rng *r, double lo, double hi) {
+  double x = seeded_uniform(r, lo, hi), y = seeded_uniform(r, lo, hi);
+  return ball_v3(x, y, seeded_uniform(r, lo, hi));
 }
 
 /* The study's model: a tennis ball in free space (b = m / beta = 2 s), one
@@ -75,17 +65,17 @@ static inline void swing_model(ball_model *m, ball_detect detect) {
  * velocity vr (5-30 m/s), accelerating (up to 30 m/s^2), its normal turning
  * (up to 6 rad/s). One swing in five is a racket overtaking a slow ball from
  * behind. The same rng state gives the same motion at every dt. */
-static inline void swing_make(const ball_model *m, swing_rng *r, double dt, swing *sw) {
+static inline void swing_make(const ball_model *m, seeded_rng *r, double dt, swing *sw) {
   const double b = m->mass / m->air_friction, g = m->gravity;
-  double tc = swing_uniform(r, 0.5, 0.8), delay = swing_uniform(r, -0.03, 0.03);
-  int overtake = swing_uniform(r, 0, 1) < 0.2, k;
+  double tc = seeded_uniform(r, 0.5, 0.8), delay = seeded_uniform(r, -0.03, 0.03);
+  int overtake = seeded_uniform(r, 0, 1) < 0.2, k;
   ball_vec3 x = ball_v3(0, 1, 0), vb, v0, vr, acc, offset, n_c, spin;
   if (overtake) {
-    vb = ball_v3(swing_uniform(r, 1, 5), swing_uniform(r, -2, 2), swing_uniform(r, -1, 1));
-    vr = ball_v3(swing_uniform(r, 10, 30), swing_uniform(r, -3, 3), swing_uniform(r, -3, 3));
+    vb = ball_v3(seeded_uniform(r, 1, 5), seeded_uniform(r, -2, 2), seeded_uniform(r, -1, 1));
+    vr = ball_v3(seeded_uniform(r, 10, 30), seeded_uniform(r, -3, 3), seeded_uniform(r, -3, 3));
   } else {
-    vb = ball_v3(-swing_uniform(r, 10, 30), swing_uniform(r, -3, 3), swing_uniform(r, -2, 2));
-    vr = ball_v3(swing_uniform(r, 5, 30), swing_uniform(r, -5, 5), swing_uniform(r, -5, 5));
+    vb = ball_v3(-seeded_uniform(r, 10, 30), seeded_uniform(r, -3, 3), seeded_uniform(r, -2, 2));
+    vr = ball_v3(seeded_uniform(r, 5, 30), seeded_uniform(r, -5, 5), seeded_uniform(r, -5, 5));
   }
   acc = swing_rnd3(r, -30, 30);
   offset = swing_rnd3(r, -0.25, 0.25);

@@ -34,7 +34,7 @@ typedef struct tally {
 
 static void study(double rate, tally *ty) {
   ball_model m[3];
-  swing_rng r = {20240601ULL}; /* the same swings at every rate, sampled differently */
+  seeded_rng r = {20240601ULL}; /* the same swings at every rate, sampled differently */
   double dt = 1.0 / rate;
   int i, d;
   memset(ty, 0, sizeof *ty);
