@@ -202,7 +202,7 @@ void choosing(std::ostream &o, const Report &r) {
     << " of the aim (median, mid level, 60 Hz), but only for a player who swings five times the correction; "
        "eq 7 follows the racket: "
     << metres(quantile(k60, 0.5)) << " at 60 Hz, " << metres(quantile(k10, 0.5))
-    << " at 10 Hz (it restarts the ball V0 dt ahead); the physical response (eq 11) doubles the face's angle "
+    << " at 10 Hz (it restarts the ball V0 dt ahead); the physical response (eq 11) reflects about the face, so about doubles its angle "
        "error: "
     << metres(quantile(p60, 0.5)) << " at 60 Hz with 3 degrees of face error.\n\n";
 
@@ -304,7 +304,7 @@ void flight(std::ostream &o, const Report &r) {
   o << "What it shows:\n\n"
     << "- **The closed form is exact at any rate**: " << metres(flight_err(r, 2.0, "libball", "1e-4"))
     << " over 2 s, " << metres(flight_err(r, 10.0, "libball", "1e-4"))
-    << " over 10 s (the rounding of positions of a few hundred metres), for " << ns(lib60 / 60.0)
+    << " over 10 s (rounding: the 10 s flight falls a few hundred metres), for " << ns(lib60 / 60.0)
     << " a state.\n"
     << "- **Euler, either kind, is first order**: off by " << metres(flight_err(r, 2.0, "Euler", "1/60"))
     << " after 2 s at 1/60 s and still " << metres(flight_err(r, 2.0, "Euler", "1e-4"))
@@ -414,15 +414,17 @@ void rackets(std::ostream &o, const Report &r) {
            k.swings);
   o << "![Rackets: hit rate, time of impact and cost against the sample rate](img/accuracy/rackets.png)\n\n"
     << "| rate | ground-truth hits | sphere: hit rate / false / time error | disc: hit rate / false / time error "
-       "| swept: hit rate / false / time error | ns per frame: sphere / disc / swept / none |\n"
+       "| swept: hit rate / false / time error | ns per frame (the test's share): sphere / disc / swept; no "
+       "racket stage |\n"
        "|---|---|---|---|---|---|\n";
   for (const DetectRow &d : k.detect) {
     o << "| " << d.rate << " Hz | " << d.truth << " |";
     for (int t = 0; t < BALL_DETECT_COUNT; t++)
       o << " " << fmt("%.1f %%", hit_pct(&d, t)) << " / " << d.false_hits[t] << " / " << seconds(d.toi_mean[t])
         << " |";
-    o << " " << fmt("%.0f / %.0f / %.0f / %.0f", d.frame_ns[0].min, d.frame_ns[1].min, d.frame_ns[2].min,
-                    d.base_ns.min)
+    o << " " << fmt("%.0f (%.0f) / %.0f (%.0f) / %.0f (%.0f); %.0f", d.frame_ns[0].min,
+                    d.frame_ns[0].min - d.base_ns.min, d.frame_ns[1].min, d.frame_ns[1].min - d.base_ns.min,
+                    d.frame_ns[2].min, d.frame_ns[2].min - d.base_ns.min, d.base_ns.min)
       << " |\n";
   }
   const DetectRow *d2 = detect_row(r, 2), *d10 = detect_row(r, 10), *d120 = detect_row(r, 120);
@@ -491,7 +493,7 @@ void rackets(std::ostream &o, const Report &r) {
       << "- **mixed 0.8 (eq 10)**: median " << metres(quantile(mm, 0.5)) << " (mid, 60 Hz): the racket's "
       << "errors count a fifth. The price is the swing, five times the correction; "
       << pct(mm->strokes - mm->hits, mm->strokes) << " of those swings miss the ball.\n"
-      << "- **physical (eq 11)** reflects about the face: 3 degrees of face error turn the shot by 6, median "
+      << "- **physical (eq 11)** reflects about the face: 3 degrees of face error turn the reflected part of the shot by 6, median "
       << metres(quantile(pa, 0.5)) << " with the tracked normal (advanced), " << metres(quantile(pm, 0.5))
       << " with the velocity normal (mid), where the face is wherever the racket's estimated velocity points.\n\n";
 }
@@ -552,8 +554,9 @@ void step(std::ostream &o, const Report &r) {
     << " |\n"
     << "| 720 `ball_step` of the same path, min / median | " << minmed(Stat{1e3 * s.steps_us.min, 1e3 * s.steps_us.median})
     << " | " << ns(at_ref(1e3 * s.steps_us.median)) << " | | |\n\n";
-  o << "docs/benchmarks.md says where the time goes and why the last two targets are not met (the worst swept "
-       "frame is a search near the racket; the prediction is one `expm1` per state).\n\n";
+  o << "Where the time goes: docs/benchmarks.md (a swept frame near a racket is a search along the path; the "
+       "prediction is one `expm1` per state). Its figures come from a quieter run of the same programs; on a "
+       "loaded machine the single-frame figures suffer most.\n\n";
 }
 
 void made(std::ostream &o, const Report &r) {
