@@ -202,8 +202,8 @@ void choosing(std::ostream &o, const Report &r) {
     << " of the aim (median, mid level, 60 Hz), but only for a player who swings five times the correction; "
        "eq 7 follows the racket: "
     << metres(quantile(k60, 0.5)) << " at 60 Hz, " << metres(quantile(k10, 0.5))
-    << " at 10 Hz (it restarts the ball V0 dt ahead); the physical response (eq 11) reflects about the face, so about doubles its angle "
-       "error: "
+    << " at 10 Hz (it restarts the ball V0 dt ahead); the physical response (eq 11) reflects about the "
+       "face, so it about doubles the face's angle error: "
     << metres(quantile(p60, 0.5)) << " at 60 Hz with 3 degrees of face error.\n\n";
 
   // example setups, each choice made by the rules above from the numbers
