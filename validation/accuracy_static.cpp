@@ -291,7 +291,8 @@ void run_static(const Options &opt, Report &rep) {
   check(rep, "the sampled scheme finds the first bounce within the frame after it", late == 0,
         bv::fmt("%d rates late by more than a frame on average", late));
   const StaticRow &first = out.rows.front();
-  check(rep, "the net study has hits and misses", first.net_truth > out.shots / 5 && first.net_truth < out.shots * 4 / 5,
+  check(rep, "the net study has hits and misses",
+        first.net_truth > out.shots / 5 && first.net_truth < out.shots * 4 / 5,
         bv::fmt("%d of %d shots meet the net", first.net_truth, out.shots));
 }
 
