@@ -144,6 +144,12 @@ bool MjBall::reset(ball_vec3 p, ball_vec3 v, double timestep) {
   return guarded([&] {
     mj_resetData(m_, d_);
     m_->opt.timestep = timestep;
+  }) && set_state(p, v);
+}
+
+bool MjBall::set_state(ball_vec3 p, ball_vec3 v) {
+  return guarded([&] {
+    d_->time = 0.0;
     d_->qpos[0] = p.x;
     d_->qpos[1] = p.y;
     d_->qpos[2] = p.z;

@@ -40,6 +40,11 @@ class MjBall {
 
   // Sets the state (time 0) and the step; false on a MuJoCo error.
   bool reset(ball_vec3 p, ball_vec3 v, double timestep);
+  // Sets the state (time 0) without clearing the rest of mjData (reset()
+  // clears MuJoCo's whole arena, which costs more than a short flight's
+  // steps); the steps that follow are reset()'s to the bit here, as the twin
+  // has no contacts or constraints to warm-start. false on a MuJoCo error.
+  bool set_state(ball_vec3 p, ball_vec3 v);
   // Changes the step between two calls of step().
   bool set_step(double timestep) {
     m_->opt.timestep = timestep;

@@ -11,6 +11,7 @@
 
 #include "ball/ball.h"
 #include "ball/vec3.h"
+#include "seeded.h"
 
 /* |got - want| <= tol, with both expressions and numbers in the failure
  * message. A NaN on either side fails. */
@@ -155,15 +156,8 @@ static inline double core_energy(const ball_model *m, ball_vec3 v, double y) {
   return 0.5 * m->mass * (v.x * v.x + v.y * v.y + v.z * v.z) + m->mass * m->gravity * y;
 }
 
-/* A small deterministic generator for seeded random shots (no libc rand:
- * the same numbers on every platform). */
-typedef struct core_rng {
-  unsigned long long s;
-} core_rng;
-
-static inline double core_uniform(core_rng *r, double lo, double hi) {
-  r->s = r->s * 6364136223846793005ULL + 1442695040888963407ULL;
-  return lo + (hi - lo) * ((double)(r->s >> 11) / 9007199254740992.0);
-}
+/* Seeded random shots: tests/support/seeded.h's generator. */
+typedef seeded_rng core_rng;
+static inline double core_uniform(core_rng *r, double lo, double hi) { return seeded_uniform(r, lo, hi); }
 
 #endif /* BALL_TESTS_CORE_COMMON_H */
