@@ -47,7 +47,10 @@ if(BALL_FUZZ)
   add_test(NAME fuzz_scene_corpus COMMAND fuzz_scene -runs=0 ${CMAKE_CURRENT_LIST_DIR}/corpus/scene
     ${PROJECT_SOURCE_DIR}/libball/scenes)
   add_test(NAME fuzz_sim_corpus COMMAND fuzz_sim -runs=0 ${CMAKE_CURRENT_LIST_DIR}/corpus/sim)
-  set_tests_properties(fuzz_scene_corpus fuzz_sim_corpus PROPERTIES LABELS fuzz)
+  # the inputs of library bugs the harnesses found and that are still open
+  # (found/README.md): this test fails until they are fixed
+  add_test(NAME fuzz_sim_found COMMAND fuzz_sim -runs=0 ${CMAKE_CURRENT_LIST_DIR}/found/sim)
+  set_tests_properties(fuzz_scene_corpus fuzz_sim_corpus fuzz_sim_found PROPERTIES LABELS fuzz)
 else()
   add_test(NAME fuzz_smoke
     COMMAND ${CMAKE_COMMAND}
