@@ -4,8 +4,9 @@
  *  - nothing crashes, leaks or invokes undefined behaviour (ASan, UBSan);
  *  - a model refused by ball_model_check is refused by ball_sim_init, which
  *    then leaves the sim untouched;
- *  - every refused call (step, set_state, racket_push) leaves the sim byte
- *    for byte unchanged and reports no event;
+ *  - every refused call (step, set_state, set_model, racket_push) leaves
+ *    the sim byte for byte unchanged and reports no event;
+ *  - an accepted ball_sim_set_model keeps the ball where it is, as fast;
  *  - every accepted step keeps the physical invariants of invariants.c
  *    (finite, never below the floor, never into the net or a wall, no
  *    energy gain without spin), along the frame's whole path;
@@ -16,14 +17,21 @@
  *  - ball_swept_disc's first contact touches, nothing earlier does, and a
  *    miss never overlaps the disc (nor crosses it, for a thin ball);
  *  - ball_sphere_rect_distance and ball_sphere_disc_distance agree with the
- *    harness's own distances.
+ *    harness's own distances; copies hash the same; racket estimates are
+ *    finite with a unit normal.
  *
  * Input: a header byte, then the model, then operations until the bytes
  * run out. One input in 8 (header % 8 == 0) is "wild": a number's tag byte
  * then picks a small value, a raw 64-bit pattern (NaN, Inf, subnormal,
  * huge) or a special constant, and enums may be out of range; the others
  * decode every number into its plausible range, so that most models pass
- * ball_model_check and the invariants get exercised. */
+ * ball_model_check and the invariants get exercised. An operation's byte b
+ * picks b % 8: 0 a step of up to 0.1 s, 1 of up to 10 s, 2 a racket sample
+ * (within 1 m of the ball), 3 set_state (b / 8 odd: set_model), 4 a swept
+ * query, 5 the queries on the sim's segment, 6 a prediction compared with
+ * the steps that follow (b / 8 odd: its last frame cut), 7 up to 16 frames
+ * of one dt. Inputs written before the header byte existed keep their
+ * meaning behind a header of 0 (corpus/sim). */
 #include <float.h>
 #include <math.h>
 #include <stddef.h>
@@ -266,6 +274,43 @@ static void op_set_state(run *u) {
   fz_watch_start(&u->watch, &u->m, &u->sim);
 }
 
+/* A new model for the sim mid-flight (ball_sim_set_model: "keeping the
+ * ball, the clock and the racket tracks"): other dynamics, dampings, scheme,
+ * a game level. The ball must be where it was, as fast. */
+static void op_set_model(run *u) {
+  input *in = &u->in;
+  static ball_model m2;
+  ball_sim copy = u->sim;
+  ball_state before, after;
+  ball_status st;
+  double tol;
+  m2 = u->m;
+  m2.gravity = num(in, 0.1, 30.0);
+  m2.air_friction = num(in, 0.0, 2.0);
+  m2.floor_damping = num(in, 0.0, 1.0);
+  m2.net.damping = num(in, 0.0, 1.0);
+  m2.scheme = (ball_scheme)pick(in, BALL_SCHEME_COUNT);
+  m2.effects ^= byte(in) & (BALL_EFFECT_DRAG | BALL_EFFECT_SOUND);
+  if (byte(in) & 1) ball_model_set_level(&m2, (ball_level)pick(in, BALL_LEVEL_COUNT));
+  if (ball_sim_state(&u->m, &u->sim, &before) != BALL_OK) return;
+  st = ball_sim_set_model(&m2, &u->sim);
+  if (tracing()) fprintf(stderr, "set_model gravity %.17g air_friction %.17g: %s\n", m2.gravity, m2.air_friction, ball_strerror(st));
+  if (st != BALL_OK) {
+    FZ_CHECK(memcmp(&u->sim, &copy, sizeof copy) == 0, "a refused set_model changed the sim");
+    return;
+  }
+  u->m = m2;
+  FZ_CHECK(ball_sim_state(&u->m, &u->sim, &after) == BALL_OK, "no state after set_model");
+  tol = 1e-9 + 1e-12 * (fz_max_abs(before.position) + ball_v3_norm(before.velocity));
+  FZ_CHECK(ball_v3_dist(before.position, after.position) <= tol && ball_v3_dist(before.velocity, after.velocity) <= tol,
+           "ball_sim_set_model moved the ball from (%.17g, %.17g, %.17g) at (%.17g, %.17g, %.17g) m/s to "
+           "(%.17g, %.17g, %.17g) at (%.17g, %.17g, %.17g) m/s",
+           before.position.x, before.position.y, before.position.z, before.velocity.x, before.velocity.y,
+           before.velocity.z, after.position.x, after.position.y, after.position.z, after.velocity.x,
+           after.velocity.y, after.velocity.z);
+  fz_watch_start(&u->watch, &u->m, &u->sim);
+}
+
 /* ---- the swept racket test ---- */
 
 typedef struct disc_motion {
@@ -452,6 +497,22 @@ static void op_queries(run *u) {
   if (!seg->grounded && seg->v0.y > 0.0)
     FZ_CHECK(fabs(a.velocity.y) <= 1e-12 * seg->v0.y + 4.0 * m->gravity * fz_ulp(t),
              "ball_apex: vertical speed %.17g at the apex", a.velocity.y);
+  /* the hashes: a copy hashes the same */
+  {
+    static ball_sim copy;
+    static ball_model mcopy;
+    copy = u->sim;
+    mcopy = u->m;
+    FZ_CHECK(ball_sim_hash(&copy) == ball_sim_hash(&u->sim) && ball_model_hash(&mcopy) == ball_model_hash(m),
+             "a copy hashes differently");
+  }
+  /* the rackets' estimates: finite, a unit normal */
+  for (k = 0; k < m->n_rackets && (m->effects & BALL_EFFECT_RACKETS); k++) {
+    ball_racket_pose pose;
+    if (ball_racket_estimate(m, &u->sim, k, t_from, &pose) == BALL_OK)
+      FZ_CHECK(fz_finite3(pose.center) && fz_finite3(pose.velocity) && fabs(ball_v3_norm(pose.normal) - 1.0) <= 1e-9,
+               "ball_racket_estimate: racket %d's pose is not finite or its normal not unit", k);
+  }
   /* static distances against the harness's own */
   for (k = 0; k < FZ_OBSTACLES; k++) {
     const ball_plane *p = fz_obstacle(m, k);
@@ -475,9 +536,11 @@ static void op_queries(run *u) {
 
 #define PREDICT_MAX_FRAMES 16
 
-static void op_predict(run *u) {
+/* cut: t_end half a frame before the k-th frame's end (a last frame that is
+ * cut gives no state) */
+static void op_predict(run *u, int cut) {
   input *in = &u->in;
-  int k = 1 + (int)(byte(in) % PREDICT_MAX_FRAMES), i, j, n, n_ev = 0, compare;
+  int k = 1 + (int)(byte(in) % PREDICT_MAX_FRAMES), i, j, n, n_ev = 0, compare, grid;
   double dt = num(in, 1e-3, 0.25), t_end = u->sim.time;
   ball_state states[PREDICT_MAX_FRAMES + 1];
   ball_event pev[EV_CAP], ev[EV_CAP];
@@ -485,6 +548,8 @@ static void op_predict(run *u) {
   ball_status st;
   unsigned long limit = u->sim.warnings[BALL_WARN_CONTACT_LIMIT];
   for (i = 0; i < k; i++) t_end += dt; /* the clock as ball_step sums it */
+  if (cut) t_end -= 0.5 * dt;
+  grid = cut ? k : k + 1; /* the states ball_predict gives */
   memset(&pr, 0, sizeof pr);
   pr.states = states;
   pr.cap_states = k + 1;
@@ -499,8 +564,8 @@ static void op_predict(run *u) {
   /* "the states and events that ball_step gives at frames of dt in the
    * exact scheme" (ball.h): with static obstacles only */
   compare = u->m.scheme == BALL_SCHEME_EXACT && !((u->m.effects & BALL_EFFECT_RACKETS) && u->m.n_rackets > 0) &&
-            pr.n_states == k + 1 && pr.events_missed == 0;
-  for (i = 0; i < k && u->frames < MAX_FRAMES; i++) {
+            pr.n_states == grid && pr.events_missed == 0;
+  for (i = 0; i + 1 < grid && u->frames < MAX_FRAMES; i++) {
     ball_state s;
     if (!step(u, dt, ev, &n)) return;
     if (!compare) continue;
@@ -516,7 +581,7 @@ static void op_predict(run *u) {
                    pev[n_ev].time == ev[j].time,
                "ball_predict's event %d differs from ball_step's", n_ev);
   }
-  if (compare && i == k) FZ_CHECK(n_ev == pr.n_events, "ball_predict: %d events, ball_step %d", pr.n_events, n_ev);
+  if (compare && i == k && !cut) FZ_CHECK(n_ev == pr.n_events, "ball_predict: %d events, ball_step %d", pr.n_events, n_ev);
 }
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
@@ -541,7 +606,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   check_state(&u);
   fz_watch_start(&u.watch, &u.m, &u.sim);
   for (ops = 0; ops < MAX_OPS && u.in.n > 0 && u.frames < MAX_FRAMES; ops++) {
-    unsigned op = byte(&u.in) % 8;
+    unsigned b = byte(&u.in), op = b % 8, variant = b / 8 % 2; /* old inputs: ops 0 to 3, variant 0 */
     int i, k;
     double dt;
     switch (op) {
@@ -551,10 +616,15 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
       step(&u, dt, ev, &n);
       break;
     case 2: op_racket(&u); break;
-    case 3: op_set_state(&u); break;
+    case 3:
+      if (variant)
+        op_set_model(&u);
+      else
+        op_set_state(&u);
+      break;
     case 4: op_swept(&u); break;
     case 5: op_queries(&u); break;
-    case 6: op_predict(&u); break;
+    case 6: op_predict(&u, (int)variant); break;
     default:
       /* a run of frames: the common case of a game loop */
       k = 1 + (int)(byte(&u.in) % 16);

@@ -25,8 +25,9 @@
  *     long frame (by design, docs/hard-cases.md); so what is asserted is
  *     that the chord P_old -> Q (Q: the first plane event's point, else the
  *     free end) and the push Q -> restart never come nearer than radius -
- *     tol to a rectangle the ball was clear of, nor cross its plane inside
- *     it. Every net or wall event's point is within radius + tol of its
+ *     tol to a rectangle the ball was clear of (the push: but the one it
+ *     hit, see fz_frame_end), nor cross its plane inside it. Every net or
+ *     wall event's point is within radius + tol of its
  *     rectangle (the ball touches what it hits).
  *  P4 energy, without spin (SPIN off, or no spin on the frame's segment):
  *     every event leaves no faster than it arrived, and E = |v|^2 / 2 +
@@ -235,8 +236,10 @@ static double chord_distance(const ball_plane *p, ball_vec3 a, ball_vec3 b, ball
   return best;
 }
 
-/* The sampled scheme: the chord a -> b (a piece of what Fig. 3 tests). */
-static void check_chord(const frame *f, ball_vec3 a, ball_vec3 b, const char *what) {
+/* The sampled scheme: the chord a -> b (a piece of what Fig. 3 tests); the
+ * distance to obstacle `near` (-1: none) is not asserted, only that the
+ * chord does not cross it. */
+static void check_chord(const frame *f, ball_vec3 a, ball_vec3 b, const char *what, int near) {
   const fz_watch *w = f->w;
   double r = w->m->radius;
   int k;
@@ -246,7 +249,7 @@ static void check_chord(const frame *f, ball_vec3 a, ball_vec3 b, const char *wh
     ball_vec3 c;
     if (!p || !w->clear[k]) continue;
     d = chord_distance(p, a, b, &c);
-    FZ_CHECK(d >= fmin(r, w->dist[k]) - f->tol,
+    FZ_CHECK(k == near || d >= fmin(r, w->dist[k]) - f->tol,
              "sampled %s (%.17g, %.17g, %.17g) -> (%.17g, %.17g, %.17g) comes %.17g near obstacle %d (%s) at "
              "(%.17g, %.17g, %.17g), radius %.17g, without an event",
              what, a.x, a.y, a.z, b.x, b.y, b.z, d, k, k ? "wall" : "net", c.x, c.y, c.z, r);
@@ -413,8 +416,16 @@ void fz_frame_end(fz_watch *w, const ball_sim *sim, double dt, const ball_event 
       ball_vec3 q = plane_ev >= 0 ? ev[plane_ev].point : free_end.position;
       FZ_CHECK(ball_v3_dist(w->p_old, w->prev.position) == 0.0,
                "sampled: prev_position is not the previous frame's end");
-      check_chord(&f, w->p_old, q, "chord");
-      if (plane_ev >= 0) check_chord(&f, q, ev[plane_ev].segment.p0, "push");
+      check_chord(&f, w->p_old, q, "chord", -1);
+      /* the push off the contact: eq 6 reverses the normal component of the
+       * velocity at the frame's end, and at a bottom edge that velocity can
+       * already be leaving (a chord rising to the edge, the ball falling at
+       * the frame's end), so the push can go |V0.n| dt / 10 into the edge it
+       * hit: the distance to that one is not asserted, only that the push
+       * does not carry the ball through it (docs/hard-cases.md, "Fuzz
+       * coverage") */
+      if (plane_ev >= 0)
+        check_chord(&f, q, ev[plane_ev].segment.p0, "push", ev[plane_ev].kind == BALL_EVENT_NET ? 0 : 1 + ev[plane_ev].index);
     }
     /* P4 */
     if (spinless) {
