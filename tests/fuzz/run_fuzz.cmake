@@ -10,39 +10,14 @@
 if(NOT DEFINED SECONDS AND DEFINED RUNS_SCENE)
   set(SECONDS 0)
 endif()
-foreach(var SOURCE_DIR WORK_DIR SECONDS)
-  if(NOT DEFINED ${var})
-    message(FATAL_ERROR "run_fuzz.cmake: -D${var}=... is required")
-  endif()
-endforeach()
-if(NOT GENERATOR)
-  set(GENERATOR Ninja)
-endif()
+include(${CMAKE_CURRENT_LIST_DIR}/fuzz_build.cmake)
+ball_fuzz_require(SOURCE_DIR WORK_DIR SECONDS)
 if(NOT JOBS)
   set(JOBS 1)
 endif()
-find_program(CLANG NAMES clang clang-14)
-if(NOT CLANG)
-  message(FATAL_ERROR "clang not found: install clang and libclang-rt-14-dev (./run setup does)")
-endif()
-
 set(build ${WORK_DIR}/build)
-execute_process(COMMAND ${CMAKE_COMMAND} -S ${SOURCE_DIR} -B ${build} -G ${GENERATOR}
-    -DCMAKE_C_COMPILER=${CLANG} -DCMAKE_BUILD_TYPE=RelWithDebInfo -DBALL_FUZZ=ON
-    -DBALL_BUILD_VALIDATION=OFF
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "configuring the clang fuzz build failed:\n${out}")
-endif()
-execute_process(COMMAND ${CMAKE_COMMAND} --build ${build} --target fuzz_scene fuzz_sim
-  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "building the fuzz harnesses failed:\n${out}")
-endif()
+ball_fuzz_build(${build})
 
-# the scene harness also starts from the example scenes
-set(corpus_scene ${SOURCE_DIR}/tests/fuzz/corpus/scene ${SOURCE_DIR}/libball/scenes)
-set(corpus_sim ${SOURCE_DIR}/tests/fuzz/corpus/sim)
 set(parallel "")
 if(JOBS GREATER 1)
   set(parallel -jobs=${JOBS} -workers=${JOBS})
