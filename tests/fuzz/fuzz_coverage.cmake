@@ -4,7 +4,9 @@
 # runs each over its seed corpus plus a fixed-length fuzzing run (-runs,
 # -seed=1, new inputs in a fresh WORK_DIR/found/<harness>), merges the
 # profiles with llvm-profdata and writes the table of llvm-cov's per-file
-# summary to WORK_DIR/coverage.md:
+# summary to WORK_DIR/coverage.md. That build counts violated invariants
+# and goes on (FZ_KEEP_GOING, invariants.h): the table measures reach, the
+# verdicts are the sanitizer build's (fuzz_smoke, fuzz-long):
 #   cmake -DSOURCE_DIR=<repo> -DWORK_DIR=<dir> [-DRUNS_SCENE=200000]
 #         [-DRUNS_SIM=20000] [-DGENERATOR=Ninja] [-DDOC=docs/hard-cases.md]
 #         -P fuzz_coverage.cmake
@@ -44,6 +46,14 @@ foreach(harness scene sim)
     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "fuzz_${harness} failed (${rc}); the input is in ${WORK_DIR}:\n${out}")
+  endif()
+  # the build counts violated invariants and goes on (FZ_KEEP_GOING)
+  set(violations_${harness} 0)
+  if(out MATCHES "fuzz invariant: ([0-9]+) violations")
+    set(violations_${harness} ${CMAKE_MATCH_1})
+    string(REGEX MATCHALL "fuzz invariant: [^\n]*" seen "${out}")
+    list(GET seen 0 first)
+    message(STATUS "fuzz_${harness}: ${violations_${harness}} invariant violations, the first: ${first}")
   endif()
   execute_process(COMMAND ${PROFDATA} merge -sparse ${raw} -o ${WORK_DIR}/fuzz_${harness}.profdata
     RESULT_VARIABLE rc ERROR_VARIABLE out)
@@ -116,7 +126,8 @@ execute_process(COMMAND ${CLANG} --version OUTPUT_VARIABLE clang_version)
 string(REGEX MATCH "clang version [0-9.]+" clang_version "${clang_version}")
 set(table "Coverage in percent, lines / functions / regions, of each libball source file\n")
 string(APPEND table "(llvm-cov's summary; ${clang_version}; the seed corpus plus ${RUNS_SIM} fuzz_sim and ")
-string(APPEND table "${RUNS_SCENE} fuzz_scene inputs, seed 1):\n\n")
+string(APPEND table "${RUNS_SCENE} fuzz_scene inputs, seed 1; invariant violations on the way, counted and passed ")
+string(APPEND table "over: ${violations_sim} and ${violations_scene}):\n\n")
 string(APPEND table "| File | fuzz_sim | fuzz_scene | both |\n|---|---|---|---|\n")
 foreach(file ${sources} total)
   cell("${json_sim}" ${file} a)

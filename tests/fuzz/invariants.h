@@ -28,9 +28,14 @@ typedef struct fz_watch {
   unsigned long frames;            /* frames checked (fz_frame_end) */
 } fz_watch;
 
-/* Prints "fuzz invariant: <message>" and aborts. */
+/* Prints "fuzz invariant: <message>" and aborts. Built with FZ_KEEP_GOING
+ * (the coverage build, fuzz_coverage.cmake) it counts instead and goes on,
+ * so that an open finding does not end the run that measures coverage; the
+ * count is printed at exit ("fuzz invariant: N violations"). */
 void fz_fail(const char *fmt, ...)
-#if defined(__GNUC__)
+#if defined(__GNUC__) && defined(FZ_KEEP_GOING)
+    __attribute__((format(printf, 1, 2)))
+#elif defined(__GNUC__)
     __attribute__((format(printf, 1, 2), noreturn))
 #endif
     ;

@@ -51,6 +51,9 @@ if(BALL_FUZZ)
     target_compile_options(${harness} PRIVATE ${BALL_FUZZ_FLAGS})
     target_link_options(${harness} PRIVATE ${BALL_FUZZ_LINK})
     target_link_libraries(${harness} PRIVATE ball_fuzz_lib)
+    if(BALL_FUZZ_COVERAGE)
+      target_compile_definitions(${harness} PRIVATE FZ_KEEP_GOING) # invariants.h
+    endif()
   endforeach()
   # in the fuzz build: replay the seed corpus once (a regression test)
   add_test(NAME fuzz_scene_corpus COMMAND fuzz_scene -runs=0 ${CMAKE_CURRENT_LIST_DIR}/corpus/scene
