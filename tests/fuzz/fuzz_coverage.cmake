@@ -2,7 +2,8 @@
 # (docs/hard-cases.md, "Fuzz coverage"): builds both harnesses in
 # WORK_DIR/build with clang's source-based coverage (BALL_FUZZ_COVERAGE),
 # runs each over its seed corpus plus a fixed-length fuzzing run (-runs,
-# -seed=1, new inputs in a fresh WORK_DIR/found/<harness>), merges the
+# -seed=1, -reload=0: libFuzzer's periodic corpus reload is timed, hence
+# not reproducible; new inputs in a fresh WORK_DIR/found/<harness>), merges the
 # profiles with llvm-profdata and writes the table of llvm-cov's per-file
 # summary to WORK_DIR/coverage.md. That build counts violated invariants
 # and goes on (FZ_KEEP_GOING, invariants.h): the table measures reach, the
@@ -40,7 +41,7 @@ foreach(harness scene sim)
   file(REMOVE ${raw})
   message(STATUS "fuzz_${harness}: corpus + ${RUNS_${H}} inputs, seed 1")
   execute_process(COMMAND ${CMAKE_COMMAND} -E env LLVM_PROFILE_FILE=${raw}
-      ${build}/tests/fuzz_${harness} -runs=${RUNS_${H}} -seed=1 -timeout=10 -rss_limit_mb=2048
+      ${build}/tests/fuzz_${harness} -runs=${RUNS_${H}} -seed=1 -reload=0 -timeout=10 -rss_limit_mb=2048
       -print_final_stats=1 -artifact_prefix=${WORK_DIR}/ ${found} ${corpus_${harness}}
     WORKING_DIRECTORY ${WORK_DIR}
     RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
