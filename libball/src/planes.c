@@ -152,7 +152,7 @@ static int slab(const ball__flight *fl, double x0, double v, double lo, double h
  * centre *q and the contact normal *n. */
 static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_segment *seg, const ball_plane *pl,
                      double tau_from, double tau_to, double *tau, ball_vec3 *q, ball_vec3 *n) {
-  double r = m->radius, w0 = tau_from, w1 = tau_to, t0, t1, acc, t_hit;
+  double r = m->radius, w0 = tau_from, w1 = tau_to, w_seg, t0, t1, acc, t_hit;
   int a = pl->axis, h = a == 0 ? 2 : 0;
   rim_ctx ctx;
   ball_state s;
@@ -160,9 +160,11 @@ static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_seg
   if (!slab(fl, ball_v3_axis(seg->p0, a), ball_v3_axis(seg->v0, a), pl->position - r, pl->position + r, &t0, &t1))
     return 0;
   w0 = fmax(w0, t0);
+  w_seg = t0;
   w1 = fmin(w1, t1);
   if (!slab(fl, ball_v3_axis(seg->p0, h), ball_v3_axis(seg->v0, h), pl->lo - r, pl->hi + r, &t0, &t1)) return 0;
   w0 = fmax(w0, t0);
+  w_seg = fmax(w_seg, t0);
   w1 = fmin(w1, t1);
   if (!seg->grounded) {
     /* after the descending root of y = bottom - r the ball stays below */
@@ -182,9 +184,10 @@ static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_seg
   if (!(w0 <= w1)) return 0;
   {
     /* the ball's acceleration bounds d'' from below (the distance to a
-     * convex set is convex in space): |a| <= k |v_h(w0)| + g (eq 3) */
+     * convex set is convex in space): |a| <= k |v_h| + g (eq 3), |v_h| at
+     * the window's start, where it is largest */
     double vh;
-    ball__eval_f(fl, seg, seg->t0 + w0, &s);
+    ball__eval_f(fl, seg, seg->t0 + w_seg, &s);
     vh = sqrt(s.velocity.x * s.velocity.x + s.velocity.z * s.velocity.z);
     acc = (fl->k * vh + (seg->grounded ? 0.0 : fl->g)) * (1.0 + 1e-12);
   }
@@ -193,7 +196,13 @@ static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_seg
   ctx.seg = seg;
   ctx.pl = pl;
   ctx.radius = r;
-  if (!advance(path_state, &ctx, seg->t0 + w0, seg->t0 + w1, acc, &t_hit, q, n)) return 0;
+  /* from the segment's start, not from tau_from: the stepper asks at a
+   * segment's start, ball_predict anywhere on it, and the same search gives
+   * both the same contact to the bit; a contact before tau_from (a segment
+   * given with one unresolved) falls back to a search from there */
+  if (!advance(path_state, &ctx, seg->t0 + w_seg, seg->t0 + w1, acc, &t_hit, q, n)) return 0;
+  if (t_hit - seg->t0 < tau_from && !advance(path_state, &ctx, seg->t0 + w0, seg->t0 + w1, acc, &t_hit, q, n))
+    return 0;
   *tau = t_hit - seg->t0;
   return 1;
 }

@@ -18,17 +18,15 @@
  *     rectangle then) and the time the surface reaches it (then the centre
  *     is outside the face, or the ball does not move on into it); a restart
  *     never jumps (event point = path = new segment's p0, within tol).
- *     Sampled scheme: the paper's Fig. 3 tests the chord between frame ends,
- *     and the frame's end may be pushed off the contact (eq 6's dt / 10,
- *     along the contact normal at an edge) or snapped to the floor (eq 5),
- *     which can lift a ball into a rectangle the chord passed under in a
- *     long frame (by design, docs/hard-cases.md); so what is asserted is
- *     that the chord P_old -> Q (Q: the first plane event's point, else the
- *     free end) and the push Q -> restart never come nearer than radius -
- *     tol to a rectangle the ball was clear of (the push: but the one it
- *     hit, see fz_frame_end), nor cross its plane inside it. Every net or
- *     wall event's point is within radius + tol of its
- *     rectangle (the ball touches what it hits).
+ *     Sampled scheme: the paper's Fig. 3 tests the chord between frame ends
+ *     (ending on the floor when the free end is below it, where eq 5 shows
+ *     the ball), and the frame's end may be pushed off the contact (eq 6's
+ *     dt / 10, horizontally along the contact normal); so what is asserted
+ *     is that the chord P_old -> Q (Q: the first plane event's point, else
+ *     the free end on the floor) and the push Q -> restart never come
+ *     nearer than radius - tol to a rectangle the ball was clear of, nor
+ *     cross its plane inside it. Every net or wall event's point is within
+ *     radius + tol of its rectangle (the ball touches what it hits).
  *  P4 energy, without spin (SPIN off, or no spin on the frame's segment):
  *     every event leaves no faster than it arrived, and E = |v|^2 / 2 +
  *     g (y - floor) does not grow. Exact scheme: by at most tol_e. Sampled
@@ -429,19 +427,17 @@ void fz_frame_end(fz_watch *w, const ball_sim *sim, double dt, const ball_event 
         check_point(&f, end.position, t_end, "frame end after the contact limit");
       }
     } else {
+      /* the chord ends where the ball is shown: on the floor if it fell
+       * below it (docs/model.md, "Ball radius, edges and corners") */
       ball_vec3 q = plane_ev >= 0 ? ev[plane_ev].point : free_end.position;
+      if (plane_ev < 0 && (m->effects & BALL_EFFECT_FLOOR) && q.y < f.fy) q.y = f.fy;
       FZ_CHECK(ball_v3_dist(w->p_old, w->prev.position) == 0.0,
                "sampled: prev_position is not the previous frame's end");
       check_chord(&f, w->p_old, q, "chord", -1);
-      /* the push off the contact: eq 6 reverses the normal component of the
-       * velocity at the frame's end, and at a bottom edge that velocity can
-       * already be leaving (a chord rising to the edge, the ball falling at
-       * the frame's end), so the push can go |V0.n| dt / 10 into the edge it
-       * hit: the distance to that one is not asserted, only that the push
-       * does not carry the ball through it (docs/hard-cases.md, "Fuzz
-       * coverage") */
-      if (plane_ev >= 0)
-        check_chord(&f, q, ev[plane_ev].segment.p0, "push", ev[plane_ev].kind == BALL_EVENT_NET ? 0 : 1 + ev[plane_ev].index);
+      /* the push off the contact (eq 6's dt / 10, horizontal, along the
+       * contact normal, away from the rectangle: a velocity already leaving
+       * an edge is not reversed) comes no nearer to any rectangle */
+      if (plane_ev >= 0) check_chord(&f, q, ev[plane_ev].segment.p0, "push", -1);
     }
     /* P4 (not while a racket's restart has left the ball below the floor:
      * the floor lifts it) */
