@@ -498,7 +498,7 @@ MatchInfoOut Match::info() const {
   i.max_sample_age = config_.max_sample_age;
   i.max_sample_lead = config_.max_sample_lead;
   i.model_hash = ball_model_hash(&model_);
-  i.model = &model_;
+  i.model = model_;
   i.net_x = court_.net_x;
   i.court_x[0] = court_.x_lo;
   i.court_x[1] = court_.x_hi;

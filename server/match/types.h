@@ -93,6 +93,7 @@ struct ControlIn {
   int players = 2;
   std::string scene;  // CREATE
   ParticipantId from{};
+  bool valid = true;  // false: an enum out of range or a scene name without its NUL on the wire
 };
 
 // The newest sample of a racket when it hit the ball, for latency.
@@ -103,8 +104,12 @@ struct SampleRef {
   double capture_time = 0.0;  // sim s
 };
 
+// Server -> client samples carry the server's id and its realtime clock at
+// publication (s since 1970); the DDS layer writes them as they are.
 struct SegmentOut {
   uint32_t match_id = 0;
+  uint32_t server_id = 0;
+  double server_time = 0.0;
   uint32_t seq = 0;
   Cause cause = Cause::serve;
   int cause_index = -1;
@@ -115,6 +120,8 @@ struct SegmentOut {
 
 struct EventOut {
   uint32_t match_id = 0;
+  uint32_t server_id = 0;
+  double server_time = 0.0;
   uint32_t seq = 0;
   EventKind kind = EventKind::floor;
   int index = -1;
@@ -133,6 +140,8 @@ struct EventOut {
 
 struct StateOut {
   uint32_t match_id = 0;
+  uint32_t server_id = 0;
+  double server_time = 0.0;  // the frame's deadline
   uint64_t frame = 0;
   double sim_time = 0.0;
   MatchState state = MatchState::playing;
@@ -152,6 +161,8 @@ struct SlotInfo {
 
 struct MatchInfoOut {
   uint32_t match_id = 0;
+  uint32_t server_id = 0;
+  double server_time = 0.0;  // the instant sim_time holds for
   uint32_t revision = 0;
   MatchState state = MatchState::waiting;
   std::string scene;
@@ -170,10 +181,35 @@ struct MatchInfoOut {
   double max_sample_age = 0.0;
   double max_sample_lead = 0.0;
   uint64_t model_hash = 0;
-  const ball_model *model = nullptr;  // flight fields are read from it
+  // the model; on the wire only its flight fields (gravity, mass,
+  // air_friction, spin_damping, radius, floor_level, effects,
+  // extrapolation_time, stale_time) travel, and a receiver gets them over
+  // ball_model_default: enough for ball_segment_eval
+  ball_model model{};
   double net_x = 0.0;
   double court_x[2] = {0, 0};
   double court_z[2] = {0, 0};
+};
+
+// The server's status line as data (ServerStatus on the wire).
+struct StatusOut {
+  uint32_t server_id = 0;
+  double server_time = 0.0;
+  double uptime = 0.0;
+  uint32_t matches = 0;
+  uint32_t playing = 0;
+  uint64_t samples_in = 0;
+  uint64_t samples_ok = 0;
+  std::array<uint64_t, kDropSlots> drops{};
+  uint64_t controls_in = 0;
+  uint64_t controls_refused = 0;
+  uint64_t states_out = 0;
+  uint64_t segments_out = 0;
+  uint64_t events_out = 0;
+  uint64_t frames = 0;
+  uint64_t overruns = 0;
+  double frame_p50 = 0.0;  // s
+  double frame_p99 = 0.0;  // s
 };
 
 }  // namespace ballsrv

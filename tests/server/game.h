@@ -66,7 +66,7 @@ struct Game {
   // joins `slot` as `who` and keeps its racket parked off the court
   Reason join(int slot, ParticipantId who) {
     Reason r = control(ControlKind::join, who, slot);
-    if (r == Reason::none) {
+    if (r == Reason::none && slot >= 0 && slot < kMaxPlayers) {
       owner[slot] = who;
       park[slot] = true;
     }
