@@ -132,7 +132,7 @@ int main(int argc, char **argv) {
   cli.add_option("--fps", fps, "frames per second of the watcher's own ball")->capture_default_str()->check(CLI::Range(1.0, 1000.0));
   cli.add_option("--duration", duration, "stop after S real seconds (0: until SIGINT/SIGTERM)")->check(CLI::Range(0.0, 1e9));
   cli.add_option("--until-hits", until_hits, "stop once this many racket hits were seen in play")->check(CLI::Range(0L, 1000000L));
-  cli.add_option("--record", record, "append everything received to FILE as JSON Lines");
+  cli.add_option("--record", record, "write everything received to FILE as JSON Lines (one object a line)");
   cli.add_flag("--record-frames", frames_in_record, "with --record: also the watcher's own ball, every frame");
   cli.add_option("--summary-json", summary_json, "write the summary to FILE as JSON at exit");
   cli.add_flag("--no-log", no_log, "no rally log, only the summary");
@@ -156,11 +156,14 @@ int main(int argc, char **argv) {
 
   std::ofstream rec;
   if (!record.empty()) {
-    rec.open(record, std::ios::app);
+    rec.open(record, std::ios::trunc);
     if (!rec) return fail(kProgram, "cannot write " + record);
   }
+  bool unflushed = false;
   auto log = [&](const json &j) {
-    if (rec) rec << j.dump() << "\n";
+    if (!rec) return;
+    rec << j.dump() << "\n";
+    unflushed = true;
   };
 
   std::map<uint32_t, Watched> matches;
@@ -315,6 +318,10 @@ int main(int argc, char **argv) {
       }
       next_frame += 1.0 / fps;
       if (next_frame < now) next_frame = now + 1.0 / fps;
+    }
+    if (unflushed) {  // a reader can follow the record as it grows
+      rec.flush();
+      unflushed = false;
     }
     sleep_until(std::min(next_frame, mono_now() + 0.002));
   }

@@ -8,11 +8,30 @@
 #include <unistd.h>
 
 #include <cstring>
+#include <mutex>
+#include <set>
 
 #include "common.h"
 
 namespace ballsrv {
 namespace app {
+
+namespace {
+// the groups of the children still running, for kill_all
+std::mutex &groups_mutex() {
+  static std::mutex m;
+  return m;
+}
+std::set<pid_t> &groups() {
+  static std::set<pid_t> g;
+  return g;
+}
+}  // namespace
+
+void Process::kill_all() {
+  std::lock_guard<std::mutex> lock(groups_mutex());
+  for (pid_t g : groups()) kill(-g, SIGKILL);
+}
 
 Process Process::start(const std::vector<std::string> &argv, const std::string &out_file,
                        const std::string &err_file) {
@@ -43,6 +62,8 @@ Process Process::start(const std::vector<std::string> &argv, const std::string &
   }
   setpgid(pid, pid);  // also here: no race with a signal sent right away
   p.pid_ = pid;
+  std::lock_guard<std::mutex> lock(groups_mutex());
+  groups().insert(pid);
   return p;
 }
 
@@ -64,6 +85,8 @@ bool Process::reap(bool block) {
   pid_t r = waitpid(pid_, &st, block ? 0 : WNOHANG);
   if (r == pid_) {
     status_ = WIFEXITED(st) ? WEXITSTATUS(st) : 128 + WTERMSIG(st);
+    std::lock_guard<std::mutex> lock(groups_mutex());
+    groups().erase(pid_);
     pid_ = -1;
     return true;
   }

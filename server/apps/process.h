@@ -33,6 +33,8 @@ class Process {
   // SIGTERM to the group, up to grace s, then SIGKILL; the exit status.
   int stop(double grace = 3.0);
   int status() const { return status_; }
+  // SIGKILL to the group of every Process still running (a watchdog's last word).
+  static void kill_all();
 
  private:
   pid_t pid_ = -1;

@@ -13,3 +13,29 @@ foreach(name test_match test_bot)
   add_test(NAME ${name} COMMAND ${name})
   set_tests_properties(${name} PROPERTIES LABELS server TIMEOUT 120)
 endforeach()
+
+# ---- the networked cases: ball_itest drives the real programs ----------------
+if(NOT TARGET ball-server)
+  return()
+endif()
+add_executable(ball_flood ${CMAKE_CURRENT_LIST_DIR}/flood.cpp)
+target_link_libraries(ball_flood PRIVATE ball_app ball_dds)
+target_compile_options(ball_flood PRIVATE ${BALL_CXX_WARNINGS})
+set_target_properties(ball_flood PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/server)
+
+add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp)
+target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static)
+target_compile_options(ball_itest PRIVATE ${BALL_CXX_WARNINGS})
+add_dependencies(ball_itest ball-server ball-bot ball-watch ball_flood)
+
+# each case on a DDS domain of its own (100 + its index): parallel runs never meet
+set(BALL_ITEST_CASES rally desync pause flood late_join lossy server_cli busy)
+set(index 0)
+foreach(case ${BALL_ITEST_CASES})
+  math(EXPR domain "100 + ${index}")
+  math(EXPR index "${index} + 1")
+  add_test(NAME dds_${case}
+    COMMAND ball_itest ${case} --bin ${PROJECT_BINARY_DIR}/server --domain ${domain}
+            --work ${CMAKE_CURRENT_BINARY_DIR}/dds_${case})
+  set_tests_properties(dds_${case} PROPERTIES LABELS dds TIMEOUT 100)
+endforeach()
