@@ -3,6 +3,7 @@
 // line pieces and printing.
 #pragma once
 
+#include <cmath>
 #include <csignal>
 #include <cstdint>
 #include <string>
@@ -33,6 +34,13 @@ void sleep_until(double t);
 class FrameClock {
  public:
   explicit FrameClock(double period) : period_(period), d0_(mono_now()), r0_(realtime_now()) {}
+  // deadlines that share an origin with another clock's (matches stepped together)
+  FrameClock(double period, const FrameClock &origin) : period_(period), d0_(origin.d0_), r0_(origin.r0_) {}
+  // the first frame index whose deadline is not before mono
+  uint64_t first_at(double mono) const {
+    double k = std::ceil((mono - d0_) / period_ - 1e-9);
+    return k > 0.0 ? static_cast<uint64_t>(k) : 0;
+  }
   double period() const { return period_; }
   double deadline(uint64_t k) const { return d0_ + static_cast<double>(k) * period_; }
   double realtime_at(double mono) const { return r0_ + (mono - d0_); }
