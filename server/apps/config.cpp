@@ -58,11 +58,16 @@ bool boolean(const json &j, const std::string &p) {
   return j.get<bool>();
 }
 
+// a file named relative to the config file
+std::string relative_to(const std::string &file, const std::string &base_dir) {
+  if (file.empty() || file[0] == '/' || base_dir.empty()) return file;
+  return base_dir + "/" + file;
+}
+
+// a scene: names ("tennis", "rally_mid", "default") stay names, files are relative to the config file
 std::string resolve(const std::string &scene, const std::string &base_dir) {
-  // a file path relative to the config file; names ("tennis", "rally_mid") stay names
   if (scene.find('/') == std::string::npos && scene.find(".yaml") == std::string::npos) return scene;
-  if (!scene.empty() && scene[0] == '/') return scene;
-  return base_dir.empty() ? scene : base_dir + "/" + scene;
+  return relative_to(scene, base_dir);
 }
 
 // The settings of a match (or of the defaults) from a JSON object.
@@ -134,7 +139,7 @@ void parse_into(const json &root, const std::string &base_dir, ServerConfig *c) 
     if (k == "defaults") continue;
     if (k == "server_id") c->server_id = static_cast<uint32_t>(integer(v, p, 0, 0xffffffffLL));
     else if (k == "domain") c->domain = static_cast<int>(integer(v, p, 0, 232));
-    else if (k == "profile") c->profile = resolve(text(v, p), base_dir);
+    else if (k == "profile") c->profile = relative_to(text(v, p), base_dir);
     else if (k == "participant_profile") c->participant = text(v, p);
     else if (k == "max_matches") c->max_matches = static_cast<size_t>(integer(v, p, 1, 100000));
     else if (k == "allow_create") c->allow_create = boolean(v, p);
