@@ -32,6 +32,7 @@ int main(int argc, char **argv) {
   CLI::App cli{"ball-demo: one ball-server, two ball-bots and a ball-watch on loopback, about 20 s"};
   double duration = 20.0, rate = 30.0, delay = 0.02, miss = 0.12, noise = 0.003;
   int domain = 42;
+  long seed = 7;
   std::string level = "mid", scene = "default";
   cli.add_option("--duration", duration, "s the watcher watches")->capture_default_str()->check(CLI::Range(2.0, 3600.0));
   cli.add_option("--domain", domain, "DDS domain id")->capture_default_str()->check(CLI::Range(0, 232));
@@ -40,6 +41,7 @@ int main(int argc, char **argv) {
   cli.add_option("--rate", rate, "the bots' sample rate, Hz")->capture_default_str()->check(CLI::Range(2.0, 120.0));
   cli.add_option("--delay", delay, "s the bots' samples are delayed")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   cli.add_option("--miss", miss, "the bots' miss rate (their skill)")->capture_default_str()->check(CLI::Range(0.0, 1.0));
+  cli.add_option("--seed", seed, "the bots' seeds are SEED and SEED + 1")->capture_default_str();
   cli.add_option("--noise", noise, "m of tracker noise on the bots' rackets")->capture_default_str()->check(CLI::Range(0.0, 1.0));
   CLI11_PARSE(cli, argc, argv);
 
@@ -66,7 +68,7 @@ int main(int argc, char **argv) {
     for (int i = 0; i < 2; ++i)
       bots.push_back(Process::start({bin + "/ball-bot", "--domain", dom, "--player", std::to_string(i), "--rate",
                                      fmt(rate), "--delay", fmt(delay), "--miss", fmt(miss), "--noise", fmt(noise),
-                                     "--seed", std::to_string(i + 1), "--scene", scene, "--duration",
+                                     "--seed", std::to_string(seed + i), "--scene", scene, "--duration",
                                      fmt(duration + 15.0)},
                                     dir + "/bot" + std::to_string(i) + ".log", dir + "/bot" + std::to_string(i) + ".err"));
     Process watch = Process::start({bin + "/ball-watch", "--domain", dom, "--duration", fmt(duration)});

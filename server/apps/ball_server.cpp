@@ -30,6 +30,9 @@ struct Stats {
   uint64_t frames = 0, overruns = 0, skipped = 0;
   uint64_t deadline_missed = 0, writers_lost = 0;
   Percentiles frame_time;   // s of work per wake-up, this status period
+  Percentiles late;         // s a frame started after its deadline, this status period
+  Percentiles late_p99;     // each period's p99 of that, over the run
+  double late_max = 0.0;    // s, over the run
   Percentiles latency;      // s from a racket sample's write to its segment's, this period
   Percentiles latency_all;  // the same over the run
 };
@@ -158,6 +161,10 @@ bool write_stats_json(const std::string &path, const StatusOut &o, const Stats &
   j["frames"] = o.frames;
   j["overruns"] = o.overruns;
   j["skipped_frames"] = st.skipped;
+  // the absolute frame clock: how late frames start (each status period's p99, then its median and max)
+  j["late_p99_median"] = st.late_p99.quantile(0.5);
+  j["late_p99_max"] = st.late_p99.max();
+  j["late_max"] = st.late_max;
   j["deadline_missed"] = st.deadline_missed;
   j["writers_lost"] = st.writers_lost;
   j["latency_p50"] = st.latency_all.quantile(0.5);
@@ -406,6 +413,8 @@ int main(int argc, char **argv) {
         d = s.clock.deadline(s.k);
       }
       s.last_frame_real = s.clock.realtime_at(d);
+      st.late.add(t0 - d);
+      st.late_max = std::max(st.late_max, t0 - d);
       out.clear();
       s.match->frame(now_real, &out);
       s.k++;
@@ -426,6 +435,8 @@ int main(int argc, char **argv) {
       if (!quiet) print_status(o, st);
       st.frame_time.clear();
       st.latency.clear();
+      st.late_p99.add(st.late.quantile(0.99));
+      st.late.clear();
       next_status += config.status_interval;
       if (next_status < t1) next_status = t1 + config.status_interval;
     }

@@ -97,12 +97,11 @@ std::string scenes_dir() {
 }
 
 void add_dds_options(CLI::App &app, DdsOptions *o) {
-  app.add_option("--domain", o->domain, "DDS domain id, [0, 232]")->capture_default_str();
+  app.add_option("--domain", o->domain, "DDS domain id, [0, 232] (default 0)");
   app.add_option("--profile", o->profile,
                  "QoS profile file (default: $BALL_QOS_PROFILE, the installed one, the source tree's)");
   app.add_option("--participant-profile", o->participant,
-                 "participant profile of that file: loopback, lan, secure_lan")
-      ->capture_default_str();
+                 "participant profile of that file: loopback (default), lan, secure_lan");
 }
 
 std::string hex(const ParticipantId &id) {
