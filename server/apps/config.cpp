@@ -70,6 +70,26 @@ std::string resolve(const std::string &scene, const std::string &base_dir) {
   return relative_to(scene, base_dir);
 }
 
+// The match settings that are plain numbers: the JSON key is the member's name.
+double MatchConfig::*real_field(const std::string &key) {
+  static const std::pair<const char *, double MatchConfig::*> fields[] = {
+      {"frame_rate", &MatchConfig::frame_rate},
+      {"time_base", &MatchConfig::time_base},
+      {"state_rate", &MatchConfig::state_rate},
+      {"serve_delay", &MatchConfig::serve_delay},
+      {"max_rally_time", &MatchConfig::max_rally_time},
+      {"extrapolation_time", &MatchConfig::extrapolation_time},
+      {"stale_time", &MatchConfig::stale_time},
+      {"max_sample_age", &MatchConfig::max_sample_age},
+      {"max_sample_lead", &MatchConfig::max_sample_lead},
+      {"serve_v_up", &MatchConfig::serve_v_up},
+      {"court_x_lo", &MatchConfig::court_x_lo},
+  };
+  for (const auto &f : fields)
+    if (key == f.first) return f.second;
+  return nullptr;
+}
+
 // The settings of a match (or of the defaults) from a JSON object.
 void match_settings(const json &obj, const std::string &ptr, bool is_match, const std::string &base_dir,
                     MatchConfig *c, std::string *scene) {
@@ -88,28 +108,8 @@ void match_settings(const json &obj, const std::string &ptr, bool is_match, cons
       c->id = static_cast<uint32_t>(integer(v, p, 0, 0xffffffffLL));
     } else if (k == "seed") {
       c->seed = static_cast<uint64_t>(integer(v, p, 0, 0x7fffffffffffffffLL));
-    } else if (k == "frame_rate") {
-      c->frame_rate = number(v, p);
-    } else if (k == "time_base") {
-      c->time_base = number(v, p);
-    } else if (k == "state_rate") {
-      c->state_rate = number(v, p);
-    } else if (k == "serve_delay") {
-      c->serve_delay = number(v, p);
-    } else if (k == "max_rally_time") {
-      c->max_rally_time = number(v, p);
-    } else if (k == "extrapolation_time") {
-      c->extrapolation_time = number(v, p);
-    } else if (k == "stale_time") {
-      c->stale_time = number(v, p);
-    } else if (k == "max_sample_age") {
-      c->max_sample_age = number(v, p);
-    } else if (k == "max_sample_lead") {
-      c->max_sample_lead = number(v, p);
-    } else if (k == "serve_v_up") {
-      c->serve_v_up = number(v, p);
-    } else if (k == "court_x_lo") {
-      c->court_x_lo = number(v, p);
+    } else if (double MatchConfig::*field = real_field(k)) {
+      c->*field = number(v, p);
     } else {
       bad(p, "unknown key \"" + k + "\"");
     }

@@ -153,30 +153,49 @@ size_t count(const std::vector<json> &lines, const std::function<bool(const json
   return n;
 }
 
+// A server, two bots with the same options and a watcher recording to `record`;
+// the server, declared first, is stopped last.
+struct Play {
+  Server server;
+  Process b0, b1, w;
+  Tail t;
+};
+
+Play play(Case &c, const std::vector<std::string> &bot_args, const std::string &record,
+          const std::vector<std::string> &watch_extra = {}) {
+  return Play{c.server(), c.bot(0, bot_args), c.bot(1, bot_args), c.watcher(record, watch_extra), Tail(record)};
+}
+
+// the first serve's reception time, or a failed check and -1
+double first_serve(Tail &t) {
+  json serve = wait_for(t, 15.0, [](const json &j) { return is_event(j, "serve"); });
+  EXPECT(!serve.is_null(), "no serve within 15 s");
+  return serve.is_null() ? -1.0 : serve["recv"].get<double>();
+}
+
+// racket hits in play received within `seconds` of t0, up to `want`; *last: when the last came
+int hits_within(Tail &t, double t0, int want, double seconds, double *last) {
+  size_t from = 0;
+  int hits = 0;
+  *last = t0;
+  while (hits < want) {
+    json h = wait_for(t, t0 + seconds - realtime_now(), is_hit, &from);
+    if (h.is_null()) break;
+    hits++;
+    *last = h["recv"].get<double>();
+  }
+  return hits;
+}
+
 // ---- the cases ---------------------------------------------------------------
 
 // two bots at 15 Hz rally: at least 10 racket hits within 30 s
 void case_rally(const Env &env) {
   Case c{env};
-  std::string rec = path(env, "watch.jsonl");
-  Server server = c.server();
-  Process b0 = c.bot(0, {"--rate", "15"});
-  Process b1 = c.bot(1, {"--rate", "15"});
-  Process w = c.watcher(rec);
-  Tail t(rec);
-  json serve = wait_for(t, 15.0, [](const json &j) { return is_event(j, "serve"); });
-  EXPECT(!serve.is_null(), "no serve within 15 s");
-  if (serve.is_null()) return;
-  double t0 = serve["recv"].get<double>();
-  size_t from = 0;
-  int hits = 0;
-  double last = t0;
-  while (hits < 10) {
-    json h = wait_for(t, t0 + 30.0 - realtime_now(), is_hit, &from);
-    if (h.is_null()) break;
-    hits++;
-    last = h["recv"].get<double>();
-  }
+  Play p = play(c, {"--rate", "15"}, path(env, "watch.jsonl"));
+  double t0 = first_serve(p.t), last = 0.0;
+  if (t0 < 0.0) return;
+  int hits = hits_within(p.t, t0, 10, 30.0, &last);
   note("%d racket hits in %.1f s after the first serve", hits, last - t0);
   EXPECT(hits >= 10, "%d hits in 30 s", hits);
 }
@@ -184,16 +203,12 @@ void case_rally(const Env &env) {
 // the ball evaluated from segments matches the server's ball states
 void case_desync(const Env &env) {
   Case c{env};
-  std::string rec = path(env, "watch.jsonl"), sum = path(env, "watch.json");
-  Server server = c.server();
-  Process b0 = c.bot(0, {"--rate", "30"});
-  Process b1 = c.bot(1, {"--rate", "30"});
-  Process w = c.watcher(rec, {"--summary-json", sum});
-  Tail t(rec);
-  json serve = wait_for(t, 15.0, [](const json &j) { return is_event(j, "serve"); });
-  EXPECT(!serve.is_null(), "no serve within 15 s");
+  std::string sum = path(env, "watch.json");
+  Play p = play(c, {"--rate", "30"}, path(env, "watch.jsonl"), {"--summary-json", sum});
+  Tail &t = p.t;
+  first_serve(t);
   usleep(10 * 1000000);
-  w.stop();
+  p.w.stop();
   t.poll();
   // the watcher's own check
   std::ifstream f(sum);
@@ -239,12 +254,8 @@ void case_desync(const Env &env) {
 // a killed bot pauses its match within 2 deadline periods; a new bot resumes it
 void case_pause(const Env &env) {
   Case c{env};
-  std::string rec = path(env, "watch.jsonl");
-  Server server = c.server();
-  Process b0 = c.bot(0, {"--rate", "20"});
-  Process b1 = c.bot(1, {"--rate", "20"});
-  Process w = c.watcher(rec);
-  Tail t(rec);
+  Play p = play(c, {"--rate", "20"}, path(env, "watch.jsonl"));
+  Tail &t = p.t;
   size_t from = 0;
   for (int i = 0; i < 3; ++i) {
     json h = wait_for(t, 15.0, is_hit, &from);
@@ -254,17 +265,17 @@ void case_pause(const Env &env) {
   json info = wait_for(t, 5.0, [](const json &j) { return j.value("type", "") == "match_info"; });
   double timeout = info.is_null() ? 1.0 : info["player_timeout"].get<double>();
   double killed = realtime_now();
-  b1.signal(SIGKILL);
-  b1.wait(2.0);
-  json p = wait_for(t, 10.0, [](const json &j) { return is_event(j, "pause"); }, &from);
-  EXPECT(!p.is_null(), "no pause within 10 s of the kill");
-  if (p.is_null()) return;
-  double after = p["recv"].get<double>() - killed;
-  note("bot 1 killed; pause (%s, player %d) %.3f s later; deadline period %.2f s", p["reason"].get<std::string>().c_str(),
-       p["index"].get<int>(), after, timeout);
+  p.b1.signal(SIGKILL);
+  p.b1.wait(2.0);
+  json pause = wait_for(t, 10.0, [](const json &j) { return is_event(j, "pause"); }, &from);
+  EXPECT(!pause.is_null(), "no pause within 10 s of the kill");
+  if (pause.is_null()) return;
+  double after = pause["recv"].get<double>() - killed;
+  note("bot 1 killed; pause (%s, player %d) %.3f s later; deadline period %.2f s",
+       pause["reason"].get<std::string>().c_str(), pause["index"].get<int>(), after, timeout);
   EXPECT(after <= 2.0 * timeout, "pause %.3f s after the kill, more than 2 deadline periods (%.2f s)", after, 2 * timeout);
-  EXPECT(p["reason"] == "vanished" && p["index"] == 1, "reason %s index %d", p["reason"].get<std::string>().c_str(),
-         p["index"].get<int>());
+  EXPECT(pause["reason"] == "vanished" && pause["index"] == 1, "reason %s index %d",
+         pause["reason"].get<std::string>().c_str(), pause["index"].get<int>());
   // the match stands still while paused
   usleep(1500000);
   t.poll();
@@ -349,12 +360,9 @@ void case_flood(const Env &env) {
 // a watcher that joins late gets the current segment at once
 void case_late_join(const Env &env) {
   Case c{env};
-  std::string early = path(env, "early.jsonl"), late = path(env, "late.jsonl");
-  Server server = c.server();
-  Process b0 = c.bot(0, {"--rate", "20"});
-  Process b1 = c.bot(1, {"--rate", "20"});
-  Process w1 = c.watcher(early);
-  Tail te(early);
+  std::string late = path(env, "late.jsonl");
+  Play p = play(c, {"--rate", "20"}, path(env, "early.jsonl"));
+  Tail &te = p.t;
   size_t from = 0;
   for (int i = 0; i < 3; ++i) wait_for(te, 15.0, is_hit, &from);
   double started = realtime_now();
@@ -384,25 +392,11 @@ void case_late_join(const Env &env) {
 // two bots at 6 Hz with 100 ms added delay and 20 % loss still rally
 void case_lossy(const Env &env) {
   Case c{env};
-  std::string rec = path(env, "watch.jsonl");
-  Server server = c.server();
-  std::vector<std::string> net = {"--rate", "6", "--delay", "0.1", "--loss", "0.2"};
-  Process b0 = c.bot(0, net);
-  Process b1 = c.bot(1, net);
-  Process w = c.watcher(rec);
-  Tail t(rec);
-  json serve = wait_for(t, 15.0, [](const json &j) { return is_event(j, "serve"); });
-  EXPECT(!serve.is_null(), "no serve within 15 s");
-  if (serve.is_null()) return;
-  double t0 = serve["recv"].get<double>();
-  size_t from = 0;
-  int hits = 0;
-  while (hits < 5) {
-    json h = wait_for(t, t0 + 30.0 - realtime_now(), is_hit, &from);
-    if (h.is_null()) break;
-    hits++;
-  }
-  note("%d racket hits within 30 s at 6 Hz, 100 ms, 20 %% loss (%.1f s)", hits, realtime_now() - t0);
+  Play p = play(c, {"--rate", "6", "--delay", "0.1", "--loss", "0.2"}, path(env, "watch.jsonl"));
+  double t0 = first_serve(p.t), last = 0.0;
+  if (t0 < 0.0) return;
+  int hits = hits_within(p.t, t0, 5, 30.0, &last);
+  note("%d racket hits within 30 s at 6 Hz, 100 ms, 20 %% loss (%.1f s)", hits, last - t0);
   EXPECT(hits >= 5, "%d hits", hits);
 }
 
