@@ -124,21 +124,12 @@ StatusOut status_of(const Stats &st, const Host &host, uint32_t server_id, doubl
 }
 
 void print_status(const StatusOut &o, const Stats &st) {
-  uint64_t dropped = 0;
-  std::string reasons;
-  for (int i = 0; i < kDropReasons; ++i) {
-    dropped += o.drops[i];
-    if (o.drops[i]) {
-      if (!reasons.empty()) reasons += ", ";
-      reasons += std::string(drop_name(static_cast<SampleResult>(i))) + " " + std::to_string(o.drops[i]);
-    }
-  }
   std::printf("%s %u: %.0f s, matches %u (%u playing), samples in %" PRIu64 " ok %" PRIu64 " idle %" PRIu64
-              ", drops %" PRIu64 "%s%s%s, out %" PRIu64 " states %" PRIu64 " segments %" PRIu64
+              ", drops %s, out %" PRIu64 " states %" PRIu64 " segments %" PRIu64
               " events, overruns %" PRIu64 ", frame p50 %.3f ms p99 %.3f ms, latency p50 %.1f ms p99 %.1f ms\n",
               kProgram, o.server_id, o.uptime, o.matches, o.playing, o.samples_in, o.samples_ok, st.samples_idle,
-              dropped, reasons.empty() ? "" : " (", reasons.c_str(), reasons.empty() ? "" : ")", o.states_out,
-              o.segments_out, o.events_out, o.overruns, o.frame_p50 * 1e3, o.frame_p99 * 1e3,
+              drops_text(o.drops).c_str(), o.states_out, o.segments_out, o.events_out, o.overruns,
+              o.frame_p50 * 1e3, o.frame_p99 * 1e3,
               st.latency.quantile(0.5) * 1e3, st.latency.quantile(0.99) * 1e3);
   std::fflush(stdout);
 }

@@ -371,18 +371,9 @@ int main(int argc, char **argv) {
     }
     for (auto &kv : servers) {
       const StatusOut &o = kv.second;
-      uint64_t dropped = 0;
-      std::string reasons;
-      for (int i = 0; i < kDropReasons; ++i) {
-        dropped += o.drops[i];
-        if (o.drops[i])
-          reasons += std::string(reasons.empty() ? "" : ", ") + drop_name(static_cast<SampleResult>(i)) + " " +
-                     std::to_string(o.drops[i]);
-      }
-      std::printf("summary: server %u: %" PRIu64 " racket samples in, %" PRIu64 " accepted, %" PRIu64
-                  " dropped%s%s%s, %" PRIu64 " frame overruns\n",
-                  o.server_id, o.samples_in, o.samples_ok, dropped, reasons.empty() ? "" : " (", reasons.c_str(),
-                  reasons.empty() ? "" : ")", o.overruns);
+      std::printf("summary: server %u: %" PRIu64 " racket samples in, %" PRIu64 " accepted, dropped %s, %" PRIu64
+                  " frame overruns\n",
+                  o.server_id, o.samples_in, o.samples_ok, drops_text(o.drops).c_str(), o.overruns);
     }
     std::printf("summary: sample-to-segment latency (a hit's newest racket sample written -> its segment "
                 "received): p50 %.1f ms, p99 %.1f ms over %zu hits\n",

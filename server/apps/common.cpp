@@ -141,6 +141,18 @@ bool load_scene(const std::string &what, ball_scene *scene, std::string *err) {
   return true;
 }
 
+std::string drops_text(const std::array<uint64_t, kDropSlots> &drops) {
+  uint64_t total = 0;
+  std::string reasons;
+  for (int i = 0; i < kDropReasons; ++i) {
+    total += drops[i];
+    if (drops[i])
+      reasons += std::string(reasons.empty() ? "" : ", ") + drop_name(static_cast<SampleResult>(i)) + " " +
+                 std::to_string(drops[i]);
+  }
+  return std::to_string(total) + (reasons.empty() ? "" : " (" + reasons + ")");
+}
+
 int fail(const char *program, const std::string &message) {
   std::fprintf(stderr, "%s: %s\n", program, message.c_str());
   return 1;

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <csignal>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -86,6 +87,9 @@ bool parse_level(const std::string &text, ball_level *out);  // easy, mid, advan
 // slash is libball's scenes/NAME.yaml, else a file. false with the loader's
 // "file:line:column: field: message" in err.
 bool load_scene(const std::string &what, ball_scene *scene, std::string *err);
+
+// Drop counters as words: "12 (stale 10, duplicate 2)", or "0".
+std::string drops_text(const std::array<uint64_t, kDropSlots> &drops);
 
 // "name: message" to stderr, and the exit status 1
 int fail(const char *program, const std::string &message);
