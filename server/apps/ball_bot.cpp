@@ -64,9 +64,9 @@ int main(int argc, char **argv) {
   const ParticipantId me = domain->id();
   auto samples = domain->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {kMaxPlayers}, &err);
   auto controls = domain->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {1}, &err);
-  auto segments = domain->reader<SegmentOut>(dds::kSegmentTopic, dds::kSegmentProfile, {64}, &err);
-  auto infos = domain->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {64}, &err);
-  auto states = domain->reader<StateOut>(dds::kStateTopic, dds::kStateProfile, {64}, &err);
+  auto segments = domain->reader<SegmentOut>(dds::kSegmentTopic, dds::kSegmentProfile, {dds::kClientRoom}, &err);
+  auto infos = domain->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {dds::kClientRoom}, &err);
+  auto states = domain->reader<StateOut>(dds::kStateTopic, dds::kStateProfile, {dds::kClientRoom}, &err);
   if (!samples.valid() || !controls.valid() || !segments.valid() || !infos.valid() || !states.valid())
     return fail(kProgram, err);
 

@@ -112,6 +112,7 @@ int main(int argc, char **argv) {
   for (const char *f : {"server.json", "server.log", "server.err", "bot0.log", "bot0.err", "bot1.log", "bot1.err"})
     unlink((dir + "/" + f).c_str());
   rmdir(dir.c_str());
-  std::printf("%s: %s; every process stopped, nothing left in /dev/shm\n", kProgram, rc == 0 ? "done" : "FAILED");
+  if (rc == 0) std::printf("%s: done; every process stopped, nothing left in /dev/shm\n", kProgram);
+  else std::printf("%s: FAILED\n", kProgram);
   return rc;
 }

@@ -55,7 +55,7 @@ bool drive(const Options &o, Result *r, std::string *err) {
   ball_scene_default(&scene);
   auto domain = dds::Domain::open(o.dds.domain, find_profile(o.dds.profile), o.dds.participant, "ball-load", err);
   if (!domain) return false;
-  int room = o.matches;
+  int room = std::max(o.matches, dds::kClientRoom);
   auto samples = domain->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {room * 2}, err);
   auto controls = domain->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {room}, err);
   auto segments = domain->reader<SegmentOut>(dds::kSegmentTopic, dds::kSegmentProfile, {room}, err);

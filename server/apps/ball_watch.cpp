@@ -145,7 +145,7 @@ int main(int argc, char **argv) {
   auto domain = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
                                   "ball-watch", &err);
   if (!domain) return fail(kProgram, err);
-  const int room = 256;  // matches watched at most
+  const int room = dds::kClientRoom;
   auto segments = domain->reader<SegmentOut>(dds::kSegmentTopic, dds::kSegmentProfile, {room}, &err);
   auto events = domain->reader<EventOut>(dds::kEventTopic, dds::kEventProfile, {room}, &err);
   auto states = domain->reader<StateOut>(dds::kStateTopic, dds::kStateProfile, {room}, &err);

@@ -44,6 +44,11 @@ constexpr const char *kControlProfile = "control";
 constexpr const char *kInfoProfile = "match_info";
 constexpr const char *kStatusProfile = "server_status";
 
+// Instances a client's readers make room for: the matches it may see on a
+// domain (a reader without room for an instance drops its samples, counted
+// as rejected, and a bot would miss its own match among many).
+constexpr int kClientRoom = 4096;
+
 // How many instances (keys) an endpoint must hold: the profile says keep
 // last N per instance; this says how many instances, and so max_samples.
 struct Sizing {

@@ -48,8 +48,8 @@ int main(int argc, char **argv) {
   if (!a || !b) return fail(kProgram, err);
   auto a_samples = a->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {16}, &err);
   auto a_controls = a->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {1}, &err);
-  auto a_infos = a->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {16}, &err);
-  auto a_states = a->reader<StateOut>(dds::kStateTopic, dds::kStateProfile, {16}, &err);
+  auto a_infos = a->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {dds::kClientRoom}, &err);
+  auto a_states = a->reader<StateOut>(dds::kStateTopic, dds::kStateProfile, {dds::kClientRoom}, &err);
   auto b_samples = b->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {16}, &err);
   if (!a_samples.valid() || !a_controls.valid() || !a_infos.valid() || !a_states.valid() || !b_samples.valid())
     return fail(kProgram, err);
