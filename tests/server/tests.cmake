@@ -5,7 +5,7 @@ if(NOT TARGET ball_match)
   return()
 endif()
 
-foreach(name test_match test_bot)
+foreach(name test_match test_bot test_client)
   add_executable(${name} ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp)
   target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_LIST_DIR})
   target_link_libraries(${name} PRIVATE ball_match)
