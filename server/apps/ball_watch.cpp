@@ -181,12 +181,19 @@ int main(int argc, char **argv) {
   log({{"type", "start"}, {"real", start_real}, {"fps", fps}});
 
   double next_frame = start;
+  bool ready = false;
   while (!stop_requested()) {
     double now = mono_now();
     if (duration > 0.0 && now - start >= duration) break;
     if (until_hits > 0 && hits_total >= static_cast<uint64_t>(until_hits)) break;
     double real = realtime_now();
     dds::SampleMeta meta;
+    // "ready": a server's segments, events and match info reach us from now on
+    // (events are not kept for late joiners: what came before is not seen)
+    if (!ready && segments.matched() > 0 && events.matched() > 0 && infos.matched() > 0) {
+      ready = true;
+      log({{"type", "ready"}, {"recv", real}});
+    }
 
     MatchInfoOut info;
     while (infos.take(&info, &meta)) {

@@ -90,6 +90,10 @@ class Tail {
 // Declared first in a case, it is stopped last, after its clients.
 struct Server {
   Process p;
+  Server() = default;
+  explicit Server(Process process) : p(std::move(process)) {}
+  Server(Server &&) = default;
+  Server &operator=(Server &&) = default;
   ~Server() {
     if (p.pid() <= 0 && p.status() == -1) return;  // moved from
     int rc = p.stop(5.0);
@@ -104,7 +108,7 @@ struct Case {
     std::vector<std::string> a = {env.bin + "/ball-server", "--domain", env.dom(), "--startup-wait", "0",
                                   "--duration", "120", "--stats-json", env.work + "/server.json"};
     a.insert(a.end(), extra.begin(), extra.end());
-    return Server{Process::start(a, env.work + "/server.out", env.work + "/server.err")};
+    return Server(Process::start(a, env.work + "/server.out", env.work + "/server.err"));
   }
   Process bot(int slot, std::vector<std::string> extra = {}) {
     std::vector<std::string> a = {env.bin + "/ball-bot", "--domain", env.dom(), "--player", std::to_string(slot),
@@ -153,17 +157,29 @@ size_t count(const std::vector<json> &lines, const std::function<bool(const json
   return n;
 }
 
-// A server, two bots with the same options and a watcher recording to `record`;
+// A watcher that hears the server already: events are not kept for late
+// joiners, so the bots start (and the match serves) only once it is ready.
+Process ready_watcher(Case &c, const std::string &record, const std::vector<std::string> &extra) {
+  Process w = c.watcher(record, extra);
+  Tail t(record);
+  json r = wait_for(t, 15.0, [](const json &j) { return j.value("type", "") == "ready"; });
+  EXPECT(!r.is_null(), "the watcher did not match the server within 15 s");
+  return w;
+}
+
+// A server, a watcher recording to `record` and two bots with the same
+// options, started in that order (a braced list is evaluated left to right);
 // the server, declared first, is stopped last.
 struct Play {
   Server server;
-  Process b0, b1, w;
+  Process w, b0, b1;
   Tail t;
 };
 
 Play play(Case &c, const std::vector<std::string> &bot_args, const std::string &record,
           const std::vector<std::string> &watch_extra = {}) {
-  return Play{c.server(), c.bot(0, bot_args), c.bot(1, bot_args), c.watcher(record, watch_extra), Tail(record)};
+  return Play{c.server(), ready_watcher(c, record, watch_extra), c.bot(0, bot_args), c.bot(1, bot_args),
+              Tail(record)};
 }
 
 // the first serve's reception time, or a failed check and -1
@@ -340,6 +356,8 @@ void case_flood(const Env &env) {
   }
   note("%ld malformed samples sent in 10 kinds; drops by reason equal what was sent: %s", total,
        dirty_stats["drops"].dump().c_str());
+  note("match 0: %d pauses without the flood, %d with it (one as each run ends)",
+       clean_stats["matches"][0]["pauses"].get<int>(), dirty_stats["matches"][0]["pauses"].get<int>());
   EXPECT(total == 10000, "%ld malformed samples sent", total);
   long clean_drops = 0;
   for (auto &kv : clean_stats["drops"].items()) clean_drops += kv.value().get<long>();
