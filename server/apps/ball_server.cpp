@@ -7,6 +7,7 @@
 #include <cinttypes>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "common.h"
@@ -29,6 +30,7 @@ struct Stats {
   uint64_t states_out = 0, segments_out = 0, events_out = 0, infos_out = 0;
   uint64_t frames = 0, overruns = 0, skipped = 0;
   uint64_t deadline_missed = 0, writers_lost = 0;
+  uint64_t conflicts = 0;   // MatchInfo of one of our matches from another participant
   Percentiles frame_time;   // s of work per wake-up, this status period
   Percentiles late;         // s a frame started after its deadline, this status period
   Percentiles late_p99;     // each period's p99 of that, over the run
@@ -158,6 +160,7 @@ bool write_stats_json(const std::string &path, const StatusOut &o, const Stats &
   j["late_max"] = st.late_max;
   j["deadline_missed"] = st.deadline_missed;
   j["writers_lost"] = st.writers_lost;
+  j["conflicts"] = st.conflicts;
   j["latency_p50"] = st.latency_all.quantile(0.5);
   j["latency_p99"] = st.latency_all.quantile(0.99);
   j["latency_count"] = st.latency_all.size();
@@ -263,6 +266,14 @@ int main(int argc, char **argv) {
     return fail(kProgram, "max_matches " + std::to_string(config.max_matches) + " is less than the " +
                               std::to_string(config.matches.size()) + " matches configured");
 
+  // every scene is read before DDS is touched: a bad config fails fast
+  std::map<std::string, ball_scene> catalogue;
+  for (const auto &c : config.catalogue)
+    if (!load_scene(c.second, &catalogue[c.first], &err)) return fail(kProgram, "catalogue \"" + c.first + "\": " + err);
+  std::vector<ball_scene> scenes(config.matches.size());
+  for (size_t i = 0; i < config.matches.size(); ++i)
+    if (!load_scene(config.matches[i].scene, &scenes[i], &err)) return fail(kProgram, err);
+
   install_stop_signals();
   std::string profile = find_profile(config.profile);
   auto domain = dds::Domain::open(config.domain, profile, config.participant,
@@ -273,14 +284,11 @@ int main(int argc, char **argv) {
   if (deadline > 0.0) config.defaults.player_timeout = deadline;
 
   Host host(config.max_matches, config.allow_create, config.defaults);
-  for (const auto &c : config.catalogue) {
-    ball_scene sc;
-    if (!load_scene(c.second, &sc, &err)) return fail(kProgram, "catalogue \"" + c.first + "\": " + err);
-    if (!host.add_scene(c.first, sc, &err)) return fail(kProgram, err);
-  }
-  for (auto &e : config.matches) {
-    ball_scene sc;
-    if (!load_scene(e.scene, &sc, &err)) return fail(kProgram, err);
+  for (const auto &c : catalogue)
+    if (!host.add_scene(c.first, c.second, &err)) return fail(kProgram, err);
+  for (size_t i = 0; i < config.matches.size(); ++i) {
+    MatchEntry &e = config.matches[i];
+    const ball_scene &sc = scenes[i];
     if (deadline > 0.0) e.config.player_timeout = deadline;
     if (e.scene != "default" && !sc.name[0]) e.config.scene_name = e.scene.substr(0, kNameLen - 1);
     else e.config.scene_name = sc.name[0] ? sc.name : "tennis";
@@ -302,13 +310,15 @@ int main(int argc, char **argv) {
   auto others = domain->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {match_room + 64}, &err);
   if (!w.status.valid() || !samples.valid() || !controls.valid() || !others.valid()) return fail(kProgram, err);
 
+  Stats st;
   // another server already serving one of our matches makes the domain busy
   if (config.startup_wait > 0.0) {
     double until = mono_now() + config.startup_wait;
     while (mono_now() < until && !stop_requested()) {
       MatchInfoOut info;
-      while (others.take(&info, nullptr)) {
-        if (info.server_id != config.server_id && host.find(info.match_id))
+      dds::SampleMeta meta;
+      while (others.take(&info, &meta)) {
+        if (meta.from != domain->id() && host.find(info.match_id))
           return fail(kProgram, "domain " + std::to_string(config.domain) + " is busy: match " +
                                     std::to_string(info.match_id) + " is served by server " +
                                     std::to_string(info.server_id));
@@ -316,10 +326,20 @@ int main(int argc, char **argv) {
       sleep_until(mono_now() + 0.05);
     }
   }
+  // later conflicts (another server started without looking) are reported once a second
+  auto check_conflicts = [&]() {
+    MatchInfoOut info;
+    dds::SampleMeta meta;
+    while (others.take(&info, &meta))
+      if (meta.from != domain->id() && host.find(info.match_id)) {
+        st.conflicts++;
+        std::fprintf(stderr, "%s %u: warning: match %u is also served by server %u (participant %s)\n", kProgram,
+                     config.server_id, info.match_id, info.server_id, hex(meta.from).c_str());
+      }
+  };
 
   std::vector<Scheduled> sched;
   const FrameClock origin(1.0);
-  Stats st;
   for (const auto &m : host.matches()) {
     sched.push_back(scheduled(m.get(), origin));
     publish_info(sched.back(), config.server_id, w, st);
@@ -421,6 +441,7 @@ int main(int argc, char **argv) {
     double t1 = mono_now();
     st.frame_time.add(t1 - t0);
     if (t1 >= next_status) {
+      check_conflicts();
       StatusOut o = status_of(st, host, config.server_id, t1 - start);
       w.status.write(o);
       if (!quiet) print_status(o, st);
