@@ -205,15 +205,22 @@ int hits_within(Tail &t, double t0, int want, double seconds, double *last) {
 
 // ---- the cases ---------------------------------------------------------------
 
-// two bots at 15 Hz rally: at least 10 racket hits within 30 s
-void case_rally(const Env &env) {
+// two bots with these options rally: at least `want` racket hits within 30 s of the first serve
+void rally_with(const Env &env, const std::vector<std::string> &bot_args, int want, const char *what) {
   Case c{env};
-  Play p = play(c, {"--rate", "15"}, path(env, "watch.jsonl"));
+  Play p = play(c, bot_args, path(env, "watch.jsonl"));
   double t0 = first_serve(p.t), last = 0.0;
   if (t0 < 0.0) return;
-  int hits = hits_within(p.t, t0, 10, 30.0, &last);
-  note("%d racket hits in %.1f s after the first serve", hits, last - t0);
-  EXPECT(hits >= 10, "%d hits in 30 s", hits);
+  int hits = hits_within(p.t, t0, want, 30.0, &last);
+  note("%s: %d racket hits in %.1f s after the first serve", what, hits, last - t0);
+  EXPECT(hits >= want, "%d hits in 30 s, want %d", hits, want);
+}
+
+void case_rally(const Env &env) { rally_with(env, {"--rate", "15"}, 10, "15 Hz"); }
+
+// two bots at 6 Hz with 100 ms added delay and 20 % loss still rally
+void case_lossy(const Env &env) {
+  rally_with(env, {"--rate", "6", "--delay", "0.1", "--loss", "0.2"}, 5, "6 Hz, 100 ms, 20 % loss");
 }
 
 // the ball evaluated from segments matches the server's ball states
@@ -405,17 +412,6 @@ void case_late_join(const Env &env) {
        got - started, newest_late, current);
   EXPECT(newest_late >= current && current > 0, "late watcher has %ld, current is %ld", newest_late, current);
   EXPECT(got - started <= 5.0, "first segment %.3f s after start", got - started);
-}
-
-// two bots at 6 Hz with 100 ms added delay and 20 % loss still rally
-void case_lossy(const Env &env) {
-  Case c{env};
-  Play p = play(c, {"--rate", "6", "--delay", "0.1", "--loss", "0.2"}, path(env, "watch.jsonl"));
-  double t0 = first_serve(p.t), last = 0.0;
-  if (t0 < 0.0) return;
-  int hits = hits_within(p.t, t0, 5, 30.0, &last);
-  note("%d racket hits within 30 s at 6 Hz, 100 ms, 20 %% loss (%.1f s)", hits, last - t0);
-  EXPECT(hits >= 5, "%d hits", hits);
 }
 
 // ball-server's command line: --help, bad configs, a missing profile, a bad domain
