@@ -1,0 +1,162 @@
+#include "common.h"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <fstream>
+
+namespace ballsrv {
+namespace app {
+
+namespace {
+volatile std::sig_atomic_t g_stop = 0;  // the one global: set by SIGINT/SIGTERM
+void on_stop_signal(int) { g_stop = 1; }
+
+double clock_seconds(clockid_t id) {
+  timespec ts;
+  clock_gettime(id, &ts);
+  return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+}
+
+bool readable(const std::string &path) { return std::ifstream(path).good(); }
+
+}  // namespace
+
+void install_stop_signals() {
+  struct sigaction sa {};
+  sa.sa_handler = on_stop_signal;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, nullptr);
+  sigaction(SIGTERM, &sa, nullptr);
+}
+
+bool stop_requested() { return g_stop != 0; }
+
+std::string program_dir() {
+  char buf[4096];
+  ssize_t n = readlink("/proc/self/exe", buf, sizeof buf - 1);
+  if (n <= 0) return ".";
+  std::string p(buf, static_cast<size_t>(n));
+  size_t slash = p.rfind('/');
+  return slash == std::string::npos ? "." : p.substr(0, slash);
+}
+
+double realtime_now() { return clock_seconds(CLOCK_REALTIME); }
+double mono_now() { return clock_seconds(CLOCK_MONOTONIC); }
+
+void sleep_until(double t) {
+  timespec ts;
+  ts.tv_sec = static_cast<time_t>(t);
+  ts.tv_nsec = static_cast<long>((t - static_cast<double>(ts.tv_sec)) * 1e9);
+  if (ts.tv_nsec >= 1000000000L) {
+    ts.tv_sec++;
+    ts.tv_nsec -= 1000000000L;
+  }
+  while (!stop_requested() && clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, nullptr) == EINTR) {
+  }
+}
+
+double Percentiles::quantile(double q) const {
+  if (values_.empty()) return 0.0;
+  std::vector<double> v = values_;
+  size_t k = static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
+  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
+  return v[k];
+}
+
+double Percentiles::max() const {
+  return values_.empty() ? 0.0 : *std::max_element(values_.begin(), values_.end());
+}
+
+std::string find_profile(const std::string &given) {
+  if (!given.empty()) return given;
+  if (const char *env = std::getenv("BALL_QOS_PROFILE")) return env;
+  std::string installed = program_dir() + "/../share/libball/ball_qos.xml";
+  if (readable(installed)) return installed;
+#ifdef BALL_QOS_PROFILE_BUILD
+  return BALL_QOS_PROFILE_BUILD;
+#else
+  return "ball_qos.xml";
+#endif
+}
+
+std::string scenes_dir() {
+  if (const char *env = std::getenv("BALL_SCENES")) return env;
+  std::string installed = program_dir() + "/../share/libball/scenes";
+  if (readable(installed + "/tennis.yaml")) return installed;
+#ifdef BALL_SCENES_BUILD
+  return BALL_SCENES_BUILD;
+#else
+  return "scenes";
+#endif
+}
+
+void add_dds_options(CLI::App &app, DdsOptions *o) {
+  app.add_option("--domain", o->domain, "DDS domain id, [0, 232] (default 0)");
+  app.add_option("--profile", o->profile,
+                 "QoS profile file (default: $BALL_QOS_PROFILE, the installed one, the source tree's)");
+  app.add_option("--participant-profile", o->participant,
+                 "participant profile of that file: loopback (default), lan, secure_lan");
+}
+
+std::string hex(const ParticipantId &id) {
+  static const char *digits = "0123456789abcdef";
+  std::string s;
+  for (uint8_t b : id) {
+    s += digits[b >> 4];
+    s += digits[b & 15];
+  }
+  return s;
+}
+
+bool parse_level(const std::string &text, ball_level *out) {
+  for (int l = 0; l < BALL_LEVEL_COUNT; ++l)
+    if (text == ball_level_name(static_cast<ball_level>(l))) {
+      *out = static_cast<ball_level>(l);
+      return true;
+    }
+  return false;
+}
+
+bool load_scene(const std::string &what, ball_scene *scene, std::string *err) {
+  if (what.empty() || what == "default") {
+    ball_scene_default(scene);
+    return true;
+  }
+  std::string path = what;
+  if (what.find('/') == std::string::npos && what.find(".yaml") == std::string::npos)
+    path = scenes_dir() + "/" + what + ".yaml";
+  ball_scene_error e;
+  if (ball_scene_load_file(path.c_str(), scene, &e) != BALL_OK) {
+    char text[1024];
+    ball_scene_error_format(&e, text, sizeof text);
+    *err = text;
+    return false;
+  }
+  return true;
+}
+
+std::string drops_text(const std::array<uint64_t, kDropSlots> &drops) {
+  uint64_t total = 0;
+  std::string reasons;
+  for (int i = 0; i < kDropReasons; ++i) {
+    total += drops[i];
+    if (drops[i])
+      reasons += std::string(reasons.empty() ? "" : ", ") + drop_name(static_cast<SampleResult>(i)) + " " +
+                 std::to_string(drops[i]);
+  }
+  return std::to_string(total) + (reasons.empty() ? "" : " (" + reasons + ")");
+}
+
+int fail(const char *program, const std::string &message) {
+  std::fprintf(stderr, "%s: %s\n", program, message.c_str());
+  return 1;
+}
+
+}  // namespace app
+}  // namespace ballsrv

@@ -1,0 +1,350 @@
+#include "convert.h"
+
+#include <algorithm>
+#include <cstring>
+
+namespace ballsrv {
+namespace dds {
+
+// The server's enums have the IDL's order; these keep the two in step.
+static_assert(balldds::MAX_PLAYERS == kMaxPlayers, "IDL MAX_PLAYERS");
+static_assert(balldds::NAME_LEN == kNameLen, "IDL NAME_LEN");
+static_assert(balldds::DROP_REASONS == kDropSlots && kDropReasons <= kDropSlots, "IDL DROP_REASONS");
+static_assert(static_cast<int>(balldds::MATCH_PAUSED) == static_cast<int>(MatchState::paused), "MatchState");
+static_assert(static_cast<int>(balldds::CAUSE_RACKET) == static_cast<int>(Cause::racket), "Cause");
+static_assert(static_cast<int>(balldds::EVENT_REFUSED) == static_cast<int>(EventKind::refused), "EventKind");
+static_assert(static_cast<int>(balldds::REFUSED_STATE) == static_cast<int>(Reason::refused_state), "Reason");
+static_assert(static_cast<int>(balldds::CONTROL_TIME_BASE) == static_cast<int>(ControlKind::time_base), "ControlKind");
+
+namespace {
+
+balldds::Vec3 v3(ball_vec3 v) {
+  balldds::Vec3 o;
+  o.x(v.x);
+  o.y(v.y);
+  o.z(v.z);
+  return o;
+}
+
+ball_vec3 v3(const balldds::Vec3 &v) { return ball_vec3{v.x(), v.y(), v.z()}; }
+
+template <size_t N>
+void put_name(const std::string &s, std::array<char, N> *out) {
+  out->fill('\0');
+  std::memcpy(out->data(), s.data(), std::min(s.size(), N - 1));
+}
+
+// a name from the wire: false unless NUL-terminated within the array
+template <size_t N>
+bool get_name(const std::array<char, N> &in, std::string *out) {
+  const char *end = static_cast<const char *>(std::memchr(in.data(), '\0', N));
+  if (!end) return false;
+  out->assign(in.data(), end);
+  return true;
+}
+
+template <size_t N>
+void put_pid(const ParticipantId &id, std::array<uint8_t, N> *out) {
+  static_assert(N == sizeof(ParticipantId), "GUID prefix size");
+  std::copy(id.begin(), id.end(), out->begin());
+}
+
+}  // namespace
+
+balldds::RacketSample to_idl(const RacketSampleIn &in) {
+  balldds::RacketSample o;
+  o.match_id(in.match_id);
+  o.player(static_cast<uint16_t>(in.player));
+  o.seq(in.seq);
+  o.capture_time(in.capture_time);
+  o.center(v3(in.center));
+  o.normal(v3(in.normal));
+  return o;
+}
+
+void from_idl(const balldds::RacketSample &in, RacketSampleIn *o) {
+  o->match_id = in.match_id();
+  o->player = in.player();
+  o->seq = in.seq();
+  o->capture_time = in.capture_time();
+  o->center = v3(in.center());
+  o->normal = v3(in.normal());
+}
+
+balldds::MatchControl to_idl(const ControlIn &in) {
+  balldds::MatchControl o;
+  o.match_id(in.match_id);
+  o.seq(in.seq);
+  o.kind(static_cast<balldds::ControlKind>(in.kind));
+  o.player(static_cast<int16_t>(in.player));
+  o.level(in.level);
+  o.time_base(in.time_base);
+  o.players(static_cast<uint16_t>(in.players));
+  put_name(in.scene, &o.scene());
+  return o;
+}
+
+void from_idl(const balldds::MatchControl &in, ControlIn *o) {
+  o->match_id = in.match_id();
+  o->seq = in.seq();
+  uint32_t kind = static_cast<uint32_t>(in.kind());
+  o->valid = kind <= static_cast<uint32_t>(ControlKind::time_base) && get_name(in.scene(), &o->scene);
+  o->kind = o->valid ? static_cast<ControlKind>(kind) : ControlKind::join;
+  o->player = in.player();
+  o->level = in.level();
+  o->time_base = in.time_base();
+  o->players = in.players();
+}
+
+balldds::Segment to_idl(const SegmentOut &in) {
+  balldds::Segment o;
+  o.match_id(in.match_id);
+  o.server_id(in.server_id);
+  o.seq(in.seq);
+  o.cause(static_cast<balldds::Cause>(in.cause));
+  o.cause_index(static_cast<int16_t>(in.cause_index));
+  o.t0(in.segment.t0);
+  o.p0(v3(in.segment.p0));
+  o.v0(v3(in.segment.v0));
+  o.s0(v3(in.segment.s0));
+  o.grounded(in.segment.grounded != 0);
+  o.server_time(in.server_time);
+  o.model_hash(in.model_hash);
+  o.sample_seq(in.sample.seq);
+  o.sample_source_time(in.sample.valid ? in.sample.source_time : 0.0);
+  o.sample_capture_time(in.sample.capture_time);
+  return o;
+}
+
+void from_idl(const balldds::Segment &in, SegmentOut *o) {
+  o->match_id = in.match_id();
+  o->server_id = in.server_id();
+  o->seq = in.seq();
+  o->cause = static_cast<Cause>(in.cause());
+  o->cause_index = in.cause_index();
+  o->segment.t0 = in.t0();
+  o->segment.p0 = v3(in.p0());
+  o->segment.v0 = v3(in.v0());
+  o->segment.s0 = v3(in.s0());
+  o->segment.grounded = in.grounded() ? 1 : 0;
+  o->server_time = in.server_time();
+  o->model_hash = in.model_hash();
+  o->sample.seq = in.sample_seq();
+  o->sample.source_time = in.sample_source_time();
+  o->sample.capture_time = in.sample_capture_time();
+  o->sample.valid = in.sample_source_time() != 0.0;
+}
+
+balldds::Event to_idl(const EventOut &in) {
+  balldds::Event o;
+  o.match_id(in.match_id);
+  o.server_id(in.server_id);
+  o.seq(in.seq);
+  o.kind(static_cast<balldds::EventKind>(in.kind));
+  o.index(static_cast<int16_t>(in.index));
+  o.side(static_cast<int16_t>(in.side));
+  o.in_play(in.in_play);
+  o.sound(in.sound);
+  o.time(in.time);
+  o.server_time(in.server_time);
+  o.point(v3(in.point));
+  o.velocity_in(v3(in.velocity_in));
+  o.velocity_out(v3(in.velocity_out));
+  o.segment_seq(in.segment_seq);
+  o.reason(static_cast<balldds::Reason>(in.reason));
+  o.score({static_cast<uint16_t>(in.score[0]), static_cast<uint16_t>(in.score[1])});
+  o.value(in.value);
+  return o;
+}
+
+void from_idl(const balldds::Event &in, EventOut *o) {
+  o->match_id = in.match_id();
+  o->server_id = in.server_id();
+  o->seq = in.seq();
+  o->kind = static_cast<EventKind>(in.kind());
+  o->index = in.index();
+  o->side = in.side();
+  o->in_play = in.in_play();
+  o->sound = in.sound();
+  o->time = in.time();
+  o->server_time = in.server_time();
+  o->point = v3(in.point());
+  o->velocity_in = v3(in.velocity_in());
+  o->velocity_out = v3(in.velocity_out());
+  o->segment_seq = in.segment_seq();
+  o->reason = static_cast<Reason>(in.reason());
+  o->score = {in.score()[0], in.score()[1]};
+  o->value = in.value();
+}
+
+balldds::BallState to_idl(const StateOut &in) {
+  balldds::BallState o;
+  o.match_id(in.match_id);
+  o.server_id(in.server_id);
+  o.frame(in.frame);
+  o.sim_time(in.sim_time);
+  o.server_time(in.server_time);
+  o.state(static_cast<balldds::MatchState>(in.state));
+  o.segment_seq(in.segment_seq);
+  o.position(v3(in.ball.position));
+  o.velocity(v3(in.ball.velocity));
+  o.spin(v3(in.ball.spin));
+  o.sim_hash(in.sim_hash);
+  return o;
+}
+
+void from_idl(const balldds::BallState &in, StateOut *o) {
+  o->match_id = in.match_id();
+  o->server_id = in.server_id();
+  o->frame = in.frame();
+  o->sim_time = in.sim_time();
+  o->server_time = in.server_time();
+  o->state = static_cast<MatchState>(in.state());
+  o->segment_seq = in.segment_seq();
+  o->ball.position = v3(in.position());
+  o->ball.velocity = v3(in.velocity());
+  o->ball.spin = v3(in.spin());
+  o->sim_hash = in.sim_hash();
+}
+
+balldds::MatchInfo to_idl(const MatchInfoOut &in) {
+  balldds::MatchInfo o;
+  o.match_id(in.match_id);
+  o.server_id(in.server_id);
+  o.revision(in.revision);
+  o.state(static_cast<balldds::MatchState>(in.state));
+  put_name(in.scene, &o.scene());
+  o.level(in.level);
+  o.players(static_cast<uint16_t>(in.players));
+  for (int i = 0; i < kMaxPlayers; ++i) {
+    const SlotInfo &s = in.slots[i];
+    balldds::Slot &w = o.slots()[i];
+    w.held(s.held);
+    w.present(s.present);
+    put_pid(s.owner, &w.owner());
+    w.samples(s.samples);
+    w.last_seq(s.last_seq);
+    w.last_capture_time(s.last_capture_time);
+  }
+  o.score({static_cast<uint16_t>(in.score[0]), static_cast<uint16_t>(in.score[1])});
+  o.serving_side(static_cast<int16_t>(in.serving_side));
+  o.rally(in.rally);
+  o.segment_seq(in.segment_seq);
+  o.frame_time(in.frame_time);
+  o.time_base(in.time_base);
+  o.sim_time(in.sim_time);
+  o.server_time(in.server_time);
+  o.state_rate(in.state_rate);
+  o.player_timeout(in.player_timeout);
+  o.max_sample_age(in.max_sample_age);
+  o.max_sample_lead(in.max_sample_lead);
+  o.model_hash(in.model_hash);
+  o.gravity(in.model.gravity);
+  o.mass(in.model.mass);
+  o.air_friction(in.model.air_friction);
+  o.spin_damping(in.model.spin_damping);
+  o.radius(in.model.radius);
+  o.floor_level(in.model.floor_level);
+  o.effects(in.model.effects);
+  o.extrapolation_time(in.model.extrapolation_time);
+  o.stale_time(in.model.stale_time);
+  o.net_x(in.net_x);
+  o.court_x({in.court_x[0], in.court_x[1]});
+  o.court_z({in.court_z[0], in.court_z[1]});
+  return o;
+}
+
+void from_idl(const balldds::MatchInfo &in, MatchInfoOut *o) {
+  o->match_id = in.match_id();
+  o->server_id = in.server_id();
+  o->revision = in.revision();
+  o->state = static_cast<MatchState>(in.state());
+  if (!get_name(in.scene(), &o->scene)) o->scene.clear();
+  o->level = in.level();
+  o->players = std::min<int>(in.players(), kMaxPlayers);
+  for (int i = 0; i < kMaxPlayers; ++i) {
+    const balldds::Slot &w = in.slots()[i];
+    SlotInfo &s = o->slots[i];
+    s.held = w.held();
+    s.present = w.present();
+    std::copy(w.owner().begin(), w.owner().end(), s.owner.begin());
+    s.samples = w.samples();
+    s.last_seq = w.last_seq();
+    s.last_capture_time = w.last_capture_time();
+  }
+  o->score = {in.score()[0], in.score()[1]};
+  o->serving_side = in.serving_side();
+  o->rally = in.rally();
+  o->segment_seq = in.segment_seq();
+  o->frame_time = in.frame_time();
+  o->time_base = in.time_base();
+  o->sim_time = in.sim_time();
+  o->server_time = in.server_time();
+  o->state_rate = in.state_rate();
+  o->player_timeout = in.player_timeout();
+  o->max_sample_age = in.max_sample_age();
+  o->max_sample_lead = in.max_sample_lead();
+  o->model_hash = in.model_hash();
+  ball_model_default(&o->model);
+  o->model.gravity = in.gravity();
+  o->model.mass = in.mass();
+  o->model.air_friction = in.air_friction();
+  o->model.spin_damping = in.spin_damping();
+  o->model.radius = in.radius();
+  o->model.floor_level = in.floor_level();
+  o->model.effects = in.effects();
+  o->model.extrapolation_time = in.extrapolation_time();
+  o->model.stale_time = in.stale_time();
+  o->net_x = in.net_x();
+  o->court_x[0] = in.court_x()[0];
+  o->court_x[1] = in.court_x()[1];
+  o->court_z[0] = in.court_z()[0];
+  o->court_z[1] = in.court_z()[1];
+}
+
+balldds::ServerStatus to_idl(const StatusOut &in) {
+  balldds::ServerStatus o;
+  o.server_id(in.server_id);
+  o.server_time(in.server_time);
+  o.uptime(in.uptime);
+  o.matches(in.matches);
+  o.playing(in.playing);
+  o.samples_in(in.samples_in);
+  o.samples_ok(in.samples_ok);
+  std::array<uint64_t, kDropSlots> drops;
+  std::copy(in.drops.begin(), in.drops.end(), drops.begin());
+  o.drops(drops);
+  o.controls_in(in.controls_in);
+  o.controls_refused(in.controls_refused);
+  o.states_out(in.states_out);
+  o.segments_out(in.segments_out);
+  o.events_out(in.events_out);
+  o.frames(in.frames);
+  o.overruns(in.overruns);
+  o.frame_p50(in.frame_p50);
+  o.frame_p99(in.frame_p99);
+  return o;
+}
+
+void from_idl(const balldds::ServerStatus &in, StatusOut *o) {
+  o->server_id = in.server_id();
+  o->server_time = in.server_time();
+  o->uptime = in.uptime();
+  o->matches = in.matches();
+  o->playing = in.playing();
+  o->samples_in = in.samples_in();
+  o->samples_ok = in.samples_ok();
+  std::copy(in.drops().begin(), in.drops().end(), o->drops.begin());
+  o->controls_in = in.controls_in();
+  o->controls_refused = in.controls_refused();
+  o->states_out = in.states_out();
+  o->segments_out = in.segments_out();
+  o->events_out = in.events_out();
+  o->frames = in.frames();
+  o->overruns = in.overruns();
+  o->frame_p50 = in.frame_p50();
+  o->frame_p99 = in.frame_p99();
+}
+
+}  // namespace dds
+}  // namespace ballsrv

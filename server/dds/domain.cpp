@@ -1,0 +1,317 @@
+#include "domain.h"
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/DataReader.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/subscriber/SampleInfo.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastdds/rtps/common/InstanceHandle.h>
+
+#include <cerrno>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "ballPubSubTypes.h"
+#include "convert.h"
+
+namespace fdds = eprosima::fastdds::dds;
+using eprosima::fastrtps::types::ReturnCode_t;
+
+namespace ballsrv {
+namespace dds {
+
+// Which IDL type and type support carry each server type.
+template <class T>
+struct Wire;
+#define BALL_WIRE(T, IDL)                     \
+  template <>                                 \
+  struct Wire<T> {                            \
+    using Idl = balldds::IDL;                 \
+    using Support = balldds::IDL##PubSubType; \
+  };
+BALL_WIRE(RacketSampleIn, RacketSample)
+BALL_WIRE(ControlIn, MatchControl)
+BALL_WIRE(SegmentOut, Segment)
+BALL_WIRE(EventOut, Event)
+BALL_WIRE(StateOut, BallState)
+BALL_WIRE(MatchInfoOut, MatchInfo)
+BALL_WIRE(StatusOut, ServerStatus)
+#undef BALL_WIRE
+
+namespace {
+
+constexpr int kMaxDomain = 232;  // RTPS ports 7400 + 250 * domain + ... stay below 65536
+
+ParticipantId prefix_of(const eprosima::fastrtps::rtps::GUID_t &guid) {
+  ParticipantId id;
+  std::copy(std::begin(guid.guidPrefix.value), std::end(guid.guidPrefix.value), id.begin());
+  return id;
+}
+
+double seconds(const eprosima::fastrtps::rtps::Time_t &t) { return static_cast<double>(t.to_ns()) * 1e-9; }
+
+// keep-last depth per instance from the profile, instances from the caller
+template <class Qos>
+void size_limits(Qos *qos, Sizing sizing) {
+  int depth = qos->history().kind == fdds::KEEP_LAST_HISTORY_QOS ? qos->history().depth : 64;
+  if (depth < 1) depth = 1;
+  int instances = sizing.instances < 1 ? 1 : sizing.instances;
+  auto &rl = qos->resource_limits();
+  rl.max_instances = instances;
+  rl.max_samples_per_instance = depth;
+  rl.max_samples = instances * depth;
+  rl.allocated_samples = std::min(rl.max_samples, 256);
+}
+
+}  // namespace
+
+// What the DDS threads tell the loop about a reader's writers.
+template <class T>
+struct Reader<T>::Notes : public fdds::DataReaderListener {
+  std::mutex mutex;
+  std::vector<StatusNote> notes;
+
+  void add(StatusNote::Kind kind, ParticipantId who, int count) {
+    std::lock_guard<std::mutex> lock(mutex);
+    notes.push_back(StatusNote{kind, who, count});
+  }
+  void on_liveliness_changed(fdds::DataReader *, const fdds::LivelinessChangedStatus &s) override {
+    if (s.not_alive_count_change > 0)
+      add(StatusNote::writer_lost, prefix_of(eprosima::fastrtps::rtps::iHandle2GUID(s.last_publication_handle)), 1);
+  }
+  void on_subscription_matched(fdds::DataReader *, const fdds::SubscriptionMatchedStatus &s) override {
+    ParticipantId who = prefix_of(eprosima::fastrtps::rtps::iHandle2GUID(s.last_publication_handle));
+    if (s.current_count_change < 0) add(StatusNote::writer_lost, who, 1);
+    if (s.current_count_change > 0) add(StatusNote::writer_matched, who, 1);
+  }
+  void on_requested_deadline_missed(fdds::DataReader *, const fdds::RequestedDeadlineMissedStatus &s) override {
+    add(StatusNote::deadline_missed, ParticipantId{}, s.total_count_change);
+  }
+  void on_sample_rejected(fdds::DataReader *, const fdds::SampleRejectedStatus &s) override {
+    add(StatusNote::rejected, ParticipantId{}, s.total_count_change);
+  }
+};
+
+struct Domain::Impl {
+  fdds::DomainParticipant *participant = nullptr;
+  fdds::Publisher *publisher = nullptr;
+  fdds::Subscriber *subscriber = nullptr;
+  std::map<std::string, fdds::Topic *> topics;
+  std::vector<fdds::DataWriter *> writers;
+  std::vector<fdds::DataReader *> readers;
+  std::vector<std::shared_ptr<fdds::DataReaderListener>> listeners;
+
+  ~Impl() {
+    // reverse order of creation: endpoints, topics, publisher/subscriber, participant
+    for (auto it = readers.rbegin(); it != readers.rend(); ++it) subscriber->delete_datareader(*it);
+    for (auto it = writers.rbegin(); it != writers.rend(); ++it) publisher->delete_datawriter(*it);
+    for (auto &t : topics) participant->delete_topic(t.second);
+    if (subscriber) participant->delete_subscriber(subscriber);
+    if (publisher) participant->delete_publisher(publisher);
+    if (participant) fdds::DomainParticipantFactory::get_instance()->delete_participant(participant);
+  }
+
+  template <class T>
+  fdds::Topic *topic(const char *name, std::string *err) {
+    auto it = topics.find(name);
+    if (it != topics.end()) return it->second;
+    fdds::TypeSupport type;
+    std::shared_ptr<fdds::TopicDataType> &base = type;
+    base = std::make_shared<typename Wire<T>::Support>();
+    if (type.register_type(participant) != ReturnCode_t::RETCODE_OK) {
+      *err = std::string("cannot register type ") + type.get_type_name();
+      return nullptr;
+    }
+    fdds::Topic *t = participant->create_topic(name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+    if (!t) {
+      *err = std::string("cannot create topic ") + name;
+      return nullptr;
+    }
+    topics[name] = t;
+    return t;
+  }
+};
+
+std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_file,
+                                     const std::string &participant_profile, const std::string &name,
+                                     std::string *err) {
+  if (domain_id < 0 || domain_id > kMaxDomain) {
+    *err = "domain " + std::to_string(domain_id) + " is unusable: RTPS maps domains 0 to " +
+           std::to_string(kMaxDomain) + " onto UDP ports";
+    return nullptr;
+  }
+  {
+    std::ifstream f(profile_file);
+    if (!f) {
+      *err = "QoS profile file " + profile_file + ": " + std::strerror(errno);
+      return nullptr;
+    }
+  }
+  auto *factory = fdds::DomainParticipantFactory::get_instance();
+  static std::mutex load_mutex;
+  static std::set<std::string> loaded;
+  {
+    std::lock_guard<std::mutex> lock(load_mutex);
+    if (!loaded.count(profile_file)) {
+      if (factory->load_XML_profiles_file(profile_file) != ReturnCode_t::RETCODE_OK) {
+        *err = "QoS profile file " + profile_file + ": not a valid Fast DDS profile file";
+        return nullptr;
+      }
+      loaded.insert(profile_file);
+    }
+  }
+  fdds::DomainParticipantQos qos;
+  if (factory->get_participant_qos_from_profile(participant_profile, qos) != ReturnCode_t::RETCODE_OK) {
+    *err = "QoS profile file " + profile_file + ": no participant profile \"" + participant_profile + "\"";
+    return nullptr;
+  }
+  qos.name(name);
+  auto d = std::make_unique<Domain>(Key{});
+  d->impl_ = std::make_unique<Impl>();
+  d->domain_id_ = domain_id;
+  d->impl_->participant = factory->create_participant(domain_id, qos);
+  if (!d->impl_->participant) {
+    *err = "domain " + std::to_string(domain_id) +
+           " is busy or unusable: no participant could be created (its UDP ports taken, or the "
+           "profile's transport cannot be used here)";
+    return nullptr;
+  }
+  d->impl_->publisher = d->impl_->participant->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  d->impl_->subscriber = d->impl_->participant->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  if (!d->impl_->publisher || !d->impl_->subscriber) {
+    *err = "cannot create a publisher or subscriber";
+    return nullptr;
+  }
+  return d;
+}
+
+Domain::Domain(Key) {}
+Domain::~Domain() = default;
+
+ParticipantId Domain::id() const { return prefix_of(impl_->participant->guid()); }
+
+double Domain::reader_deadline(const char *profile) const {
+  fdds::DataReaderQos qos;
+  if (impl_->subscriber->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) return 0.0;
+  const auto &p = qos.deadline().period;
+  if (p == eprosima::fastrtps::c_TimeInfinite) return 0.0;
+  return p.seconds + p.nanosec * 1e-9;
+}
+
+template <class T>
+Writer<T> Domain::writer(const char *topic_name, const char *profile, Sizing sizing, std::string *err) {
+  Writer<T> w;
+  fdds::Topic *t = impl_->topic<T>(topic_name, err);
+  if (!t) return w;
+  fdds::DataWriterQos qos;
+  if (impl_->publisher->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    *err = std::string("no data_writer profile \"") + profile + "\" in the QoS profile file";
+    return w;
+  }
+  size_limits(&qos, sizing);
+  w.w_ = impl_->publisher->create_datawriter(t, qos);
+  if (!w.w_) {
+    *err = std::string("cannot create a writer on ") + topic_name + " with profile " + profile;
+    return w;
+  }
+  impl_->writers.push_back(w.w_);
+  return w;
+}
+
+template <class T>
+Reader<T> Domain::reader(const char *topic_name, const char *profile, Sizing sizing, std::string *err) {
+  Reader<T> r;
+  fdds::Topic *t = impl_->topic<T>(topic_name, err);
+  if (!t) return r;
+  fdds::DataReaderQos qos;
+  if (impl_->subscriber->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    *err = std::string("no data_reader profile \"") + profile + "\" in the QoS profile file";
+    return r;
+  }
+  size_limits(&qos, sizing);
+  auto notes = std::make_shared<typename Reader<T>::Notes>();
+  fdds::StatusMask mask = fdds::StatusMask::liveliness_changed() << fdds::StatusMask::subscription_matched()
+                          << fdds::StatusMask::requested_deadline_missed() << fdds::StatusMask::sample_rejected();
+  r.r_ = impl_->subscriber->create_datareader(t, qos, notes.get(), mask);
+  if (!r.r_) {
+    *err = std::string("cannot create a reader on ") + topic_name + " with profile " + profile;
+    return r;
+  }
+  r.notes_ = notes.get();
+  impl_->listeners.push_back(notes);
+  impl_->readers.push_back(r.r_);
+  return r;
+}
+
+template <class T>
+bool Writer<T>::write(const T &sample) {
+  typename Wire<T>::Idl wire = to_idl(sample);
+  return w_ && w_->write(&wire);
+}
+
+template <class T>
+int Writer<T>::matched() const {
+  fdds::PublicationMatchedStatus s;
+  if (!w_ || w_->get_publication_matched_status(s) != ReturnCode_t::RETCODE_OK) return 0;
+  return s.current_count;
+}
+
+template <class T>
+bool Reader<T>::take(T *sample, SampleMeta *meta) {
+  if (!r_) return false;
+  typename Wire<T>::Idl wire;
+  fdds::SampleInfo info;
+  while (r_->take_next_sample(&wire, &info) == ReturnCode_t::RETCODE_OK) {
+    if (!info.valid_data) continue;
+    *sample = T{};
+    from_idl(wire, sample);
+    if (meta) {
+      meta->from = prefix_of(info.sample_identity.writer_guid());
+      meta->source_time = seconds(info.source_timestamp);
+      meta->reception_time = seconds(info.reception_timestamp);
+    }
+    return true;
+  }
+  return false;
+}
+
+template <class T>
+int Reader<T>::matched() const {
+  fdds::SubscriptionMatchedStatus s;
+  if (!r_ || r_->get_subscription_matched_status(s) != ReturnCode_t::RETCODE_OK) return 0;
+  return s.current_count;
+}
+
+template <class T>
+void Reader<T>::drain_status(std::vector<StatusNote> *out) {
+  if (!notes_) return;
+  std::lock_guard<std::mutex> lock(notes_->mutex);
+  out->insert(out->end(), notes_->notes.begin(), notes_->notes.end());
+  notes_->notes.clear();
+}
+
+#define BALL_ENDPOINTS(T)                                                                      \
+  template class Writer<T>;                                                                    \
+  template class Reader<T>;                                                                    \
+  template Writer<T> Domain::writer<T>(const char *, const char *, Sizing, std::string *);     \
+  template Reader<T> Domain::reader<T>(const char *, const char *, Sizing, std::string *);
+BALL_ENDPOINTS(RacketSampleIn)
+BALL_ENDPOINTS(ControlIn)
+BALL_ENDPOINTS(SegmentOut)
+BALL_ENDPOINTS(EventOut)
+BALL_ENDPOINTS(StateOut)
+BALL_ENDPOINTS(MatchInfoOut)
+BALL_ENDPOINTS(StatusOut)
+#undef BALL_ENDPOINTS
+
+}  // namespace dds
+}  // namespace ballsrv

@@ -1,0 +1,143 @@
+// The one place that knows Fast DDS: a participant on a domain with its
+// publisher, subscriber, topics, writers and readers, all created from the
+// XML profile file (server/qos/ball_qos.xml) and owned here. A Domain
+// deletes them in reverse order (readers and writers, topics, subscriber and
+// publisher, participant) when it goes; Writer and Reader are handles that
+// must not outlive it. Nothing else in the project includes a DDS header.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "types.h"
+
+namespace eprosima {
+namespace fastdds {
+namespace dds {
+class DataWriter;
+class DataReader;
+}  // namespace dds
+}  // namespace fastdds
+}  // namespace eprosima
+
+namespace ballsrv {
+namespace dds {
+
+// Topic names (docs/protocol.md).
+constexpr const char *kRacketTopic = "ball/racket_samples";
+constexpr const char *kStateTopic = "ball/ball_state";
+constexpr const char *kSegmentTopic = "ball/segments";
+constexpr const char *kEventTopic = "ball/events";
+constexpr const char *kControlTopic = "ball/match_control";
+constexpr const char *kInfoTopic = "ball/match_info";
+constexpr const char *kStatusTopic = "ball/server_status";
+
+// Endpoint profiles of the XML file, by purpose.
+constexpr const char *kRacketProfile = "racket_samples";
+constexpr const char *kStateProfile = "ball_state";
+constexpr const char *kSegmentProfile = "segments";
+constexpr const char *kEventProfile = "events";
+constexpr const char *kControlProfile = "control";
+constexpr const char *kInfoProfile = "match_info";
+constexpr const char *kStatusProfile = "server_status";
+
+// Instances a client's readers make room for: the matches it may see on a
+// domain (a reader without room for an instance drops its samples, counted
+// as rejected, and a bot would miss its own match among many).
+constexpr int kClientRoom = 4096;
+
+// How many instances (keys) an endpoint must hold: the profile says keep
+// last N per instance; this says how many instances, and so max_samples.
+struct Sizing {
+  int instances = 1;
+};
+
+// What DDS says about a sample besides its data.
+struct SampleMeta {
+  ParticipantId from{};      // the writer's participant GUID prefix
+  double source_time = 0.0;  // writer's realtime clock at write, s since 1970
+  double reception_time = 0.0;
+};
+
+// Something the DDS threads noticed about a reader's writers; the owning
+// loop drains them (Reader::drain_status).
+struct StatusNote {
+  enum Kind { writer_lost, deadline_missed, rejected, writer_matched } kind;
+  ParticipantId who{};  // writer_lost/writer_matched: the participant; zeros otherwise
+  int count = 1;
+};
+
+class Domain;
+
+template <class T>
+class Writer {
+ public:
+  Writer() = default;
+  bool write(const T &sample);
+  int matched() const;  // readers matched now
+  bool valid() const { return w_ != nullptr; }
+
+ private:
+  friend class Domain;
+  eprosima::fastdds::dds::DataWriter *w_ = nullptr;
+};
+
+template <class T>
+class Reader {
+ public:
+  Reader() = default;
+  // Takes one sample; false when none is left. Invalid samples (disposals,
+  // unregistrations) are skipped.
+  bool take(T *sample, SampleMeta *meta);
+  int matched() const;  // writers matched now
+  // Moves the notes the DDS threads queued since the last call into out.
+  void drain_status(std::vector<StatusNote> *out);
+  bool valid() const { return r_ != nullptr; }
+
+ private:
+  friend class Domain;
+  eprosima::fastdds::dds::DataReader *r_ = nullptr;
+  struct Notes;
+  Notes *notes_ = nullptr;
+};
+
+class Domain {
+  struct Key {};  // only open() makes a Domain
+
+ public:
+  explicit Domain(Key);
+  // Loads `profile_file` (once per process), then creates the participant
+  // with `participant_profile` on `domain_id`. Returns nullptr with a
+  // sentence in err: a missing or invalid profile file, a domain id outside
+  // [0, 232], a participant that cannot be created.
+  static std::unique_ptr<Domain> open(int domain_id, const std::string &profile_file,
+                                      const std::string &participant_profile, const std::string &name,
+                                      std::string *err);
+  ~Domain();
+  Domain(const Domain &) = delete;
+  Domain &operator=(const Domain &) = delete;
+
+  ParticipantId id() const;
+  int domain_id() const { return domain_id_; }
+
+  // Endpoints on `topic` with the data_writer/data_reader profile `profile`;
+  // an invalid handle with err on failure.
+  template <class T>
+  Writer<T> writer(const char *topic, const char *profile, Sizing sizing, std::string *err);
+  template <class T>
+  Reader<T> reader(const char *topic, const char *profile, Sizing sizing, std::string *err);
+
+  // The deadline period a data_reader profile requests (s; 0: none).
+  double reader_deadline(const char *profile) const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  int domain_id_ = 0;
+};
+
+}  // namespace dds
+}  // namespace ballsrv

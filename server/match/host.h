@@ -1,0 +1,45 @@
+// The matches of one server and the scenes it may start new ones from, free
+// of DDS: routes samples and control messages to their match, creates
+// matches on request. The server app owns one and drives it from its loop.
+#pragma once
+
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "match.h"
+
+namespace ballsrv {
+
+class Host {
+ public:
+  // `max_matches` bounds matches created on request (and sizes DDS); the
+  // template gives every setting of such a match but id, scene, players and level.
+  Host(size_t max_matches, bool allow_create, MatchConfig create_template);
+
+  // A scene a CREATE may name (at most 31 bytes).
+  bool add_scene(const std::string &name, const ball_scene &scene, std::string *err);
+  bool add_match(const MatchConfig &config, const ball_scene &scene, std::string *err);
+
+  SampleResult on_sample(const RacketSampleIn &sample, double now);
+  // Routes one control message; *match gets the match it concerned (nullptr
+  // when none: an unknown match, or a CREATE refused; those are only counted).
+  Reason on_control(const ControlIn &control, double now, MatchOutput *out, Match **match);
+  void on_participant_lost(const ParticipantId &who);
+
+  Match *find(uint32_t id);
+  const std::vector<std::unique_ptr<Match>> &matches() const { return matches_; }
+  size_t max_matches() const { return max_matches_; }
+  int max_players() const;  // over the matches and what CREATE allows
+
+ private:
+  size_t max_matches_;
+  bool allow_create_;
+  MatchConfig template_;
+  std::map<std::string, ball_scene> scenes_;
+  std::vector<std::unique_ptr<Match>> matches_;
+  std::map<uint32_t, Match *> by_id_;
+};
+
+}  // namespace ballsrv

@@ -1,0 +1,510 @@
+#include "match.h"
+
+#include <cmath>
+
+#include "ball/vec3.h"
+#include "rng.h"
+
+namespace ballsrv {
+
+namespace {
+
+constexpr double kMinNormal = 1e-6;   // |normal| below: zero_normal
+constexpr double kMaxNormal = 1e6;    // above: out_of_range
+constexpr double kBoxMargin = 30.0;   // m around the court a racket may be
+constexpr double kBoxHeight = 30.0;   // m above the floor
+constexpr double kFarAway = 30.0;     // m beyond the court: the ball has left it
+
+bool same_sample(const ball_racket_sample &a, const RacketSampleIn &b) {
+  return a.t == b.capture_time && a.center.x == b.center.x && a.center.y == b.center.y &&
+         a.center.z == b.center.z;
+}
+
+bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
+
+}  // namespace
+
+bool check_match_config(const MatchConfig &c, std::string *err) {
+  auto fail = [err](const char *field, const char *rule) {
+    *err = std::string(field) + ": must be " + rule;
+    return false;
+  };
+  if (c.players < 1 || c.players > kMaxPlayers) return fail("players", "in [1, 4]");
+  if (!(c.frame_rate > 0.0 && c.frame_rate <= 1000.0)) return fail("frame_rate", "in (0, 1000] Hz");
+  if (!(c.time_base >= 0.05 && c.time_base <= 20.0)) return fail("time_base", "in [0.05, 20]");
+  if (!(c.state_rate >= 0.0 && c.state_rate <= c.frame_rate))
+    return fail("state_rate", "in [0, frame_rate] Hz");
+  if (!(c.serve_delay >= 0.0 && c.serve_delay <= 60.0)) return fail("serve_delay", "in [0, 60] s");
+  if (!(c.max_rally_time > 0.0 && c.max_rally_time <= 3600.0)) return fail("max_rally_time", "in (0, 3600] s");
+  if (!(c.extrapolation_time <= 10.0) || std::isnan(c.extrapolation_time))
+    return fail("extrapolation_time", "at most 10 s (negative: the scene's)");
+  if (!(c.stale_time <= 60.0) || std::isnan(c.stale_time)) return fail("stale_time", "at most 60 s (negative: the scene's)");
+  if (!(c.player_timeout > 0.0 && c.player_timeout <= 60.0)) return fail("player_timeout", "in (0, 60] s");
+  if (!(c.max_sample_age > 0.0 && c.max_sample_age <= 60.0)) return fail("max_sample_age", "in (0, 60] s");
+  if (!(c.max_sample_lead >= 0.0 && c.max_sample_lead <= 10.0)) return fail("max_sample_lead", "in [0, 10] s");
+  if (!(c.serve_v_up > 0.0 && c.serve_v_up <= 30.0)) return fail("serve_v_up", "in (0, 30] m/s");
+  if (!std::isfinite(c.court_x_lo)) return fail("court_x_lo", "finite");
+  if (c.scene_name.empty() || c.scene_name.size() >= static_cast<size_t>(kNameLen))
+    return fail("scene name", "1 to 31 bytes");
+  return true;
+}
+
+bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string *err) {
+  if (!check_match_config(config, err)) return false;
+  config_ = config;
+  scene_ = scene;
+  if (!court_from_model(scene.model, config.court_x_lo, &court_, err)) return false;
+  ModelSetup setup;
+  setup.players = config.players;
+  setup.level = config.level;
+  setup.extrapolation_time = config.extrapolation_time;
+  setup.stale_time = config.stale_time;
+  if (!build_match_model(scene, court_, setup, &model_, err)) return false;
+  ball_status st = ball_sim_init(&model_, &sim_);
+  if (st != BALL_OK) {
+    *err = std::string("sim: ") + ball_strerror(st);
+    return false;
+  }
+  step_events_.assign(BALL_MAX_CONTACTS + BALL_MAX_RACKETS + 8, ball_event{});
+  state_ = MatchState::waiting;
+  need_serve_ = true;
+  serve_at_ = sim_.time;
+  return true;
+}
+
+// ---- output helpers ------------------------------------------------------
+
+void Match::emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason, double value) {
+  EventOut e;
+  e.match_id = config_.id;
+  e.seq = ++event_seq_;
+  e.kind = kind;
+  e.index = index;
+  e.time = time;
+  e.reason = reason;
+  e.value = value;
+  e.score = score_;
+  e.segment_seq = segment_seq_;
+  out->events.push_back(e);
+}
+
+void Match::emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref) {
+  SegmentOut s;
+  s.match_id = config_.id;
+  s.seq = ++segment_seq_;
+  s.cause = cause;
+  s.cause_index = index;
+  s.segment = seg;
+  s.model_hash = ball_model_hash(&model_);
+  s.sample = ref;
+  out->segments.push_back(s);
+}
+
+void Match::set_state(MatchState s, MatchOutput *out) {
+  if (state_ == s) return;
+  state_ = s;
+  out->info_changed = true;
+}
+
+// ---- presence and the state machine -------------------------------------
+
+bool Match::all_present() const {
+  for (int i = 0; i < config_.players; ++i)
+    if (!slots_[i].held || !slots_[i].present) return false;
+  return true;
+}
+
+bool Match::holds_slot(const ParticipantId &who) const {
+  for (int i = 0; i < config_.players; ++i)
+    if (slots_[i].held && slots_[i].owner == who) return true;
+  return false;
+}
+
+void Match::on_participant_lost(const ParticipantId &who) {
+  for (int i = 0; i < config_.players; ++i)
+    if (slots_[i].held && slots_[i].owner == who) slots_[i].alive = false;
+}
+
+void Match::update_presence(double now, MatchOutput *out) {
+  int missing = -1;
+  for (int i = 0; i < config_.players; ++i) {
+    Slot &s = slots_[i];
+    bool present = s.held && s.alive && now - s.last_seen <= config_.player_timeout;
+    if (present != s.present) out->info_changed = true;
+    s.present = present;
+    if (s.held && !present && missing < 0) missing = i;
+  }
+  switch (state_) {
+    case MatchState::waiting:
+      if (all_present()) {
+        set_state(MatchState::playing, out);
+        if (left_mid_match_) emit(out, EventKind::resume, -1, sim_.time);
+        left_mid_match_ = false;
+      }
+      break;
+    case MatchState::playing:
+      if (missing >= 0) {
+        set_state(MatchState::paused, out);
+        pause_reason_ = Reason::pause_vanished;
+        pause_slot_ = missing;
+        counters_.pauses++;
+        emit(out, EventKind::pause, missing, sim_.time, Reason::pause_vanished);
+      }
+      break;
+    case MatchState::paused:
+      if (pause_reason_ == Reason::pause_vanished && all_present()) {
+        set_state(MatchState::playing, out);
+        pause_reason_ = Reason::none;
+        emit(out, EventKind::resume, pause_slot_, sim_.time);
+        pause_slot_ = -1;
+      }
+      break;
+  }
+}
+
+// ---- the frame ------------------------------------------------------------
+
+void Match::frame(double now, MatchOutput *out) {
+  update_presence(now, out);
+  if (state_ != MatchState::playing) return;
+  if (need_serve_ && sim_.time >= serve_at_) serve(out);
+
+  double dt = frame_time() * config_.time_base;
+  int n = 0;
+  ball_status st = ball_step(&model_, &sim_, dt, step_events_.data(), static_cast<int>(step_events_.size()), &n);
+  if (st != BALL_OK) {
+    counters_.step_errors++;  // the sim is as it was; the frame is lost, the match goes on
+    return;
+  }
+  counters_.frames++;
+  for (int i = 0; i < n; ++i) handle_event(step_events_[i], out);
+
+  if (rally_.live()) {
+    ball_state b;
+    ball_sim_state(&model_, &sim_, &b);
+    bool far = b.position.x < court_.x_lo - kFarAway || b.position.x > court_.x_hi + kFarAway ||
+               b.position.z < court_.z_lo - kFarAway || b.position.z > court_.z_hi + kFarAway;
+    bool still = sim_.seg.grounded && ball_v3_norm(b.velocity) < 0.05;
+    apply(rally_.on_frame(far || still, sim_.time, config_.max_rally_time), out);
+  }
+
+  state_accum_ += config_.state_rate / config_.frame_rate;
+  if (state_accum_ >= 1.0 - 1e-9) {
+    state_accum_ -= 1.0;
+    out->has_state = true;
+    StateOut &s = out->state;
+    s.match_id = config_.id;
+    s.frame = sim_.frame;
+    s.sim_time = sim_.time;
+    s.state = state_;
+    s.segment_seq = segment_seq_;
+    ball_sim_state(&model_, &sim_, &s.ball);
+    s.sim_hash = ball_sim_hash(&sim_);
+  }
+}
+
+// ---- the rules ------------------------------------------------------------
+
+void Match::handle_event(const ball_event &ev, MatchOutput *out) {
+  Cause cause = Cause::floor;
+  EventKind kind = EventKind::floor;
+  int index = -1;
+  SampleRef ref;
+  switch (ev.kind) {
+    case BALL_EVENT_FLOOR: break;
+    case BALL_EVENT_NET: cause = Cause::net; kind = EventKind::net; break;
+    case BALL_EVENT_WALL: cause = Cause::wall; kind = EventKind::wall; index = ev.index; break;
+    case BALL_EVENT_RACKET:
+      cause = Cause::racket;
+      kind = EventKind::racket;
+      index = ev.index;
+      if (index >= 0 && index < kMaxPlayers) ref = slots_[index].ref;
+      break;
+    case BALL_EVENT_KIND_COUNT: return;
+  }
+  emit_segment(out, cause, index, ev.segment, ref);
+  EventOut e;
+  e.match_id = config_.id;
+  e.seq = ++event_seq_;
+  e.kind = kind;
+  e.index = kind == EventKind::floor || kind == EventKind::net ? 0 : index;
+  e.side = side_of_point(ev.point);
+  e.in_play = rally_.live();
+  e.sound = ev.sound != 0;
+  e.time = ev.time;
+  e.point = ev.point;
+  e.velocity_in = ev.velocity_in;
+  e.velocity_out = ev.velocity_out;
+  e.segment_seq = segment_seq_;
+  e.score = score_;
+  out->events.push_back(e);
+  if (e.sound) {
+    EventOut s = e;
+    s.kind = EventKind::sound;
+    s.seq = ++event_seq_;
+    out->events.push_back(s);
+  }
+
+  if (!rally_.live()) {
+    if (kind == EventKind::racket) counters_.dead_hits++;
+    return;
+  }
+  switch (kind) {
+    case EventKind::floor:
+      counters_.bounces++;
+      apply(rally_.on_floor(e.side, court_.inside(ev.point.x, ev.point.z), ev.segment.grounded != 0), out);
+      break;
+    case EventKind::net: apply(rally_.on_net(), out); break;
+    case EventKind::wall: apply(rally_.on_wall(), out); break;
+    case EventKind::racket:
+      counters_.hits++;
+      apply(rally_.on_racket(Court::side_of_slot(index)), out);
+      break;
+    default: break;
+  }
+}
+
+void Match::apply(const Call &call, MatchOutput *out) {
+  if (!call.decided) return;
+  if (call.winner >= 0) {
+    score_[call.winner]++;
+    counters_.points++;
+  } else {
+    counters_.lets++;
+  }
+  points_played_++;
+  serving_side_ = static_cast<int>(points_played_ % 2);
+  need_serve_ = true;
+  serve_at_ = sim_.time + config_.serve_delay;
+  emit(out, EventKind::point, -1, sim_.time, call.reason);
+  out->events.back().side = call.winner;
+  out->info_changed = true;
+}
+
+void Match::serve(MatchOutput *out) {
+  int side = serving_side_;
+  // singles: slot = side; doubles: the partners of a side take turns
+  int slot = side;
+  if (config_.players > 2 && (points_played_ / 2) % 2 == 1 && side + 2 < config_.players) slot = side + 2;
+  if (slot >= config_.players) slot = 0, side = 0;
+  Rng rng(config_.seed * 0x9e3779b97f4a7c15ull + points_played_);
+  ball_vec3 from = court_.ready(slot, config_.players);
+  from.x += Court::toward_net(side) * 2.0;
+  from.y = court_.floor + 1.0;
+  double half_width = 0.5 * (court_.z_hi - court_.z_lo);
+  ball_vec3 target = court_.spot(1 - side, 0.7, rng.uniform(-0.3, 0.3) * half_width);
+  ball_state b{};
+  b.position = from;
+  if (lob_velocity(model_, from, target, config_.serve_v_up, &b.velocity) != BALL_OK)
+    b.velocity = ball_v3(Court::toward_net(side) * 15.0, config_.serve_v_up, 0.0);
+  if (ball_sim_set_state(&model_, &sim_, &b) != BALL_OK) {
+    counters_.step_errors++;
+    return;
+  }
+  rally_.start(side, sim_.time);
+  need_serve_ = false;
+  counters_.serves++;
+  emit_segment(out, Cause::serve, slot, sim_.seg, SampleRef{});
+  emit(out, EventKind::serve, slot, sim_.time);
+  EventOut &e = out->events.back();
+  e.side = side;
+  e.in_play = true;
+  e.point = from;
+  e.velocity_out = b.velocity;
+  out->info_changed = true;
+}
+
+// ---- samples --------------------------------------------------------------
+
+SampleResult Match::on_sample(const RacketSampleIn &s, double now) {
+  if (s.player < 0 || s.player >= config_.players) return SampleResult::bad_slot;
+  Slot &slot = slots_[s.player];
+  if (!slot.held) return SampleResult::not_joined;
+  if (slot.owner != s.from) return SampleResult::not_owner;
+  if (!std::isfinite(s.capture_time) || !ball_v3_finite(s.center) || !ball_v3_finite(s.normal))
+    return SampleResult::nonfinite;
+  double n = ball_v3_norm(s.normal);
+  if (!(n >= kMinNormal)) return SampleResult::zero_normal;
+  if (n > kMaxNormal) return SampleResult::out_of_range;
+  if (!in_range(s.center.x, court_.x_lo - kBoxMargin, court_.x_hi + kBoxMargin) ||
+      !in_range(s.center.z, court_.z_lo - kBoxMargin, court_.z_hi + kBoxMargin) ||
+      !in_range(s.center.y, court_.floor - 1.0, court_.floor + kBoxHeight))
+    return SampleResult::out_of_range;
+  if (s.capture_time > sim_.time + config_.max_sample_lead) return SampleResult::out_of_range;
+  // well formed and from the holder: the player is there
+  slot.last_seen = now;
+  slot.alive = true;
+  if (slot.has_seq) {
+    if (s.seq == slot.last_seq) return SampleResult::duplicate;
+    if (s.seq < slot.last_seq) return SampleResult::out_of_order;
+  }
+  if (s.capture_time < sim_.time - config_.max_sample_age) return SampleResult::stale;
+  if (state_ != MatchState::playing) return SampleResult::idle;
+  if (slot.samples > 0 && same_sample(slot.last, s)) return SampleResult::duplicate;
+  ball_racket_sample rs;
+  rs.t = s.capture_time;
+  rs.center = s.center;
+  rs.normal = s.normal;
+  ball_status st = ball_racket_push(&model_, &sim_, s.player, &rs);
+  switch (st) {
+    case BALL_OK: break;
+    case BALL_EDUPLICATE: return SampleResult::duplicate;
+    case BALL_ESTALE: return SampleResult::stale;
+    case BALL_EINVAL: return SampleResult::bad_slot;
+    default: return SampleResult::out_of_range;  // ENONFINITE/ERANGE: an implied infinite velocity
+  }
+  slot.has_seq = true;
+  slot.last_seq = s.seq;
+  slot.last = rs;
+  slot.samples++;
+  slot.ref.valid = true;
+  slot.ref.seq = s.seq;
+  slot.ref.source_time = s.source_time;
+  slot.ref.capture_time = s.capture_time;
+  return SampleResult::accepted;
+}
+
+// ---- control --------------------------------------------------------------
+
+Reason Match::refuse(const ControlIn &c, Reason why, MatchOutput *out) {
+  emit(out, EventKind::refused, static_cast<int>(c.kind), sim_.time, why, static_cast<double>(c.seq));
+  return why;
+}
+
+Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
+  switch (c.kind) {
+    case ControlKind::join: {
+      int slot = c.player;
+      if (slot == -1) {
+        for (int i = 0; i < config_.players && slot < 0; ++i)
+          if (slots_[i].held && slots_[i].owner == c.from) slot = i;  // already ours
+        for (int i = 0; i < config_.players && slot < 0; ++i)
+          if (!slots_[i].held) slot = i;
+        for (int i = 0; i < config_.players && slot < 0; ++i)
+          if (!slots_[i].alive || now - slots_[i].last_seen > config_.player_timeout) slot = i;  // vanished
+        if (slot < 0) return refuse(c, Reason::refused_no_room, out);
+      }
+      if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
+      Slot &s = slots_[slot];
+      if (s.held && s.owner == c.from) {  // a repeated join: nothing changes
+        s.alive = true;
+        return Reason::none;
+      }
+      if (s.held && s.alive && now - s.last_seen <= config_.player_timeout)
+        return refuse(c, Reason::refused_slot_held, out);
+      s = Slot{};
+      s.held = true;
+      s.owner = c.from;
+      s.last_seen = now;  // joining counts as being there until the timeout runs out
+      // the racket of a new holder starts without the old one's history (libball
+      // has no call for it: an empty track is what ball_sim_init makes)
+      sim_.tracks[slot] = ball_racket_track{};
+      emit(out, EventKind::join, slot, sim_.time);
+      out->info_changed = true;
+      return Reason::none;
+    }
+    case ControlKind::leave: {
+      int slot = c.player;
+      if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
+      if (!slots_[slot].held || slots_[slot].owner != c.from) return refuse(c, Reason::refused_not_player, out);
+      slots_[slot] = Slot{};
+      sim_.tracks[slot] = ball_racket_track{};
+      emit(out, EventKind::leave, slot, sim_.time);
+      if (state_ != MatchState::waiting) {
+        set_state(MatchState::waiting, out);
+        left_mid_match_ = true;
+        emit(out, EventKind::pause, slot, sim_.time, Reason::pause_left);
+        counters_.pauses++;
+      }
+      out->info_changed = true;
+      return Reason::none;
+    }
+    case ControlKind::create:
+      return refuse(c, Reason::refused_bad_value, out);  // the match exists already
+    default:
+      break;
+  }
+  // the rest is for the match's players
+  if (!holds_slot(c.from)) return refuse(c, Reason::refused_not_player, out);
+  switch (c.kind) {
+    case ControlKind::serve:
+      if (state_ != MatchState::playing || !need_serve_) return refuse(c, Reason::refused_state, out);
+      serve_at_ = sim_.time;
+      return Reason::none;
+    case ControlKind::level: {
+      if (c.level < BALL_LEVEL_EASY || c.level > BALL_LEVEL_ADVANCED) return refuse(c, Reason::refused_bad_value, out);
+      ball_model m = model_;
+      if (ball_model_set_level(&m, static_cast<ball_level>(c.level)) != BALL_OK ||
+          ball_sim_set_model(&m, &sim_) != BALL_OK)
+        return refuse(c, Reason::refused_bad_value, out);
+      model_ = m;
+      config_.level = static_cast<ball_level>(c.level);
+      emit(out, EventKind::level, -1, sim_.time, Reason::none, c.level);
+      out->info_changed = true;
+      return Reason::none;
+    }
+    case ControlKind::pause:
+      if (state_ != MatchState::playing) return refuse(c, Reason::refused_state, out);
+      set_state(MatchState::paused, out);
+      pause_reason_ = Reason::pause_requested;
+      pause_slot_ = -1;
+      counters_.pauses++;
+      emit(out, EventKind::pause, -1, sim_.time, Reason::pause_requested);
+      return Reason::none;
+    case ControlKind::resume:
+      if (state_ != MatchState::paused || !all_present()) return refuse(c, Reason::refused_state, out);
+      set_state(MatchState::playing, out);
+      pause_reason_ = Reason::none;
+      emit(out, EventKind::resume, -1, sim_.time);
+      return Reason::none;
+    case ControlKind::time_base:
+      if (!(c.time_base >= 0.05 && c.time_base <= 20.0)) return refuse(c, Reason::refused_bad_value, out);
+      config_.time_base = c.time_base;
+      emit(out, EventKind::time_base, -1, sim_.time, Reason::none, c.time_base);
+      out->info_changed = true;
+      return Reason::none;
+    default:
+      return refuse(c, Reason::refused_bad_value, out);
+  }
+}
+
+// ---- info -----------------------------------------------------------------
+
+MatchInfoOut Match::info() const {
+  MatchInfoOut i;
+  i.match_id = config_.id;
+  i.state = state_;
+  i.scene = config_.scene_name;
+  i.level = config_.level;
+  i.players = config_.players;
+  for (int k = 0; k < config_.players; ++k) {
+    const Slot &s = slots_[k];
+    i.slots[k].held = s.held;
+    i.slots[k].present = s.present;
+    i.slots[k].owner = s.owner;
+    i.slots[k].samples = s.samples;
+    i.slots[k].last_seq = s.last_seq;
+    i.slots[k].last_capture_time = s.last.t;
+  }
+  i.score = score_;
+  i.serving_side = serving_side_;
+  i.rally = points_played_;
+  i.segment_seq = segment_seq_;
+  i.frame_time = frame_time();
+  i.time_base = config_.time_base;
+  i.sim_time = sim_.time;
+  i.state_rate = config_.state_rate;
+  i.player_timeout = config_.player_timeout;
+  i.max_sample_age = config_.max_sample_age;
+  i.max_sample_lead = config_.max_sample_lead;
+  i.model_hash = ball_model_hash(&model_);
+  i.model = model_;
+  i.net_x = court_.net_x;
+  i.court_x[0] = court_.x_lo;
+  i.court_x[1] = court_.x_hi;
+  i.court_z[0] = court_.z_lo;
+  i.court_z[1] = court_.z_hi;
+  return i;
+}
+
+}  // namespace ballsrv

@@ -1,0 +1,154 @@
+// A match: one libball sim, its player slots and its rules, free of DDS.
+// Frames, samples and control messages go in; segments, events, ball states
+// and match info come out (docs/server.md, "Match rules").
+//
+// Time: the sim clock (sim s) advances by frame_time * time_base per frame
+// while the match plays and stands still otherwise. `now` arguments are the
+// server's realtime clock (s); they decide presence only, never the ball.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ball/ball.h"
+#include "ball/scene.h"
+#include "court.h"
+#include "rules.h"
+#include "types.h"
+
+namespace ballsrv {
+
+struct MatchConfig {
+  uint32_t id = 0;
+  std::string scene_name = "tennis";  // what MatchInfo calls it
+  int players = 2;                    // [1, kMaxPlayers]
+  ball_level level = BALL_LEVEL_EASY; // custom: the scene's own racket fields
+  double frame_rate = 60.0;           // frames per real s, (0, 1000]
+  double time_base = 1.0;             // sim s per real s, [0.05, 20]
+  double state_rate = 60.0;           // ball states per real s, [0, frame_rate]; 0: off
+  double serve_delay = 1.5;           // sim s between a point and the next serve
+  double max_rally_time = 60.0;       // sim s: a longer rally is a let
+  double extrapolation_time = 0.25;   // s, eq 15's cap; < 0: the scene's
+  double stale_time = -1.0;           // s; < 0: the scene's
+  double player_timeout = 1.0;        // real s without a sample before a player has vanished
+  double max_sample_age = 2.0;        // sim s: older samples are stale
+  double max_sample_lead = 0.5;       // sim s: capture times further ahead are out of range
+  double serve_v_up = 4.0;            // m/s: vertical launch speed of a serve
+  double court_x_lo = 0.0;            // m: where the court starts (Court)
+  uint64_t seed = 1;                  // serve placement
+};
+
+// Checks a config's ranges; false with the field's name and the rule in err.
+bool check_match_config(const MatchConfig &config, std::string *err);
+
+// What one call produced. The vectors keep their capacity between frames.
+struct MatchOutput {
+  std::vector<SegmentOut> segments;
+  std::vector<EventOut> events;
+  bool has_state = false;
+  StateOut state;
+  bool info_changed = false;
+  void clear() {
+    segments.clear();
+    events.clear();
+    has_state = false;
+    info_changed = false;
+  }
+};
+
+struct MatchCounters {
+  uint64_t frames = 0;       // sim steps
+  uint64_t hits = 0;         // racket hits in play
+  uint64_t dead_hits = 0;    // racket hits after the point was decided
+  uint64_t bounces = 0;      // floor contacts in play
+  uint64_t points = 0;
+  uint64_t lets = 0;
+  uint64_t serves = 0;
+  uint64_t pauses = 0;
+  uint64_t step_errors = 0;  // ball_step refused a frame (never seen; counted, not fatal)
+};
+
+class Match {
+ public:
+  // Builds the model (build_match_model) and the court; false with err.
+  bool init(const MatchConfig &config, const ball_scene &scene, std::string *err);
+
+  // One frame at real time `now`: presence, the state machine, the serve,
+  // the step and the rules.
+  void frame(double now, MatchOutput *out);
+
+  // A racket sample; never changes the ball. `now` is when it arrived.
+  SampleResult on_sample(const RacketSampleIn &sample, double now);
+
+  // A control message; refusals come out as a REFUSED event and the reason.
+  Reason on_control(const ControlIn &control, double now, MatchOutput *out);
+
+  // DDS saw the participant go (liveliness lost, writer gone): its slots
+  // count as vanished at the next frame.
+  void on_participant_lost(const ParticipantId &who);
+
+  MatchInfoOut info() const;
+  uint32_t id() const { return config_.id; }
+  MatchState state() const { return state_; }
+  const MatchConfig &config() const { return config_; }
+  const ball_model &model() const { return model_; }
+  const ball_sim &sim() const { return sim_; }
+  const Court &court() const { return court_; }
+  const MatchCounters &counters() const { return counters_; }
+  double frame_time() const { return 1.0 / config_.frame_rate; }
+  std::array<int, 2> score() const { return score_; }
+
+ private:
+  struct Slot {
+    bool held = false;
+    bool alive = true;         // not reported lost by DDS
+    bool present = false;      // derived each frame
+    ParticipantId owner{};
+    double last_seen = -1e300; // real s of its newest well-formed sample
+    uint32_t samples = 0;
+    bool has_seq = false;
+    uint32_t last_seq = 0;
+    ball_racket_sample last{}; // newest accepted sample
+    SampleRef ref;
+  };
+
+  void emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason = Reason::none,
+            double value = 0.0);
+  void emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref);
+  void handle_event(const ball_event &ev, MatchOutput *out);
+  void apply(const Call &call, MatchOutput *out);
+  void serve(MatchOutput *out);
+  void update_presence(double now, MatchOutput *out);
+  bool all_present() const;
+  bool holds_slot(const ParticipantId &who) const;
+  void set_state(MatchState s, MatchOutput *out);
+  Reason refuse(const ControlIn &c, Reason why, MatchOutput *out);
+  int side_of_point(ball_vec3 p) const { return court_.side_of(p.x); }
+
+  MatchConfig config_;
+  ball_scene scene_{};
+  ball_model model_{};
+  ball_sim sim_{};
+  Court court_;
+  std::array<Slot, kMaxPlayers> slots_{};
+  MatchState state_ = MatchState::waiting;
+  Reason pause_reason_ = Reason::none;
+  int pause_slot_ = -1;
+  bool left_mid_match_ = false;  // a LEAVE stopped a match that had started
+  bool need_serve_ = true;   // the next serve is due at serve_at_
+  double serve_at_ = 0.0;
+  Rally rally_;
+  std::array<int, 2> score_{0, 0};
+  int serving_side_ = 0;
+  uint32_t points_played_ = 0;
+  uint32_t segment_seq_ = 0;
+  uint32_t event_seq_ = 0;
+  uint32_t revision_ = 0;
+  double state_accum_ = 0.0; // fraction of a ball state owed (state_rate / frame_rate per frame)
+  MatchCounters counters_;
+  std::vector<ball_event> step_events_;
+};
+
+}  // namespace ballsrv

@@ -1,0 +1,123 @@
+#include "player.h"
+
+namespace ballsrv {
+
+namespace {
+constexpr double kJoinRetry = 0.5;  // s between JOIN requests until the slot is ours
+}
+
+BotPlayer::BotPlayer(const ball_scene &scene, const ParticipantId &me, const PlayerParams &params)
+    : scene_(scene),
+      me_(me),
+      p_(params),
+      link_({params.delay, params.jitter, params.loss}, params.seed * 0x9e3779b97f4a7c15ull + 7),
+      noise_(params.seed * 31 + 5),
+      slot_(params.player) {}
+
+bool BotPlayer::on_info(const MatchInfoOut &in, double real) {
+  if (in.match_id != p_.match) return true;
+  info_ = in;
+  have_info_ = true;
+  clock_.observe(in.sim_time, in.server_time, in.time_base, in.state == MatchState::playing, real);
+  if (!joined_) {
+    for (int i = 0; i < in.players; ++i)
+      if (in.slots[i].held && in.slots[i].owner == me_ && (p_.player < 0 || p_.player == i)) slot_ = i;
+  }
+  joined_ = slot_ >= 0 && slot_ < in.players && in.slots[slot_].held && in.slots[slot_].owner == me_;
+  if (!joined_ && p_.player < 0) slot_ = -1;  // taken from us: look for any free one again
+  // the model the server steps, rebuilt when the match's setup changes
+  if (in.level != level_ || in.players != players_ || in.model.extrapolation_time != extrapolation_ ||
+      in.model.stale_time != stale_) {
+    ModelSetup setup;
+    setup.players = in.players;
+    setup.level = static_cast<ball_level>(in.level);
+    setup.extrapolation_time = in.model.extrapolation_time;
+    setup.stale_time = in.model.stale_time;
+    Court court;
+    ball_model model;
+    if (!court_from_model(scene_.model, in.court_x[0], &court, &error_) ||
+        !build_match_model(scene_, court, setup, &model, &error_))
+      return false;
+    model_ = model;
+    court_ = court;
+    model_hash_ = ball_model_hash(&model_);
+    server_hash_ = in.model_hash;
+    counters_.hash_differs = model_hash_ != server_hash_;
+    if (brain_ready_) brain_.set_model(model_);
+    model_ready_ = true;
+    level_ = in.level;
+    players_ = in.players;
+    extrapolation_ = in.model.extrapolation_time;
+    stale_ = in.model.stale_time;
+  }
+  if (joined_ && model_ready_ && !brain_ready_) {
+    BotParams b;
+    b.slot = slot_;
+    b.players = players_;
+    b.miss_rate = p_.miss;
+    b.aim_error = p_.aim_error;
+    b.move_speed = p_.move_speed;
+    b.lead = p_.lead >= 0.0 ? p_.lead : bot_lead(p_.rate, p_.delay, p_.jitter, p_.loss);
+    b.seed = p_.seed;
+    brain_.init(model_, court_, b);
+    brain_ready_ = true;
+  }
+  return true;
+}
+
+void BotPlayer::on_state(const StateOut &s, double real) {
+  if (s.match_id != p_.match) return;
+  clock_.observe(s.sim_time, s.server_time, info_.time_base, s.state == MatchState::playing, real);
+}
+
+void BotPlayer::on_segment(const SegmentOut &seg, double real) {
+  if (seg.match_id != p_.match || seg.seq <= newest_seq_) return;
+  newest_seq_ = seg.seq;
+  counters_.segments++;
+  if (brain_ready_ && clock_.valid())
+    brain_.on_segment(seg.segment, seg.cause == Cause::serve, seg.cause_index, clock_.sim_now(real));
+}
+
+void BotPlayer::tick(double mono, double real, std::vector<RacketSampleIn> *samples,
+                     std::vector<ControlIn> *controls) {
+  if (next_sample_ < 0.0) next_sample_ = next_join_ = mono;
+  if (!joined_ && mono >= next_join_) {
+    ControlIn c;
+    c.match_id = p_.match;
+    c.seq = ++control_seq_;
+    c.kind = ControlKind::join;
+    c.player = p_.player;
+    controls->push_back(c);
+    next_join_ = mono + kJoinRetry;
+  }
+  if (joined_ && brain_ready_ && clock_.valid() && mono >= next_sample_) {
+    RacketSampleIn s;
+    s.match_id = p_.match;
+    s.player = slot_;
+    s.seq = ++sample_seq_;
+    s.capture_time = clock_.sim_now(real);
+    brain_.pose(s.capture_time, &s.center, &s.normal);
+    s.center.x += noise_.normal(p_.noise);
+    s.center.y += noise_.normal(p_.noise);
+    s.center.z += noise_.normal(p_.noise);
+    counters_.taken++;
+    if (!link_.send(s, mono)) counters_.lost++;
+    next_sample_ += 1.0 / p_.rate;
+    if (next_sample_ < mono) next_sample_ = mono + 1.0 / p_.rate;  // after a stall: no burst
+  }
+  link_.deliver(mono, [&](const RacketSampleIn &s) {
+    samples->push_back(s);
+    counters_.delivered++;
+  });
+}
+
+bool BotPlayer::leave(ControlIn *out) {
+  if (!joined_) return false;
+  out->match_id = p_.match;
+  out->seq = ++control_seq_;
+  out->kind = ControlKind::leave;
+  out->player = slot_;
+  return true;
+}
+
+}  // namespace ballsrv

@@ -1,0 +1,167 @@
+// ball_flood: a hostile client for the integration tests. Participant A
+// joins both slots of match 0 and keeps its rackets parked off the court
+// with well-formed samples at 10 Hz; once the match plays it sends, with
+// --per-kind N, N samples of every malformed kind the server must drop
+// (interleaved, about 1250 a second), some from a second participant B that
+// holds nothing. It writes what it sent, by kind, as JSON.
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "ball/vec3.h"
+#include "common.h"
+#include "domain.h"
+#include "sim_clock.h"
+
+using namespace ballsrv;
+using namespace ballsrv::app;
+
+namespace {
+const char *kProgram = "ball_flood";
+// each kind lands on the drop reason of the same name
+const SampleResult kKinds[] = {SampleResult::unknown_match, SampleResult::bad_slot, SampleResult::not_joined,
+                               SampleResult::not_owner,     SampleResult::nonfinite, SampleResult::zero_normal,
+                               SampleResult::out_of_range,  SampleResult::duplicate, SampleResult::out_of_order,
+                               SampleResult::stale};
+}  // namespace
+
+int main(int argc, char **argv) {
+  CLI::App cli{"ball_flood: well-formed parked rackets on match 0, then malformed samples of every kind"};
+  long per_kind = 0;
+  double duration = 12.0, interval = 0.0008;
+  std::string out_json;
+  DdsOptions dds_opt;
+  cli.add_option("--per-kind", per_kind, "malformed samples of each kind (0: only the parked rackets)");
+  cli.add_option("--duration", duration, "s to run");
+  cli.add_option("--interval", interval, "s between malformed samples");
+  cli.add_option("--out", out_json, "JSON file of what was sent");
+  add_dds_options(cli, &dds_opt);
+  CLI11_PARSE(cli, argc, argv);
+
+  std::string err;
+  install_stop_signals();
+  std::string profile = find_profile(dds_opt.profile);
+  auto a = dds::Domain::open(dds_opt.domain, profile, dds_opt.participant, "flood A", &err);
+  auto b = a ? dds::Domain::open(dds_opt.domain, profile, dds_opt.participant, "flood B", &err) : nullptr;
+  if (!a || !b) return fail(kProgram, err);
+  auto a_samples = a->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {16}, &err);
+  auto a_controls = a->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {1}, &err);
+  auto a_infos = a->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {dds::kClientRoom}, &err);
+  auto a_states = a->reader<StateOut>(dds::kStateTopic, dds::kStateProfile, {dds::kClientRoom}, &err);
+  auto b_samples = b->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {16}, &err);
+  if (!a_samples.valid() || !a_controls.valid() || !a_infos.valid() || !a_states.valid() || !b_samples.valid())
+    return fail(kProgram, err);
+
+  SimClock clock;
+  MatchInfoOut info;
+  bool have_info = false;
+  uint32_t seq[2] = {0, 0}, control_seq = 0;
+  RacketSampleIn last_valid[2];
+  std::map<std::string, long> sent;
+  long valid = 0, flood_index = 0;
+  const double start = mono_now();
+  double next_valid = start, next_join = start, next_bad = start, flood_started = -1.0, first_valid = -1.0;
+  bool playing = false;
+
+  auto parked = [&](int slot, double t) {
+    RacketSampleIn s;
+    s.match_id = 0;
+    s.player = slot;
+    s.seq = ++seq[slot];
+    s.capture_time = t;
+    s.center = ball_v3(info.court_x[0] - 5.0, 1.0, info.court_z[0] - 5.0 - slot);
+    s.normal = ball_v3(1, 0, 0);
+    return s;
+  };
+
+  while (!stop_requested() && mono_now() - start < duration) {
+    double now = mono_now(), real = realtime_now();
+    MatchInfoOut in;
+    while (a_infos.take(&in, nullptr))
+      if (in.match_id == 0) {
+        info = in;
+        have_info = true;
+        clock.observe(in.sim_time, in.server_time, in.time_base, in.state == MatchState::playing, real);
+      }
+    StateOut st;
+    while (a_states.take(&st, nullptr))
+      if (st.match_id == 0) {
+        clock.observe(st.sim_time, st.server_time, info.time_base, st.state == MatchState::playing, real);
+        playing = st.state == MatchState::playing;
+      }
+    if (!have_info) {
+      sleep_until(now + 0.005);
+      continue;
+    }
+    bool mine = info.slots[0].held && info.slots[0].owner == a->id() && info.slots[1].held &&
+                info.slots[1].owner == a->id();
+    if (!mine && now >= next_join) {
+      for (int slot = 0; slot < 2; ++slot) {
+        ControlIn c;
+        c.match_id = 0;
+        c.seq = ++control_seq;
+        c.kind = ControlKind::join;
+        c.player = slot;
+        a_controls.write(c);
+      }
+      next_join = now + 0.5;
+    }
+    double sim = clock.sim_now(real);
+    if (mine && now >= next_valid) {
+      for (int slot = 0; slot < 2; ++slot) {
+        last_valid[slot] = parked(slot, sim);
+        a_samples.write(last_valid[slot]);
+        valid++;
+      }
+      // no catching up: a burst would repeat one capture time (a duplicate)
+      next_valid = now + 0.1;
+    }
+    // the match plays and has taken the parked rackets for a while (the
+    // duplicate kind repeats an accepted sample)
+    if (info.state == MatchState::playing) playing = true;
+    if (mine && playing && first_valid < 0.0 && valid > 0) first_valid = now;
+    bool ready = mine && playing && first_valid > 0.0 && now - first_valid > 0.5;
+    if (ready && flood_started < 0.0) flood_started = now;
+    // the flood, once the match plays and both parked rackets are accepted
+    while (per_kind > 0 && ready && flood_index < per_kind * 10 && now >= next_bad) {
+      SampleResult kind = kKinds[flood_index % 10];
+      RacketSampleIn s = parked(0, sim);
+      bool from_b = false;
+      switch (kind) {
+        case SampleResult::unknown_match: s.match_id = 999; break;
+        case SampleResult::bad_slot: s.player = 7; break;
+        case SampleResult::not_joined: s.match_id = 1; break;
+        case SampleResult::not_owner: from_b = true; break;
+        case SampleResult::nonfinite: s.center.x = std::nan(""); break;
+        case SampleResult::zero_normal: s.normal = ball_v3(0, 0, 0); break;
+        case SampleResult::out_of_range: s.center.y = 1e4; break;
+        case SampleResult::duplicate: s = last_valid[0]; seq[0]--; break;  // the very same sample again
+        case SampleResult::out_of_order: s.seq = 1; seq[0]--; break;
+        case SampleResult::stale: s.capture_time = sim - 10.0; break;
+        default: break;
+      }
+      (from_b ? b_samples : a_samples).write(s);
+      sent[drop_name(kind)]++;
+      flood_index++;
+      next_bad += interval;
+    }
+    if (!ready) next_bad = now;
+    sleep_until(std::min(next_valid, now + 0.0005));
+  }
+  nlohmann::json j;
+  j["valid"] = valid;
+  j["flood_started"] = flood_started < 0 ? -1.0 : flood_started - start;
+  j["sent"] = sent;
+  j["malformed"] = flood_index;
+  // what it last heard, to tell why a flood did not start
+  j["last_info"] = {{"have", have_info},
+                    {"state", state_name(info.state)},
+                    {"held", {info.slots[0].held, info.slots[1].held}},
+                    {"samples", {info.slots[0].samples, info.slots[1].samples}},
+                    {"revision", info.revision}};
+  if (!out_json.empty()) std::ofstream(out_json) << j.dump(1) << "\n";
+  std::printf("%s: %ld parked samples, %ld malformed\n", kProgram, valid, flood_index);
+  return per_kind > 0 && flood_index < per_kind * 10 ? 1 : 0;
+}

@@ -1,0 +1,530 @@
+// The networked integration tests (loopback only): each case starts
+// ball-server, bots and watchers on a DDS domain of its own, follows the
+// watchers' JSON Lines records, asserts numbers, and stops everything it
+// started, also when it fails (Process stops its group when it goes) or
+// hangs (a watchdog kills every group and exits). A case fails as well if
+// Fast DDS files are left in /dev/shm.
+//
+//   ball_itest CASE --bin DIR --domain N --work DIR
+#include <dirent.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdarg>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <thread>
+
+#include "ball/scene.h"
+#include "ball/vec3.h"
+#include "common.h"
+#include "process.h"
+
+using namespace ballsrv;
+using namespace ballsrv::app;
+using json = nlohmann::json;
+
+namespace {
+
+struct Env {
+  std::string bin, work;
+  int domain = 0;
+  std::string dom() const { return std::to_string(domain); }
+};
+
+int failures = 0;
+
+#define EXPECT(cond, ...)                                             \
+  do {                                                                \
+    if (!(cond)) {                                                    \
+      std::printf("FAILED %s:%d: %s: ", __FILE__, __LINE__, #cond);   \
+      std::printf(__VA_ARGS__);                                       \
+      std::printf("\n");                                              \
+      failures++;                                                     \
+    }                                                                 \
+  } while (0)
+
+void note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void note(const char *fmt, ...) {
+  va_list ap;
+  va_start(ap, fmt);
+  std::printf("  ");
+  std::vprintf(fmt, ap);
+  std::printf("\n");
+  va_end(ap);
+  std::fflush(stdout);
+}
+
+// Follows a JSON Lines file as it grows.
+class Tail {
+ public:
+  explicit Tail(std::string path) : path_(std::move(path)) {}
+  // reads the complete lines added since the last call
+  void poll() {
+    std::ifstream f(path_);
+    if (!f) return;
+    f.seekg(static_cast<std::streamoff>(offset_));
+    std::string line;
+    while (std::getline(f, line)) {
+      if (f.eof()) break;  // no newline yet: a line being written
+      offset_ += line.size() + 1;
+      json j = json::parse(line, nullptr, false);
+      if (!j.is_discarded()) lines.push_back(j);
+    }
+  }
+  std::vector<json> lines;
+
+ private:
+  std::string path_;
+  size_t offset_ = 0;
+};
+
+// A server that must end cleanly when it is told to: status 0 on SIGTERM.
+// Declared first in a case, it is stopped last, after its clients.
+struct Server {
+  Process p;
+  Server() = default;
+  explicit Server(Process process) : p(std::move(process)) {}
+  Server(Server &&) = default;
+  Server &operator=(Server &&) = default;
+  ~Server() {
+    if (p.pid() <= 0 && p.status() == -1) return;  // moved from
+    int rc = p.stop(5.0);
+    EXPECT(rc == 0, "the server's exit status on SIGTERM: %d", rc);
+  }
+};
+
+// Processes of one case: started here, stopped by their owners.
+struct Case {
+  Env env;
+  Server server(std::vector<std::string> extra = {}) {
+    std::vector<std::string> a = {env.bin + "/ball-server", "--domain", env.dom(), "--startup-wait", "0",
+                                  "--duration", "120", "--stats-json", env.work + "/server.json"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return Server(Process::start(a, env.work + "/server.out", env.work + "/server.err"));
+  }
+  Process bot(int slot, std::vector<std::string> extra = {}) {
+    std::vector<std::string> a = {env.bin + "/ball-bot", "--domain", env.dom(), "--player", std::to_string(slot),
+                                  "--duration", "120"};
+    if (std::find(extra.begin(), extra.end(), "--seed") == extra.end()) extra.push_back("--seed"), extra.push_back(std::to_string(slot + 1));
+    a.insert(a.end(), extra.begin(), extra.end());
+    std::string log = env.work + "/bot" + std::to_string(slot) + "." + std::to_string(++bots_);
+    return Process::start(a, log + ".out", log + ".err");
+  }
+  Process watcher(const std::string &record, std::vector<std::string> extra = {}) {
+    std::vector<std::string> a = {env.bin + "/ball-watch", "--domain", env.dom(), "--no-log", "--duration", "120",
+                                  "--record", record};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return Process::start(a, record + ".out", record + ".err");
+  }
+  int bots_ = 0;
+};
+
+std::string path(const Env &e, const std::string &name) { return e.work + "/" + name; }
+
+// Polls a record until pred holds for one of its new lines or timeout s pass;
+// the line, or null.
+json wait_for(Tail &t, double timeout, const std::function<bool(const json &)> &pred, size_t *from = nullptr) {
+  double end = mono_now() + timeout;
+  size_t i = from ? *from : 0;
+  while (true) {
+    t.poll();
+    for (; i < t.lines.size(); ++i)
+      if (pred(t.lines[i])) {
+        if (from) *from = i + 1;
+        return t.lines[i];
+      }
+    if (mono_now() >= end) break;
+    usleep(50000);
+  }
+  if (from) *from = i;
+  return json();
+}
+
+bool is_event(const json &j, const char *kind) { return j.value("type", "") == "event" && j.value("kind", "") == kind; }
+bool is_hit(const json &j) { return is_event(j, "racket") && j.value("in_play", false); }
+
+size_t count(const std::vector<json> &lines, const std::function<bool(const json &)> &pred) {
+  size_t n = 0;
+  for (const auto &j : lines) n += pred(j);
+  return n;
+}
+
+// A watcher that hears the server already: events are not kept for late
+// joiners, so the bots start (and the match serves) only once it is ready.
+Process ready_watcher(Case &c, const std::string &record, const std::vector<std::string> &extra) {
+  Process w = c.watcher(record, extra);
+  Tail t(record);
+  json r = wait_for(t, 15.0, [](const json &j) { return j.value("type", "") == "ready"; });
+  EXPECT(!r.is_null(), "the watcher did not match the server within 15 s");
+  return w;
+}
+
+// A server, a watcher recording to `record` and two bots with the same
+// options, started in that order (a braced list is evaluated left to right);
+// the server, declared first, is stopped last.
+struct Play {
+  Server server;
+  Process w, b0, b1;
+  Tail t;
+};
+
+Play play(Case &c, const std::vector<std::string> &bot_args, const std::string &record,
+          const std::vector<std::string> &watch_extra = {}) {
+  return Play{c.server(), ready_watcher(c, record, watch_extra), c.bot(0, bot_args), c.bot(1, bot_args),
+              Tail(record)};
+}
+
+// the first serve's reception time, or a failed check and -1
+double first_serve(Tail &t) {
+  json serve = wait_for(t, 15.0, [](const json &j) { return is_event(j, "serve"); });
+  EXPECT(!serve.is_null(), "no serve within 15 s");
+  return serve.is_null() ? -1.0 : serve["recv"].get<double>();
+}
+
+// racket hits in play received within `seconds` of t0, up to `want`; *last: when the last came
+int hits_within(Tail &t, double t0, int want, double seconds, double *last) {
+  size_t from = 0;
+  int hits = 0;
+  *last = t0;
+  while (hits < want) {
+    json h = wait_for(t, t0 + seconds - realtime_now(), is_hit, &from);
+    if (h.is_null()) break;
+    hits++;
+    *last = h["recv"].get<double>();
+  }
+  return hits;
+}
+
+// ---- the cases ---------------------------------------------------------------
+
+// two bots with these options rally: at least `want` racket hits within 30 s of the first serve
+void rally_with(const Env &env, const std::vector<std::string> &bot_args, int want, const char *what) {
+  Case c{env};
+  Play p = play(c, bot_args, path(env, "watch.jsonl"));
+  double t0 = first_serve(p.t), last = 0.0;
+  if (t0 < 0.0) return;
+  int hits = hits_within(p.t, t0, want, 30.0, &last);
+  note("%s: %d racket hits in %.1f s after the first serve", what, hits, last - t0);
+  EXPECT(hits >= want, "%d hits in 30 s, want %d", hits, want);
+}
+
+void case_rally(const Env &env) { rally_with(env, {"--rate", "15"}, 10, "15 Hz"); }
+
+// two bots at 6 Hz with 100 ms added delay and 20 % loss still rally
+void case_lossy(const Env &env) {
+  rally_with(env, {"--rate", "6", "--delay", "0.1", "--loss", "0.2"}, 5, "6 Hz, 100 ms, 20 % loss");
+}
+
+// the ball evaluated from segments matches the server's ball states
+void case_desync(const Env &env) {
+  Case c{env};
+  std::string sum = path(env, "watch.json");
+  Play p = play(c, {"--rate", "30"}, path(env, "watch.jsonl"), {"--summary-json", sum});
+  Tail &t = p.t;
+  first_serve(t);
+  usleep(10 * 1000000);
+  p.w.stop();
+  t.poll();
+  // the watcher's own check
+  std::ifstream f(sum);
+  json s = json::parse(f, nullptr, false);
+  EXPECT(!s.is_discarded() && !s["matches"].empty(), "no summary");
+  if (s.is_discarded() || s["matches"].empty()) return;
+  const json &m = s["matches"][0];
+  note("watcher: %d states, %d checked, %d unmatched, max error %.3g m, %d segments, %d hits",
+       m["states"].get<int>(), m["states_checked"].get<int>(), m["states_unmatched"].get<int>(),
+       m["max_error"].get<double>(), m["segments"].get<int>(), m["hits"].get<int>());
+  EXPECT(m["states_checked"].get<int>() >= 400, "only %d states checked", m["states_checked"].get<int>());
+  EXPECT(m["max_error"].get<double>() <= 1e-9, "max error %.3g m", m["max_error"].get<double>());
+  EXPECT(m["segments"].get<int>() >= 8, "only %d segments", m["segments"].get<int>());
+  // and again here, from the record, with libball and the scene's own model
+  ball_scene scene;
+  ball_scene_default(&scene);
+  std::map<long, ball_segment> segs;
+  for (const auto &j : t.lines)
+    if (j.value("type", "") == "segment") {
+      ball_segment g{};
+      g.t0 = j["t0"];
+      g.p0 = ball_v3(j["p0"][0], j["p0"][1], j["p0"][2]);
+      g.v0 = ball_v3(j["v0"][0], j["v0"][1], j["v0"][2]);
+      g.s0 = ball_v3(j["s0"][0], j["s0"][1], j["s0"][2]);
+      g.grounded = j["grounded"].get<bool>();
+      segs[j["seq"].get<long>()] = g;
+    }
+  double worst = 0.0;
+  int checked = 0;
+  for (const auto &j : t.lines) {
+    if (j.value("type", "") != "state") continue;
+    auto it = segs.find(j["segment_seq"].get<long>());
+    if (it == segs.end()) continue;
+    ball_state b;
+    ball_segment_eval(&scene.model, &it->second, j["sim_time"].get<double>(), &b);
+    worst = std::fmax(worst, ball_v3_max_diff(b.position, ball_v3(j["position"][0], j["position"][1], j["position"][2])));
+    checked++;
+  }
+  note("driver: %d states re-evaluated from the record, max error %.3g m", checked, worst);
+  EXPECT(checked >= 400 && worst <= 1e-9, "%d states, max error %.3g m", checked, worst);
+}
+
+// a killed bot pauses its match within 2 deadline periods; a new bot resumes it
+void case_pause(const Env &env) {
+  Case c{env};
+  Play p = play(c, {"--rate", "20"}, path(env, "watch.jsonl"));
+  Tail &t = p.t;
+  size_t from = 0;
+  for (int i = 0; i < 3; ++i) {
+    json h = wait_for(t, 15.0, is_hit, &from);
+    EXPECT(!h.is_null(), "no rally before the kill");
+    if (h.is_null()) return;
+  }
+  json info = wait_for(t, 5.0, [](const json &j) { return j.value("type", "") == "match_info"; });
+  double timeout = info.is_null() ? 1.0 : info["player_timeout"].get<double>();
+  double killed = realtime_now();
+  p.b1.signal(SIGKILL);
+  p.b1.wait(2.0);
+  json pause = wait_for(t, 10.0, [](const json &j) { return is_event(j, "pause"); }, &from);
+  EXPECT(!pause.is_null(), "no pause within 10 s of the kill");
+  if (pause.is_null()) return;
+  double after = pause["recv"].get<double>() - killed;
+  note("bot 1 killed; pause (%s, player %d) %.3f s later; deadline period %.2f s",
+       pause["reason"].get<std::string>().c_str(), pause["index"].get<int>(), after, timeout);
+  EXPECT(after <= 2.0 * timeout, "pause %.3f s after the kill, more than 2 deadline periods (%.2f s)", after, 2 * timeout);
+  EXPECT(pause["reason"] == "vanished" && pause["index"] == 1, "reason %s index %d",
+         pause["reason"].get<std::string>().c_str(), pause["index"].get<int>());
+  // the match stands still while paused
+  usleep(1500000);
+  t.poll();
+  size_t hits_paused = count(std::vector<json>(t.lines.begin() + static_cast<long>(from), t.lines.end()), is_hit);
+  EXPECT(hits_paused == 0, "%zu hits while paused", hits_paused);
+  double rejoin = realtime_now();
+  Process b2 = c.bot(1, {"--rate", "20", "--seed", "9"});
+  json r = wait_for(t, 15.0, [](const json &j) { return is_event(j, "resume"); }, &from);
+  EXPECT(!r.is_null(), "no resume within 15 s of a new bot");
+  if (r.is_null()) return;
+  note("a new bot for slot 1 started; resume %.3f s later", r["recv"].get<double>() - rejoin);
+  json h = wait_for(t, 10.0, is_hit, &from);
+  EXPECT(!h.is_null(), "no hit after the resume");
+}
+
+// 10,000 malformed samples: the server lives, the ball is the same, every drop counted
+void case_flood(const Env &env) {
+  auto run = [&](const char *name, long per_kind, json *server_stats, json *sent,
+                 std::map<long, std::string> *states) {
+    Case c{env};
+    std::string rec = path(env, std::string(name) + ".jsonl");
+    std::string stats = path(env, std::string(name) + "-server.json");
+    std::string flood_out = path(env, std::string(name) + "-flood.json");
+    Process server = Process::start({env.bin + "/ball-server", "--domain", env.dom(), "--startup-wait", "0",
+                                     "--matches", "2", "--duration", "120", "--stats-json", stats},
+                                    rec + ".server.out", rec + ".server.err");
+    Process w = c.watcher(rec, {"--match", "0"});
+    Process f = Process::start({env.bin + "/ball_flood", "--domain", env.dom(), "--per-kind",
+                                std::to_string(per_kind), "--duration", "13", "--out", flood_out},
+                               rec + ".flood.out", rec + ".flood.err");
+    int frc = f.wait(40.0);
+    EXPECT(frc == 0, "%s: ball_flood exit status %d", name, frc);
+    EXPECT(server.running(), "%s: the server died", name);
+    w.stop();
+    int src = server.stop(5.0);
+    EXPECT(src == 0, "%s: the server's exit status %d", name, src);
+    std::ifstream fs(stats), ff(flood_out);
+    *server_stats = json::parse(fs, nullptr, false);
+    *sent = json::parse(ff, nullptr, false);
+    Tail t(rec);
+    t.poll();
+    for (const auto &j : t.lines)
+      if (j.value("type", "") == "state") {
+        // the ball by sim frame, every digit (nlohmann prints doubles to round-trip)
+        (*states)[j["frame"].get<long>()] = j["position"].dump() + j["velocity"].dump() + j["spin"].dump();
+      }
+  };
+  json clean_stats, clean_sent, dirty_stats, dirty_sent;
+  std::map<long, std::string> clean, dirty;
+  run("clean", 0, &clean_stats, &clean_sent, &clean);
+  run("flood", 1000, &dirty_stats, &dirty_sent, &dirty);
+  if (dirty_stats.is_discarded() || dirty_sent.is_discarded() || clean_stats.is_discarded()) {
+    EXPECT(false, "missing stats");
+    return;
+  }
+  long total = 0;
+  for (auto &kv : dirty_sent["sent"].items()) {
+    long n = kv.value().get<long>();
+    long dropped = dirty_stats["drops"][kv.key()].get<long>();
+    total += n;
+    EXPECT(dropped == n, "%s: %ld sent, %ld dropped", kv.key().c_str(), n, dropped);
+  }
+  note("%ld malformed samples sent in 10 kinds; drops by reason equal what was sent: %s", total,
+       dirty_stats["drops"].dump().c_str());
+  note("match 0: %d pauses without the flood, %d with it (one as each run ends)",
+       clean_stats["matches"][0]["pauses"].get<int>(), dirty_stats["matches"][0]["pauses"].get<int>());
+  EXPECT(total == 10000, "%ld malformed samples sent", total);
+  long clean_drops = 0;
+  for (auto &kv : clean_stats["drops"].items()) clean_drops += kv.value().get<long>();
+  EXPECT(clean_drops == 0, "%ld drops without the flood", clean_drops);
+  // the ball, frame by frame, in both runs
+  long common = 0, differ = 0;
+  for (const auto &kv : clean) {
+    auto it = dirty.find(kv.first);
+    if (it == dirty.end()) continue;
+    common++;
+    if (it->second != kv.second) differ++;
+  }
+  note("ball states of %ld sim frames in both runs, %ld differ", common, differ);
+  EXPECT(common >= 300, "only %ld frames in common", common);
+  EXPECT(differ == 0, "%ld frames differ", differ);
+}
+
+// a watcher that joins late gets the current segment at once
+void case_late_join(const Env &env) {
+  Case c{env};
+  std::string late = path(env, "late.jsonl");
+  Play p = play(c, {"--rate", "20"}, path(env, "early.jsonl"));
+  Tail &te = p.t;
+  size_t from = 0;
+  for (int i = 0; i < 3; ++i) wait_for(te, 15.0, is_hit, &from);
+  double started = realtime_now();
+  Process w2 = c.watcher(late);
+  Tail tl(late);
+  json first = wait_for(tl, 10.0, [](const json &j) { return j.value("type", "") == "segment"; });
+  EXPECT(!first.is_null(), "the late watcher got no segment");
+  if (first.is_null()) return;
+  double got = first["recv"].get<double>();
+  usleep(300000);
+  tl.poll();
+  te.poll();
+  // the segment in effect when the late watcher's first segment came: the
+  // newest the early watcher had by then
+  long current = 0, newest_late = 0;
+  for (const auto &j : te.lines)
+    if (j.value("type", "") == "segment" && j["recv"].get<double>() <= got) current = std::max(current, j["seq"].get<long>());
+  for (const auto &j : tl.lines)
+    if (j.value("type", "") == "segment" && j["recv"].get<double>() <= got + 0.05)
+      newest_late = std::max(newest_late, j["seq"].get<long>());
+  note("late watcher: first segment %.3f s after it started; it holds segment %ld, the current one is %ld",
+       got - started, newest_late, current);
+  EXPECT(newest_late >= current && current > 0, "late watcher has %ld, current is %ld", newest_late, current);
+  EXPECT(got - started <= 5.0, "first segment %.3f s after start", got - started);
+}
+
+// ball-server's command line: --help, bad configs, a missing profile, a bad domain
+void case_server_cli(const Env &env) {
+  auto run = [&](std::vector<std::string> args, const std::string &name, std::string *err) {
+    args.insert(args.begin(), env.bin + "/ball-server");
+    std::string out = path(env, name + ".out"), e = path(env, name + ".err");
+    Process p = Process::start(args, out, e);
+    int rc = p.wait(20.0);
+    std::ifstream f(e);
+    err->assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    if (rc < 0) p.stop();
+    return rc;
+  };
+  auto write = [&](const std::string &name, const std::string &text) {
+    std::ofstream(path(env, name)) << text;
+    return path(env, name);
+  };
+  std::string err;
+  int rc = run({"--help"}, "help", &err);
+  EXPECT(rc == 0, "--help: status %d", rc);
+  struct Bad {
+    const char *name, *text, *expect;
+  } cases[] = {
+      {"syntax.json", "{\n  \"matches\": [\n    {\"players\": 2,}\n  ]\n}\n", "syntax.json:3:"},
+      {"unknown.json", "{\n  \"matches\": [\n    {\"id\": 0},\n    {\"id\": 1,\n     \"playrs\": 2}\n  ]\n}\n",
+       "unknown.json:5: /matches/1/playrs: unknown key"},
+      {"range.json", "{\n  \"matches\": [\n    {\"id\": 0,\n     \"players\": 9}\n  ]\n}\n",
+       "range.json:4: /matches/0/players: expected an integer in [1, 4]"},
+      {"type.json", "{\n  \"defaults\": {\n    \"frame_rate\": \"fast\"\n  }\n}\n",
+       "type.json:3: /defaults/frame_rate: expected a number"},
+      {"rule.json", "{\n  \"defaults\": {\"frame_rate\": 30},\n  \"matches\": [{\"state_rate\": 60}]\n}\n",
+       "rule.json:3: /matches/0/state_rate: state_rate: must be in [0, frame_rate] Hz"},
+      {"scene.json", "{\n  \"matches\": [{\"scene\": \"no/such.yaml\"}]\n}\n", "no/such.yaml"},
+  };
+  for (const Bad &b : cases) {
+    std::string file = write(b.name, b.text);
+    rc = run({"--config", file, "--domain", env.dom()}, b.name, &err);
+    note("%s: status %d: %s", b.name, rc, err.substr(0, err.find('\n')).c_str());
+    EXPECT(rc == 1 && err.find(b.expect) != std::string::npos, "%s: status %d, stderr: %s", b.name, rc, err.c_str());
+  }
+  rc = run({"--profile", path(env, "missing.xml"), "--domain", env.dom()}, "profile", &err);
+  note("missing profile: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
+  EXPECT(rc == 1 && err.find("missing.xml") != std::string::npos, "status %d: %s", rc, err.c_str());
+  rc = run({"--domain", "300"}, "domain", &err);
+  note("domain 300: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
+  EXPECT(rc != 0 && err.find("domain") != std::string::npos, "status %d: %s", rc, err.c_str());
+  std::string notxml = write("notxml.xml", "this is not xml\n");
+  rc = run({"--profile", notxml, "--domain", env.dom()}, "notxml", &err);
+  EXPECT(rc == 1 && err.find("not a valid Fast DDS profile") != std::string::npos, "status %d: %s", rc, err.c_str());
+}
+
+// a second server for the same match on the same domain refuses to start
+void case_busy(const Env &env) {
+  Process first = Process::start({env.bin + "/ball-server", "--domain", env.dom(), "--startup-wait", "0",
+                                  "--duration", "60", "--quiet"},
+                                 path(env, "first.out"), path(env, "first.err"));
+  usleep(500000);
+  Process second = Process::start({env.bin + "/ball-server", "--domain", env.dom(), "--server-id", "2",
+                                   "--startup-wait", "3", "--duration", "60"},
+                                  path(env, "second.out"), path(env, "second.err"));
+  int rc = second.wait(20.0);
+  std::ifstream f(path(env, "second.err"));
+  std::string err((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  note("second server: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
+  EXPECT(rc == 1 && err.find("busy") != std::string::npos, "status %d: %s", rc, err.c_str());
+  EXPECT(first.running(), "the first server stopped");
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+  CLI::App cli{"ball_itest: the ball server's integration tests"};
+  std::string name;
+  Env env;
+  double watchdog = 80.0;
+  cli.add_option("case", name, "rally, desync, pause, flood, late_join, lossy, server_cli, busy")->required();
+  cli.add_option("--bin", env.bin, "directory of ball-server, ball-bot, ball-watch, ball_flood")->required();
+  cli.add_option("--domain", env.domain, "DDS domain id of this case")->required();
+  cli.add_option("--work", env.work, "directory for logs and records")->required();
+  cli.add_option("--watchdog", watchdog, "s before everything is killed and the case fails");
+  CLI11_PARSE(cli, argc, argv);
+  std::map<std::string, std::function<void(const Env &)>> cases = {
+      {"rally", case_rally},         {"desync", case_desync}, {"pause", case_pause},
+      {"flood", case_flood},         {"late_join", case_late_join}, {"lossy", case_lossy},
+      {"server_cli", case_server_cli}, {"busy", case_busy}};
+  auto it = cases.find(name);
+  if (it == cases.end()) return fail("ball_itest", "unknown case " + name);
+  // Under AddressSanitizer (./run asan): Debian's Fast DDS 2.9 deletes its
+  // statistics readers through the wrong type (new-delete-type-mismatch
+  // inside libfastrtps); everything else ASan checks stays on.
+  std::string asan = std::getenv("ASAN_OPTIONS") ? std::getenv("ASAN_OPTIONS") : "";
+  setenv("ASAN_OPTIONS", (asan + (asan.empty() ? "" : ":") + "new_delete_type_mismatch=0").c_str(), 1);
+  mkdir(env.work.c_str(), 0755);
+  if (DIR *d = opendir(env.work.c_str())) {  // nothing from an earlier run
+    while (dirent *e = readdir(d))
+      if (e->d_name[0] != '.') unlink((env.work + "/" + e->d_name).c_str());
+    closedir(d);
+  }
+  std::vector<std::string> shm_before = dds_shm_files();
+  // the watchdog: a hung case kills its whole process group (and with it,
+  // through PR_SET_PDEATHSIG, every child) and fails
+  std::thread([watchdog] {
+    sleep_until(mono_now() + watchdog);
+    std::printf("FAILED: the watchdog fired after %.0f s\n", watchdog);
+    std::fflush(stdout);
+    Process::kill_all();
+    _exit(2);
+  }).detach();
+  std::printf("%s on domain %d\n", name.c_str(), env.domain);
+  it->second(env);  // every Process of the case is stopped when it returns
+  std::vector<std::string> shm_after = dds_shm_files();
+  EXPECT(shm_after.size() <= shm_before.size(), "%zu Fast DDS files left in /dev/shm", shm_after.size() - shm_before.size());
+  std::printf("%s: %s\n", name.c_str(), failures ? "FAILED" : "passed");
+  return failures ? 1 : 0;
+}

@@ -1,0 +1,100 @@
+// Two bots playing a Match offline, through links with delay, jitter, loss
+// and tracker noise: the bots' and the rules' test without a network.
+#pragma once
+
+#include "bot.h"
+#include "game.h"
+#include "link.h"
+
+namespace test {
+
+struct Net {
+  double rate = 15.0;   // samples per s
+  double delay = 0.0;   // s
+  double jitter = 0.0;  // s
+  double loss = 0.0;
+  double noise = 0.0;   // m
+};
+
+struct RallyResult {
+  uint64_t hits = 0, bounces = 0, points = 0, serves = 0;
+  uint64_t accepted = 0, drops = 0;
+  uint64_t plans = 0, late = 0;
+  int racket_segments_with_sample = 0, racket_segments = 0;
+};
+
+inline RallyResult play(ball_level level, const Net &net, double seconds, uint64_t seed = 1,
+                        double miss_rate = 0.0, double extrapolation = 0.25) {
+  MatchConfig c = default_config();
+  c.level = level;
+  c.extrapolation_time = extrapolation;
+  Game g(c);
+  BotBrain brain[2];
+  Link<RacketSampleIn> link[2] = {Link<RacketSampleIn>({net.delay, net.jitter, net.loss}, seed * 2 + 1),
+                                  Link<RacketSampleIn>({net.delay, net.jitter, net.loss}, seed * 2 + 2)};
+  Rng noise(seed * 7 + 3);
+  double next_capture[2] = {0, 0};
+  RallyResult r;
+  for (int i = 0; i < 2; ++i) {
+    g.join(i, participant(static_cast<uint8_t>(i + 1)));
+    g.park[i] = false;
+    BotParams p;
+    p.slot = i;
+    p.lead = bot_lead(net.rate, net.delay, net.jitter, net.loss);
+    p.miss_rate = miss_rate;
+    p.seed = seed * 11 + i;
+    brain[i].init(g.match.model(), g.match.court(), p);
+  }
+  int frames = static_cast<int>(seconds * c.frame_rate);
+  for (int k = 0; k < frames; ++k) {
+    double sim = g.match.sim().time;
+    for (int i = 0; i < 2; ++i) {
+      // samples taken on the sim clock at the bot's rate, sent through its link
+      while (next_capture[i] <= sim + 1e-12) {
+        RacketSampleIn s;
+        s.match_id = g.match.id();
+        s.player = i;
+        s.seq = ++g.seq[i];
+        s.capture_time = next_capture[i];
+        brain[i].pose(next_capture[i], &s.center, &s.normal);
+        s.center.x += noise.normal(net.noise);
+        s.center.y += noise.normal(net.noise);
+        s.center.z += noise.normal(net.noise);
+        s.from = g.owner[i];
+        s.source_time = g.now;
+        link[i].send(s, g.now);
+        next_capture[i] += 1.0 / net.rate;
+      }
+      link[i].deliver(g.now, [&](const RacketSampleIn &s) {
+        SampleResult res = g.match.on_sample(s, g.now);
+        if (res == SampleResult::accepted) r.accepted++;
+        else if (res != SampleResult::idle) r.drops++;
+      });
+    }
+    g.out.clear();
+    g.match.frame(g.now, &g.out);
+    g.keep();
+    if (!g.out.segments.empty()) {
+      const SegmentOut &s = g.out.segments.back();
+      for (int i = 0; i < 2; ++i)
+        brain[i].on_segment(s.segment, s.cause == Cause::serve, s.cause_index, g.match.sim().time);
+    }
+    g.now += g.match.frame_time();
+  }
+  for (const auto &s : g.segments) {
+    if (s.cause != Cause::racket) continue;
+    r.racket_segments++;
+    r.racket_segments_with_sample += s.sample.valid;
+  }
+  r.hits = g.match.counters().hits;
+  r.bounces = g.match.counters().bounces;
+  r.points = g.match.counters().points;
+  r.serves = g.match.counters().serves;
+  for (int i = 0; i < 2; ++i) {
+    r.plans += brain[i].counters().plans;
+    r.late += brain[i].counters().late;
+  }
+  return r;
+}
+
+}  // namespace test

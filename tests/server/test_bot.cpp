@@ -1,0 +1,111 @@
+// Bots against a Match without a network: rallies at every game level,
+// over a poor network, with a skill setting; the stroke line itself.
+#include "ball/vec3.h"
+#include "check.h"
+#include "rally.h"
+
+using namespace test;
+
+TEST(lead_covers_the_network) {
+  CHECK_NEAR(bot_lead(15.0, 0.0, 0.0, 0.0), 0.25, 1e-12);  // the floor
+  CHECK_NEAR(bot_lead(6.0, 0.1, 0.0, 0.2), 3.0 / 6.0 + 0.1 + 0.05, 1e-12);
+  CHECK_NEAR(bot_lead(2.0, 0.5, 0.2, 0.2), 1.0, 1e-12);  // the ceiling
+}
+
+TEST(stroke_line_passes_the_contact) {
+  MatchConfig c = default_config();
+  c.level = BALL_LEVEL_MID;
+  Game g(c);
+  BotBrain b;
+  BotParams p;
+  p.slot = 1;
+  b.init(g.match.model(), g.match.court(), p);
+  // a serve from side 0
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  g.run(0.1);
+  const SegmentOut &serve = g.segments.front();
+  b.on_segment(serve.segment, true, 0, 0.1);
+  CHECK(b.planned());
+  ball_vec3 at, n;
+  b.pose(b.contact_time(), &at, &n);
+  CHECK(ball_v3_dist(at, b.contact_point()) < 1e-9);
+  CHECK_NEAR(ball_v3_norm(n), 1.0, 1e-12);
+  // the contact is on the ball's path
+  ball_state s;
+  ball_prediction pr{};
+  pr.cap_states = 0;
+  ball_predict(&g.match.model(), &serve.segment, 0.1, b.contact_time(), 0.001, &pr);
+  ball_segment_eval(&g.match.model(), &pr.end, b.contact_time(), &s);
+  CHECK(ball_v3_dist(s.position, b.contact_point()) < 1e-9);
+  CHECK(b.contact_point().x > g.match.court().net_x);  // on its own side
+  // a segment that changes nothing keeps the plan
+  double t = b.contact_time();
+  b.on_segment(pr.end, false, -1, 0.5);
+  CHECK_EQ(b.contact_time(), t);
+  CHECK_EQ(b.counters().plans, 1u);
+}
+
+TEST(rally_at_every_level) {
+  Net net;  // 15 Hz, a perfect network, 2 mm of tracker noise
+  net.noise = 0.002;
+  struct {
+    ball_level level;
+    uint64_t min_hits;
+  } cases[] = {{BALL_LEVEL_EASY, 30}, {BALL_LEVEL_MID, 20}, {BALL_LEVEL_ADVANCED, 18}};
+  for (auto &k : cases) {
+    RallyResult r = play(k.level, net, 30.0);
+    std::printf("  %-8s 15 Hz: %3lu hits %3lu bounces %lu points %lu samples\n", ball_level_name(k.level),
+                (unsigned long)r.hits, (unsigned long)r.bounces, (unsigned long)r.points,
+                (unsigned long)r.accepted);
+    CHECK(r.hits >= k.min_hits);
+    CHECK_EQ(r.drops, 0u);
+    // every stroke names the sample the racket was known by
+    CHECK_EQ(r.racket_segments_with_sample, r.racket_segments);
+  }
+}
+
+TEST(rally_over_a_poor_network) {
+  Net net;  // 6 Hz, 100 ms late, 20 % lost
+  net.rate = 6.0;
+  net.delay = 0.1;
+  net.loss = 0.2;
+  net.noise = 0.002;
+  struct {
+    ball_level level;
+    uint64_t min_hits;
+  } cases[] = {{BALL_LEVEL_EASY, 30}, {BALL_LEVEL_MID, 20}, {BALL_LEVEL_ADVANCED, 10}};
+  for (auto &k : cases)
+    for (uint64_t seed = 1; seed <= 3; ++seed) {
+      RallyResult r = play(k.level, net, 30.0, seed);
+      std::printf("  %-8s 6 Hz 100 ms 20 %% loss seed %lu: %3lu hits %lu points\n", ball_level_name(k.level),
+                  (unsigned long)seed, (unsigned long)r.hits, (unsigned long)r.points);
+      CHECK(r.hits >= k.min_hits);
+    }
+}
+
+TEST(jitter_reorders_and_the_server_counts_it) {
+  Net net;
+  net.rate = 60.0;
+  net.jitter = 0.1;  // six sample periods: samples overtake each other
+  RallyResult r = play(BALL_LEVEL_EASY, net, 10.0);
+  CHECK(r.drops > 100);  // out of order
+  CHECK(r.hits >= 5);
+}
+
+TEST(skill_decides_the_points) {
+  Net net;
+  RallyResult perfect = play(BALL_LEVEL_MID, net, 30.0, 1, 0.0);
+  RallyResult some = play(BALL_LEVEL_MID, net, 30.0, 1, 0.15);
+  RallyResult never = play(BALL_LEVEL_MID, net, 30.0, 1, 1.0);
+  std::printf("  miss rate 0, 0.15, 1: %lu, %lu, %lu hits; %lu, %lu, %lu points\n", (unsigned long)perfect.hits,
+              (unsigned long)some.hits, (unsigned long)never.hits, (unsigned long)perfect.points,
+              (unsigned long)some.points, (unsigned long)never.points);
+  CHECK_EQ(perfect.points, 0u);
+  CHECK(some.points >= 2);
+  CHECK(some.hits < perfect.hits);
+  CHECK_EQ(never.hits, 0u);
+  CHECK(never.points >= 8);  // every serve wins its point: serve, bounce, bounce, 1.5 s pause
+}
+
+CHECK_MAIN

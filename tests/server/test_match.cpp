@@ -1,0 +1,448 @@
+// The match without a network: serve, point rules, player slots, presence,
+// pause and resume, control messages, sample validation, the host.
+#include <cmath>
+#include <set>
+
+#include "ball/vec3.h"
+#include "check.h"
+#include "game.h"
+#include "host.h"
+
+using namespace test;
+
+namespace {
+
+const ParticipantId A = participant(1);
+const ParticipantId B = participant(2);
+const ParticipantId C = participant(3);
+
+// a game with both slots joined and parked
+Game two_players(const MatchConfig &config = default_config()) {
+  Game g(config);
+  g.join(0, A);
+  g.join(1, B);
+  return g;
+}
+
+// indices of the serves in g.events
+std::vector<size_t> serves(const Game &g) {
+  std::vector<size_t> out;
+  for (size_t i = 0; i < g.events.size(); ++i)
+    if (g.events[i].kind == EventKind::serve) out.push_back(i);
+  return out;
+}
+
+}  // namespace
+
+TEST(lob_velocity_lands_on_target) {
+  ball_scene scene;
+  ball_scene_default(&scene);
+  // with drag: the first floor contact is where it was asked to be
+  ball_vec3 from = ball_v3(3.0, 1.0, 5.0), target = ball_v3(20.0, 0.0, 7.0), v;
+  CHECK_EQ(lob_velocity(scene.model, from, target, 4.0, &v), BALL_OK);
+  CHECK_NEAR(v.y, 4.0, 0.0);
+  ball_segment seg{};
+  seg.p0 = from;
+  seg.v0 = v;
+  double t;
+  ball_vec3 land;
+  CHECK_EQ(ball_next_floor_contact(&scene.model, &seg, 0.0, &t, &land), BALL_OK);
+  CHECK_NEAR(land.x, 20.0, 1e-9);
+  CHECK_NEAR(land.z, 7.0, 1e-9);
+  CHECK_EQ(lob_velocity(scene.model, from, from, 4.0, &v), BALL_ERANGE);
+}
+
+TEST(waits_for_its_players) {
+  Game g;
+  CHECK(g.ok);
+  g.join(0, A);
+  g.run(2.0);
+  CHECK(g.match.state() == MatchState::waiting);
+  CHECK_EQ(g.match.sim().time, 0.0);  // nothing moves
+  CHECK_EQ(g.count(EventKind::serve), 0);
+  g.join(1, B);
+  g.run(0.1);
+  CHECK(g.match.state() == MatchState::playing);
+  CHECK_EQ(g.count(EventKind::serve), 1);
+  CHECK_EQ(g.segments.front().cause, Cause::serve);
+  CHECK_EQ(g.segments.front().seq, 1u);
+}
+
+TEST(serve_lands_in_then_double_bounce) {
+  Game g = two_players();
+  g.run(5.0);
+  auto s = serves(g);
+  CHECK(!s.empty());
+  const EventOut &serve = g.events[s[0]];
+  CHECK_EQ(serve.index, 0);
+  CHECK_EQ(serve.side, 0);
+  // nothing hits the parked rackets: serve, two bounces on side 1, the point to side 0
+  const EventOut *b1 = g.first(EventKind::floor);
+  CHECK(b1 != nullptr);
+  CHECK_EQ(b1->side, 1);
+  CHECK(g.match.court().inside(b1->point.x, b1->point.z));
+  CHECK(b1->in_play);
+  CHECK(b1->sound);
+  CHECK_EQ(g.count(EventKind::net), 0);  // the serve clears the net
+  const EventOut *p = g.first(EventKind::point);
+  CHECK(p != nullptr);
+  CHECK_EQ(p->side, 0);
+  CHECK(p->reason == Reason::point_double_bounce);
+  CHECK_EQ(p->score[0], 1);
+  CHECK_EQ(p->score[1], 0);
+  // every collision starts the segment it names
+  for (const auto &e : g.events)
+    if (e.kind == EventKind::floor) CHECK(e.segment_seq >= 2u);
+  // a sound event repeats every loud bounce
+  int loud = 0;
+  for (const auto &e : g.events) loud += (e.kind == EventKind::floor && e.sound);
+  CHECK_EQ(g.count(EventKind::sound), loud);
+}
+
+TEST(serves_alternate_and_land_in) {
+  Game g = two_players();
+  g.run(60.0);
+  auto s = serves(g);
+  CHECK(s.size() >= 10);
+  std::set<double> zs;
+  for (size_t k = 0; k < s.size(); ++k) {
+    const EventOut &serve = g.events[s[k]];
+    CHECK_EQ(serve.side, static_cast<int>(k % 2));  // sides take turns
+    zs.insert(serve.velocity_out.z);
+    const EventOut *b = g.first(EventKind::floor, s[k]);
+    if (!b) continue;
+    CHECK_EQ(b->side, 1 - serve.side);
+    CHECK(g.match.court().inside(b->point.x, b->point.z));
+  }
+  CHECK(zs.size() >= s.size() - 1);  // placed differently each time
+  // nobody returns: every point goes to the server, by double bounce
+  auto score = g.match.score();
+  CHECK_EQ(score[0] + score[1], g.count(EventKind::point));
+  for (const auto &e : g.events)
+    if (e.kind == EventKind::point) CHECK(e.reason == Reason::point_double_bounce);
+  CHECK_EQ(g.match.counters().hits, 0u);
+}
+
+TEST(rules_table) {
+  // one line per rule of rules.h
+  Rally r;
+  r.start(0, 0.0);
+  Call c = r.on_floor(0, true, false);
+  CHECK(c.decided && c.winner == 1 && c.reason == Reason::point_own_side);
+  r.start(0, 0.0);
+  r.on_net();
+  c = r.on_floor(0, true, false);
+  CHECK(c.decided && c.winner == 1 && c.reason == Reason::point_net);
+  r.start(0, 0.0);
+  c = r.on_floor(1, false, false);
+  CHECK(c.decided && c.winner == 1 && c.reason == Reason::point_out);
+  r.start(0, 0.0);
+  c = r.on_wall();
+  CHECK(c.decided && c.winner == 1 && c.reason == Reason::point_out);
+  r.start(0, 0.0);
+  CHECK(!r.on_floor(1, true, false).decided);
+  c = r.on_floor(1, true, false);
+  CHECK(c.decided && c.winner == 0 && c.reason == Reason::point_double_bounce);
+  r.start(0, 0.0);
+  r.on_floor(1, true, false);
+  c = r.on_wall();
+  CHECK(c.decided && c.winner == 0 && c.reason == Reason::point_not_returned);
+  r.start(0, 0.0);
+  c = r.on_floor(1, true, true);  // bounced in and rolls
+  CHECK(c.decided && c.winner == 0 && c.reason == Reason::point_not_returned);
+  // a return resets the count: side 1 strikes after the bounce, its ball lands in on side 0
+  r.start(0, 0.0);
+  r.on_floor(1, true, false);
+  r.on_racket(1);
+  CHECK(!r.on_floor(0, true, false).decided);
+  c = r.on_floor(0, true, false);
+  CHECK(c.decided && c.winner == 1 && c.reason == Reason::point_double_bounce);
+  // a volley is legal
+  r.start(0, 0.0);
+  r.on_racket(1);
+  c = r.on_floor(1, true, false);
+  CHECK(c.decided && c.winner == 0 && c.reason == Reason::point_own_side);
+  r.start(0, 0.0);
+  c = r.on_frame(false, 61.0, 60.0);
+  CHECK(c.decided && c.winner == -1 && c.reason == Reason::point_let);
+  r.start(0, 0.0);
+  c = r.on_frame(true, 1.0, 60.0);
+  CHECK(c.decided && c.winner == 1 && c.reason == Reason::point_out);
+}
+
+TEST(samples_dropped_by_reason_leave_the_ball_alone) {
+  Game g = two_players();
+  g.run(1.0);
+  ball_sim before = g.match.sim();
+  uint64_t hash = ball_sim_hash(&before);
+  RacketSampleIn good = g.parked_sample(0);
+  CHECK(g.match.on_sample(good, g.now) == SampleResult::accepted);
+  hash = ball_sim_hash(&g.match.sim());
+  auto with = [&](auto edit) {
+    RacketSampleIn s = g.parked_sample(0);
+    g.seq[0]--;  // the parked stream's next seq stays the same
+    edit(s);
+    return g.match.on_sample(s, g.now);
+  };
+  double nan = std::nan("");
+  CHECK(with([&](RacketSampleIn &s) { s.player = 5; }) == SampleResult::bad_slot);
+  CHECK(with([&](RacketSampleIn &s) { s.player = -1; }) == SampleResult::bad_slot);
+  CHECK(with([&](RacketSampleIn &s) { s.from = C; }) == SampleResult::not_owner);
+  CHECK(with([&](RacketSampleIn &s) { s.center.y = nan; }) == SampleResult::nonfinite);
+  CHECK(with([&](RacketSampleIn &s) { s.normal.z = INFINITY; }) == SampleResult::nonfinite);
+  CHECK(with([&](RacketSampleIn &s) { s.capture_time = nan; }) == SampleResult::nonfinite);
+  CHECK(with([&](RacketSampleIn &s) { s.normal = ball_v3(0, 1e-9, 0); }) == SampleResult::zero_normal);
+  CHECK(with([&](RacketSampleIn &s) { s.normal = ball_v3(0, 1e7, 0); }) == SampleResult::out_of_range);
+  CHECK(with([&](RacketSampleIn &s) { s.center.y = 1e4; }) == SampleResult::out_of_range);
+  CHECK(with([&](RacketSampleIn &s) { s.center.x = -1e3; }) == SampleResult::out_of_range);
+  CHECK(with([&](RacketSampleIn &s) { s.capture_time += 10.0; }) == SampleResult::out_of_range);
+  CHECK(g.match.on_sample(good, g.now) == SampleResult::duplicate);
+  CHECK(with([&](RacketSampleIn &s) { s.seq = good.seq - 1; }) == SampleResult::out_of_order);
+  CHECK(with([&](RacketSampleIn &s) { s.capture_time -= 30.0; }) == SampleResult::stale);
+  // a new seq but not newer than the newest kept: libball says stale
+  CHECK(with([&](RacketSampleIn &s) { s.capture_time = good.capture_time; s.center.x += 1.0; }) ==
+        SampleResult::stale);
+  // a new seq, identical pose and time: a duplicate
+  CHECK(with([&](RacketSampleIn &s) { s.capture_time = good.capture_time; s.center = good.center; }) ==
+        SampleResult::duplicate);
+  CHECK_EQ(ball_sim_hash(&g.match.sim()), hash);
+  // a slot nobody holds
+  Game h;
+  h.join(0, A);
+  RacketSampleIn s = h.parked_sample(0);
+  s.player = 1;
+  CHECK(h.match.on_sample(s, h.now) == SampleResult::not_joined);
+  // well formed while waiting: only presence
+  CHECK(h.match.on_sample(h.parked_sample(0), h.now) == SampleResult::idle);
+}
+
+TEST(vanished_player_pauses_and_resumes) {
+  MatchConfig c = default_config();
+  c.player_timeout = 0.5;
+  Game g = two_players(c);
+  g.run(2.0);
+  CHECK(g.match.state() == MatchState::playing);
+  g.park[1] = false;  // player 1 goes silent
+  double silent_at = g.now;
+  g.run(2.0);
+  CHECK(g.match.state() == MatchState::paused);
+  const EventOut *p = g.first(EventKind::pause);
+  CHECK(p != nullptr);
+  CHECK_EQ(p->index, 1);
+  CHECK(p->reason == Reason::pause_vanished);
+  // it paused within one timeout and one frame of the last sample (10 Hz: 0.1 s before)
+  size_t k = 0;
+  while (&g.events[k] != p) k++;
+  double t_pause = p->time;
+  double sim_frozen = g.match.sim().time;
+  CHECK_NEAR(sim_frozen, t_pause, 0.0);
+  (void)silent_at;
+  g.run(1.0);
+  CHECK_EQ(g.match.sim().time, sim_frozen);  // the sim clock stands still
+  CHECK(g.states.back().sim_time <= sim_frozen);
+  g.park[1] = true;  // back
+  g.run(0.5);
+  CHECK(g.match.state() == MatchState::playing);
+  CHECK(g.first(EventKind::resume, k) != nullptr);
+  CHECK(g.match.sim().time > sim_frozen);
+  CHECK_EQ(g.match.counters().pauses, 1u);
+}
+
+TEST(pause_comes_within_one_timeout) {
+  MatchConfig c = default_config();
+  c.player_timeout = 0.5;
+  Game g = two_players(c);
+  g.run(1.0);
+  g.park[0] = false;
+  double last_sample = g.sent_at[0];
+  double paused_at = -1.0;
+  for (int k = 0; k < 120 && paused_at < 0; ++k) {
+    g.run(1.0 / 60.0);
+    if (g.match.state() == MatchState::paused) paused_at = g.now;
+  }
+  CHECK(paused_at > 0);
+  CHECK(paused_at - last_sample <= 0.5 + 2.0 / 60.0);
+  CHECK(paused_at - last_sample >= 0.5);
+}
+
+TEST(participant_lost_pauses_at_the_next_frame) {
+  Game g = two_players();
+  g.run(1.0);
+  g.match.on_participant_lost(B);
+  g.park[1] = false;
+  g.run(1.0 / 60.0);
+  CHECK(g.match.state() == MatchState::paused);
+  // a new participant takes the vanished slot and the match goes on
+  CHECK(g.join(1, C) == Reason::none);
+  g.run(0.2);
+  CHECK(g.match.state() == MatchState::playing);
+  CHECK(g.match.info().slots[1].owner == C);
+}
+
+TEST(join_and_leave) {
+  Game g;
+  CHECK(g.join(0, A) == Reason::none);
+  CHECK(g.join(0, A) == Reason::none);  // again: nothing changes
+  CHECK_EQ(g.count(EventKind::join), 1);
+  CHECK(g.join(0, B) == Reason::refused_slot_held);
+  const EventOut *r = g.first(EventKind::refused);
+  CHECK(r && r->reason == Reason::refused_slot_held && r->index == static_cast<int>(ControlKind::join));
+  CHECK(g.join(7, B) == Reason::refused_bad_value);
+  CHECK(g.control(ControlKind::join, B, -1) == Reason::none);  // any free slot: 1
+  CHECK(g.match.info().slots[1].owner == B);
+  g.owner[1] = B;
+  g.park[1] = true;
+  CHECK(g.control(ControlKind::join, C, -1) == Reason::refused_no_room);
+  g.run(1.0);
+  CHECK(g.match.state() == MatchState::playing);
+  CHECK(g.control(ControlKind::leave, A, 1) == Reason::refused_not_player);
+  CHECK(g.control(ControlKind::leave, B, 1) == Reason::none);
+  g.park[1] = false;
+  CHECK(g.match.state() == MatchState::waiting);
+  const EventOut *p = g.first(EventKind::pause);
+  CHECK(p && p->reason == Reason::pause_left);
+  double t = g.match.sim().time;
+  g.run(1.0);
+  CHECK_EQ(g.match.sim().time, t);
+  CHECK(g.join(1, C) == Reason::none);
+  g.run(0.1);
+  CHECK(g.match.state() == MatchState::playing);
+  CHECK(g.first(EventKind::resume) != nullptr);
+}
+
+TEST(controls) {
+  Game g = two_players();
+  g.run(1.0);
+  CHECK(g.control(ControlKind::time_base, C, -1, 0.5) == Reason::refused_not_player);
+  CHECK(g.control(ControlKind::time_base, A, -1, 50.0) == Reason::refused_bad_value);
+  CHECK(g.control(ControlKind::time_base, A, -1, 0.5) == Reason::none);
+  double t = g.match.sim().time;
+  g.run(1.0);
+  CHECK_NEAR(g.match.sim().time - t, 0.5, 1e-9);  // slow motion: half a sim second per real second
+  CHECK(g.control(ControlKind::time_base, A, -1, 2.0) == Reason::none);
+  t = g.match.sim().time;
+  g.run(1.0);
+  CHECK_NEAR(g.match.sim().time - t, 2.0, 1e-9);
+  uint64_t h = g.match.info().model_hash;
+  CHECK(g.control(ControlKind::level, B, -1, 3) == Reason::none);
+  CHECK(g.match.info().model_hash != h);
+  CHECK_EQ(g.match.info().level, 3);
+  CHECK(g.match.model().response == BALL_RESPONSE_PHYSICAL);
+  CHECK(g.control(ControlKind::level, B, -1, 9) == Reason::refused_bad_value);
+  CHECK(g.control(ControlKind::pause, A) == Reason::none);
+  CHECK(g.match.state() == MatchState::paused);
+  t = g.match.sim().time;
+  g.run(1.0);
+  CHECK_EQ(g.match.sim().time, t);
+  CHECK(g.control(ControlKind::pause, A) == Reason::refused_state);
+  CHECK(g.control(ControlKind::resume, B) == Reason::none);
+  CHECK(g.match.state() == MatchState::playing);
+  // serve early: between points only
+  CHECK(g.control(ControlKind::serve, A) == Reason::refused_state || g.match.counters().points > 0);
+  CHECK(g.control(ControlKind::create, A) == Reason::refused_bad_value);
+}
+
+TEST(serve_on_request) {
+  MatchConfig c = default_config();
+  c.serve_delay = 30.0;
+  Game g = two_players(c);
+  g.run(6.0);
+  CHECK_EQ(g.count(EventKind::point), 1);
+  CHECK_EQ(g.count(EventKind::serve), 1);
+  CHECK(g.control(ControlKind::serve, B) == Reason::none);
+  g.run(0.1);
+  CHECK_EQ(g.count(EventKind::serve), 2);
+}
+
+TEST(state_rate) {
+  MatchConfig c = default_config();
+  c.state_rate = 20.0;
+  Game g = two_players(c);
+  g.run(3.0);
+  int playing_frames = static_cast<int>(g.match.counters().frames);
+  CHECK(std::abs(static_cast<int>(g.states.size()) - playing_frames / 3) <= 1);
+  c.state_rate = 0.0;
+  Game off = two_players(c);
+  off.run(3.0);
+  CHECK_EQ(off.states.size(), 0u);
+  // each state lies on the segment it names
+  for (const auto &s : g.states) {
+    const SegmentOut *seg = nullptr;
+    for (const auto &x : g.segments)
+      if (x.seq == s.segment_seq) seg = &x;
+    CHECK(seg != nullptr);
+    if (!seg) continue;
+    ball_state b;
+    ball_segment_eval(&g.match.model(), &seg->segment, s.sim_time, &b);
+    CHECK(ball_v3_max_diff(b.position, s.ball.position) <= 1e-12);
+  }
+}
+
+TEST(deterministic) {
+  Game a = two_players(), b = two_players();
+  a.run(20.0);
+  b.run(20.0);
+  CHECK_EQ(ball_sim_hash(&a.match.sim()), ball_sim_hash(&b.match.sim()));
+  CHECK_EQ(a.events.size(), b.events.size());
+}
+
+TEST(config_checks) {
+  std::string err;
+  MatchConfig c = default_config();
+  CHECK(check_match_config(c, &err));
+  c.players = 5;
+  CHECK(!check_match_config(c, &err));
+  CHECK(err.find("players") == 0);
+  c = default_config();
+  c.state_rate = 120.0;
+  CHECK(!check_match_config(c, &err));
+  CHECK(err.find("state_rate") == 0);
+  c = default_config();
+  c.time_base = std::nan("");
+  CHECK(!check_match_config(c, &err));
+  // a scene without a net cannot be played by these rules
+  ball_scene scene;
+  ball_scene_default(&scene);
+  scene.model.has_net = 0;
+  Match m;
+  CHECK(!m.init(default_config(), scene, &err));
+  CHECK(err.find("net") != std::string::npos);
+}
+
+TEST(host_routes_and_creates) {
+  MatchConfig t = default_config();
+  Host host(2, true, t);
+  ball_scene scene;
+  ball_scene_default(&scene);
+  std::string err;
+  CHECK(host.add_scene("tennis", scene, &err));
+  CHECK(host.add_match(t, scene, &err));
+  CHECK(!host.add_match(t, scene, &err));  // the same id twice
+  RacketSampleIn s;
+  s.match_id = 99;
+  CHECK(host.on_sample(s, 0.0) == SampleResult::unknown_match);
+  MatchOutput out;
+  Match *m = nullptr;
+  ControlIn c;
+  c.kind = ControlKind::create;
+  c.match_id = 8;
+  c.scene = "nowhere";
+  CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_bad_value);
+  c.scene = "tennis";
+  c.players = 2;
+  c.level = 2;
+  CHECK(host.on_control(c, 0.0, &out, &m) == Reason::none);
+  CHECK(m != nullptr && m->id() == 8 && m->config().level == BALL_LEVEL_MID);
+  c.match_id = 9;
+  CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_no_room);  // max_matches 2
+  c.kind = ControlKind::join;
+  c.match_id = 42;
+  CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_bad_value);
+  CHECK(m == nullptr);
+  Host closed(4, false, t);
+  closed.add_scene("tennis", scene, &err);
+  c.kind = ControlKind::create;
+  CHECK(closed.on_control(c, 0.0, &out, &m) == Reason::refused_no_room);
+}
+
+CHECK_MAIN

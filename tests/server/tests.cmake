@@ -1,0 +1,48 @@
+# The ball server's tests: the match, the bots and the config offline (label
+# server), then the networked apps on loopback (label dds), each with a DDS
+# domain id of its own so that parallel runs never meet.
+if(NOT TARGET ball_match)
+  return()
+endif()
+
+foreach(name test_match test_bot test_client)
+  add_executable(${name} ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp)
+  target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_LIST_DIR})
+  target_link_libraries(${name} PRIVATE ball_match)
+  target_compile_options(${name} PRIVATE ${BALL_CXX_WARNINGS})
+  add_test(NAME ${name} COMMAND ${name})
+  set_tests_properties(${name} PROPERTIES LABELS server TIMEOUT 120)
+endforeach()
+
+# ---- the networked cases: ball_itest drives the real programs ----------------
+if(NOT TARGET ball-server)
+  return()
+endif()
+add_executable(test_config ${CMAKE_CURRENT_LIST_DIR}/test_config.cpp)
+target_include_directories(test_config PRIVATE ${CMAKE_CURRENT_LIST_DIR})
+target_link_libraries(test_config PRIVATE ball_app)
+target_compile_options(test_config PRIVATE ${BALL_CXX_WARNINGS})
+add_test(NAME test_config COMMAND test_config)
+set_tests_properties(test_config PROPERTIES LABELS server TIMEOUT 60)
+
+add_executable(ball_flood ${CMAKE_CURRENT_LIST_DIR}/flood.cpp)
+target_link_libraries(ball_flood PRIVATE ball_app ball_dds)
+target_compile_options(ball_flood PRIVATE ${BALL_CXX_WARNINGS})
+set_target_properties(ball_flood PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/server)
+
+add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp)
+target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static)
+target_compile_options(ball_itest PRIVATE ${BALL_CXX_WARNINGS})
+add_dependencies(ball_itest ball-server ball-bot ball-watch ball_flood)
+
+# each case on a DDS domain of its own (100 + its index): parallel runs never meet
+set(BALL_ITEST_CASES rally desync pause flood late_join lossy server_cli busy)
+set(index 0)
+foreach(case ${BALL_ITEST_CASES})
+  math(EXPR domain "100 + ${index}")
+  math(EXPR index "${index} + 1")
+  add_test(NAME dds_${case}
+    COMMAND ball_itest ${case} --bin ${PROJECT_BINARY_DIR}/server --domain ${domain}
+            --work ${CMAKE_CURRENT_BINARY_DIR}/dds_${case})
+  set_tests_properties(dds_${case} PROPERTIES LABELS dds TIMEOUT 100)
+endforeach()
