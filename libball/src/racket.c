@@ -86,6 +86,14 @@ static int same_sample(const ball_racket_sample *a, const ball_racket_sample *b)
          a->normal.z == b->normal.z;
 }
 
+ball_status ball_racket_clear(const ball_model *m, ball_sim *sim, int racket) {
+  if (!m || !sim) return BALL_EINVAL;
+  if (!same_track_fields(m, sim)) return BALL_EMODEL;
+  if (racket < 0 || racket >= m->n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
+  memset(&sim->tracks[racket], 0, sizeof sim->tracks[racket]);
+  return BALL_OK;
+}
+
 ball_status ball_racket_push(const ball_model *m, ball_sim *sim, int racket,
                              const ball_racket_sample *sample) {
   ball_racket_track *tr;

@@ -396,9 +396,8 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       s.held = true;
       s.owner = c.from;
       s.last_seen = now;  // joining counts as being there until the timeout runs out
-      // the racket of a new holder starts without the old one's history (libball
-      // has no call for it: an empty track is what ball_sim_init makes)
-      sim_.tracks[slot] = ball_racket_track{};
+      // the racket of a new holder starts without the old one's history
+      ball_racket_clear(&model_, &sim_, slot);
       emit(out, EventKind::join, slot, sim_.time);
       out->info_changed = true;
       return Reason::none;
@@ -408,7 +407,7 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
       if (!slots_[slot].held || slots_[slot].owner != c.from) return refuse(c, Reason::refused_not_player, out);
       slots_[slot] = Slot{};
-      sim_.tracks[slot] = ball_racket_track{};
+      ball_racket_clear(&model_, &sim_, slot);
       emit(out, EventKind::leave, slot, sim_.time);
       if (state_ != MatchState::waiting) {
         set_state(MatchState::waiting, out);

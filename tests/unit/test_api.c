@@ -88,6 +88,40 @@ static void set_model_rebinds_and_keeps_the_ball(void **state) {
   assert_int_equal(ball_sim_set_model(NULL, &sim), BALL_EINVAL);
 }
 
+/* ball_racket_clear empties one track, as ball_sim_init leaves it, and only
+ * that one; a sample older than the old holder's newest is then taken. */
+static void racket_clear_empties_one_track(void **state) {
+  ball_model m;
+  ball_sim sim, fresh, copy;
+  ball_racket_pose pose;
+  int i;
+  (void)state;
+  core_court_scene(&m);
+  m.effects |= BALL_EFFECT_RACKETS;
+  m.n_rackets = 2;
+  m.history = 5;
+  assert_ok(ball_sim_init(&m, &sim));
+  fresh = sim;
+  for (i = 0; i < 3; i++) {
+    assert_ok(ball_racket_push(&m, &sim, 0, &(ball_racket_sample){1.0 + 0.1 * i, {(double)i, 1, 0}, {1, 0, 0}}));
+    assert_ok(ball_racket_push(&m, &sim, 1, &(ball_racket_sample){1.0 + 0.1 * i, {(double)i, 1, 0}, {1, 0, 0}}));
+  }
+  assert_ok(ball_step(&m, &sim, 1.0 / 60.0, NULL, 0, NULL));
+  copy = sim;
+  assert_int_equal(ball_racket_clear(&m, &sim, 2), BALL_EINVAL);
+  assert_int_equal(ball_racket_clear(&m, &sim, -1), BALL_EINVAL);
+  assert_int_equal(ball_racket_clear(NULL, &sim, 0), BALL_EINVAL);
+  assert_memory_equal(&sim, &copy, sizeof sim);
+  assert_ok(ball_racket_clear(&m, &sim, 0));
+  assert_memory_equal(&sim.tracks[0], &fresh.tracks[0], sizeof sim.tracks[0]);
+  assert_memory_equal(&sim.tracks[1], &copy.tracks[1], sizeof sim.tracks[1]);
+  assert_int_equal(ball_racket_estimate(&m, &sim, 0, 1.2, &pose), BALL_ENOTFOUND);
+  /* a new holder's clock may be behind the old one's: its first sample counts */
+  assert_ok(ball_racket_push(&m, &sim, 0, &(ball_racket_sample){0.5, {7, 1, 0}, {1, 0, 0}}));
+  assert_int_equal(sim.tracks[0].count, 1);
+  assert_int_equal(ball_racket_push(&m, &sim, 1, &(ball_racket_sample){0.5, {7, 1, 0}, {1, 0, 0}}), BALL_ESTALE);
+}
+
 static void set_model_trims_the_tracks(void **state) {
   ball_model m;
   ball_sim sim;
@@ -532,6 +566,7 @@ int main(void) {
       cmocka_unit_test(a_changed_model_is_refused_and_the_sim_stays_unchanged),
       cmocka_unit_test(set_model_rebinds_and_keeps_the_ball),
       cmocka_unit_test(set_model_trims_the_tracks),
+      cmocka_unit_test(racket_clear_empties_one_track),
       cmocka_unit_test(a_duplicate_sample_is_told_apart),
       cmocka_unit_test(hashes_are_the_documented_numbers),
       cmocka_unit_test(the_model_hash_sees_every_field_a_step_reads),

@@ -458,6 +458,12 @@ BALL_API ball_status ball_step(const ball_model *model, ball_sim *sim, double dt
 BALL_API ball_status ball_racket_push(const ball_model *model, ball_sim *sim, int racket,
                                       const ball_racket_sample *sample);
 
+/* Empties one racket's track (its samples and its previous pose), as
+ * ball_sim_init leaves it: for a player slot that changes hands, whose new
+ * holder's samples must not be joined to the old one's. BALL_EINVAL for a
+ * racket the model does not have; BALL_EMODEL as ball_racket_push. */
+BALL_API ball_status ball_racket_clear(const ball_model *model, ball_sim *sim, int racket);
+
 /* The racket's estimated pose at sim time t: interpolated between samples,
  * extrapolated (eq 15) past the newest. BALL_ENOTFOUND without samples,
  * BALL_ESTALE if the newest sample is older than stale_time. */
