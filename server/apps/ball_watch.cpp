@@ -2,15 +2,23 @@
 // as it happens, records everything it receives to JSON Lines on request,
 // evaluates the ball from the segments at its own frame rate (eq 3 on the
 // client, with the flight model MatchInfo carries) and checks that ball
-// against the server's ball states: the desync check. One loop, one thread.
+// against the server's ball states: the desync check. With --snapshots it
+// also writes PNG frames of each match (libball::render, headless OSMesa)
+// every S sim seconds, as ballrender does for a scene. One loop, one thread.
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <deque>
 #include <fstream>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <sys/stat.h>
 
+#include "ball/render.h"
 #include "ball/vec3.h"
 #include "common.h"
 #include "domain.h"
@@ -44,7 +52,100 @@ struct Watched {
   uint64_t states = 0, checked = 0, unmatched = 0;
   double max_error = 0.0;
   uint64_t frames = 0;  // own frames evaluated
+  // snapshots: the court to draw, the last second of the own ball and of
+  // the collision events, the next sim time to draw
+  bool has_court = false;
+  ball_model court{};
+  std::deque<std::pair<double, ball_vec3>> trail;
+  std::deque<ball_event> recent;
+  double next_snapshot = -1.0;
+  uint64_t snapshots = 0;
 };
+
+// Snapshot frames of live matches (docs/server.md, "Snapshot frames").
+struct Snapshots {
+  std::string dir;
+  double every = 0.5;  // sim s
+  std::string camera = "side";
+  int width = 640, height = 480;
+  ball_renderer *renderer = nullptr;
+  ~Snapshots() { ball_renderer_destroy(renderer); }
+};
+
+constexpr double kTrailSeconds = 1.0;    // sim s of trail and of event markers
+constexpr size_t kTrailPoints = 2048;
+
+// The model a match's frames are drawn with: its scene's court (net, walls,
+// racket discs), if the watcher finds the scene by name, else libball's
+// default court, with the flight fields the match announced (radius,
+// floor: where the ball is drawn).
+ball_model court_model(const MatchInfoOut &info) {
+  ball_scene scene;
+  std::string err;
+  if (!load_scene(info.scene, &scene, &err)) ball_scene_default(&scene);
+  ball_model m = scene.model;
+  m.radius = info.model.radius;
+  m.floor_level = info.model.floor_level;
+  m.gravity = info.model.gravity;
+  return m;
+}
+
+bool event_marker(const EventOut &e, ball_event *out) {
+  ball_event ev{};
+  switch (e.kind) {
+    case EventKind::floor: ev.kind = BALL_EVENT_FLOOR; break;
+    case EventKind::net: ev.kind = BALL_EVENT_NET; break;
+    case EventKind::wall: ev.kind = BALL_EVENT_WALL; break;
+    case EventKind::racket: ev.kind = BALL_EVENT_RACKET; break;
+    default: return false;
+  }
+  ev.index = e.index;
+  ev.time = e.time;
+  ev.point = e.point;
+  ev.velocity_in = e.velocity_in;
+  ev.velocity_out = e.velocity_out;
+  *out = ev;
+  return true;
+}
+
+// Draws match id at sim time t, the ball at b, into the snapshot folder:
+// "" and the file's path, or an error.
+std::string snapshot(Snapshots &sn, uint32_t id, Watched &w, double t, ball_vec3 b, std::string *file) {
+  if (!sn.renderer && ball_renderer_create(sn.width, sn.height, &sn.renderer) != BALL_OK)
+    return "cannot create an OSMesa renderer";
+  if (!w.has_court) {
+    w.court = court_model(w.info);
+    w.has_court = true;
+  }
+  ball_camera cam;
+  ball_camera_preset preset = BALL_CAMERA_SIDE;
+  for (int i = 0; i < BALL_CAMERA_PRESET_COUNT; ++i)
+    if (sn.camera == ball_camera_preset_name(static_cast<ball_camera_preset>(i)))
+      preset = static_cast<ball_camera_preset>(i);
+  if (ball_camera_from_preset(&w.court, preset, static_cast<double>(sn.width) / sn.height, &cam) != BALL_OK)
+    return "no camera for match " + std::to_string(id);
+  std::vector<ball_vec3> trail;
+  for (const auto &p : w.trail) trail.push_back(p.second);
+  std::vector<ball_event> events(w.recent.begin(), w.recent.end());
+  ball_frame f{};
+  f.time = t;
+  f.ball = b;
+  f.n_rackets = 0;  // a watcher does not read the players' samples
+  f.n_trail = static_cast<int>(trail.size());
+  f.trail = trail.data();
+  f.n_events = static_cast<int>(events.size());
+  f.events = events.data();
+  if (ball_render_draw(sn.renderer, &w.court, &cam, &f) != BALL_OK) return "cannot draw match " + std::to_string(id);
+  const unsigned char *rgb;
+  int width, height;
+  ball_render_pixels(sn.renderer, &rgb, &width, &height);
+  char name[64];
+  std::snprintf(name, sizeof name, "/m%u_t%08.3f.png", id, t);
+  *file = sn.dir + name;
+  if (ball_png_write(file->c_str(), rgb, width, height) != BALL_OK)
+    return "cannot write " + *file + ": " + std::strerror(errno);
+  return "";
+}
 
 std::string point_text(ball_vec3 p) {
   char buf[96];
@@ -137,8 +238,36 @@ int main(int argc, char **argv) {
   cli.add_option("--summary-json", summary_json, "write the summary to FILE as JSON at exit");
   cli.add_flag("--no-log", no_log, "no rally log, only the summary");
   cli.add_flag("--quiet,-q", quiet, "print nothing but errors");
+  Snapshots snap;
+  std::string size_text;
+  cli.add_option("--snapshots", snap.dir, "write PNG frames of each match to DIR (m<match>_t<sim time>.png)");
+  cli.add_option("--snapshot-every", snap.every, "with --snapshots: sim seconds between frames")
+      ->capture_default_str()
+      ->check(CLI::Range(0.01, 3600.0));
+  std::vector<std::string> cameras;
+  for (int i = 0; i < BALL_CAMERA_PRESET_COUNT; ++i)
+    cameras.push_back(ball_camera_preset_name(static_cast<ball_camera_preset>(i)));
+  cli.add_option("--camera", snap.camera, "with --snapshots: the camera")
+      ->capture_default_str()
+      ->check(CLI::IsMember(cameras));
+  cli.add_option("--size", size_text, "with --snapshots: WxH pixels, each in [16, 2048] (default 640x480)");
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
+  if (!size_text.empty()) {
+    char x = 0, extra = 0;
+    if (std::sscanf(size_text.c_str(), "%d%c%d%c", &snap.width, &x, &snap.height, &extra) != 3 || x != 'x' ||
+        snap.width < BALL_RENDER_MIN_SIZE || snap.width > BALL_RENDER_MAX_SIZE || snap.height < BALL_RENDER_MIN_SIZE ||
+        snap.height > BALL_RENDER_MAX_SIZE)
+      return fail(kProgram, "--size: want WxH, each in [" + std::to_string(BALL_RENDER_MIN_SIZE) + ", " +
+                                std::to_string(BALL_RENDER_MAX_SIZE) + "], got \"" + size_text + "\"");
+  }
+  if (!snap.dir.empty()) {
+    struct stat st {};
+    if (::stat(snap.dir.c_str(), &st) != 0 && ::mkdir(snap.dir.c_str(), 0777) != 0)
+      return fail(kProgram, "--snapshots: cannot create " + snap.dir + ": " + std::strerror(errno));
+    if (::stat(snap.dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+      return fail(kProgram, "--snapshots: " + snap.dir + " is not a folder");
+  }
 
   std::string err;
   install_stop_signals();
@@ -254,6 +383,8 @@ int main(int argc, char **argv) {
         case EventKind::refused: w.refused++; break;
         default: break;
       }
+      ball_event marker;
+      if (!snap.dir.empty() && event_marker(e, &marker)) w.recent.push_back(marker);
       say(e.match_id, e.time, rally_line(e, w));
       log({{"type", "event"}, {"recv", real}, {"match", e.match_id}, {"server", e.server_id}, {"seq", e.seq},
            {"kind", event_name(e.kind)}, {"index", e.index}, {"side", e.side}, {"in_play", e.in_play},
@@ -322,6 +453,25 @@ int main(int argc, char **argv) {
         if (frames_in_record)
           log({{"type", "frame"}, {"real", real}, {"match", kv.first}, {"sim_time", t}, {"segment_seq", sg->seq},
                {"position", vec(b.position)}});
+        if (!snap.dir.empty()) {
+          // the last second of the ball and of its collisions, then a frame
+          // every `every` sim seconds, on multiples of it
+          if (!w.trail.empty() && t < w.trail.back().first) w.trail.clear();  // the clock went back
+          w.trail.emplace_back(t, b.position);
+          while (w.trail.size() > kTrailPoints || (!w.trail.empty() && w.trail.front().first < t - kTrailSeconds))
+            w.trail.pop_front();
+          while (!w.recent.empty() && (w.recent.front().time < t - kTrailSeconds || w.recent.size() > 64))
+            w.recent.pop_front();
+          if (w.next_snapshot < 0.0) w.next_snapshot = std::ceil(t / snap.every) * snap.every;
+          if (t >= w.next_snapshot) {
+            std::string file, why = snapshot(snap, kv.first, w, t, b.position, &file);
+            if (!why.empty()) return fail(kProgram, why);
+            w.snapshots++;
+            log({{"type", "snapshot"}, {"real", real}, {"match", kv.first}, {"sim_time", t}, {"file", file},
+                 {"position", vec(b.position)}, {"camera", snap.camera}, {"size", {snap.width, snap.height}}});
+            w.next_snapshot = (std::floor(t / snap.every) + 1.0) * snap.every;
+          }
+        }
       }
       next_frame += 1.0 / fps;
       if (next_frame < now) next_frame = now + 1.0 / fps;
@@ -345,6 +495,7 @@ int main(int argc, char **argv) {
                   {"score", {w.score[0], w.score[1]}}, {"pauses", w.pauses}, {"resumes", w.resumes},
                   {"events_missed", w.events_missed}, {"states", w.states}, {"states_checked", w.checked},
                   {"states_unmatched", w.unmatched}, {"max_error", w.max_error}, {"frames", w.frames},
+                  {"snapshots", w.snapshots},
                   {"segments", w.segments.empty() ? 0 : w.segments.rbegin()->first}});
   }
   sum["matches"] = ms;

@@ -22,8 +22,10 @@
 #include <nlohmann/json.hpp>
 #include <thread>
 
+#include "ball/render.h"
 #include "ball/scene.h"
 #include "ball/vec3.h"
+#include "ball_pixels.h"
 #include "common.h"
 #include "process.h"
 
@@ -414,6 +416,50 @@ void case_late_join(const Env &env) {
   EXPECT(got - started <= 5.0, "first segment %.3f s after start", got - started);
 }
 
+// ball-watch --snapshots: PNG frames of the live match every 0.5 sim s, the
+// ball drawn where the camera projects the position the watcher logged
+void case_snapshots(const Env &env) {
+  Case c{env};
+  std::string dir = path(env, "frames");
+  Play p = play(c, {"--rate", "20"}, path(env, "watch.jsonl"),
+                {"--snapshots", dir, "--snapshot-every", "0.5", "--camera", "top", "--size", "480x320"});
+  if (first_serve(p.t) < 0.0) return;
+  usleep(4 * 1000000);
+  p.w.stop();
+  p.t.poll();
+  ball_scene scene;
+  ball_scene_default(&scene);  // the server's default scene: the court the frames show
+  ball_camera cam;
+  EXPECT(ball_camera_from_preset(&scene.model, BALL_CAMERA_TOP, 480.0 / 320.0, &cam) == BALL_OK, "no camera");
+  int frames = 0, found = 0;
+  double worst = 0.0, last_t = -1.0;
+  for (const auto &j : p.t.lines) {
+    if (j.value("type", "") != "snapshot") continue;
+    frames++;
+    double t = j["sim_time"].get<double>();
+    EXPECT(t > last_t, "snapshot times not increasing: %.3f after %.3f", t, last_t);
+    last_t = t;
+    unsigned char *rgb = nullptr;
+    int w = 0, h = 0;
+    std::string file = j["file"];
+    if (ball_png_read(file.c_str(), &rgb, &w, &h) != BALL_OK) {
+      EXPECT(false, "cannot read %s", file.c_str());
+      continue;
+    }
+    EXPECT(w == 480 && h == 320, "%s is %dx%d, not 480x320", file.c_str(), w, h);
+    double px, py, cx, cy;
+    ball_vec3 b = ball_v3(j["position"][0], j["position"][1], j["position"][2]);
+    if (ball_camera_project(&cam, w, h, b, &px, &py, nullptr) == BALL_OK && ball_centroid(rgb, w, h, &cx, &cy) > 0) {
+      worst = std::fmax(worst, std::hypot(cx - px, cy - py));
+      found++;
+    }
+    std::free(rgb);
+  }
+  note("%d snapshots, the ball found in %d, at most %.2f px from its projection", frames, found, worst);
+  EXPECT(frames >= 6, "only %d snapshots in about 4 s of play", frames);
+  EXPECT(found == frames && worst <= 2.0, "ball found in %d of %d frames, %.2f px off", found, frames, worst);
+}
+
 // ball-server's command line: --help, bad configs, a missing profile, a bad domain
 void case_server_cli(const Env &env) {
   auto run = [&](std::vector<std::string> args, const std::string &name, std::string *err) {
@@ -497,7 +543,7 @@ int main(int argc, char **argv) {
   std::map<std::string, std::function<void(const Env &)>> cases = {
       {"rally", case_rally},         {"desync", case_desync}, {"pause", case_pause},
       {"flood", case_flood},         {"late_join", case_late_join}, {"lossy", case_lossy},
-      {"server_cli", case_server_cli}, {"busy", case_busy}};
+      {"server_cli", case_server_cli}, {"busy", case_busy},         {"snapshots", case_snapshots}};
   auto it = cases.find(name);
   if (it == cases.end()) return fail("ball_itest", "unknown case " + name);
   // Under AddressSanitizer (./run asan): Debian's Fast DDS 2.9 deletes its

@@ -31,12 +31,13 @@ target_compile_options(ball_flood PRIVATE ${BALL_CXX_WARNINGS})
 set_target_properties(ball_flood PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/server)
 
 add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp)
-target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static)
+target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static ball_render)
+target_include_directories(ball_itest PRIVATE ${PROJECT_SOURCE_DIR}/tests/render)
 target_compile_options(ball_itest PRIVATE ${BALL_CXX_WARNINGS})
 add_dependencies(ball_itest ball-server ball-bot ball-watch ball_flood)
 
 # each case on a DDS domain of its own (100 + its index): parallel runs never meet
-set(BALL_ITEST_CASES rally desync pause flood late_join lossy server_cli busy)
+set(BALL_ITEST_CASES rally desync pause flood late_join lossy server_cli busy snapshots)
 set(index 0)
 foreach(case ${BALL_ITEST_CASES})
   math(EXPR domain "100 + ${index}")
