@@ -10,6 +10,8 @@
 #include <cstring>
 #include <string>
 
+#include <CLI/CLI.hpp>
+
 #include "accuracy.h"
 #include "common.h"
 
@@ -64,55 +66,23 @@ const char *step_name(double h) {
 
 }  // namespace acc
 
-namespace {
-
-void usage(FILE *f) {
-  std::fprintf(f,
-               "usage: ball_accuracy [--quick] [--rounds N] [--data DIR] [--page FILE] [--scenes DIR]\n"
-               "                     [--only SECTION]...\n"
-               "  what accuracy costs in time (docs/accuracy.md): flight, static obstacles,\n"
-               "  rackets, effects and the whole step, measured in one run\n"
-               "  --quick        tiny sample sets and short timings (the ctest's sanity run)\n"
-               "  --rounds N     timing rounds, min and median reported (default 11)\n"
-               "  --data DIR     where the plots' data files go (default .; created)\n"
-               "  --page FILE    write the markdown page there (default: none)\n"
-               "  --scenes DIR   the example scenes (default libball/scenes)\n"
-               "  --only NAME    flight, static, rackets or step (repeatable; the page needs all)\n");
-}
-
-}  // namespace
-
 int main(int argc, char **argv) {
   acc::Options opt;
   opt.data_dir = ".";
   opt.scenes = "libball/scenes";
   std::vector<std::string> only;
-  for (int i = 1; i < argc; i++) {
-    std::string a = argv[i];
-    if (a == "--quick") {
-      opt.quick = true;
-    } else if (a == "--rounds" && i + 1 < argc) {
-      opt.rounds = std::atoi(argv[++i]);
-      if (opt.rounds < 1 || opt.rounds > 101) {
-        std::fprintf(stderr, "ball_accuracy: --rounds wants 1 to 101\n");
-        return 2;
-      }
-    } else if (a == "--data" && i + 1 < argc) {
-      opt.data_dir = argv[++i];
-    } else if (a == "--page" && i + 1 < argc) {
-      opt.page = argv[++i];
-    } else if (a == "--scenes" && i + 1 < argc) {
-      opt.scenes = argv[++i];
-    } else if (a == "--only" && i + 1 < argc) {
-      only.push_back(argv[++i]);
-    } else if (a == "--help" || a == "-h") {
-      usage(stdout);
-      return 0;
-    } else {
-      usage(stderr);
-      return 2;
-    }
-  }
+  CLI::App cli{"ball_accuracy: what accuracy costs in time (docs/accuracy.md): flight, static obstacles,\n"
+               "rackets, effects and the whole step, measured in one run"};
+  cli.add_flag("--quick", opt.quick, "tiny sample sets and short timings (the ctest's sanity run)");
+  cli.add_option("--rounds", opt.rounds, "timing rounds, min and median reported")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 101));
+  cli.add_option("--data", opt.data_dir, "where the plots' data files go (created)")->capture_default_str();
+  cli.add_option("--page", opt.page, "write the markdown page there (default: none)");
+  cli.add_option("--scenes", opt.scenes, "the example scenes")->capture_default_str();
+  cli.add_option("--only", only, "this section only (repeatable; the page needs all)")
+      ->check(CLI::IsMember({"flight", "static", "rackets", "step"}));
+  CLI11_PARSE(cli, argc, argv);
   if (opt.quick) {
     opt.rounds = 1;
     opt.min_time = 0.0;
@@ -134,11 +104,6 @@ int main(int argc, char **argv) {
                               {"static", acc::run_static},
                               {"rackets", acc::run_rackets},
                               {"step", acc::run_step}};
-  for (const std::string &name : only)
-    if (std::none_of(std::begin(sections), std::end(sections), [&](const Section &s) { return name == s.name; })) {
-      std::fprintf(stderr, "ball_accuracy: unknown section '%s'\n", name.c_str());
-      return 2;
-    }
   if (!opt.page.empty() && !only.empty()) {
     std::fprintf(stderr, "ball_accuracy: --page needs every section\n");
     return 2;

@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
 #include "common.h"
 #include "mujoco_ball.h"
 
@@ -57,25 +59,12 @@ double per_call(F &&f, double min_time) {
 int main(int argc, char **argv) {
   bool smoke = false;
   int rounds = 7;
-  for (int i = 1; i < argc; i++) {
-    std::string a = argv[i];
-    if (a == "--smoke") {
-      smoke = true;
-    } else if (a == "--rounds" && i + 1 < argc) {
-      rounds = std::atoi(argv[++i]);
-      if (rounds < 1 || rounds > 101) {
-        std::fprintf(stderr, "ball_bench_mujoco: --rounds wants 1 to 101\n");
-        return 2;
-      }
-    } else if (a == "--help" || a == "-h") {
-      std::printf("usage: ball_bench_mujoco [--rounds N] [--smoke]\n"
-                  "  libball against a MuJoCo 2.2 RK4 twin at equal accuracy (docs/benchmarks.md)\n");
-      return 0;
-    } else {
-      std::fprintf(stderr, "usage: ball_bench_mujoco [--rounds N] [--smoke]\n");
-      return 2;
-    }
-  }
+  CLI::App cli{"ball_bench_mujoco: libball against a MuJoCo 2.2 RK4 twin at equal accuracy (docs/benchmarks.md)"};
+  cli.add_option("--rounds", rounds, "rounds per measurement, min and median reported")
+      ->capture_default_str()
+      ->check(CLI::Range(1, 101));
+  cli.add_flag("--smoke", smoke, "two short rounds, to check the program runs");
+  CLI11_PARSE(cli, argc, argv);
   if (smoke) rounds = 2;
   const double min_time = smoke ? 0.002 : 0.05;
   const double frame = 1.0 / 60.0; // 120 frames: the 2 s flight

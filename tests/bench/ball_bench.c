@@ -15,6 +15,8 @@
  * ctest runs only `ball_bench --smoke`, which checks the program works.
  *
  *   ball_bench [--rounds N] [--scale X] [--smoke] [--only SECTION] [--scenes DIR] */
+#define _POSIX_C_SOURCE 200809L
+#include <getopt.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -254,29 +256,39 @@ int main(int argc, char **argv) {
   o.smoke = 0;
   o.only = NULL;
   o.scenes = getenv("BALL_SCENES") ? getenv("BALL_SCENES") : "libball/scenes";
-  for (i = 1; i < argc; i++) {
-    if (!strcmp(argv[i], "--rounds") && i + 1 < argc) {
-      o.rounds = atoi(argv[++i]);
-      if (o.rounds < 1 || o.rounds > MAX_ROUNDS) {
-        fprintf(stderr, "ball_bench: --rounds wants 1 to %d\n", MAX_ROUNDS);
-        return 2;
+  {
+    static const struct option longs[] = {{"rounds", required_argument, NULL, 'r'},
+                                          {"scale", required_argument, NULL, 'x'},
+                                          {"only", required_argument, NULL, 'o'},
+                                          {"scenes", required_argument, NULL, 's'},
+                                          {"smoke", no_argument, NULL, 'm'},
+                                          {"help", no_argument, NULL, 'h'},
+                                          {NULL, 0, NULL, 0}};
+    char *end;
+    while ((i = getopt_long(argc, argv, "h", longs, NULL)) != -1) {
+      switch (i) {
+      case 'r':
+        o.rounds = (int)strtol(optarg, &end, 10);
+        if (*end || o.rounds < 1 || o.rounds > MAX_ROUNDS) {
+          fprintf(stderr, "ball_bench: --rounds wants 1 to %d\n", MAX_ROUNDS);
+          return 2;
+        }
+        break;
+      case 'x':
+        o.scale = strtod(optarg, &end);
+        if (*end || !(o.scale > 0.0 && o.scale <= 100.0)) {
+          fprintf(stderr, "ball_bench: --scale wants a number in (0, 100]\n");
+          return 2;
+        }
+        break;
+      case 'o': o.only = optarg; break;
+      case 's': o.scenes = optarg; break;
+      case 'm': o.smoke = 1; break;
+      case 'h': usage(stdout); return 0;
+      default: usage(stderr); return 2;
       }
-    } else if (!strcmp(argv[i], "--scale") && i + 1 < argc) {
-      o.scale = strtod(argv[++i], NULL);
-      if (!(o.scale > 0.0 && o.scale <= 100.0)) {
-        fprintf(stderr, "ball_bench: --scale wants a number in (0, 100]\n");
-        return 2;
-      }
-    } else if (!strcmp(argv[i], "--only") && i + 1 < argc) {
-      o.only = argv[++i];
-    } else if (!strcmp(argv[i], "--scenes") && i + 1 < argc) {
-      o.scenes = argv[++i];
-    } else if (!strcmp(argv[i], "--smoke")) {
-      o.smoke = 1;
-    } else if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h")) {
-      usage(stdout);
-      return 0;
-    } else {
+    }
+    if (optind < argc) {
       usage(stderr);
       return 2;
     }
