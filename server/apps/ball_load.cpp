@@ -12,6 +12,7 @@
 #include <cinttypes>
 #include <cstdio>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 
@@ -49,8 +50,12 @@ struct Result {
   uint32_t playing = 0;
 };
 
-// Plays every slot of matches 0..n-1 for warmup + duration s.
-bool drive(const Options &o, Result *r, std::string *err) {
+// Plays every slot of matches 0..n-1 for warmup + duration s; hands the
+// result to `done` while the participant still lives (its teardown may be
+// the one that sticks: dds::run_bounded).
+bool drive(const Options &o, const std::function<void(const Result &)> &done, std::string *err) {
+  Result result;
+  Result *r = &result;
   ball_scene scene;
   ball_scene_default(&scene);
   auto domain = dds::Domain::open(o.dds.domain, find_profile(o.dds.profile), o.dds.participant, "ball-load", err);
@@ -156,6 +161,7 @@ bool drive(const Options &o, Result *r, std::string *err) {
     if (b.leave(&bye)) controls.write(bye);
   }
   sleep_until(mono_now() + 0.3);  // the LEAVEs get out before the participant goes
+  done(result);
   return true;
 }
 
@@ -220,18 +226,26 @@ int main(int argc, char **argv) {
   install_stop_signals();
   std::string err;
   json all = json::array();
-  if (sweep.empty()) {
-    Result r;
-    if (!drive(o, &r, &err)) return fail(kProgram, err);
-    print_header(o);
+  // every row is printed and in the JSON file as soon as it is measured
+  auto record = [&](const Result &r, const Options &run, bool last) {
     print_row(r);
-    all.push_back(to_json(r, o));
+    all.push_back(to_json(r, run));
+    if (!json_out.empty()) std::ofstream(json_out) << all.dump(1) << "\n";
+    if (last) dds::set_exit_status_if_stuck(0);  // all is written (domain.h)
+  };
+  if (sweep.empty()) {
+    auto done = [&](const Result &r) {
+      print_header(o);
+      record(r, o, true);
+    };
+    if (!drive(o, done, &err)) return fail(kProgram, err);
   } else {
     print_header(o);
     char dir_template[] = "/tmp/ball-load-XXXXXX";
     if (!mkdtemp(dir_template)) return fail(kProgram, "cannot make a temporary directory");
     std::string dir = dir_template;
-    for (int n : sweep) {
+    for (size_t i = 0; i < sweep.size(); ++i) {
+      int n = sweep[i];
       if (stop_requested()) break;
       Options run = o;
       run.matches = n;
@@ -240,16 +254,13 @@ int main(int argc, char **argv) {
                                        "--state-rate", std::to_string(state_rate), "--startup-wait", "0", "--quiet",
                                        "--stats-json", dir + "/server.json"},
                                       dir + "/server.out", dir + "/server.err");
-      Result r;
-      bool ok = drive(run, &r, &err);
+      bool ok = drive(run, [&](const Result &r) { record(r, run, i + 1 == sweep.size()); }, &err);
       server.stop(5.0);
       if (!ok) return fail(kProgram, err);
-      print_row(r);
-      all.push_back(to_json(r, run));
     }
     for (const char *f : {"server.json", "server.out", "server.err"}) unlink((dir + "/" + f).c_str());
     rmdir(dir.c_str());
   }
-  if (!json_out.empty()) std::ofstream(json_out) << all.dump(1) << "\n";
+  if (!json_out.empty()) std::ofstream(json_out) << all.dump(1) << "\n";  // also when no row was measured
   return 0;
 }

@@ -372,8 +372,11 @@ int main(int argc, char **argv) {
         st.writers_lost++;
       } else if (n.kind == dds::StatusNote::deadline_missed) {
         st.deadline_missed += static_cast<uint64_t>(n.count);
-      } else if (n.kind == dds::StatusNote::rejected) {
-        st.drops[static_cast<int>(SampleResult::rejected)] += static_cast<uint64_t>(n.count);
+      } else if (n.kind == dds::StatusNote::rejected || n.kind == dds::StatusNote::samples_lost) {
+        // refused by the reader or lost on the link: counted in and dropped, so that
+        // samples_in = samples_ok + idle + every drop (docs/protocol.md)
+        SampleResult why = n.kind == dds::StatusNote::rejected ? SampleResult::rejected : SampleResult::lost;
+        st.drops[static_cast<int>(why)] += static_cast<uint64_t>(n.count);
         st.samples_in += static_cast<uint64_t>(n.count);
       }
     }
@@ -462,5 +465,6 @@ int main(int argc, char **argv) {
   }
   if (!stats_json.empty() && !write_stats_json(stats_json, o, st, host))
     return fail(kProgram, "cannot write " + stats_json);
+  dds::set_exit_status_if_stuck(0);  // all is written: a stuck DDS teardown still ends well (domain.h)
   return 0;  // the Domain deletes every entity, in reverse order, as it goes
 }

@@ -14,9 +14,16 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <fastdds/rtps/common/InstanceHandle.h>
 
+#include <unistd.h>
+
+#include <atomic>
 #include <cerrno>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <thread>
 #include <map>
 #include <set>
 
@@ -98,6 +105,9 @@ struct Reader<T>::Notes : public fdds::DataReaderListener {
   }
   void on_sample_rejected(fdds::DataReader *, const fdds::SampleRejectedStatus &s) override {
     add(StatusNote::rejected, ParticipantId{}, s.total_count_change);
+  }
+  void on_sample_lost(fdds::DataReader *, const fdds::SampleLostStatus &s) override {
+    add(StatusNote::samples_lost, ParticipantId{}, s.total_count_change);
   }
 };
 
@@ -194,8 +204,44 @@ std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_f
   return d;
 }
 
+namespace {
+std::atomic<int> g_exit_status_if_stuck{1};
+}
+
+void set_exit_status_if_stuck(int status) { g_exit_status_if_stuck = status; }
+
+void run_bounded(const std::function<void()> &work, double limit, const std::string &what) {
+  std::mutex m;
+  std::condition_variable cv;
+  bool done = false;
+  std::thread guard([&] {
+    std::unique_lock<std::mutex> lock(m);
+    if (cv.wait_for(lock, std::chrono::duration<double>(limit), [&] { return done; })) return;
+    int status = g_exit_status_if_stuck;
+    std::fprintf(stderr,
+                 "%s did not finish within %g s (a deadlock inside Fast DDS, eProsima/Fast-DDS#6193); "
+                 "exiting with status %d\n",
+                 what.c_str(), limit, status);
+    std::fflush(nullptr);
+    _exit(status);
+  });
+  work();
+  {
+    std::lock_guard<std::mutex> lock(m);
+    done = true;
+  }
+  cv.notify_one();
+  guard.join();
+}
+
 Domain::Domain(Key) {}
-Domain::~Domain() = default;
+Domain::~Domain() {
+  if (!impl_ || !impl_->participant) return;
+  std::string name = impl_->participant->get_qos().name().c_str();
+  run_bounded([this] { impl_.reset(); }, kTeardownLimit,
+              "deleting the DDS entities of participant \"" + name + "\" (domain " + std::to_string(domain_id_) +
+                  ")");
+}
 
 ParticipantId Domain::id() const { return prefix_of(impl_->participant->guid()); }
 
@@ -240,7 +286,8 @@ Reader<T> Domain::reader(const char *topic_name, const char *profile, Sizing siz
   size_limits(&qos, sizing);
   auto notes = std::make_shared<typename Reader<T>::Notes>();
   fdds::StatusMask mask = fdds::StatusMask::liveliness_changed() << fdds::StatusMask::subscription_matched()
-                          << fdds::StatusMask::requested_deadline_missed() << fdds::StatusMask::sample_rejected();
+                          << fdds::StatusMask::requested_deadline_missed() << fdds::StatusMask::sample_rejected()
+                          << fdds::StatusMask::sample_lost();
   r.r_ = impl_->subscriber->create_datareader(t, qos, notes.get(), mask);
   if (!r.r_) {
     *err = std::string("cannot create a reader on ") + topic_name + " with profile " + profile;

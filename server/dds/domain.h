@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -65,7 +66,7 @@ struct SampleMeta {
 // Something the DDS threads noticed about a reader's writers; the owning
 // loop drains them (Reader::drain_status).
 struct StatusNote {
-  enum Kind { writer_lost, deadline_missed, rejected, writer_matched } kind;
+  enum Kind { writer_lost, deadline_missed, rejected, writer_matched, samples_lost } kind;
   ParticipantId who{};  // writer_lost/writer_matched: the participant; zeros otherwise
   int count = 1;
 };
@@ -103,6 +104,21 @@ class Reader {
   struct Notes;
   Notes *notes_ = nullptr;
 };
+
+// Fast DDS 2.9 can deadlock while it deletes entities: a timer's callback
+// waits for a lock held by the thread that is unregistering a timer, which
+// waits for that callback (eProsima/Fast-DDS #6193 and #6502, both open; seen
+// here at the end of ball_flood, two participants in one process, under
+// ASan). A Domain therefore deletes its entities through run_bounded: if that
+// has not returned within kTeardownLimit seconds, the process says so on
+// stderr and ends with the status given to set_exit_status_if_stuck (1
+// unless a program set it; a program sets 0 once everything it had to
+// write is written, so its results and its status survive the deadlock).
+constexpr double kTeardownLimit = 3.0;
+void set_exit_status_if_stuck(int status);
+// Runs work(); if it has not returned after `limit` s, writes "<what> did
+// not finish ..." to stderr, flushes stdio and calls _exit with that status.
+void run_bounded(const std::function<void()> &work, double limit, const std::string &what);
 
 class Domain {
   struct Key {};  // only open() makes a Domain

@@ -15,6 +15,7 @@ const char *drop_name(SampleResult r) {
     case SampleResult::out_of_order: return "out_of_order";
     case SampleResult::stale: return "stale";
     case SampleResult::rejected: return "rejected";
+    case SampleResult::lost: return "lost";
     case SampleResult::drop_count: break;
     case SampleResult::accepted: return "accepted";
     case SampleResult::idle: return "idle";

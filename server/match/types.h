@@ -58,6 +58,7 @@ enum class SampleResult : int {
   out_of_order,       // seq older than the newest accepted one (reordered by the network)
   stale,              // capture time older than the match's sample age limit, or not newer than the newest kept
   rejected,           // refused by DDS itself before the server saw it (resource limits); DDS layer only
+  lost,               // never arrived: DDS saw a gap in a writer's sequence numbers; DDS layer only
   drop_count,         // (number of drop reasons)
   accepted = 100,     // fed to the racket track
   idle,               // well formed, but the match is not playing: refreshes presence only

@@ -3,7 +3,10 @@
 // with well-formed samples at 10 Hz; once the match plays it sends, with
 // --per-kind N, N samples of every malformed kind the server must drop
 // (interleaved, about 1250 a second), some from a second participant B that
-// holds nothing. It writes what it sent, by kind, as JSON.
+// holds nothing. With --burst M it then writes M more out_of_range samples
+// in one go, faster than the server's reader keeps them (its history holds
+// 64 a slot between two frames): DDS must count what it refuses. It writes
+// what it sent, by kind, as JSON.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -29,13 +32,14 @@ const SampleResult kKinds[] = {SampleResult::unknown_match, SampleResult::bad_sl
 
 int main(int argc, char **argv) {
   CLI::App cli{"ball_flood: well-formed parked rackets on match 0, then malformed samples of every kind"};
-  long per_kind = 0;
+  long per_kind = 0, burst = 0;
   double duration = 12.0, interval = 0.0008;
   std::string out_json;
   DdsOptions dds_opt;
   cli.add_option("--per-kind", per_kind, "malformed samples of each kind (0: only the parked rackets)");
   cli.add_option("--duration", duration, "s to run");
   cli.add_option("--interval", interval, "s between malformed samples");
+  cli.add_option("--burst", burst, "then this many out_of_range samples at once");
   cli.add_option("--out", out_json, "JSON file of what was sent");
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
@@ -60,7 +64,7 @@ int main(int argc, char **argv) {
   uint32_t seq[2] = {0, 0}, control_seq = 0;
   RacketSampleIn last_valid[2];
   std::map<std::string, long> sent;
-  long valid = 0, flood_index = 0;
+  long valid = 0, flood_index = 0, burst_sent = 0;
   const double start = mono_now();
   double next_valid = start, next_join = start, next_bad = start, flood_started = -1.0, first_valid = -1.0;
   bool playing = false;
@@ -148,6 +152,14 @@ int main(int argc, char **argv) {
       next_bad += interval;
     }
     if (!ready) next_bad = now;
+    // the burst, once the flood is out and the server had 0.5 s for it
+    if (ready && burst_sent == 0 && burst > 0 && flood_index >= per_kind * 10 && now >= next_bad + 0.5) {
+      for (; burst_sent < burst; ++burst_sent) {
+        RacketSampleIn s = parked(0, sim);
+        s.center.y = 1e4;  // out_of_range
+        a_samples.write(s);
+      }
+    }
     sleep_until(std::min(next_valid, now + 0.0005));
   }
   nlohmann::json j;
@@ -155,6 +167,7 @@ int main(int argc, char **argv) {
   j["flood_started"] = flood_started < 0 ? -1.0 : flood_started - start;
   j["sent"] = sent;
   j["malformed"] = flood_index;
+  j["burst"] = burst_sent;
   // what it last heard, to tell why a flood did not start
   j["last_info"] = {{"have", have_info},
                     {"state", state_name(info.state)},
@@ -163,5 +176,8 @@ int main(int argc, char **argv) {
                     {"revision", info.revision}};
   if (!out_json.empty()) std::ofstream(out_json) << j.dump(1) << "\n";
   std::printf("%s: %ld parked samples, %ld malformed\n", kProgram, valid, flood_index);
-  return per_kind > 0 && flood_index < per_kind * 10 ? 1 : 0;
+  std::fflush(stdout);
+  int status = (per_kind > 0 && flood_index < per_kind * 10) || burst_sent < burst ? 1 : 0;
+  dds::set_exit_status_if_stuck(status);  // two participants in one process: the case of Fast-DDS#6193
+  return status;
 }

@@ -25,6 +25,14 @@ target_compile_options(test_config PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_config COMMAND test_config)
 set_tests_properties(test_config PROPERTIES LABELS server TIMEOUT 60)
 
+# the teardown guard (server/dds/domain.h); one participant on domain 141
+add_executable(test_teardown ${CMAKE_CURRENT_LIST_DIR}/test_teardown.cpp)
+target_include_directories(test_teardown PRIVATE ${CMAKE_CURRENT_LIST_DIR})
+target_link_libraries(test_teardown PRIVATE ball_app ball_dds)
+target_compile_options(test_teardown PRIVATE ${BALL_CXX_WARNINGS})
+add_test(NAME test_teardown COMMAND test_teardown)
+set_tests_properties(test_teardown PROPERTIES LABELS dds TIMEOUT 60)
+
 add_executable(ball_flood ${CMAKE_CURRENT_LIST_DIR}/flood.cpp)
 target_link_libraries(ball_flood PRIVATE ball_app ball_dds)
 target_compile_options(ball_flood PRIVATE ${BALL_CXX_WARNINGS})
