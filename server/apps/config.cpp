@@ -1,8 +1,9 @@
 #include "config.h"
 
-#include <cctype>
+#include <yaml.h>
+
+#include <cstdlib>
 #include <cmath>
-#include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -226,61 +227,10 @@ bool load_config_file(const std::string &path, ServerConfig *config, std::string
 }
 
 // ---- where a JSON pointer points in the text ------------------------------
+// nlohmann-json 3.11 keeps no positions; libyaml (already the scene reader's)
+// reads JSON as YAML's flow style and marks every node with its line.
 
 namespace {
-
-class Walker {
- public:
-  explicit Walker(const std::string &s) : s_(s) {}
-  int line() const { return line_; }
-  char peek() {
-    space();
-    return i_ < s_.size() ? s_[i_] : '\0';
-  }
-  void next() { i_++; }
-  std::string string() {  // at the opening quote
-    std::string out;
-    i_++;
-    while (i_ < s_.size() && s_[i_] != '"') {
-      if (s_[i_] == '\\' && i_ + 1 < s_.size()) i_++;
-      out += s_[i_++];
-    }
-    i_++;
-    return out;
-  }
-  void skip() {  // one value
-    char c = peek();
-    if (c == '"') {
-      string();
-    } else if (c == '{' || c == '[') {
-      int depth = 0;
-      do {
-        char d = s_[i_];
-        if (d == '"') {
-          string();
-          continue;
-        }
-        if (d == '\n') line_++;
-        if (d == '{' || d == '[') depth++;
-        if (d == '}' || d == ']') depth--;
-        i_++;
-      } while (depth > 0 && i_ < s_.size());
-    } else {
-      while (i_ < s_.size() && !std::strchr(",}] \t\r\n", s_[i_])) i_++;
-    }
-  }
-
- private:
-  void space() {
-    while (i_ < s_.size() && std::isspace(static_cast<unsigned char>(s_[i_]))) {
-      if (s_[i_] == '\n') line_++;
-      i_++;
-    }
-  }
-  const std::string &s_;
-  size_t i_ = 0;
-  int line_ = 1;
-};
 
 std::vector<std::string> pointer_tokens(const std::string &pointer) {
   std::vector<std::string> out;
@@ -288,7 +238,7 @@ std::vector<std::string> pointer_tokens(const std::string &pointer) {
   while (i <= pointer.size() && !pointer.empty()) {
     size_t j = pointer.find('/', i);
     std::string tok = pointer.substr(i, j == std::string::npos ? std::string::npos : j - i);
-    std::string un;
+    std::string un;  // RFC 6901: ~1 is '/', ~0 is '~'
     for (size_t k = 0; k < tok.size(); ++k) {
       if (tok[k] == '~' && k + 1 < tok.size()) {
         un += tok[k + 1] == '1' ? '/' : '~';
@@ -304,47 +254,41 @@ std::vector<std::string> pointer_tokens(const std::string &pointer) {
   return out;
 }
 
+int line_of(const yaml_node_t *n) { return static_cast<int>(n->start_mark.line) + 1; }
+
 }  // namespace
 
 int json_pointer_line(const std::string &text_in, const std::string &pointer) {
-  Walker w(text_in);
-  w.peek();
-  int best = w.line();
-  for (const std::string &tok : pointer_tokens(pointer)) {
-    char c = w.peek();
-    bool found = false;
-    if (c == '{') {
-      w.next();
-      while (w.peek() == '"') {
-        std::string key = w.string();
-        if (w.peek() != ':') return best;
-        w.next();
-        w.peek();
-        if (key == tok) {
-          best = w.line();
-          found = true;
-          break;
+  yaml_parser_t parser;
+  yaml_document_t doc;
+  if (!yaml_parser_initialize(&parser)) return 1;
+  yaml_parser_set_input_string(&parser, reinterpret_cast<const unsigned char *>(text_in.data()), text_in.size());
+  int best = 1;
+  if (yaml_parser_load(&parser, &doc)) {
+    yaml_node_t *n = yaml_document_get_root_node(&doc);
+    if (n) best = line_of(n);
+    for (const std::string &tok : pointer_tokens(pointer)) {
+      yaml_node_t *child = nullptr;
+      if (n && n->type == YAML_MAPPING_NODE) {
+        for (yaml_node_pair_t *p = n->data.mapping.pairs.start; p < n->data.mapping.pairs.top && !child; ++p) {
+          yaml_node_t *key = yaml_document_get_node(&doc, p->key);
+          if (key && key->type == YAML_SCALAR_NODE &&
+              tok == std::string(reinterpret_cast<const char *>(key->data.scalar.value), key->data.scalar.length))
+            child = yaml_document_get_node(&doc, p->value);
         }
-        w.skip();
-        if (w.peek() != ',') return best;
-        w.next();
+      } else if (n && n->type == YAML_SEQUENCE_NODE && !tok.empty() &&
+                 tok.find_first_not_of("0123456789") == std::string::npos) {
+        long idx = std::strtol(tok.c_str(), nullptr, 10);
+        yaml_node_item_t *items = n->data.sequence.items.start;
+        if (idx < n->data.sequence.items.top - items) child = yaml_document_get_node(&doc, items[idx]);
       }
-    } else if (c == '[') {
-      w.next();
-      long idx = std::strtol(tok.c_str(), nullptr, 10);
-      for (long k = 0; w.peek() != ']' && w.peek() != '\0'; ++k) {
-        if (k == idx) {
-          best = w.line();
-          found = true;
-          break;
-        }
-        w.skip();
-        if (w.peek() != ',') return best;
-        w.next();
-      }
+      if (!child) break;  // the nearest parent
+      n = child;
+      best = line_of(n);
     }
-    if (!found) return best;
+    yaml_document_delete(&doc);
   }
+  yaml_parser_delete(&parser);
   return best;
 }
 

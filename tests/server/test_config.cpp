@@ -82,6 +82,13 @@ TEST(pointer_lines) {
   CHECK_EQ(json_pointer_line(text, "/a/b/2"), 5);  // past a string holding ",}]"
   CHECK_EQ(json_pointer_line(text, "/d"), 7);
   CHECK_EQ(json_pointer_line(text, "/a/missing"), 2);  // the nearest parent
+  // compact JSON (no space after a colon), escapes, a key with '/' and '~'
+  const char *compact = "{\"x\":{\"a/b\":[1,\n2],\n\"m~n\":\"q\\\"\\/\"},\n\"y\":[{},\n{\"z\":true}]}";
+  CHECK_EQ(json_pointer_line(compact, "/x/a~1b/1"), 2);
+  CHECK_EQ(json_pointer_line(compact, "/x/m~0n"), 3);
+  CHECK_EQ(json_pointer_line(compact, "/y/1/z"), 5);
+  CHECK_EQ(json_pointer_line(compact, "/y/7"), 4);  // past the end: the list
+  CHECK_EQ(json_pointer_line("not [ json", "/a"), 1);
 }
 
 CHECK_MAIN
