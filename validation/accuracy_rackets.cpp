@@ -30,13 +30,13 @@ double swing_frame_cost(const ball_model &m, const std::vector<swing> &swings, d
     st.position = sw.seg.p0;
     st.velocity = sw.seg.v0;
     st.spin = sw.seg.s0;
-    ball_sim_init(&m, &sim);
-    ball_sim_set_state(&m, &sim, &st);
-    ball_racket_push(&m, &sim, 0, &sw.s[0]);
+    ball_sim_init(&sim, &m);
+    ball_sim_set_state(&sim, &st);
+    ball_racket_push(&sim, 0, &sw.s[0]);
     double t0 = bench_now();
     for (int k = 1; k < sw.n; k++) {
-      ball_racket_push(&m, &sim, 0, &sw.s[k]);
-      ball_step(&m, &sim, sw.s[k].t - sim.time, ev, 8, NULL);
+      ball_racket_push(&sim, 0, &sw.s[k]);
+      ball_step(&sim, sw.s[k].t - sim.time, ev, 8, NULL);
     }
     spent += bench_now() - t0 - overhead;
     frames += sw.n - 1;
@@ -287,7 +287,7 @@ Outcome play(const ball_model &step_m, const ball_model &court, const Stroke &s,
   st.position = s.seg.p0;
   st.velocity = s.seg.v0;
   st.spin = ball_v3(0.0, 0.0, 0.0);
-  *ok = ball_sim_init(&step_m, &sim) == BALL_OK && ball_sim_set_state(&step_m, &sim, &st) == BALL_OK;
+  *ok = ball_sim_init(&sim, &step_m) == BALL_OK && ball_sim_set_state(&sim, &st) == BALL_OK;
   const double dt = 1.0 / rate;
   for (long k = 0; *ok && k * dt <= s.t + 0.3; k++) {
     double t = k * dt;
@@ -297,10 +297,10 @@ Outcome play(const ball_model &step_m, const ball_model &court, const Stroke &s,
     player.normal = w.n;
     partner.center = kPartner;
     partner.normal = ball_v3(-1.0, 0.0, 0.0);
-    *ok = ball_racket_push(&step_m, &sim, 0, &player) == BALL_OK &&
-          ball_racket_push(&step_m, &sim, 1, &partner) == BALL_OK;
+    *ok = ball_racket_push(&sim, 0, &player) == BALL_OK &&
+          ball_racket_push(&sim, 1, &partner) == BALL_OK;
     if (!*ok || k == 0) continue;
-    *ok = ball_step(&step_m, &sim, t - sim.time, ev, 8, &n_ev) == BALL_OK;
+    *ok = ball_step(&sim, t - sim.time, ev, 8, &n_ev) == BALL_OK;
     for (int i = 0; *ok && i < n_ev; i++) {
       if (ev[i].kind != BALL_EVENT_RACKET) continue;
       // where it comes down: on the court (net and floor) from the hit on

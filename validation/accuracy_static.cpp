@@ -71,9 +71,9 @@ std::vector<Bounce> sim_bounces(const ball_model &m, double rate, int count, dou
   ball_sim sim;
   ball_event ev[BALL_MAX_CONTACTS];
   int n;
-  ball_sim_init(&m, &sim);
+  ball_sim_init(&sim, &m);
   for (long k = 0; k < std::lround(limit * rate) && static_cast<int>(out.size()) < count; k++) {
-    if (ball_step(&m, &sim, 1.0 / rate, ev, BALL_MAX_CONTACTS, &n) != BALL_OK) break;
+    if (ball_step(&sim, 1.0 / rate, ev, BALL_MAX_CONTACTS, &n) != BALL_OK) break;
     for (int i = 0; i < n; i++)
       if (ev[i].kind == BALL_EVENT_FLOOR) out.push_back(Bounce{ev[i].time, ev[i].point, ev[i].velocity_out});
   }
@@ -121,9 +121,9 @@ bool sim_hits_net(ball_model m, const Shot &s, double rate) {
   int n;
   m.initial_position = s.p0;
   m.initial_velocity = s.v0;
-  if (ball_sim_init(&m, &sim) != BALL_OK) return false;
+  if (ball_sim_init(&sim, &m) != BALL_OK) return false;
   while (sim.time < s.t_cross + 2.0 / rate) {
-    if (ball_step(&m, &sim, 1.0 / rate, ev, BALL_MAX_CONTACTS, &n) != BALL_OK) return false;
+    if (ball_step(&sim, 1.0 / rate, ev, BALL_MAX_CONTACTS, &n) != BALL_OK) return false;
     if (n > 0) return ev[0].kind == BALL_EVENT_NET;
   }
   return false;
@@ -138,9 +138,9 @@ double frame_cost(const Options &opt, const ball_model &m, double dt, long frame
   long done = 0;
   do {
     ball_sim sim;
-    ball_sim_init(&m, &sim);
+    ball_sim_init(&sim, &m);
     double t0 = bench_now();
-    for (long k = 0; k < frames; k++) ball_step(&m, &sim, dt, ev, BALL_MAX_CONTACTS, NULL);
+    for (long k = 0; k < frames; k++) ball_step(&sim, dt, ev, BALL_MAX_CONTACTS, NULL);
     spent += bench_now() - t0;
     done += frames;
     bench_sink = sim.time;

@@ -34,7 +34,7 @@ void pass(const ball_model &m, ball_state *end) {
   ball_sim sim;
   ball_event ev[BALL_MAX_CONTACTS + BALL_MAX_RACKETS];
   bool tracked = (m.effects & BALL_EFFECT_RACKETS) && m.n_rackets > 0;
-  ball_sim_init(&m, &sim);
+  ball_sim_init(&sim, &m);
   for (long k = 0; k < kFrames; k++) {
     if (tracked)
       for (int r = 0; r < 2; r++) {
@@ -42,11 +42,11 @@ void pass(const ball_model &m, ball_state *end) {
         s.t = sim.time;
         s.center = kRacket[r];
         s.normal = ball_v3(r == 0 ? 1.0 : -1.0, 0.0, 0.0);
-        ball_racket_push(&m, &sim, r, &s);
+        ball_racket_push(&sim, r, &s);
       }
-    ball_step(&m, &sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS + BALL_MAX_RACKETS, NULL);
+    ball_step(&sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS + BALL_MAX_RACKETS, NULL);
   }
-  ball_sim_state(&m, &sim, end);
+  ball_sim_state(&sim, end);
 }
 
 double pass_cost(const ball_model &m, long passes) {

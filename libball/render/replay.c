@@ -51,7 +51,7 @@ ball_status ball_replay_frame(ball_replay *r, double t, ball_frame *f) {
   m = &r->scene.model;
   if (t < r->run.sim.time - TIME_SLACK) return BALL_ERANGE;
   while (r->run.sim.time + r->run.dt <= t + TIME_SLACK) {
-    if ((st = ball_scene_run_step(&r->run, m, events, EVENT_CAP, &n)) != BALL_OK) return st;
+    if ((st = ball_scene_run_step(&r->run, events, EVENT_CAP, &n)) != BALL_OK) return st;
     for (i = 0; i < n; ++i) keep_event(r, &events[i]);
     keep_position(r);
   }
@@ -64,7 +64,7 @@ ball_status ball_replay_frame(ball_replay *r, double t, ball_frame *f) {
   f->n_rackets = m->n_rackets;
   for (i = 0; i < m->n_rackets; ++i) {
     ball_racket_pose pose;
-    if (ball_racket_estimate(m, &r->run.sim, i, t, &pose) != BALL_OK) continue;
+    if (ball_racket_estimate(&r->run.sim, i, t, &pose) != BALL_OK) continue;
     f->rackets[i].visible = 1;
     f->rackets[i].center = pose.center;
     f->rackets[i].normal = pose.normal;

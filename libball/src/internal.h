@@ -141,8 +141,6 @@ int ball__plane_chord(const ball_model *m, const ball_plane *pl, ball_vec3 p_old
  * Updates each track's prev_pose for the next frame. */
 int ball__racket_stage(const ball_model *m, const ball__flight *fl, ball_sim *sim, double t_prev,
                        double dt, const ball_state *s_end, ball_event *ev);
-/* BALL_OK if m is the model sim is bound to (BALL_EMODEL if not). */
-ball_status ball__bound(const ball_model *m, const ball_sim *sim);
 
 /* eq 13: velocity added at a floor bounce by the air-damped spin, normal (0, 1, 0):
  * spinFloorDamping (spinAirDamping S_ball) x n. Implemented in response.c. */
@@ -156,8 +154,6 @@ ball_vec3 ball__spin_floor_velocity(const ball_model *m, ball_vec3 spin_air_damp
 uint64_t ball__hash_word(uint64_t h, uint64_t w);
 uint64_t ball__hash_double(uint64_t h, double v);
 uint64_t ball__hash_vec(uint64_t h, ball_vec3 v);
-/* 1 if model a equals the bound copy b in every byte a step reads. */
-int ball__model_same(const ball_model *a, const ball_model *b);
 
 /* Racket tests and responses, exposed for the unit tests (racket.c, response.c). */
 

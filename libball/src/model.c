@@ -377,20 +377,3 @@ uint64_t ball_model_hash(const ball_model *m) {
   if (!m) return 0;
   return hash_fields(BALL__HASH_SEED, m, model_fields, COUNT(model_fields), m->effects);
 }
-
-/* The parts of a model ball_step reads, as byte ranges: every scalar field
- * up to level (the dynamics, floor, net, racket and scheme fields), and the
- * walls and rackets in use while their effect is on. level and initial_*
- * are never read by a step. b is the bound copy (checked, so its counts are
- * in range). One memcmp in the common case: the arrays sit at the end of
- * the struct. */
-int ball__model_same(const ball_model *a, const ball_model *b) {
-  if (memcmp(a, b, offsetof(ball_model, level)) != 0) return 0;
-  if (b->effects & BALL_EFFECT_WALLS && b->n_walls > 0 &&
-      memcmp(a->walls, b->walls, (size_t)b->n_walls * sizeof(ball_plane)) != 0)
-    return 0;
-  if (b->effects & BALL_EFFECT_RACKETS && b->n_rackets > 0 &&
-      memcmp(a->rackets, b->rackets, (size_t)b->n_rackets * sizeof(ball_racket_def)) != 0)
-    return 0;
-  return 1;
-}

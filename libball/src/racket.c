@@ -71,39 +71,27 @@ static int history_of(const ball_model *m) {
   return m->history < 2 ? 2 : m->history > BALL_MAX_HISTORY ? BALL_MAX_HISTORY : m->history;
 }
 
-/* The fields a track reads are those of the model the sim is bound to (the
- * cheap form of ball__bound for the calls that run once per sample; a step
- * compares every field). */
-static int same_track_fields(const ball_model *m, const ball_sim *sim) {
-  const ball_model *b = &sim->model;
-  return m->n_rackets == b->n_rackets && m->history == b->history && m->stale_time == b->stale_time &&
-         m->extrapolation_time == b->extrapolation_time;
-}
-
 static int same_sample(const ball_racket_sample *a, const ball_racket_sample *b) {
   return a->t == b->t && a->center.x == b->center.x && a->center.y == b->center.y &&
          a->center.z == b->center.z && a->normal.x == b->normal.x && a->normal.y == b->normal.y &&
          a->normal.z == b->normal.z;
 }
 
-ball_status ball_racket_clear(const ball_model *m, ball_sim *sim, int racket) {
-  if (!m || !sim) return BALL_EINVAL;
-  if (!same_track_fields(m, sim)) return BALL_EMODEL;
-  if (racket < 0 || racket >= m->n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
+ball_status ball_racket_clear(ball_sim *sim, int racket) {
+  if (!sim) return BALL_EINVAL;
+  if (racket < 0 || racket >= sim->model.n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
   memset(&sim->tracks[racket], 0, sizeof sim->tracks[racket]);
   return BALL_OK;
 }
-
-ball_status ball_racket_push(const ball_model *m, ball_sim *sim, int racket,
-                             const ball_racket_sample *sample) {
+ball_status ball_racket_push(ball_sim *sim, int racket, const ball_racket_sample *sample) {
+  const ball_model *m;
   ball_racket_track *tr;
   ball_racket_sample s;
   double scale, len;
   int i, keep;
-  if (!m || !sim || !sample) return BALL_EINVAL;
-  if (!same_track_fields(m, sim)) return BALL_EMODEL;
+  if (!sim || !sample) return BALL_EINVAL;
+  m = &sim->model;
   if (racket < 0 || racket >= m->n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
-  if (m->history < 2 || m->history > BALL_MAX_HISTORY) return BALL_ERANGE;
   if (!(sample->t - sample->t == 0.0) || !ball_v3_finite(sample->center) || !ball_v3_finite(sample->normal))
     return BALL_ENONFINITE;
   if (ball_v3_max_abs(sample->center) > BALL_MAX_COORD) return BALL_ERANGE; /* outside the world */
@@ -149,13 +137,11 @@ static ball_status estimate(const ball_model *m, const ball_sim *sim, int racket
   return BALL_OK;
 }
 
-ball_status ball_racket_estimate(const ball_model *m, const ball_sim *sim, int racket, double t,
-                                 ball_racket_pose *out) {
-  if (!m || !sim || !out) return BALL_EINVAL;
-  if (!same_track_fields(m, sim)) return BALL_EMODEL;
-  if (racket < 0 || racket >= m->n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
+ball_status ball_racket_estimate(const ball_sim *sim, int racket, double t, ball_racket_pose *out) {
+  if (!sim || !out) return BALL_EINVAL;
+  if (racket < 0 || racket >= sim->model.n_rackets || racket >= BALL_MAX_RACKETS) return BALL_EINVAL;
   if (!isfinite(t)) return BALL_ENONFINITE;
-  return estimate(m, sim, racket, t, out);
+  return estimate(&sim->model, sim, racket, t, out);
 }
 
 /* ---- the collision tests ---- */

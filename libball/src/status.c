@@ -14,7 +14,6 @@ const char *ball_strerror(ball_status status) {
     case BALL_EIO: return "file cannot be read";
     case BALL_ENOMEM: return "out of memory";
     case BALL_EDUPLICATE: return "racket sample identical to one already kept: ignored";
-    case BALL_EMODEL: return "the model is not the one the sim is bound to (ball_sim_set_model)";
     case BALL_STATUS_COUNT: break;
   }
   return "unknown status";

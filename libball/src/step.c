@@ -320,12 +320,7 @@ static void start_state(const ball_model *m, ball_sim *sim, const ball_state *st
   sim->prev_position = state->position;
 }
 
-ball_status ball__bound(const ball_model *m, const ball_sim *sim) {
-  if (!m || !sim) return BALL_EINVAL;
-  return ball__model_same(m, &sim->model) ? BALL_OK : BALL_EMODEL;
-}
-
-ball_status ball_sim_init(const ball_model *m, ball_sim *sim) {
+ball_status ball_sim_init(ball_sim *sim, const ball_model *m) {
   ball_state st0;
   ball_status st;
   if (!m || !sim) return BALL_EINVAL;
@@ -340,7 +335,9 @@ ball_status ball_sim_init(const ball_model *m, ball_sim *sim) {
   return BALL_OK;
 }
 
-ball_status ball_sim_set_model(const ball_model *m, ball_sim *sim) {
+const ball_model *ball_sim_model(const ball_sim *sim) { return sim ? &sim->model : NULL; }
+
+ball_status ball_sim_set_model(ball_sim *sim, const ball_model *m) {
   ball_status st;
   ball_state now;
   int r;
@@ -378,23 +375,20 @@ ball_status ball_sim_set_model(const ball_model *m, ball_sim *sim) {
   return BALL_OK;
 }
 
-ball_status ball_sim_set_state(const ball_model *m, ball_sim *sim, const ball_state *state) {
-  ball_status st = ball__bound(m, sim);
+ball_status ball_sim_set_state(ball_sim *sim, const ball_state *state) {
+  ball_status st;
+  if (!sim || !state) return BALL_EINVAL;
+  st = check_state(&sim->model, state);
   if (st != BALL_OK) return st;
-  if (!state) return BALL_EINVAL;
-  st = check_state(m, state);
-  if (st != BALL_OK) return st;
-  start_state(m, sim, state);
+  start_state(&sim->model, sim, state);
   return BALL_OK;
 }
 
-ball_status ball_sim_state(const ball_model *m, const ball_sim *sim, ball_state *out) {
-  ball_status st = ball__bound(m, sim);
-  if (st != BALL_OK) return st;
-  if (!out) return BALL_EINVAL;
+ball_status ball_sim_state(const ball_sim *sim, ball_state *out) {
+  if (!sim || !out) return BALL_EINVAL;
   if (!isfinite(sim->time) || !segment_finite(&sim->seg)) return BALL_ENONFINITE;
   if (sim->time < sim->seg.t0) return BALL_ERANGE;
-  ball__eval(m, &sim->seg, sim->time, out);
+  ball__eval(&sim->model, &sim->seg, sim->time, out);
   return BALL_OK;
 }
 
@@ -446,9 +440,8 @@ static int events_finite(const ball_event *ev, int n) {
   return 1;
 }
 
-ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event *events, int cap,
-                      int *n_events) {
-  ball_status st;
+ball_status ball_step(ball_sim *sim, double dt, ball_event *events, int cap, int *n_events) {
+  const ball_model *m;
   double t_prev, t_end;
   int changed = 0;
   ball_state s;
@@ -456,11 +449,10 @@ ball_status ball_step(const ball_model *m, ball_sim *sim, double dt, ball_event 
   step_undo undo;
   sink k;
   if (n_events) *n_events = 0;
-  if (!m || !sim || cap < 0 || (cap > 0 && !events)) return BALL_EINVAL;
+  if (!sim || cap < 0 || (cap > 0 && !events)) return BALL_EINVAL;
   if (!isfinite(dt)) return BALL_ENONFINITE;
   if (dt < 0.0) return BALL_ERANGE;
-  st = ball__bound(m, sim); /* the model was checked when it was bound */
-  if (st != BALL_OK) return st;
+  m = &sim->model; /* checked when the sim got it (ball_sim_init, ball_sim_set_model) */
   if (!isfinite(sim->time) || !segment_finite(&sim->seg) || !ball_v3_finite(sim->prev_position))
     return BALL_ENONFINITE;
   t_prev = sim->time;

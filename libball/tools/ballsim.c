@@ -386,7 +386,7 @@ int main(int argc, char **argv) {
       return 1;
     }
     if (o.format == FORMAT_CSV) fprintf(out, "t,px,py,pz,vx,vy,vz,sx,sy,sz\n");
-    st = ball_sim_state(&scene.model, sim, &state);
+    st = ball_sim_state(sim, &state);
     if (st != BALL_OK) {
       fclose(out);
       return runtime_error("cannot read the state", st);
@@ -410,7 +410,7 @@ int main(int argc, char **argv) {
   for (k = 0; k < frames && !g_interrupted; ++k) {
     int n = 0;
     /* the racket samples that have arrived by the end of the step, then the step */
-    st = ball_scene_run_step(&run, &scene.model, events, EVENT_CAP, &n);
+    st = ball_scene_run_step(&run, events, EVENT_CAP, &n);
     if (st != BALL_OK) {
       if (out) fclose(out);
       fprintf(stderr, "ballsim: step %lu at t=%.9g: %s\n", k + 1, sim->time, ball_strerror(st));
@@ -438,7 +438,7 @@ int main(int argc, char **argv) {
       if (e->sound) n_sounds++;
     }
     if (out) {
-      st = ball_sim_state(&scene.model, sim, &state);
+      st = ball_sim_state(sim, &state);
       if (st != BALL_OK) {
         fclose(out);
         return runtime_error("cannot read the state", st);
@@ -462,7 +462,7 @@ int main(int argc, char **argv) {
     }
   }
 
-  st = ball_sim_state(&scene.model, sim, &state);
+  st = ball_sim_state(sim, &state);
   if (st != BALL_OK) return runtime_error("cannot read the state", st);
   printf("summary: frames=%lu time=", frames);
   put_num(stdout, sim->time, 6);

@@ -60,7 +60,7 @@ bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string
   setup.extrapolation_time = config.extrapolation_time;
   setup.stale_time = config.stale_time;
   if (!build_match_model(scene, court_, setup, &model_, err)) return false;
-  ball_status st = ball_sim_init(&model_, &sim_);
+  ball_status st = ball_sim_init(&sim_, &model_);
   if (st != BALL_OK) {
     *err = std::string("sim: ") + ball_strerror(st);
     return false;
@@ -171,7 +171,7 @@ void Match::frame(double now, MatchOutput *out) {
 
   double dt = frame_time() * config_.time_base;
   int n = 0;
-  ball_status st = ball_step(&model_, &sim_, dt, step_events_.data(), static_cast<int>(step_events_.size()), &n);
+  ball_status st = ball_step(&sim_, dt, step_events_.data(), static_cast<int>(step_events_.size()), &n);
   if (st != BALL_OK) {
     counters_.step_errors++;  // the sim is as it was; the frame is lost, the match goes on
     return;
@@ -181,7 +181,7 @@ void Match::frame(double now, MatchOutput *out) {
 
   if (rally_.live()) {
     ball_state b;
-    ball_sim_state(&model_, &sim_, &b);
+    ball_sim_state(&sim_, &b);
     bool far = b.position.x < court_.x_lo - kFarAway || b.position.x > court_.x_hi + kFarAway ||
                b.position.z < court_.z_lo - kFarAway || b.position.z > court_.z_hi + kFarAway;
     bool still = sim_.seg.grounded && ball_v3_norm(b.velocity) < 0.05;
@@ -198,7 +198,7 @@ void Match::frame(double now, MatchOutput *out) {
     s.sim_time = sim_.time;
     s.state = state_;
     s.segment_seq = segment_seq_;
-    ball_sim_state(&model_, &sim_, &s.ball);
+    ball_sim_state(&sim_, &s.ball);
     s.sim_hash = ball_sim_hash(&sim_);
   }
 }
@@ -297,7 +297,7 @@ void Match::serve(MatchOutput *out) {
   b.position = from;
   if (lob_velocity(model_, from, target, config_.serve_v_up, &b.velocity) != BALL_OK)
     b.velocity = ball_v3(Court::toward_net(side) * 15.0, config_.serve_v_up, 0.0);
-  if (ball_sim_set_state(&model_, &sim_, &b) != BALL_OK) {
+  if (ball_sim_set_state(&sim_, &b) != BALL_OK) {
     counters_.step_errors++;
     return;
   }
@@ -345,7 +345,7 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now) {
   rs.t = s.capture_time;
   rs.center = s.center;
   rs.normal = s.normal;
-  ball_status st = ball_racket_push(&model_, &sim_, s.player, &rs);
+  ball_status st = ball_racket_push(&sim_, s.player, &rs);
   switch (st) {
     case BALL_OK: break;
     case BALL_EDUPLICATE: return SampleResult::duplicate;
@@ -397,7 +397,7 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       s.owner = c.from;
       s.last_seen = now;  // joining counts as being there until the timeout runs out
       // the racket of a new holder starts without the old one's history
-      ball_racket_clear(&model_, &sim_, slot);
+      ball_racket_clear(&sim_, slot);
       emit(out, EventKind::join, slot, sim_.time);
       out->info_changed = true;
       return Reason::none;
@@ -407,7 +407,7 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
       if (!slots_[slot].held || slots_[slot].owner != c.from) return refuse(c, Reason::refused_not_player, out);
       slots_[slot] = Slot{};
-      ball_racket_clear(&model_, &sim_, slot);
+      ball_racket_clear(&sim_, slot);
       emit(out, EventKind::leave, slot, sim_.time);
       if (state_ != MatchState::waiting) {
         set_state(MatchState::waiting, out);
@@ -434,7 +434,7 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       if (c.level < BALL_LEVEL_EASY || c.level > BALL_LEVEL_ADVANCED) return refuse(c, Reason::refused_bad_value, out);
       ball_model m = model_;
       if (ball_model_set_level(&m, static_cast<ball_level>(c.level)) != BALL_OK ||
-          ball_sim_set_model(&m, &sim_) != BALL_OK)
+          ball_sim_set_model(&sim_, &m) != BALL_OK)
         return refuse(c, Reason::refused_bad_value, out);
       model_ = m;
       config_.level = static_cast<ball_level>(c.level);

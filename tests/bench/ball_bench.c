@@ -184,7 +184,7 @@ static void bench_rackets(const opts *o) {
       for (r = 0; r < R; r++) {
         double t0 = bench_now();
         for (p = 0; p < passes; p++) {
-          ball_sim_init(&m, &sim);
+          ball_sim_init(&sim, &m);
           for (k = 0; k < rn.frames; k++) {
             const ball_script_sample *s0 = rn.samples + rn.per_frame[k].first;
             int i, j;
@@ -192,9 +192,9 @@ static void bench_rackets(const opts *o) {
               for (j = s0[i].racket; j < n; j += 2) {
                 ball_racket_sample far = s0[i].sample;
                 if (j >= 2) far.center.z += 50.0;
-                ball_racket_push(&m, &sim, j, &far);
+                ball_racket_push(&sim, j, &far);
               }
-            ball_step(&m, &sim, rn.dt, NULL, 0, NULL);
+            ball_step(&sim, rn.dt, NULL, 0, NULL);
           }
         }
         t[r] = 1e9 * (bench_now() - t0) / (double)(passes * rn.frames);

@@ -169,12 +169,12 @@ void bench_run_free(bench_run *rn) {
   rn->samples = NULL;
 }
 
-int bench_frame(const ball_model *m, ball_sim *sim, const bench_run *rn, long k, int *events) {
+int bench_frame(ball_sim *sim, const bench_run *rn, long k, int *events) {
   ball_event ev[BALL_MAX_CONTACTS + BALL_MAX_RACKETS];
   const ball_script_sample *s = rn->samples + rn->per_frame[k].first;
   int i, n;
-  for (i = 0; i < rn->per_frame[k].count; i++) ball_racket_push(m, sim, s[i].racket, &s[i].sample);
-  if (ball_step(m, sim, rn->dt, ev, BALL_MAX_CONTACTS + BALL_MAX_RACKETS, &n) != BALL_OK) return 0;
+  for (i = 0; i < rn->per_frame[k].count; i++) ball_racket_push(sim, s[i].racket, &s[i].sample);
+  if (ball_step(sim, rn->dt, ev, BALL_MAX_CONTACTS + BALL_MAX_RACKETS, &n) != BALL_OK) return 0;
   for (i = 0; i < n; i++) events[ev[i].kind]++;
   return 1;
 }
@@ -193,9 +193,9 @@ int bench_rally_run(const bench_run *rn, ball_detect detect, int rounds, long pa
     double t0, t1;
     t0 = bench_now();
     for (p = 0; p < passes; p++) {
-      ball_sim_init(&m, &sim);
+      ball_sim_init(&sim, &m);
       for (k = 0; k < rn->frames; k++)
-        if (!bench_frame(&m, &sim, rn, k, events)) {
+        if (!bench_frame(&sim, rn, k, events)) {
           free(per);
           return 0;
         }
@@ -207,17 +207,17 @@ int bench_rally_run(const bench_run *rn, ball_detect detect, int rounds, long pa
    * several passes (the worst of each frame's best run) */
   for (k = 0; k < rn->frames; k++) per[k] = INFINITY;
   for (p = 0; p < single_passes; p++) {
-    ball_sim_init(&m, &sim);
+    ball_sim_init(&sim, &m);
     for (k = 0; k < rn->frames; k++) {
       double t0 = bench_now(), t1;
-      bench_frame(&m, &sim, rn, k, events);
+      bench_frame(&sim, rn, k, events);
       t1 = bench_now();
       if (1e9 * (t1 - t0) - overhead < per[k]) per[k] = 1e9 * (t1 - t0) - overhead;
     }
   }
   memset(events, 0, sizeof events);
-  ball_sim_init(&m, &sim);
-  for (k = 0; k < rn->frames; k++) bench_frame(&m, &sim, rn, k, events);
+  ball_sim_init(&sim, &m);
+  for (k = 0; k < rn->frames; k++) bench_frame(&sim, rn, k, events);
   out->worst = 0.0;
   for (k = 0; k < rn->frames; k++) out->worst = per[k] > out->worst ? per[k] : out->worst;
   out->frame_median = bench_stats(per, (int)rn->frames).median;
@@ -247,7 +247,7 @@ void bench_predict_run(int rounds, long n, bench_predict_result *out) {
     ball_model_add_wall(&m, &back);
   }
   m.initial_velocity = ball_v3(20.0, 4.0, 1.0);
-  ball_sim_init(&m, &sim);
+  ball_sim_init(&sim, &m);
   seg = sim.seg;
   pr.states = states;
   pr.cap_states = 721;
@@ -258,8 +258,8 @@ void bench_predict_run(int rounds, long n, bench_predict_result *out) {
     for (i = 0; i < n; i++) ball_predict(&m, &seg, 0.0, 6.0, 1.0 / 120.0, &pr);
     t1 = bench_now();
     for (i = 0; i < n; i++) {
-      ball_sim_init(&m, &sim);
-      for (k = 0; k < 720; k++) ball_step(&m, &sim, 1.0 / 120.0, events, 256, NULL);
+      ball_sim_init(&sim, &m);
+      for (k = 0; k < 720; k++) ball_step(&sim, 1.0 / 120.0, events, 256, NULL);
     }
     t2 = bench_now();
     t_pred[r] = 1e6 * (t1 - t0) / (double)n;
@@ -310,8 +310,8 @@ double bench_time_frames(const ball_model *m, long passes, long frames, double d
   double t0 = bench_now();
   long p, k;
   for (p = 0; p < passes; p++) {
-    ball_sim_init(m, &sim);
-    for (k = 0; k < frames; k++) ball_step(m, &sim, dt, ev, BALL_MAX_CONTACTS, NULL);
+    ball_sim_init(&sim, m);
+    for (k = 0; k < frames; k++) ball_step(&sim, dt, ev, BALL_MAX_CONTACTS, NULL);
   }
   bench_sink = sim.time;
   return 1e9 * (bench_now() - t0) / (double)(passes * frames);

@@ -74,7 +74,7 @@ void bench_run_free(bench_run *rn);
 
 /* One frame as a user runs it: the samples that arrived, then the step;
  * events[kind] counts the events. 0 if the step failed. */
-int bench_frame(const ball_model *m, ball_sim *sim, const bench_run *rn, long k, int *events);
+int bench_frame(ball_sim *sim, const bench_run *rn, long k, int *events);
 
 /* A whole frame of a rally scene with a test. */
 typedef struct bench_rally_result {

@@ -100,7 +100,7 @@ static void play(const ball_scene *scene) {
   for (f = 0; f < RUN_FRAMES; f++) {
     fz_frame_begin(&w, &run.sim);
     /* a frame that would overflow is refused, not wrong */
-    if (ball_scene_run_step(&run, &scene->model, ev, EV_CAP, &n) != BALL_OK) break;
+    if (ball_scene_run_step(&run, ev, EV_CAP, &n) != BALL_OK) break;
     fz_frame_end(&w, &run.sim, run.dt, ev, n);
   }
 }

@@ -199,7 +199,7 @@ static void trace_model(const ball_model *m) {
 
 static void check_state(const run *u) {
   ball_state s;
-  FZ_CHECK(ball_sim_state(&u->m, &u->sim, &s) == BALL_OK, "no state");
+  FZ_CHECK(ball_sim_state(&u->sim, &s) == BALL_OK, "no state");
   FZ_CHECK(fz_finite3(s.position) && fz_finite3(s.velocity) && fz_finite3(s.spin), "a state that is not finite");
 }
 
@@ -210,12 +210,12 @@ static int step(run *u, double dt, ball_event *ev, int *n) {
   u->frames++;
   if (tracing()) {
     ball_state now;
-    if (ball_sim_state(&u->m, &u->sim, &now) == BALL_OK)
+    if (ball_sim_state(&u->sim, &now) == BALL_OK)
       fprintf(stderr, "step %.17g at t = %.17g from (%.17g, %.17g, %.17g) v (%.17g, %.17g, %.17g)\n", dt, u->sim.time,
               now.position.x, now.position.y, now.position.z, now.velocity.x, now.velocity.y, now.velocity.z);
   }
   fz_frame_begin(&u->watch, &u->sim);
-  st = ball_step(&u->m, &u->sim, dt, ev, EV_CAP, n);
+  st = ball_step(&u->sim, dt, ev, EV_CAP, n);
   if (st != BALL_OK) {
     FZ_CHECK(*n == 0 && memcmp(&u->sim, &copy, sizeof copy) == 0, "a refused step (%s) changed the sim",
              ball_strerror(st));
@@ -243,9 +243,9 @@ static void op_racket(run *u) {
   s.center = vec(&u->in, 20.0);
   s.normal = vec(&u->in, 1.0);
   /* a plausible racket is near the ball: within 1 m of it */
-  if (!u->in.wild && ball_sim_state(&u->m, &u->sim, &now) == BALL_OK)
+  if (!u->in.wild && ball_sim_state(&u->sim, &now) == BALL_OK)
     s.center = ball_v3_add(now.position, ball_v3_scale(s.center, 0.05));
-  st = ball_racket_push(&u->m, &u->sim, r, &s);
+  st = ball_racket_push(&u->sim, r, &s);
   if (tracing())
     fprintf(stderr, "racket %d sample t %.17g centre (%.17g, %.17g, %.17g) normal (%.17g, %.17g, %.17g): %s\n", r, s.t,
             s.center.x, s.center.y, s.center.z, s.normal.x, s.normal.y, s.normal.z, ball_strerror(st));
@@ -261,7 +261,7 @@ static void op_set_state(run *u) {
   s.spin = vec(&u->in, 40.0);
   /* a plausible state is above the floor */
   if (!u->in.wild) s.position.y = u->m.floor_level + u->m.radius + 0.25 * fabs(s.position.y);
-  st = ball_sim_set_state(&u->m, &u->sim, &s);
+  st = ball_sim_set_state(&u->sim, &s);
   if (tracing())
     fprintf(stderr, "set_state (%.17g, %.17g, %.17g) v (%.17g, %.17g, %.17g) spin (%.17g, %.17g, %.17g): %s\n",
             s.position.x, s.position.y, s.position.z, s.velocity.x, s.velocity.y, s.velocity.z, s.spin.x, s.spin.y,
@@ -292,15 +292,15 @@ static void op_set_model(run *u) {
   m2.scheme = (ball_scheme)pick(in, BALL_SCHEME_COUNT);
   m2.effects ^= byte(in) & (BALL_EFFECT_DRAG | BALL_EFFECT_SOUND);
   if (byte(in) & 1) ball_model_set_level(&m2, (ball_level)pick(in, BALL_LEVEL_COUNT));
-  if (ball_sim_state(&u->m, &u->sim, &before) != BALL_OK) return;
-  st = ball_sim_set_model(&m2, &u->sim);
+  if (ball_sim_state(&u->sim, &before) != BALL_OK) return;
+  st = ball_sim_set_model(&u->sim, &m2);
   if (tracing()) fprintf(stderr, "set_model gravity %.17g air_friction %.17g: %s\n", m2.gravity, m2.air_friction, ball_strerror(st));
   if (st != BALL_OK) {
     FZ_CHECK(memcmp(&u->sim, &copy, sizeof copy) == 0, "a refused set_model changed the sim");
     return;
   }
   u->m = m2;
-  FZ_CHECK(ball_sim_state(&u->m, &u->sim, &after) == BALL_OK, "no state after set_model");
+  FZ_CHECK(ball_sim_state(&u->sim, &after) == BALL_OK, "no state after set_model");
   tol = 1e-9 + 1e-12 * (fz_max_abs(before.position) + ball_v3_norm(before.velocity));
   FZ_CHECK(ball_v3_dist(before.position, after.position) <= tol && ball_v3_dist(before.velocity, after.velocity) <= tol,
            "ball_sim_set_model moved the ball from (%.17g, %.17g, %.17g) at (%.17g, %.17g, %.17g) m/s to "
@@ -425,7 +425,7 @@ static void op_queries(run *u) {
   disc_c = vec(in, 1.0);
   disc_n = vec(in, 1.0);
   disc_r = num(in, 0.0, 0.5);
-  if (ball_sim_state(m, &u->sim, &now) != BALL_OK) return;
+  if (ball_sim_state(&u->sim, &now) != BALL_OK) return;
   t = t_from + dt;
   /* eval and flight: the same, to the bit (ball.h) */
   st = ball_segment_eval(m, seg, t, &a);
@@ -509,7 +509,7 @@ static void op_queries(run *u) {
   /* the rackets' estimates: finite, a unit normal */
   for (k = 0; k < m->n_rackets && (m->effects & BALL_EFFECT_RACKETS); k++) {
     ball_racket_pose pose;
-    if (ball_racket_estimate(m, &u->sim, k, t_from, &pose) == BALL_OK)
+    if (ball_racket_estimate(&u->sim, k, t_from, &pose) == BALL_OK)
       FZ_CHECK(fz_finite3(pose.center) && fz_finite3(pose.velocity) && fabs(ball_v3_norm(pose.normal) - 1.0) <= 1e-9,
                "ball_racket_estimate: racket %d's pose is not finite or its normal not unit", k);
   }
@@ -569,7 +569,7 @@ static void op_predict(run *u, int cut) {
     ball_state s;
     if (!step(u, dt, ev, &n)) return;
     if (!compare) continue;
-    FZ_CHECK(ball_sim_state(&u->m, &u->sim, &s) == BALL_OK, "no state");
+    FZ_CHECK(ball_sim_state(&u->sim, &s) == BALL_OK, "no state");
     if (u->sim.warnings[BALL_WARN_CONTACT_LIMIT] != limit) return; /* the limit: where it stops depends on the frame */
     FZ_CHECK(memcmp(&s, &states[i + 1], sizeof s) == 0,
              "ball_predict differs from ball_step after frame %d of %.17g s: (%.17g, %.17g, %.17g) vs "
@@ -598,11 +598,11 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
   memset(&u.sim, 0xA5, sizeof u.sim);
   copy = u.sim;
   if (ball_model_check(&u.m, NULL) != BALL_OK) {
-    FZ_CHECK(ball_sim_init(&u.m, &u.sim) != BALL_OK, "ball_sim_init took a model ball_model_check refused");
+    FZ_CHECK(ball_sim_init(&u.sim, &u.m) != BALL_OK, "ball_sim_init took a model ball_model_check refused");
     FZ_CHECK(memcmp(&u.sim, &copy, sizeof u.sim) == 0, "a refused ball_sim_init changed the sim");
     return 0;
   }
-  FZ_CHECK(ball_sim_init(&u.m, &u.sim) == BALL_OK, "ball_sim_init refused a checked model");
+  FZ_CHECK(ball_sim_init(&u.sim, &u.m) == BALL_OK, "ball_sim_init refused a checked model");
   check_state(&u);
   fz_watch_start(&u.watch, &u.m, &u.sim);
   for (ops = 0; ops < MAX_OPS && u.in.n > 0 && u.frames < MAX_FRAMES; ops++) {

@@ -288,7 +288,7 @@ void fz_watch_start(fz_watch *w, const ball_model *m, const ball_sim *sim) {
   double fy = m->floor_level + m->radius;
   w->m = m;
   w->frames = 0;
-  FZ_CHECK(ball_sim_state(m, sim, &w->prev) == BALL_OK, "no state after init or set_state");
+  FZ_CHECK(ball_sim_state(sim, &w->prev) == BALL_OK, "no state after init or set_state");
   FZ_CHECK(fz_finite3(w->prev.position) && fz_finite3(w->prev.velocity) && fz_finite3(w->prev.spin),
            "a state that is not finite after init or set_state");
   /* init and set_state refuse a ball below the floor */
@@ -319,7 +319,7 @@ void fz_frame_end(fz_watch *w, const ball_sim *sim, double dt, const ball_event 
   f.t_end = t_end;
   f.fy = m->floor_level + m->radius;
   /* P1 */
-  FZ_CHECK(ball_sim_state(m, sim, &end) == BALL_OK, "no state after an accepted step");
+  FZ_CHECK(ball_sim_state(sim, &end) == BALL_OK, "no state after an accepted step");
   FZ_CHECK(fz_finite3(end.position) && fz_finite3(end.velocity) && fz_finite3(end.spin),
            "a state that is not finite after an accepted step");
   FZ_CHECK(n >= 0 && !overflow, "%d events, or more than the harness had room for", n);

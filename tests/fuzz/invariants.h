@@ -15,7 +15,7 @@
 
 /* What the checks carry from frame to frame. */
 typedef struct fz_watch {
-  const ball_model *m;             /* the model the sim is bound to */
+  const ball_model *m;             /* the sim's own model (ball_sim_model) */
   ball_state prev;                 /* the ball at the end of the previous frame */
   int floor_ok;                    /* 1: P2 applies (the ball ended the last frame on or above the floor) */
   int clear[FZ_OBSTACLES];         /* 1: P3 applies to obstacle k (the ball was clear of it) */

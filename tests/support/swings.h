@@ -200,12 +200,12 @@ static inline ball_status swing_simulate(const ball_model *m, const swing *sw, d
   st.position = sw->seg.p0;
   st.velocity = sw->seg.v0;
   st.spin = sw->seg.s0;
-  if ((rc = ball_sim_init(m, &sim)) != BALL_OK || (rc = ball_sim_set_state(m, &sim, &st)) != BALL_OK ||
-      (rc = ball_racket_push(m, &sim, 0, &sw->s[0])) != BALL_OK)
+  if ((rc = ball_sim_init(&sim, m)) != BALL_OK || (rc = ball_sim_set_state(&sim, &st)) != BALL_OK ||
+      (rc = ball_racket_push(&sim, 0, &sw->s[0])) != BALL_OK)
     return rc;
   for (k = 1; k < sw->n; k++) {
-    if ((rc = ball_racket_push(m, &sim, 0, &sw->s[k])) != BALL_OK) return rc;
-    if ((rc = ball_step(m, &sim, sw->s[k].t - sim.time, ev, 8, &n)) != BALL_OK) return rc;
+    if ((rc = ball_racket_push(&sim, 0, &sw->s[k])) != BALL_OK) return rc;
+    if ((rc = ball_step(&sim, sw->s[k].t - sim.time, ev, 8, &n)) != BALL_OK) return rc;
     if (frames) (*frames)++;
     if (n > 0) {
       *t_hit = ev[0].time;

@@ -98,7 +98,7 @@ static inline void core_start(ball_model *m, ball_sim *sim, ball_vec3 p, ball_ve
   m->initial_position = p;
   m->initial_velocity = v;
   m->initial_spin = ball_v3(0.0, 0.0, 0.0);
-  assert_ok(ball_sim_init(m, sim));
+  assert_ok(ball_sim_init(sim, m));
 }
 
 static inline ball_racket_sample core_sample(double t, ball_vec3 c, ball_vec3 n) {
@@ -136,11 +136,11 @@ static inline void core_simulate(const ball_model *m, double dt, unsigned long f
   ball_event ev[BALL_MAX_CONTACTS + 4];
   unsigned long f;
   int k, n;
-  assert_ok(ball_sim_init(m, &sim));
+  assert_ok(ball_sim_init(&sim, m));
   run->n = 0;
   run->frames = 0;
   for (f = 0; f < frames; f++) {
-    assert_ok(ball_step(m, &sim, dt, ev, (int)(sizeof ev / sizeof ev[0]), &n));
+    assert_ok(ball_step(&sim, dt, ev, (int)(sizeof ev / sizeof ev[0]), &n));
     for (k = 0; k < n; k++) {
       assert_true(run->n < CORE_MAX_EVENTS);
       run->ev[run->n++] = ev[k];

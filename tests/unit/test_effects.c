@@ -60,8 +60,8 @@ static int event_same(const ball_event *a, const ball_event *b) {
          a->segment.grounded == b->segment.grounded;
 }
 
-/* The sims' state, every byte but what is not state: the model each is
- * bound to, and the contact cache (a model without the floor caches "no
+/* The sims' state, every byte but what is not state: the model each
+ * owns, and the contact cache (a model without the floor caches "no
  * contact", one with an unreachable floor a contact in 1e150 s). */
 static int sims_same(const ball_sim *a, const ball_sim *b) {
   ball_sim x = *a, y = *b;
@@ -77,12 +77,12 @@ static int first_difference(const ball_model *a, const ball_model *b, int *event
   ball_event ea[BALL_MAX_CONTACTS], eb[BALL_MAX_CONTACTS];
   int f, na, nb, k;
   *events = 0;
-  assert_ok(ball_sim_init(a, &sa));
-  assert_ok(ball_sim_init(b, &sb));
+  assert_ok(ball_sim_init(&sa, a));
+  assert_ok(ball_sim_init(&sb, b));
   if (!sims_same(&sa, &sb)) return 0;
   for (f = 1; f <= FRAMES; f++) {
-    assert_ok(ball_step(a, &sa, 1.0 / FPS, ea, BALL_MAX_CONTACTS, &na));
-    assert_ok(ball_step(b, &sb, 1.0 / FPS, eb, BALL_MAX_CONTACTS, &nb));
+    assert_ok(ball_step(&sa, 1.0 / FPS, ea, BALL_MAX_CONTACTS, &na));
+    assert_ok(ball_step(&sb, 1.0 / FPS, eb, BALL_MAX_CONTACTS, &nb));
     *events += na;
     if (na != nb || !sims_same(&sa, &sb)) return f;
     for (k = 0; k < na; k++)

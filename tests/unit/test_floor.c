@@ -34,8 +34,8 @@ static void hand_model(ball_model *m) {
 static ball_event first_event(const ball_model *m, ball_sim *sim, double dt) {
   ball_event ev[8];
   int n = 0, f;
-  assert_ok(ball_sim_init(m, sim));
-  for (f = 0; f < (int)(10.0 / dt) && n == 0; f++) assert_ok(ball_step(m, sim, dt, ev, 8, &n));
+  assert_ok(ball_sim_init(sim, m));
+  for (f = 0; f < (int)(10.0 / dt) && n == 0; f++) assert_ok(ball_step(sim, dt, ev, 8, &n));
   assert_int_equal(n, 1);
   return ev[0];
 }
@@ -142,9 +142,9 @@ static void eq5_above_bounce_threshold_bounces_below_it_slides(void **state) {
   /* sliding: y exactly the floor, vy 0, x by eq 3 from the contact (drag only) */
   for (f = 0; f < 600; f++) {
     int n;
-    assert_ok(ball_step(&m, &sim, 1.0 / 60.0, NULL, 0, &n));
+    assert_ok(ball_step(&sim, 1.0 / 60.0, NULL, 0, &n));
     assert_int_equal(n, 0);
-    assert_ok(ball_sim_state(&m, &sim, &s));
+    assert_ok(ball_sim_state(&sim, &s));
     assert_true(s.position.y == 0.0 && s.velocity.y == 0.0);
   }
   {
@@ -208,9 +208,9 @@ static void assert_rests(const ball_model *m, ball_sim *sim, double dt, long fra
   long f;
   int n;
   for (f = 0; f < frames; f++) {
-    assert_ok(ball_step(m, sim, dt, ev, 4, &n));
+    assert_ok(ball_step(sim, dt, ev, 4, &n));
     if (n != 0) fail_msg("frame %ld after rest: %d events", f, n);
-    assert_ok(ball_sim_state(m, sim, &s));
+    assert_ok(ball_sim_state(sim, &s));
     if (!(s.position.y == floor_y && s.velocity.y == 0.0 && isfinite(s.position.x) &&
           isfinite(s.position.z) && isfinite(s.velocity.x) && isfinite(s.velocity.z)))
       fail_msg("frame %ld after rest: y = %.17g (floor %.17g), vy = %g", f, s.position.y, floor_y,
@@ -240,9 +240,9 @@ static void eq5_dropped_ball_comes_to_rest_after_derived_bounce_count_exact(void
   for (speed = v * m.floor_damping, expected = 1; speed >= m.bounce_threshold; expected++)
     speed *= m.floor_damping;
   assert_int_equal(expected, 11);
-  assert_ok(ball_sim_init(&m, &sim));
+  assert_ok(ball_sim_init(&sim, &m));
   for (f = 0; f < 60 * 20 && !sim.seg.grounded; f++) {
-    assert_ok(ball_step(&m, &sim, 1.0 / 60.0, ev, 8, &n));
+    assert_ok(ball_step(&sim, 1.0 / 60.0, ev, 8, &n));
     for (k = 0; k < n; k++) {
       assert_int_equal(ev[k].kind, BALL_EVENT_FLOOR);
       floor_events++;
@@ -277,9 +277,9 @@ static void eq5_dropped_ball_comes_to_rest_within_derived_bounds_sampled(void **
     speed *= m.floor_damping;
   for (speed = m.floor_damping * (v + m.gravity * dt), hi = 1; speed >= m.bounce_threshold; hi++)
     speed = m.floor_damping * (speed + m.gravity * dt);
-  assert_ok(ball_sim_init(&m, &sim));
+  assert_ok(ball_sim_init(&sim, &m));
   for (f = 0; f < 60 * 30 && !sim.seg.grounded; f++) {
-    assert_ok(ball_step(&m, &sim, dt, ev, 8, &n));
+    assert_ok(ball_step(&sim, dt, ev, 8, &n));
     for (k = 0; k < n; k++) floor_events += ev[k].kind == BALL_EVENT_FLOOR;
   }
   assert_int_equal(sim.seg.grounded, 1);

@@ -51,8 +51,8 @@ static void wall(ball_model *m, int axis, double position, double lo, double hi,
   assert_int_equal(ball_model_add_wall(m, &w), BALL_OK);
 }
 
-static void state_of(const ball_model *m, const ball_sim *sim, ball_state *st) {
-  assert_int_equal(ball_sim_state(m, sim, st), BALL_OK);
+static void state_of(const ball_sim *sim, ball_state *st) {
+  assert_int_equal(ball_sim_state(sim, st), BALL_OK);
   assert_finite3(st->position);
   assert_finite3(st->velocity);
 }
@@ -64,11 +64,11 @@ typedef struct tally {
   ball_event first, last;
 } tally;
 
-static void run(const ball_model *m, ball_sim *sim, int frames, double dt, tally *t) {
+static void run(ball_sim *sim, int frames, double dt, tally *t) {
   ball_event ev[BALL_MAX_CONTACTS + 2];
   int f, n, i;
   for (f = 0; f < frames; f++) {
-    assert_int_equal(ball_step(m, sim, dt, ev, BALL_MAX_CONTACTS + 2, &n), BALL_OK);
+    assert_int_equal(ball_step(sim, dt, ev, BALL_MAX_CONTACTS + 2, &n), BALL_OK);
     for (i = 0; i < n; i++) {
       assert_true(isfinite(ev[i].time) && isfinite(ev[i].velocity_out.x) &&
                   isfinite(ev[i].velocity_out.y) && isfinite(ev[i].velocity_out.z));
@@ -100,8 +100,8 @@ static void test_ball_at_rest_exactly_on_floor_stays_there_eq5(void **state) {
     m.floor_level = -1.5;
     core_start(&m, &sim, ball_v3(3.0, -1.5 + 0.033, 4.0), ball_v3(0.0, 0.0, 0.0));
     for (f = 0; f < 600; f++) {
-      run(&m, &sim, 1, 1.0 / 60.0, &t);
-      state_of(&m, &sim, &st);
+      run(&sim, 1, 1.0 / 60.0, &t);
+      state_of(&sim, &st);
       assert_near(st.position.y, -1.5 + 0.033, 0.0);
       assert_near(st.position.x, 3.0, 0.0);
     }
@@ -126,8 +126,8 @@ static void test_ball_sliding_on_floor_follows_eq3(void **state) {
   model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_DRAG, 0.0);
   b = m.mass / m.air_friction;
   core_start(&m, &sim, ball_v3(0.0, 0.0, 4.0), ball_v3(5.0, 0.0, 0.0));
-  run(&m, &sim, 120, 1.0 / 64.0, &t);
-  state_of(&m, &sim, &st);
+  run(&sim, 120, 1.0 / 64.0, &t);
+  state_of(&sim, &st);
   AT_MOST(t.total, 1);
   assert_near(st.position.y, 0.0, 0.0);
   if (t.total) {
@@ -157,8 +157,8 @@ static void test_ball_starting_inside_the_net_gets_out_fig3(void **state) {
       memset(&t, 0, sizeof t);
       model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET, radii[i]);
       core_start(&m, &sim, ball_v3(11.885, 0.5, 3.0), ball_v3(speeds[j], 0.0, 0.0));
-      run(&m, &sim, 60, 1.0 / 60.0, &t);
-      state_of(&m, &sim, &st);
+      run(&sim, 60, 1.0 / 60.0, &t);
+      state_of(&sim, &st);
       AT_MOST(t.kind[BALL_EVENT_NET], 1);
       assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
       if (speeds[j] != 0.0)
@@ -186,8 +186,8 @@ static void test_ball_parallel_to_net_plane_never_hits_it_fig3(void **state) {
       model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, radii[i]);
       m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
       core_start(&m, &sim, ball_v3(11.885 - radii[i], 0.5, 3.0), ball_v3(0.0, 2.0, 4.0));
-      run(&m, &sim, 120, 1.0 / 60.0, &t);
-      state_of(&m, &sim, &st);
+      run(&sim, 120, 1.0 / 60.0, &t);
+      state_of(&sim, &st);
       assert_int_equal(t.kind[BALL_EVENT_NET], 0);
       assert_near(st.position.x, 11.885 - radii[i], 0.0);
       AT_LEAST(st.position.z, 5.0);
@@ -216,7 +216,7 @@ static void test_grazing_the_net_top_edge_fig3(void **state) {
       m.net.position = 2.0;
       m.net.top = 1.0;
       core_start(&m, &sim, ball_v3(0.0, 1.25 + offsets[i], 5.0), ball_v3(8.0, 0.0, 0.0));
-      run(&m, &sim, 32, 1.0 / 64.0, &t);
+      run(&sim, 32, 1.0 / 64.0, &t);
       assert_int_equal(t.kind[BALL_EVENT_NET], offsets[i] > 0.0 ? 0 : 1);
       if (t.total) {
         assert_near(t.first.time, 0.25, 1e-15);
@@ -243,7 +243,7 @@ static void test_grazing_the_net_side_edges_fig3(void **state) {
       m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
       m.net.position = 2.0;
       core_start(&m, &sim, ball_v3(0.0, 0.75, zs[i]), ball_v3(8.0, 0.0, 0.0));
-      run(&m, &sim, 32, 1.0 / 64.0, &t);
+      run(&sim, 32, 1.0 / 64.0, &t);
       assert_int_equal(t.kind[BALL_EVENT_NET], (i % 2) ? 0 : 1);
     }
 }
@@ -269,7 +269,7 @@ static void test_net_then_floor_in_one_frame_eq5_eq6(void **state) {
     double tau2 = (vy1 + sqrt(vy1 * vy1 + 16.0 * (y1 - r))) / 8.0; /* 4 tau^2 - vy1 tau - (y1 - r) = 0 */
     model_of(&m, BALL_EFFECT_NET | BALL_EFFECT_FLOOR, r);
     core_start(&m, &sim, ball_v3(11.885 - 1.0, 0.3, 3.0), ball_v3(10.0, 0.0, 0.0));
-    assert_int_equal(ball_step(&m, &sim, 0.5, ev, 8, &n), BALL_OK);
+    assert_int_equal(ball_step(&sim, 0.5, ev, 8, &n), BALL_OK);
     assert_true(n >= 2);
     assert_int_equal(ev[0].kind, BALL_EVENT_NET);
     assert_int_equal(ev[1].kind, BALL_EVENT_FLOOR);
@@ -309,15 +309,15 @@ static void test_corner_of_two_walls_reflects_both_axes_eq6(void **state) {
       wall(&m, 2, 5.0, -10.0, 10.0, 0.5);
       /* with the floor: fall 4 tc^2 to touch it at tc */
       core_start(&m, &sim, ball_v3(4.0, r + (with_floor ? 4.0 * tc * tc : 3.0), 4.0), ball_v3(2.0, 0.0, 2.0));
-      assert_int_equal(ball_step(&m, &sim, tc + 0.1, ev, 8, &n), BALL_OK);
+      assert_int_equal(ball_step(&sim, tc + 0.1, ev, 8, &n), BALL_OK);
       assert_int_equal(n, with_floor ? 3 : 2);
       for (k = 0; k < n; k++) assert_near(ev[k].time, tc, 1e-15);
       assert_near(ev[n - 1].velocity_out.x, -0.5 * (with_floor ? 0.75 : 1.0), 1e-15);
       assert_near(ev[n - 1].velocity_out.z, -0.5 * (with_floor ? 0.75 : 1.0), 1e-15);
       if (with_floor) assert_near(ev[n - 1].velocity_out.y, 0.75 * 0.25 * 8.0 * tc, 1e-14);
       for (f = 0; f < 120; f++) {
-        assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, NULL, 0, NULL), BALL_OK);
-        state_of(&m, &sim, &st);
+        assert_int_equal(ball_step(&sim, 1.0 / 60.0, NULL, 0, NULL), BALL_OK);
+        state_of(&sim, &st);
         AT_MOST(st.position.x, 5.0 - r);
         AT_MOST(st.position.z, 5.0 - r);
         AT_LEAST(st.position.y, r);
@@ -344,8 +344,8 @@ static void test_sampled_two_walls_in_one_frame_keeps_ball_inside_fig3(void **st
   m.walls[0].bottom = m.walls[1].bottom = -1e6;
   core_start(&m, &sim, ball_v3(4.0, 3.0, 4.5), ball_v3(2.0, 0.0, 2.0));
   for (f = 0; f < 10; f++) {
-    assert_int_equal(ball_step(&m, &sim, 0.6, NULL, 0, NULL), BALL_OK);
-    state_of(&m, &sim, &st);
+    assert_int_equal(ball_step(&sim, 0.6, NULL, 0, NULL), BALL_OK);
+    state_of(&sim, &st);
     AT_MOST(st.position.x, 5.0);
     AT_MOST(st.position.z, 5.0);
   }
@@ -378,8 +378,8 @@ static void test_ball_wedged_between_wall_and_floor_eq5_eq6(void **state) {
       if (k == 1) core_start(&m, &sim, ball_v3(5.0 - r, r, 0.0), ball_v3(0.0, 0.0, 0.0));
       if (k == 2) core_start(&m, &sim, ball_v3(4.0 - r, r + 4.0 * 0.25, 0.0), ball_v3(2.0, 0.0, 0.0));
       for (f = 0; f < 120; f++) {
-        run(&m, &sim, 1, 1.0 / 60.0, &t);
-        state_of(&m, &sim, &st);
+        run(&sim, 1, 1.0 / 60.0, &t);
+        state_of(&sim, &st);
         AT_MOST(st.position.x, 5.0 - r);
         AT_LEAST(st.position.y, r);
       }
@@ -422,7 +422,7 @@ static void test_resting_ball_stops_after_ten_bounces_eq5(void **state) {
   model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_SOUND, 0.0);
   core_start(&m, &sim, ball_v3(0.0, 1.0, 0.0), ball_v3(0.0, 0.0, 0.0));
   for (f = 0; f < 60 * 20; f++) {
-    assert_int_equal(ball_step(&m, &sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n), BALL_OK);
+    assert_int_equal(ball_step(&sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n), BALL_OK);
     for (i = 0; i < n; i++, k++) {
       double v_out = 4.0 * pow(0.75, k + 1);
       assert_int_equal(ev[i].kind, BALL_EVENT_FLOOR);
@@ -433,7 +433,7 @@ static void test_resting_ball_stops_after_ten_bounces_eq5(void **state) {
   }
   assert_int_equal(k, 10);
   assert_int_equal(sim.seg.grounded, 1);
-  state_of(&m, &sim, &st);
+  state_of(&sim, &st);
   assert_near(st.position.y, 0.0, 0.0);
 }
 
@@ -456,8 +456,8 @@ static void test_resting_ball_with_zero_threshold_never_sinks_eq5(void **state) 
     m.bounce_threshold = 0.0;
     core_start(&m, &sim, ball_v3(0.0, 1.0, 0.0), ball_v3(0.0, 0.0, 0.0));
     for (f = 0; f < 60 * 10; f++) {
-      run(&m, &sim, 1, 1.0 / 60.0, &t);
-      state_of(&m, &sim, &st);
+      run(&sim, 1, 1.0 / 60.0, &t);
+      state_of(&sim, &st);
       AT_LEAST(st.position.y, 0.0);
     }
     AT_MOST(st.position.y, 0.01); /* sampled: micro-bounces of at most g dt^2 / 2 */
@@ -474,8 +474,8 @@ static void test_resting_ball_with_zero_threshold_never_sinks_eq5(void **state) 
     m.bounce_threshold = 0.0;
     core_start(&m, &sim, ball_v3(0.0, 0.0, 0.0), ball_v3(0.0, 0.0, 0.0));
     for (f = 0; f < 60; f++) {
-      run(&m, &sim, 1, 1.0 / 60.0, &t);
-      state_of(&m, &sim, &st);
+      run(&sim, 1, 1.0 / 60.0, &t);
+      state_of(&sim, &st);
       AT_LEAST(st.position.y, 0.0);
     }
   }
@@ -499,8 +499,8 @@ static void test_ball_rolling_into_the_net_bounces_once_eq6(void **state) {
     model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, r);
     core_start(&m, &sim, ball_v3(10.0, r, 3.0), ball_v3(5.0, 0.0, 0.0));
     for (f = 0; f < 240; f++) {
-      run(&m, &sim, 1, 1.0 / 60.0, &t);
-      state_of(&m, &sim, &st);
+      run(&sim, 1, 1.0 / 60.0, &t);
+      state_of(&sim, &st);
       AT_MOST(st.position.x, 11.885 - r);
       assert_near(st.position.y, r, 0.0);
     }
@@ -531,8 +531,8 @@ static void test_contact_limit_keeps_ball_between_walls(void **state) {
     m.walls[0].bottom = m.walls[1].bottom = -1e9;
     core_start(&m, &sim, ball_v3(0.025, 5.0, 0.0), ball_v3(100.0, 0.0, 0.0));
     for (f = 0; f < 30; f++) {
-      assert_int_equal(ball_step(&m, &sim, dts[i], NULL, 0, NULL), BALL_OK);
-      state_of(&m, &sim, &st);
+      assert_int_equal(ball_step(&sim, dts[i], NULL, 0, NULL), BALL_OK);
+      state_of(&sim, &st);
       AT_LEAST(st.position.x, 0.0);
       AT_MOST(st.position.x, 0.05);
     }
@@ -569,7 +569,7 @@ static void test_point_ball_bounces_once_off_a_wall_at_an_exact_coordinate_eq6(v
         assert_ok(ball_model_add_wall(&m, &w));
         core_start(&m, &sim, p, v);
         for (f = 0; f < 60; f++) {
-          assert_ok(ball_step(&m, &sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n));
+          assert_ok(ball_step(&sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n));
           if (n > 0) {
             double out = axis == 0 ? ev[0].velocity_out.x : ev[0].velocity_out.z;
             assert_int_equal(n, 1);

@@ -83,14 +83,14 @@ static void test_long_bouncing_run_stays_finite_on_the_floor_eq5_eq6(void **stat
   double e0, worst = 0.0;
   (void)state;
   box_model(&m, BALL_SCHEME_EXACT);
-  assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
-  assert_int_equal(ball_sim_state(&m, &sim, &st), BALL_OK);
+  assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
+  assert_int_equal(ball_sim_state(&sim, &st), BALL_OK);
   e0 = energy(&m, &st);
   heap_before = heap_in_use();
   for (f = 0; f < frames; f++) {
     int n, i;
     double e;
-    if (ball_step(&m, &sim, 1.0 / 60.0, ev, 16, &n) != BALL_OK) fail_msg("frame %ld: step failed", f);
+    if (ball_step(&sim, 1.0 / 60.0, ev, 16, &n) != BALL_OK) fail_msg("frame %ld: step failed", f);
     for (i = 0; i < n; i++) {
       if (ev[i].kind == BALL_EVENT_FLOOR) {
         floors++;
@@ -99,7 +99,7 @@ static void test_long_bouncing_run_stays_finite_on_the_floor_eq5_eq6(void **stat
         walls++;
       }
     }
-    if (ball_sim_state(&m, &sim, &st) != BALL_OK) fail_msg("frame %ld: no state", f);
+    if (ball_sim_state(&sim, &st) != BALL_OK) fail_msg("frame %ld: no state", f);
     if (!(st.position.y >= fy - tol && fabs(st.position.x) <= lim + tol && fabs(st.position.z) <= lim + tol))
       fail_msg("frame %ld: ball outside at (%.17g, %.17g, %.17g)", f, st.position.x, st.position.y,
                st.position.z);
@@ -132,7 +132,7 @@ static void test_long_sampled_run_stays_finite_and_inside_eq5(void **state) {
   m.floor_damping = 0.9;
   m.effects |= BALL_EFFECT_DRAG;
   m.air_friction = 0.0;
-  assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+  assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
   for (f = 0; f < frames; f++) {
     if (f % 100000 == 0) {
       /* a new serve every 1e5 frames, so the ball is moving most of the run */
@@ -140,10 +140,10 @@ static void test_long_sampled_run_stays_finite_and_inside_eq5(void **state) {
       s0.position = ball_v3(0.0, 3.0, 0.0);
       s0.velocity = ball_v3(7.3 + (double)(f / 100000), 4.1, -5.9);
       s0.spin = ball_v3(0.0, 0.0, 0.0);
-      assert_int_equal(ball_sim_set_state(&m, &sim, &s0), BALL_OK);
+      assert_int_equal(ball_sim_set_state(&sim, &s0), BALL_OK);
     }
-    if (ball_step(&m, &sim, 1.0 / 60.0, NULL, 0, NULL) != BALL_OK) fail_msg("frame %ld: step failed", f);
-    if (ball_sim_state(&m, &sim, &st) != BALL_OK) fail_msg("frame %ld: no state", f);
+    if (ball_step(&sim, 1.0 / 60.0, NULL, 0, NULL) != BALL_OK) fail_msg("frame %ld: step failed", f);
+    if (ball_sim_state(&sim, &st) != BALL_OK) fail_msg("frame %ld: no state", f);
     /* the paper's shift pushes the ball dt / 10 * |v| back from a wall: inside by construction */
     if (!(st.position.y >= fy && fabs(st.position.x) <= lim + 1e-9 && fabs(st.position.z) <= lim + 1e-9) ||
         !isfinite(st.velocity.x) || !isfinite(st.velocity.y) || !isfinite(st.velocity.z))
@@ -182,7 +182,7 @@ static void test_long_racket_rally_never_breaks_eq8_eq9(void **state) {
   m.v_up = 49.0 * dt * m.gravity / 2.0; /* eq 8: t0 = 2 V_up / g = 49 frames */
   m.initial_position = ball_v3(1.1, 1.0, 5.485);
   m.initial_velocity = ball_v3(0.0, 0.0, 0.0);
-  assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+  assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
   heap0 = heap_in_use();
   for (f = 0; f < frames; f++) {
     if (f % 6 == 0)
@@ -190,9 +190,9 @@ static void test_long_racket_rally_never_breaks_eq8_eq9(void **state) {
         smp.t = sim.time;
         smp.center = r == 0 ? ball_v3(1.0, 1.0, 5.485) : ball_v3(22.77, 1.0, 5.485);
         smp.normal = ball_v3(r == 0 ? 1.0 : -1.0, 0.0, 0.0);
-        if (ball_racket_push(&m, &sim, r, &smp) != BALL_OK) fail_msg("frame %ld: sample refused", f);
+        if (ball_racket_push(&sim, r, &smp) != BALL_OK) fail_msg("frame %ld: sample refused", f);
       }
-    if (ball_step(&m, &sim, dt, ev, 8, &n) != BALL_OK) fail_msg("frame %ld: step failed", f);
+    if (ball_step(&sim, dt, ev, 8, &n) != BALL_OK) fail_msg("frame %ld: step failed", f);
     for (i = 0; i < n; i++) {
       if (ev[i].kind != BALL_EVENT_RACKET)
         fail_msg("frame %ld: a %d event: the rally broke", f, (int)ev[i].kind);
@@ -205,7 +205,7 @@ static void test_long_racket_rally_never_breaks_eq8_eq9(void **state) {
       last_racket = ev[i].index;
       hits++;
     }
-    if (ball_sim_state(&m, &sim, &st) != BALL_OK || !(st.position.y >= 0.0) ||
+    if (ball_sim_state(&sim, &st) != BALL_OK || !(st.position.y >= 0.0) ||
         !isfinite(st.velocity.x) || !isfinite(st.velocity.y) || !isfinite(st.velocity.z))
       fail_msg("frame %ld: ball at (%.17g, %.17g, %.17g)", f, st.position.x, st.position.y, st.position.z);
   }

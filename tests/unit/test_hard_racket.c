@@ -47,8 +47,8 @@ static void step_frames(const ball_model *m, ball_sim *sim, int frames, racket_r
     ball_event ev[BALL_MAX_CONTACTS + 2];
     ball_state st;
     int n, i;
-    assert_int_equal(ball_step(m, sim, FRAME, ev, BALL_MAX_CONTACTS + 2, &n), BALL_OK);
-    assert_int_equal(ball_sim_state(m, sim, &st), BALL_OK);
+    assert_int_equal(ball_step(sim, FRAME, ev, BALL_MAX_CONTACTS + 2, &n), BALL_OK);
+    assert_int_equal(ball_sim_state(sim, &st), BALL_OK);
     assert_finite3(st.position);
     assert_finite3(st.velocity);
     assert_finite3(st.spin);
@@ -89,11 +89,11 @@ static void test_still_racket_hits_once_with_defined_direction_eq7_eq11(void **s
         memset(&r, 0, sizeof r);
         racket_model(&m, detects[d], resp ? BALL_RESPONSE_PHYSICAL : BALL_RESPONSE_RACKET, 10.0);
         m.normal_mode = mode ? BALL_NORMAL_VELOCITY : BALL_NORMAL_REAL;
-        assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+        assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
         s = core_sample(-0.1, ball_v3(1.0, 1.45, 0.0), ball_v3(-1.0, 0.0, 0.0));
-        assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
+        assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_OK);
         s.t = 0.0;
-        assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
+        assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_OK);
         step_frames(&m, &sim, 40, &r);
         if (r.hits != 1) fail_msg("detect %d response %d mode %d: %d hits", (int)d, resp, mode, r.hits);
         if (resp == 0) {
@@ -125,11 +125,11 @@ static void test_racket_turning_fast_stays_finite_fig4(void **state) {
       memset(&r, 0, sizeof r);
       racket_model(&m, detects[d], BALL_RESPONSE_PHYSICAL, 10.0);
       m.history = 4;
-      assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+      assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
       for (i = 0, t = -0.1; i < 4; i++, t += 0.05) {
         ball_vec3 n = i % 2 ? ball_v3(turns[k][0], turns[k][1], turns[k][2]) : ball_v3(-1.0, 0.0, 0.0);
         s = core_sample(t, ball_v3(1.0, 1.45, 0.0), n);
-        assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
+        assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_OK);
       }
       step_frames(&m, &sim, 40, &r);
       /* reversed normal: the same plane x = 1, so eq 11 must send the ball back */
@@ -153,30 +153,30 @@ static void test_zero_tiny_huge_and_nan_normals(void **state) {
   size_t i;
   (void)state;
   racket_model(&m, BALL_DETECT_DISC, BALL_RESPONSE_PHYSICAL, 10.0);
-  assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+  assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
   s = core_sample(0.0, ball_v3(1.0, 1.45, 0.0), ball_v3(-1.0, 0.0, 0.0));
-  assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
+  assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_OK);
   copy = sim;
   for (i = 0; i < sizeof bad_range / sizeof bad_range[0]; i++) {
     s = core_sample(0.1, ball_v3(1.0, 1.45, 0.0), ball_v3(bad_range[i][0], bad_range[i][1], bad_range[i][2]));
-    assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ERANGE);
+    assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_ERANGE);
   }
   s.normal = ball_v3(NAN, 0.0, 1.0);
-  assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ENONFINITE);
+  assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_ENONFINITE);
   s.normal = ball_v3(0.0, INFINITY, 0.0);
-  assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ENONFINITE);
+  assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_ENONFINITE);
   s.normal = ball_v3(0.0, 1.0, 0.0);
   s.center.y = NAN;
-  assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ENONFINITE);
+  assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_ENONFINITE);
   assert_memory_equal(&sim, &copy, sizeof sim);
   s = core_sample(0.1, ball_v3(1.0, 1.45, 0.0), ball_v3(DBL_MAX, -DBL_MAX, DBL_MAX));
-  assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
-  assert_int_equal(ball_racket_estimate(&m, &sim, 0, 0.1, &pose), BALL_OK);
+  assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_OK);
+  assert_int_equal(ball_racket_estimate(&sim, 0, 0.1, &pose), BALL_OK);
   assert_near(pose.normal.x, 1.0 / sqrt(3.0), 1e-15);
   assert_near(pose.normal.y, -1.0 / sqrt(3.0), 1e-15);
   s = core_sample(0.2, ball_v3(1.0, 1.45, 0.0), ball_v3(0.0, 1e-8, 0.0));
-  assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
-  assert_int_equal(ball_racket_estimate(&m, &sim, 0, 0.2, &pose), BALL_OK);
+  assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_OK);
+  assert_int_equal(ball_racket_estimate(&sim, 0, 0.2, &pose), BALL_OK);
   assert_near(pose.normal.y, 1.0, 1e-15);
 }
 
@@ -199,11 +199,11 @@ static void test_racket_overtaking_from_behind_eq7_eq11_fig9(void **state) {
       memset(&r, 0, sizeof r);
       racket_model(&m, detects[d], resp ? BALL_RESPONSE_PHYSICAL : BALL_RESPONSE_RACKET, 5.0);
       m.extrapolation_time = 1.0; /* eq 15: the racket keeps moving past its last sample */
-      assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+      assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
       for (i = 0; i < 2; i++) {
         ball_racket_sample s =
             core_sample(-0.1 + 0.1 * i, ball_v3(-2.0 + 2.0 * i, 1.45, 0.0), ball_v3(1.0, 0.0, 0.0));
-        assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
+        assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_OK);
       }
       step_frames(&m, &sim, 50, &r);
       if (r.hits < 1) fail_msg("detect %d response %d: the racket never caught the ball", (int)d, resp);
@@ -225,27 +225,27 @@ static void test_samples_with_equal_timestamps(void **state) {
     ball_racket_sample s;
     memset(&r, 0, sizeof r);
     racket_model(&m, BALL_DETECT_DISC, resp ? BALL_RESPONSE_PHYSICAL : BALL_RESPONSE_RACKET, 10.0);
-    assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+    assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
     s = core_sample(0.0, ball_v3(1.0, 1.45, 0.0), ball_v3(-1.0, 0.0, 0.0));
-    assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
+    assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_OK);
     copy = sim;
-    assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_EDUPLICATE);
+    assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_EDUPLICATE);
     assert_memory_equal(&sim, &copy, sizeof sim);
     s.center.x = 0.99;
-    assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_ESTALE);
+    assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_ESTALE);
     assert_memory_equal(&sim, &copy, sizeof sim);
     s.t = nextafter(0.0, 1.0); /* 4.9e-324 s later: 2e321 m/s, overflows to Inf */
     s.center.x = 0.99;
-    if (ball_racket_push(&m, &sim, 0, &s) == BALL_OK) step_frames(&m, &sim, 40, &r);
+    if (ball_racket_push(&sim, 0, &s) == BALL_OK) step_frames(&m, &sim, 40, &r);
     s.t = nextafter(1.0, 2.0); /* one ulp (2.2e-16 s) after a sample at 1 s: 4.5e13 m/s */
     memset(&r, 0, sizeof r);
-    assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+    assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
     {
       ball_racket_sample a = core_sample(0.5, ball_v3(1.0, 1.45, 0.0), ball_v3(-1.0, 0.0, 0.0));
       ball_racket_sample b =
           core_sample(nextafter(0.5, 1.0), ball_v3(0.99, 1.45, 0.0), ball_v3(-1.0, 0.0, 0.0));
-      assert_int_equal(ball_racket_push(&m, &sim, 0, &a), BALL_OK);
-      assert_int_equal(ball_racket_push(&m, &sim, 0, &b), BALL_OK);
+      assert_int_equal(ball_racket_push(&sim, 0, &a), BALL_OK);
+      assert_int_equal(ball_racket_push(&sim, 0, &b), BALL_OK);
     }
     step_frames(&m, &sim, 40, &r);
     if (r.hits > 0 && resp == 0)
@@ -273,13 +273,13 @@ static void test_racket_inside_the_ball(void **state) {
       m.radius = 0.1;
       m.rackets[0].radius = 0.05;
       m.stale_time = 10.0;
-      assert_int_equal(ball_sim_init(&m, &sim), BALL_OK);
+      assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
       for (i = 0; i < 2; i++) {
         ball_racket_sample s = core_sample(-0.1 + 0.1 * i, ball_v3(0.0, 1.5, 0.0), ball_v3(0.0, 1.0, 0.0));
-        assert_int_equal(ball_racket_push(&m, &sim, 0, &s), BALL_OK);
+        assert_int_equal(ball_racket_push(&sim, 0, &s), BALL_OK);
       }
       step_frames(&m, &sim, 60, &r);
-      assert_int_equal(ball_sim_state(&m, &sim, &st), BALL_OK);
+      assert_int_equal(ball_sim_state(&sim, &st), BALL_OK);
       assert_true(hypot(hypot(st.position.x, st.position.y - 1.5), st.position.z) > m.radius);
     }
 }

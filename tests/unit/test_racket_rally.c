@@ -151,7 +151,7 @@ static int rally(ball_level level, int *hits, double *max_spin) {
   m.initial_position = ball_v3(X_HIT_LEFT + 1.0, READY_Y, COURT_Z); /* served in front of racket 0 */
   m.initial_velocity = friendly_velocity(&m, m.initial_position, ready(1), m.v_up, 1.0);
   assert_ok(ball_model_check(&m, NULL));
-  assert_ok(ball_sim_init(&m, &sim));
+  assert_ok(ball_sim_init(&sim, &m));
   memset(plans, 0, sizeof plans);
   *hits = 0;
   *max_spin = 0.0;
@@ -163,9 +163,9 @@ static int rally(ball_level level, int *hits, double *max_spin) {
         ball_racket_sample smp;
         smp.t = sim.time;
         racket_pose(r, &plans[r], sim.time, &smp.center, &smp.normal);
-        assert_ok(ball_racket_push(&m, &sim, r, &smp));
+        assert_ok(ball_racket_push(&sim, r, &smp));
       }
-    assert_ok(ball_step(&m, &sim, FRAME, ev, 16, &n));
+    assert_ok(ball_step(&sim, FRAME, ev, 16, &n));
     for (k = 0; k < n; k++) {
       if (ev[k].kind == BALL_EVENT_NET) return crossings; /* into the net: rally over */
       if (ev[k].kind != BALL_EVENT_RACKET) continue;
@@ -176,7 +176,7 @@ static int rally(ball_level level, int *hits, double *max_spin) {
       if (!predict(&m, &sim, receiver, &t_hit, &at)) return crossings;
       make_plan(&m, receiver, t_hit, &at, &plans[receiver]);
     }
-    assert_ok(ball_sim_state(&m, &sim, &s));
+    assert_ok(ball_sim_state(&sim, &s));
     if ((s.position.x - m.net.position) * side_prev < 0.0) crossings++; /* over: a net contact ends the rally */
     side_prev = s.position.x - m.net.position;
   }

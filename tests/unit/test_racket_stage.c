@@ -29,10 +29,10 @@ static int hit_frames(const ball_model *m, double dt, int frames, int *which, ba
   ball_sim sim;
   ball_event ev[8];
   int f, n, count = 0;
-  assert_ok(ball_sim_init(m, &sim));
-  assert_ok(ball_racket_push(m, &sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
+  assert_ok(ball_sim_init(&sim, m));
+  assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
   for (f = 1; f <= frames; f++) {
-    assert_ok(ball_step(m, &sim, dt, ev, 8, &n));
+    assert_ok(ball_step(&sim, dt, ev, 8, &n));
     if (n > 0) {
       assert_int_equal(n, 1);
       assert_int_equal(ev[0].kind, BALL_EVENT_RACKET);
@@ -71,9 +71,9 @@ static void eq7_hit_event_fields_and_restart_at_q_plus_v0_dt(void **state) {
   still_racket_model(&m, 3);
   m.effects |= BALL_EFFECT_SOUND;
   m.sound_threshold = 0.4;
-  assert_ok(ball_sim_init(&m, &sim));
-  assert_ok(ball_racket_push(&m, &sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
-  assert_ok(ball_step(&m, &sim, 0.01, ev, 4, &n));
+  assert_ok(ball_sim_init(&sim, &m));
+  assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
+  assert_ok(ball_step(&sim, 0.01, ev, 4, &n));
   assert_int_equal(n, 1);
   assert_int_equal(ev[0].kind, BALL_EVENT_RACKET);
   assert_int_equal(ev[0].index, 0);
@@ -90,7 +90,7 @@ static void eq7_hit_event_fields_and_restart_at_q_plus_v0_dt(void **state) {
   /* eq 7: P0 = Q + V0 dt */
   assert_near(sim.seg.p0.x, ev[0].point.x - 0.5 * 0.01, 1e-15);
   assert_near(sim.seg.t0, 0.01, 1e-15);
-  assert_ok(ball_sim_state(&m, &sim, &s));
+  assert_ok(ball_sim_state(&sim, &s));
   assert_near(s.position.x, -0.005, 1e-15);
 }
 
@@ -115,14 +115,14 @@ static int overtake(ball_detect detect, ball_event *hit) {
   m.stale_time = 10.0;
   m.initial_position = ball_v3(0, 1, 0);
   m.initial_velocity = ball_v3(2, 0, 0);
-  assert_ok(ball_sim_init(&m, &sim));
+  assert_ok(ball_sim_init(&sim, &m));
   for (f = 0; f <= 3; f++) {
     double t = f * dt;
     /* the racket follows the ball's height at the sample times */
     ball_racket_sample s = {t, {-4.0 + 20.0 * t, 1.0 - 0.5 * 9.81 * t * t, 0}, {1, 0, 0}};
-    assert_ok(ball_racket_push(&m, &sim, 0, &s));
+    assert_ok(ball_racket_push(&sim, 0, &s));
     if (f == 0) continue;
-    assert_ok(ball_step(&m, &sim, dt, ev, 4, &n));
+    assert_ok(ball_step(&sim, dt, ev, 4, &n));
     if (n > 0) {
       *hit = ev[0];
       return f;

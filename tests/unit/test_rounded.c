@@ -36,14 +36,14 @@ static int run_net(const ball_model *m, ball_sim *sim, int frames, double dt, ba
     double t0 = sim->time;
     int net_events = 0;
     ball_state s;
-    assert_ok(ball_step(m, sim, dt, ev, BALL_MAX_CONTACTS + 2, &n));
+    assert_ok(ball_step(sim, dt, ev, BALL_MAX_CONTACTS + 2, &n));
     for (i = 0; i < n; i++)
       if (ev[i].kind == BALL_EVENT_NET) {
         if (got < cap) out[got] = ev[i];
         got++;
         net_events++;
       }
-    assert_ok(ball_sim_state(m, sim, &s));
+    assert_ok(ball_sim_state(sim, &s));
     if (rect_distance(&m->net, s.position) < m->radius - tol)
       fail_msg("frame %d: inside the grown net (%.17g < r = %.17g)", f, rect_distance(&m->net, s.position),
                m->radius);
@@ -233,7 +233,7 @@ static void test_the_sampled_push_stops_short_of_the_next_wall(void **state) {
   assert_ok(ball_model_add_wall(&m, &w1));
   core_start(&m, &sim, ball_v3(2.0, 1.0, 0.0), ball_v3(30.0, 0.0, 0.0));
   for (f = 0; f < 50; f++) {
-    assert_ok(ball_step(&m, &sim, 2.0, NULL, 0, NULL));
+    assert_ok(ball_step(&sim, 2.0, NULL, 0, NULL));
     if (!(sim.prev_position.x > 0.0 && sim.prev_position.x < 4.0))
       fail_msg("frame %d: out of the box at x = %.17g", f, sim.prev_position.x);
   }

@@ -549,14 +549,14 @@ static void scripts_at_the_limits_give_finite_valid_samples(void **state) {
   ball_model_default(&m);
   m.effects |= BALL_EFFECT_RACKETS;
   m.n_rackets = 1;
-  assert_ok(ball_sim_init(&m, &sim));
+  assert_ok(ball_sim_init(&sim, &m));
   assert_ok(ball_script_player_init(&player, &s, 1));
   for (k = 1; k <= 60; k++) {
     assert_ok(ball_script_poll(&player, k / 60.0, out, 64, &n));
     for (i = 0; i < n; i++) {
       ball_status st;
       assert_true(ball_v3_finite(out[i].sample.center) && ball_v3_finite(out[i].sample.normal));
-      st = ball_racket_push(&m, &sim, 0, &out[i].sample);
+      st = ball_racket_push(&sim, 0, &out[i].sample);
       assert_true(st == BALL_OK || st == BALL_ESTALE || st == BALL_EDUPLICATE);
       pushed += st == BALL_OK;
     }

@@ -5,7 +5,17 @@
  * Axes: y up, gravity (0, -g, 0), floor y = floor_level. SI units throughout.
  * The library never prints, aborts or exits, never allocates inside a step and
  * keeps no global state: every call returns a ball_status, and a call that
- * fails leaves the objects it was given exactly as they were. */
+ * fails leaves the objects it was given exactly as they were.
+ *
+ * The one rule of the model and the sim (after Box2D's world definition):
+ * a ball_model is a definition, checked once and copied into the sim by
+ * ball_sim_init. From then on the sim owns its model: every call on a sim
+ * takes the sim as its first argument and no model (ball_step,
+ * ball_racket_push, ball_sim_state, ...), reads the model with
+ * ball_sim_model, and changes it only with ball_sim_set_model, which checks
+ * the new one. Nothing is compared or checked per frame. The stateless
+ * queries (ball_segment_eval, ball_flight_*, ball_time_to_*, ball_predict,
+ * ...) take the model they work with; pass ball_sim_model(sim) for a sim's. */
 #ifndef BALL_BALL_H
 #define BALL_BALL_H
 
@@ -24,8 +34,10 @@ extern "C" {
 #define BALL_API
 #endif
 
+/* The library's version, stated here only (the build reads it from this
+ * header); CHANGELOG.md says what each version changed. */
 #define BALL_VERSION_MAJOR 0
-#define BALL_VERSION_MINOR 1
+#define BALL_VERSION_MINOR 2
 #define BALL_VERSION_PATCH 0
 
 #define BALL_MAX_WALLS 16     /* walls per scene, besides the net */
@@ -55,7 +67,6 @@ typedef enum ball_status {
   BALL_EIO,         /* a file that cannot be read */
   BALL_ENOMEM,      /* an allocation failed (scene loader only) */
   BALL_EDUPLICATE,  /* a racket sample identical to one already kept: ignored */
-  BALL_EMODEL,      /* the model differs from the one the sim was bound to (ball_sim_set_model) */
   BALL_STATUS_COUNT
 } ball_status;
 
@@ -413,7 +424,8 @@ typedef struct ball_sim {
   int sleep;                   /* frames left without racket tests */
   ball_racket_track tracks[BALL_MAX_RACKETS];
   unsigned long warnings[BALL_WARN_COUNT];  /* counts, never printed */
-  ball_model model;            /* a copy of the checked model the sim is bound to */
+  ball_model model;            /* the sim's own checked model: read it with ball_sim_model,
+                                  change it with ball_sim_set_model, never by hand */
 } ball_sim;
 
 /* A portable hash of every model field that ball_step reads (those of the
@@ -422,56 +434,52 @@ typedef struct ball_sim {
  * clients can tell they run the same model. docs/model.md defines it. */
 BALL_API uint64_t ball_model_hash(const ball_model *model);
 
-/* Checks the model (ball_model_check), binds the sim to it and starts at
- * time 0 with the model's initial state. */
-BALL_API ball_status ball_sim_init(const ball_model *model, ball_sim *sim);
+/* Checks the model (ball_model_check) and starts sim with its own copy of
+ * it at time 0, in the model's initial state. */
+BALL_API ball_status ball_sim_init(ball_sim *sim, const ball_model *model);
 
-/* Checks a changed model and binds the sim to it, keeping the ball, the
- * clock and the racket tracks (a new game level mid-match). A sim refuses to
- * step with any model but the one it is bound to (BALL_EMODEL): the check is
- * done once here, not on every step. */
-BALL_API ball_status ball_sim_set_model(const ball_model *model, ball_sim *sim);
+/* The sim's own model (NULL for a NULL sim): what its steps run. */
+BALL_API const ball_model *ball_sim_model(const ball_sim *sim);
+
+/* Checks a changed model and makes it the sim's, keeping the ball where it
+ * is and as fast, the clock and the racket tracks (a new game level
+ * mid-match): a new segment starts now, under the new model. The one way to
+ * change a sim's model; the check is done here, never in a step. */
+BALL_API ball_status ball_sim_set_model(ball_sim *sim, const ball_model *model);
 
 /* Sets the ball's state at the sim's current time (starts a new segment).
  * BALL_ERANGE for a position beyond BALL_MAX_COORD, a velocity or spin
  * component beyond BALL_MAX_SPEED, or a ball below the floor. */
-BALL_API ball_status ball_sim_set_state(const ball_model *model, ball_sim *sim,
-                                        const ball_state *state);
+BALL_API ball_status ball_sim_set_state(ball_sim *sim, const ball_state *state);
 
 /* The ball's state at the sim's current time. */
-BALL_API ball_status ball_sim_state(const ball_model *model, const ball_sim *sim,
-                                    ball_state *out);
+BALL_API ball_status ball_sim_state(const ball_sim *sim, ball_state *out);
 
 /* Advances one frame of dt sim seconds (dt >= 0; 0 is a no-op) and writes up
  * to cap events; *n_events (may be NULL) gets how many were written. Events
- * that do not fit are counted in sim->warnings[BALL_WARN_EVENT_OVERFLOW].
- * BALL_EMODEL if model is not (field for field) the one the sim is bound to. */
-BALL_API ball_status ball_step(const ball_model *model, ball_sim *sim, double dt,
-                               ball_event *events, int cap, int *n_events);
+ * that do not fit are counted in sim->warnings[BALL_WARN_EVENT_OVERFLOW]. */
+BALL_API ball_status ball_step(ball_sim *sim, double dt, ball_event *events, int cap, int *n_events);
 
 /* Feeds a racket sample; samples may arrive late, duplicated or out of order:
  * an exact duplicate of a kept sample is ignored with BALL_EDUPLICATE, one
  * not newer than the newest kept is rejected with BALL_ESTALE; either way
- * the sim is unchanged. It and ball_racket_estimate compare the fields a
- * track reads (n_rackets, history, stale_time, extrapolation_time) with the
- * bound model (BALL_EMODEL); ball_step compares all of them. */
-BALL_API ball_status ball_racket_push(const ball_model *model, ball_sim *sim, int racket,
-                                      const ball_racket_sample *sample);
+ * the sim is unchanged. */
+BALL_API ball_status ball_racket_push(ball_sim *sim, int racket, const ball_racket_sample *sample);
 
 /* Empties one racket's track (its samples and its previous pose), as
  * ball_sim_init leaves it: for a player slot that changes hands, whose new
  * holder's samples must not be joined to the old one's. BALL_EINVAL for a
- * racket the model does not have; BALL_EMODEL as ball_racket_push. */
-BALL_API ball_status ball_racket_clear(const ball_model *model, ball_sim *sim, int racket);
+ * racket the sim's model does not have. */
+BALL_API ball_status ball_racket_clear(ball_sim *sim, int racket);
 
 /* The racket's estimated pose at sim time t: interpolated between samples,
  * extrapolated (eq 15) past the newest. BALL_ENOTFOUND without samples,
  * BALL_ESTALE if the newest sample is older than stale_time. */
-BALL_API ball_status ball_racket_estimate(const ball_model *model, const ball_sim *sim,
-                                          int racket, double t, ball_racket_pose *out);
+BALL_API ball_status ball_racket_estimate(const ball_sim *sim, int racket, double t,
+                                          ball_racket_pose *out);
 
 /* A portable hash of the sim's state (clock, frame, segment, previous
- * position, sleep counter, racket samples, and ball_model_hash of the bound
+ * position, sleep counter, racket samples, and ball_model_hash of the sim's
  * model; not the warning counters), to detect desync between peers: equal on
  * every machine for equal states (docs/model.md defines it). 0 for NULL. */
 BALL_API uint64_t ball_sim_hash(const ball_sim *sim);

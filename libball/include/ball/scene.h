@@ -102,10 +102,9 @@ typedef struct ball_scene_run {
 /* Starts a run of scene (its model must pass ball_model_check) at time 0. */
 BALL_API ball_status ball_scene_run_init(ball_scene_run *run, const ball_scene *scene);
 
-/* One frame: samples, then ball_step on model (the model the run started
- * from). Events as ball_step writes them. */
-BALL_API ball_status ball_scene_run_step(ball_scene_run *run, const ball_model *model, ball_event *events,
-                                         int cap, int *n_events);
+/* One frame: samples, then ball_step on the run's sim (which owns the
+ * scene's model). Events as ball_step writes them. */
+BALL_API ball_status ball_scene_run_step(ball_scene_run *run, ball_event *events, int cap, int *n_events);
 
 #ifdef __cplusplus
 }

@@ -15,9 +15,9 @@ int main(void) {
   model.initial_position.y = 1.0;
   model.initial_velocity.x = 0.0;
   model.initial_velocity.z = 0.0;
-  if (ball_sim_init(&model, &sim) != BALL_OK) return 1;
+  if (ball_sim_init(&sim, &model) != BALL_OK) return 1;
   for (i = 0; i < 60; i++) {
-    ball_status st = ball_step(&model, &sim, 1.0 / 60.0, events, 8, &n);
+    ball_status st = ball_step(&sim, 1.0 / 60.0, events, 8, &n);
     if (st != BALL_OK) {
       fprintf(stderr, "%s\n", ball_strerror(st));
       return 1;
