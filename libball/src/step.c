@@ -258,11 +258,13 @@ static int step_sampled(const ball_model *m, const ball__flight *fl, ball_sim *s
   int which, n = 0;
   ball_vec3 p_end = st->position;
   /* the first plane the frame's segment touches (one plane collision a
-   * frame); the segment ends where the ball is shown, on the floor if it
-   * fell below (Fig. 1's snap): under a low edge the chord that dips below
-   * the floor would pass where the ball cannot be, and the snap would then
-   * lift the ball into the edge */
-  if (ball__has(m, BALL_EFFECT_FLOOR) && p_end.y < ball__floor_y(m)) p_end.y = ball__floor_y(m);
+   * frame). A point ball's segment is Fig. 3's, P_old -> P, exactly. A ball
+   * with a radius has edges to meet (docs/model.md, "Ball radius, edges and
+   * corners"): its segment ends where the ball is shown, on the floor if it
+   * fell below (Fig. 1's snap), since under a low edge a chord that dips
+   * below the floor would pass where the ball cannot be, and the snap would
+   * then lift the ball into the edge */
+  if (m->radius > 0.0 && ball__has(m, BALL_EFFECT_FLOOR) && p_end.y < ball__floor_y(m)) p_end.y = ball__floor_y(m);
   which = first_plane_on(m, sim->prev_position, p_end, WHICH_NONE, &s, &q, &nrm);
   if (which != WHICH_NONE) {
     /* eq 6: velocity now, restart at Q pushed dt / 10 along the new normal

@@ -427,10 +427,11 @@ void fz_frame_end(fz_watch *w, const ball_sim *sim, double dt, const ball_event 
         check_point(&f, end.position, t_end, "frame end after the contact limit");
       }
     } else {
-      /* the chord ends where the ball is shown: on the floor if it fell
-       * below it (docs/model.md, "Ball radius, edges and corners") */
+      /* a ball with a radius: the chord ends where the ball is shown, on
+       * the floor if it fell below it; a point ball's is Fig. 3's, to the
+       * free end (docs/model.md, "Ball radius, edges and corners") */
       ball_vec3 q = plane_ev >= 0 ? ev[plane_ev].point : free_end.position;
-      if (plane_ev < 0 && (m->effects & BALL_EFFECT_FLOOR) && q.y < f.fy) q.y = f.fy;
+      if (plane_ev < 0 && m->radius > 0.0 && (m->effects & BALL_EFFECT_FLOOR) && q.y < f.fy) q.y = f.fy;
       FZ_CHECK(ball_v3_dist(w->p_old, w->prev.position) == 0.0,
                "sampled: prev_position is not the previous frame's end");
       check_chord(&f, w->p_old, q, "chord", -1);

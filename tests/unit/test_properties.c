@@ -666,13 +666,14 @@ static void check_crossings(uint64_t seed, const scene_opts *o) {
        * it for the rest of the frame (docs/model.md): no last piece */
       if (sim.warnings[BALL_WARN_CONTACT_LIMIT] == limits) check_piece(seed, f, &m, &ps, &seg, t, sim.time, tol);
     } else {
-      /* the chord from the last frame's end to this one's (on the floor if
-       * it fell below: where the ball is shown), or to the first net or wall
-       * contact on it */
+      /* the chord from the last frame's end to this one's (for a ball with
+       * a radius on the floor if it fell below: where the ball is shown; a
+       * point ball's is Fig. 3's), or to the first net or wall contact on it */
       ball_vec3 b;
       if (ball_segment_eval(&m, &seg, sim.time, &end) != BALL_OK) FAIL_SEED(seed, "frame %d: no end", f);
       b = end.position;
-      if ((m.effects & BALL_EFFECT_FLOOR) && b.y < m.floor_level + m.radius) b.y = m.floor_level + m.radius;
+      if (m.radius > 0.0 && (m.effects & BALL_EFFECT_FLOOR) && b.y < m.floor_level + m.radius)
+        b.y = m.floor_level + m.radius;
       for (i = 0; i < n; i++)
         if (ev[i].kind == BALL_EVENT_NET || ev[i].kind == BALL_EVENT_WALL) {
           b = ev[i].point;
