@@ -39,7 +39,7 @@ double ball__response_v_up(const ball_model *m, ball_vec3 v_racket) {
 
 /* eq 8, 9: the "friendly" ball from q to the goal's (x, z) at q's height:
  * t0 = 2 V_up / g, horizontal speed dist_h / (b (1 - e^(-t0/b))) (the paper's
- * "V0y" there is a typo, DESIGN 3), everything times friendlyFactor. */
+ * "V0y" there is a typo, docs/design.md R7), everything times friendlyFactor. */
 ball_vec3 ball__response_autonomous(const ball_model *m, ball_vec3 q, ball_vec3 goal, double v_up,
                                     double friendly) {
   double t0 = 2.0 * v_up / m->gravity;                       /* eq 8 */

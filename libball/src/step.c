@@ -42,7 +42,7 @@ static void floor_bounce(const ball_model *m, ball_segment *seg, double t, ball_
   ev->kind = BALL_EVENT_FLOOR;
   ev->index = 0;
   ev->sound = sound(m, v0.y);
-  /* below the bounce threshold the ball stops bouncing and slides (DESIGN 3);
+  /* below the bounce threshold the ball stops bouncing and slides (docs/design.md R4);
    * so does a bounce too short for the clock to resolve (threshold 0) */
   if (v0.y < m->bounce_threshold || t + 2.0 * v0.y / m->gravity == t) {
     v0.y = 0.0;
