@@ -44,6 +44,11 @@ const char *ball_level_name(ball_level level) {
   return (unsigned)level < BALL_LEVEL_COUNT ? names[level] : "unknown";
 }
 
+const char *ball_event_kind_name(ball_event_kind kind) {
+  static const char *const names[] = {"floor", "net", "wall", "racket"};
+  return (unsigned)kind < BALL_EVENT_KIND_COUNT ? names[kind] : "unknown";
+}
+
 const char *ball_effect_name(ball_effect effect) {
   switch (effect) {
     case BALL_EFFECT_DRAG: return "drag";

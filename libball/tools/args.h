@@ -14,20 +14,21 @@
 
 #define EXIT_USAGE 2
 
-/* "TOOL: message (see TOOL --help)" on stderr; returns EXIT_USAGE. */
-static int usage_error(const char *fmt, ...) {
+/* "TOOL: message (see TOOL --help)" on err; returns EXIT_USAGE. */
+static inline int tool_usage_error(FILE *err, const char *fmt, ...) {
   va_list ap;
-  fprintf(stderr, "%s: ", TOOL_NAME);
+  fprintf(err, "%s: ", TOOL_NAME);
   va_start(ap, fmt);
-  vfprintf(stderr, fmt, ap);
+  vfprintf(err, fmt, ap);
   va_end(ap);
-  fprintf(stderr, " (see %s --help)\n", TOOL_NAME);
+  fprintf(err, " (see %s --help)\n", TOOL_NAME);
   return EXIT_USAGE;
 }
+#define usage_error(...) tool_usage_error(stderr, __VA_ARGS__)
 
 /* A finite number, the whole text consumed. strtod would skip leading
  * blanks: a strict number starts with a sign, a digit or a point. */
-static int parse_number(const char *text, double *out) {
+static inline int parse_number(const char *text, double *out) {
   char *end;
   double v;
   if (!text || !(*text == '-' || *text == '+' || *text == '.' || (*text >= '0' && *text <= '9'))) return 0;
@@ -39,14 +40,15 @@ static int parse_number(const char *text, double *out) {
 }
 
 /* Loads a scene file; on failure prints "file:line:column: field: message"
- * to stderr and returns 0. */
-static int load_scene(const char *path, ball_scene *scene) {
+ * to out and returns 0. */
+static inline int load_scene_to(FILE *out, const char *path, ball_scene *scene) {
   ball_scene_error err;
   char text[1024];
   if (ball_scene_load_file(path, scene, &err) == BALL_OK) return 1;
   ball_scene_error_format(&err, text, sizeof text);
-  fprintf(stderr, "%s\n", text);
+  fprintf(out, "%s\n", text);
   return 0;
 }
+#define load_scene(path, scene) load_scene_to(stderr, (path), (scene))
 
 #endif

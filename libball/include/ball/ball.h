@@ -377,6 +377,9 @@ typedef enum ball_event_kind {
   BALL_EVENT_KIND_COUNT
 } ball_event_kind;
 
+/* The kind's name: "floor", "net", "wall", "racket" ("unknown" past the list). */
+BALL_API const char *ball_event_kind_name(ball_event_kind kind);
+
 typedef struct ball_event {
   ball_event_kind kind;
   int index;               /* wall or racket index; 0 for floor and net */
