@@ -47,6 +47,16 @@ static void ref_flight(const ball_model *m, const ref_ball *s, ball_vec3 *p, bal
   }
 }
 
+/* A collision: the flight restarts from s (t = 0), noted in out[*n]. */
+static void ref_collision(ref_ball *s, int kind, long frame, ref_event *out, int *n) {
+  s->t = 0.0;
+  out[*n].kind = kind;
+  out[*n].frame = frame;
+  out[*n].p0 = s->p0;
+  out[*n].v0 = s->v0;
+  (*n)++;
+}
+
 /* One run of the paper's frame loop; returns the events. */
 static int ref_run(const ball_model *m, double dt, ref_event *out) {
   ref_ball s;
@@ -71,12 +81,7 @@ static int ref_run(const ball_model *m, double dt, ref_event *out) {
           ball_vec3 v0 = ball_v3_scale(ball_v3(-v.x, v.y, v.z), net->damping);
           s.p0 = ball_v3_add(q, ball_v3(v0.x * dt / 10.0, 0.0, 0.0));
           s.v0 = v0;
-          s.t = 0.0;
-          out[n].kind = BALL_EVENT_NET;
-          out[n].frame = frame;
-          out[n].p0 = s.p0;
-          out[n].v0 = s.v0;
-          n++;
+          ref_collision(&s, BALL_EVENT_NET, frame, out, &n);
           ref_flight(m, &s, &p, &v);
         }
       }
@@ -86,17 +91,12 @@ static int ref_run(const ball_model *m, double dt, ref_event *out) {
       double fd = m->floor_damping;
       s.p0 = ball_v3(p.x, m->floor_level, p.z);
       s.v0 = ball_v3(v.x * fd, -v.y * fd, v.z * fd);
-      s.t = 0.0;
       /* a bounce slower than bounce_threshold stops bouncing (docs/design.md) */
       if (s.v0.y < m->bounce_threshold) {
         s.v0.y = 0.0;
         s.sliding = 1;
       }
-      out[n].kind = BALL_EVENT_FLOOR;
-      out[n].frame = frame;
-      out[n].p0 = s.p0;
-      out[n].v0 = s.v0;
-      n++;
+      ref_collision(&s, BALL_EVENT_FLOOR, frame, out, &n);
       ref_flight(m, &s, &p, &v);
     }
     p_old = p;
