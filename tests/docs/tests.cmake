@@ -1,0 +1,21 @@
+# The docs test (label docs): README.md and docs/*.md hold true for a newcomer
+# who follows them literally. tests/docs/check_docs.py says what each part
+# checks and how a code block is marked runnable; docs/README.md explains it.
+# Debian's python3 is the one with python3-markdown-it (./run setup installs it).
+find_program(BALL_DOCS_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
+if(NOT BALL_DOCS_PYTHON)
+  find_program(BALL_DOCS_PYTHON NAMES python3 REQUIRED)
+endif()
+set(ball_docs_check ${BALL_DOCS_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_docs.py)
+set(ball_docs_dirs --source ${PROJECT_SOURCE_DIR} --build ${PROJECT_BINARY_DIR})
+
+# links, anchors, paths, names, every listed option in its program's --help
+add_test(NAME docs_pages COMMAND ${ball_docs_check} pages ${ball_docs_dirs}
+  --pending ${CMAKE_CURRENT_LIST_DIR}/pending.txt)
+# the runnable code blocks, their outputs and example errors
+add_test(NAME docs_commands COMMAND ${ball_docs_check} commands ${ball_docs_dirs})
+set_tests_properties(docs_pages docs_commands PROPERTIES LABELS docs TIMEOUT 600)
+# the long runnable blocks (the demo: DDS, its own domain): skipped with the
+# reason printed unless BALL_DOCS_LONG=1
+add_test(NAME docs_commands_long COMMAND ${ball_docs_check} commands ${ball_docs_dirs} --long)
+set_tests_properties(docs_commands_long PROPERTIES LABELS "docs;dds" SKIP_RETURN_CODE 77 TIMEOUT 1800)
