@@ -30,6 +30,8 @@ Commands run in a scratch folder that links every top-level entry of the
 source tree and `build` to the build tree, so that `build/libball/ballsim
 libball/scenes/x.yaml --out x.csv` works as written and writes nowhere in
 the source tree; BALL_BUILD_DIR is the build tree (so `./run VERB` uses it).
+A `./run` command runs in the source tree itself (./run configures the build
+with the tree it lives in), so it must write outside it (--out /tmp/x.csv).
 A ctest command is listed (--show-only), not run, and must find tests. A
 command that starts ball-server, ball-bot, ball-watch or ball-load must carry
 --domain N: the DDS tests use fixed domains of their own.
@@ -485,7 +487,7 @@ def scratch_root(source, build):
 def check_commands(args):
     report = Report(None)
     source, build = args.source, args.build
-    env = dict(os.environ, BALL_BUILD_DIR=build)
+    env = dict(os.environ, BALL_BUILD_DIR=build, BALL_SOURCE_DIR=source, BALL_DOCS_NESTED="1")
     root = scratch_root(source, build)
     try:
         for page in pages_of(source):
@@ -516,8 +518,10 @@ def run_one(report, page, line, kind, cmd, expected, root, env):
     if words and os.path.basename(words[0]) == "ctest":
         cmd = cmd + " --show-only"
     report.count("commands run")
-    r = subprocess.run(["bash", "-o", "pipefail", "-c", cmd], cwd=root, env=env,
-                       capture_output=True, text=True, timeout=1800)
+    # ./run configures its build with the source tree it lives in: it runs there
+    cwd = env["BALL_SOURCE_DIR"] if words and words[0] == "./run" else root
+    r = subprocess.run(["bash", "-o", "pipefail", "-c", cmd], cwd=cwd, env=env,
+                       capture_output=True, text=True, timeout=3600)
     out = (r.stdout + r.stderr).rstrip("\n")
     if kind == "errors":
         if r.returncode == 0:
@@ -547,6 +551,10 @@ def main():
     args.source, args.build = os.path.abspath(args.source), os.path.abspath(args.build)
     if args.mode == "pages":
         return check_pages(args)
+    if args.long and os.environ.get("BALL_DOCS_NESTED") == "1":
+        print("skipped: this is the test suite run by the README's `./run test` inside "
+              "docs_commands_long")
+        return 77
     if args.long and os.environ.get("BALL_DOCS_LONG") != "1":
         print("skipped: the long runnable blocks (the demo, the benchmarks) run only with "
               "BALL_DOCS_LONG=1 (BALL_DOCS_LONG=1 ctest --test-dir build -R docs_commands_long)")

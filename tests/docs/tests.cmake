@@ -18,4 +18,4 @@ set_tests_properties(docs_pages docs_commands PROPERTIES LABELS docs TIMEOUT 600
 # the long runnable blocks (the demo: DDS, its own domain): skipped with the
 # reason printed unless BALL_DOCS_LONG=1
 add_test(NAME docs_commands_long COMMAND ${ball_docs_check} commands ${ball_docs_dirs} --long)
-set_tests_properties(docs_commands_long PROPERTIES LABELS "docs;dds" SKIP_RETURN_CODE 77 TIMEOUT 1800)
+set_tests_properties(docs_commands_long PROPERTIES LABELS "docs;dds" SKIP_RETURN_CODE 77 RUN_SERIAL ON TIMEOUT 3600)
