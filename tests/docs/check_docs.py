@@ -13,7 +13,8 @@ checks, without running anything but the programs' --help:
     tests/unit/test_x.c, ball/scene.h, build/libball/ballsim, a bare
     tennis.yaml or test_x.c) exists;
   - every identifier in a code span that names code (ball_step, BALL_OK,
-    floor_bounce, a ctest name) is a word of the sources or a ctest test;
+    floor_bounce, a ctest name) is a word of the sources or a ctest test, and
+    a constant given with its value (`BALL_MAX_WALLS` (16)) has that value;
   - every option of one of the project's programs (ballsim --fps, a
     ball-server option, a ./run verb) is in that program's --help, or in
     ./run's usage.
@@ -37,8 +38,8 @@ command that starts ball-server, ball-bot, ball-watch or ball-load must carry
 --domain N: the DDS tests use fixed domains of their own.
 
 Either mode fails when it checks nothing: no page, no code block, no link,
-no runnable command. A failure listed in --pending (one line each, exactly
-as this test prints it) is reported as pending instead; a pending line that
+no runnable command. A failure listed in --pending (one line each, as this
+test prints it but without the line number) is reported as pending instead; a pending line that
 no longer fails is itself a failure, so the list only shrinks.
 """
 
@@ -143,8 +144,9 @@ class Report:
                 ok = False
         pending_seen = set()
         for f in self.failures:
-            if f in self.pending:
-                pending_seen.add(f)
+            key = re.sub(r"^([^:]+):[0-9?]+:", r"\1:", f)  # pending lines name no line
+            if key in self.pending:
+                pending_seen.add(key)
                 print("PENDING " + f)
             else:
                 print("FAIL " + f)
@@ -340,6 +342,12 @@ def check_pages(args):
     helps = help_texts(build, source)
     tests = ctest_names(build)
     words = source_words(source, files)
+    defines = {}
+    for f in files:
+        if f.startswith("libball/") and f.endswith((".h", ".c")):
+            with open(os.path.join(source, f), encoding="utf-8", errors="replace") as fh:
+                for name, value in re.findall(r"^#define (BALL_\w+) \(?([0-9][0-9.e+-]*)", fh.read(), re.M):
+                    defines[name] = value
     pages = pages_of(source)
     parsed = {p: parse(source, p) for p in pages}
     anchors = {p: anchors_of(toks) for p, (_, toks) in parsed.items()}
@@ -434,6 +442,16 @@ def check_pages(args):
             if not exists_path(source, build, fileset, dirs, path):
                 report.fail(page, lineno, "path %s: not in the repository%s"
                             % (path, " nor the build" if first == "build" else ""))
+        for m in re.finditer(r"`(BALL_[A-Z0-9_]+)`\s*(?:\(|=\s*)([0-9][0-9.e+-]*)", text):
+            report.count("constants")
+            value = defines.get(m.group(1))
+            try:
+                same = value is not None and float(value) == float(m.group(2).rstrip("."))
+            except ValueError:
+                same = False
+            if not same:
+                report.fail(page, line_of(text, m.start()), "`%s` = %s: the sources say %s"
+                            % (m.group(1), m.group(2), value))
         for m in BARE_FILE.finditer(text):
             name = m.group(1)
             if text[max(0, m.start() - 1):m.start()] == "/":
@@ -442,7 +460,8 @@ def check_pages(args):
             if name not in basenames:
                 report.fail(page, line_of(text, m.start()), "file %s: no such file in the repository"
                             % name)
-    return report.finish(["pages", "links", "code blocks", "paths", "options", "identifiers"])
+    return report.finish(["pages", "links", "code blocks", "paths", "options", "identifiers",
+                          "constants"])
 
 
 # ------------------------------------------------------------- commands mode
