@@ -79,7 +79,9 @@ CODE_EXTENSIONS = (".c", ".h", ".cpp", ".cmake", ".idl", ".xml", ".gp", ".supp",
 MARKER = re.compile(r"^<!--\s*runnable(?::\s*(errors|long))?\s*-->\s*$")
 
 
-def pages_of(source):
+def pages_of(source, only=None):
+    if only:
+        return only
     pages = ["README.md"] + sorted(os.path.relpath(p, source)
                                    for p in glob.glob(os.path.join(source, "docs", "*.md")))
     return [p for p in pages if os.path.isfile(os.path.join(source, p))]
@@ -352,7 +354,7 @@ def check_pages(args):
             with open(os.path.join(source, f), encoding="utf-8", errors="replace") as fh:
                 for name, value in re.findall(r"^#define (BALL_\w+) \(?([0-9][0-9.e+-]*)", fh.read(), re.M):
                     defines[name] = value
-    pages = pages_of(source)
+    pages = pages_of(source, args.pages)
     parsed = {p: parse(source, p) for p in pages}
     anchors = {p: anchors_of(toks) for p, (_, toks) in parsed.items()}
     for page in pages:
@@ -513,7 +515,7 @@ def check_commands(args):
     env = dict(os.environ, BALL_BUILD_DIR=build, BALL_SOURCE_DIR=source, BALL_DOCS_NESTED="1")
     root = scratch_root(source, build)
     try:
-        for page in pages_of(source):
+        for page in pages_of(source, args.pages):
             report.count("pages")
             for line, kind, content in runnable_blocks(source, page):
                 report.count("runnable blocks")
@@ -570,6 +572,8 @@ def main():
     ap.add_argument("--build", required=True)
     ap.add_argument("--pending")
     ap.add_argument("--long", action="store_true")
+    ap.add_argument("--pages", nargs="+", help="these pages (relative to --source) instead of "
+                    "README.md and docs/*.md")
     args = ap.parse_args()
     args.source, args.build = os.path.abspath(args.source), os.path.abspath(args.build)
     if args.mode == "pages":

@@ -19,3 +19,8 @@ set_tests_properties(docs_pages docs_commands PROPERTIES LABELS docs TIMEOUT 600
 # reason printed unless BALL_DOCS_LONG=1
 add_test(NAME docs_commands_long COMMAND ${ball_docs_check} commands ${ball_docs_dirs} --long)
 set_tests_properties(docs_commands_long PROPERTIES LABELS "docs;dds" SKIP_RETURN_CODE 77 RUN_SERIAL ON TIMEOUT 3600)
+# the check can fail: a page with one mistake of each kind (tests/docs/broken/)
+add_test(NAME docs_check_catches COMMAND ${CMAKE_COMMAND} -DCHECK=${BALL_DOCS_PYTHON}
+  "-DSCRIPT=${CMAKE_CURRENT_LIST_DIR}/check_docs.py" -DSOURCE=${PROJECT_SOURCE_DIR}
+  -DBUILD=${PROJECT_BINARY_DIR} -P ${CMAKE_CURRENT_LIST_DIR}/catches.cmake)
+set_tests_properties(docs_check_catches PROPERTIES LABELS docs TIMEOUT 120)
