@@ -11,6 +11,7 @@ endforeach()
 set(expected
   "pages|link docs/nowhere.md: no file tests/docs/broken/docs/nowhere.md"
   "pages|link docs/page.md#no-such-heading: no heading or anchor #no-such-heading in tests/docs/broken/docs/page.md"
+  "pages|docs/page.md, \"No such section\": no such section in tests/docs/broken/docs/page.md"
   "pages|path libball/scenes/no_such_scene.yaml: not in the repository"
   "pages|file no_such_file.c: no such file in the repository"
   "pages|`ballsim --no-such-option`: not in ballsim --help"

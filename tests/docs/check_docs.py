@@ -8,7 +8,8 @@ who follows them literally (docs/README.md, "Keeping the pages true").
 `pages` reads every page with markdown-it (Debian's python3-markdown-it) and
 checks, without running anything but the programs' --help:
   - every relative link and image resolves to a file of the repository, and
-    every #anchor to a heading or an <a id> of the page it points to;
+    every #anchor to a heading or an <a id> of the page it points to; a
+    section named in quotes after its page (model.md, "Effects") is there;
   - every repository path the text names (libball/scenes/x.yaml,
     tests/unit/test_x.c, ball/scene.h, build/libball/ballsim, a bare
     tennis.yaml or test_x.c) exists;
@@ -388,6 +389,23 @@ def check_pages(args):
                     if frag not in anchors[dest]:
                         report.fail(page, line, "link %s: no heading or anchor #%s in %s"
                                     % (target, frag, dest))
+        # a section named in quotes after its page: [x.md](x.md#a), "Name" or x.md, "Name"
+        for m in re.finditer(r'(?:\]\(([\w./-]+\.md)(?:#[\w-]*)?\)|(?<![\w/.-])([\w./-]+\.md))'
+                             r',?\s+"([^"]+)"', text):
+            target = m.group(1) or m.group(2)
+            dest = os.path.normpath(os.path.join(here, target)) if m.group(1) else target
+            if dest not in fileset:
+                for cand in (os.path.normpath(os.path.join(here, target)), "docs/" + target):
+                    if cand in fileset:
+                        dest = cand
+            if dest not in fileset:
+                continue  # the path check reports it
+            report.count("section names")
+            with open(os.path.join(source, dest), encoding="utf-8") as fh:
+                body = " ".join(fh.read().replace("**", "").split())
+            if " ".join(m.group(3).split()) not in body:
+                report.fail(page, line_of(text, m.start()), '%s, "%s": no such section in %s'
+                            % (target, " ".join(m.group(3).split()), dest))
         # code blocks: count, and read their command lines
         for t in tokens:
             if t.type == "fence" or t.type == "code_block":
@@ -467,7 +485,7 @@ def check_pages(args):
                 report.fail(page, line_of(text, m.start()), "file %s: no such file in the repository"
                             % name)
     return report.finish(["pages", "links", "code blocks", "paths", "options", "identifiers",
-                          "constants"])
+                          "constants", "section names"])
 
 
 # ------------------------------------------------------------- commands mode
