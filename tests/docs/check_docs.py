@@ -541,7 +541,8 @@ def check_commands(args):
                     if kind == "long":
                         report.notes.append(
                             "skipped %s:%d: a long block (the demo, a benchmark); "
-                            "BALL_DOCS_LONG=1 ctest -R docs_commands_long runs it" % (page, line))
+                            "BALL_DOCS_LONG=1 ctest --test-dir build -R docs_commands_long runs it"
+                            % (page, line))
                     continue
                 for cmd, expected in steps_of(content):
                     run_one(report, page, line, kind, cmd, expected, root, env)
@@ -559,6 +560,8 @@ def run_one(report, page, line, kind, cmd, expected, root, env):
         report.fail(page, line, "`%s`: a DDS program in a runnable block needs --domain N" % cmd)
         return
     if words and os.path.basename(words[0]) == "ctest":
+        report.notes.append("listed, not run, %s:%d: `%s`: the tests it names run in this ctest "
+                            "run themselves (long ones in ./run long)" % (page, line, cmd))
         cmd = cmd + " --show-only"
     report.count("commands run")
     # ./run configures its build with the source tree it lives in: it runs there
@@ -602,7 +605,8 @@ def main():
         return 77
     if args.long and os.environ.get("BALL_DOCS_LONG") != "1":
         print("skipped: the long runnable blocks (the demo, the benchmarks) run only with "
-              "BALL_DOCS_LONG=1 (BALL_DOCS_LONG=1 ctest --test-dir build -R docs_commands_long)")
+              "BALL_DOCS_LONG=1 (BALL_DOCS_LONG=1 ctest --test-dir build -R docs_commands_long; "
+              "it is labelled dds: it runs the demo)")
         return 77
     return check_commands(args)
 
