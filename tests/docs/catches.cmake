@@ -22,7 +22,8 @@ set(expected
   "commands|`ctest --test-dir build -L no-such-label --show-only`: finds no tests"
   "commands|`false`: exit status 1"
   "commands|`true`: shown as an error, exits 0"
-  "commands|`build/server/ball-server --help`: a DDS program in a runnable block needs --domain N")
+  "commands|`build/server/ball-server --help`: a DDS program in a runnable block needs --domain N"
+  "commands|`build/server/ball-watch --domain 77 --help`: a DDS command runs only in a long block")
 foreach(line ${expected})
   string(REPLACE "|" ";" parts "${line}")
   list(GET parts 0 mode)

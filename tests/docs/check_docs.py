@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """The docs test: README.md and every page of docs/ hold true for a newcomer
-who follows them literally (docs/README.md, "Keeping the pages true").
+who follows them literally (ctest label docs; README.md's list of the docs
+points here).
 
   check_docs.py pages    --source DIR --build DIR [--pending FILE]
   check_docs.py commands --source DIR --build DIR [--long]
@@ -36,12 +37,15 @@ A `./run` command runs in the source tree itself (./run configures the build
 with the tree it lives in), so it must write outside it (--out /tmp/x.csv).
 A ctest command is listed (--show-only), not run, and must find tests. A
 command that starts ball-server, ball-bot, ball-watch or ball-load must carry
---domain N: the DDS tests use fixed domains of their own.
+--domain N (the DDS tests use fixed domains of their own), and a DDS command
+(those, ./run demo, ./run bench-server) belongs in a long block: only
+docs_commands_long is labelled dds, so only it runs under the DDS lock.
 
 Either mode fails when it checks nothing: no page, no code block, no link,
 no runnable command. A failure listed in --pending (one line each, as this
-test prints it but without the line number) is reported as pending instead; a pending line that
-no longer fails is itself a failure, so the list only shrinks.
+test prints it but without the line number) is reported as pending instead;
+a pending line that no longer fails is itself a failure, so the list only
+shrinks.
 """
 
 import argparse
@@ -558,6 +562,11 @@ def run_one(report, page, line, kind, cmd, expected, root, env):
     prog = program_of(words[0]) if words else None
     if prog in DDS_PROGRAMS and "--domain" not in options_of(words):
         report.fail(page, line, "`%s`: a DDS program in a runnable block needs --domain N" % cmd)
+        return
+    dds = prog in DDS_PROGRAMS or (prog == "./run" and words[1:2] in (["demo"], ["bench-server"]))
+    if dds and kind != "long":
+        report.fail(page, line, "`%s`: a DDS command runs only in a long block (docs_commands_long, "
+                    "label dds)" % cmd)
         return
     if words and os.path.basename(words[0]) == "ctest":
         report.notes.append("listed, not run, %s:%d: `%s`: the tests it names run in this ctest "
