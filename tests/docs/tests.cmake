@@ -16,7 +16,7 @@ add_test(NAME docs_pages COMMAND ${ball_docs_check} pages ${ball_docs_dirs}
 add_test(NAME docs_commands COMMAND ${ball_docs_check} commands ${ball_docs_dirs})
 # (under ./run asan the runnable blocks' ballrender needs the render tests'
 # LeakSanitizer suppression of libOSMesa's one leak)
-set(ball_docs_env "LSAN_OPTIONS=suppressions=${PROJECT_SOURCE_DIR}/tests/render/lsan.supp")
+set(ball_docs_env "LSAN_OPTIONS=suppressions=${PROJECT_SOURCE_DIR}/tests/render/lsan.supp:print_suppressions=0")
 set_tests_properties(docs_pages docs_commands PROPERTIES LABELS docs TIMEOUT 600
   ENVIRONMENT "${ball_docs_env}")
 # the long runnable blocks (the demo: DDS, its own domain): skipped with the
