@@ -37,7 +37,7 @@ static void print_help(FILE *f) {
           "arrived by the end of the step goes to ball_racket_push.\n"
           "\n"
           "  SCENE               a YAML scene file (docs/scenes.md); without it the\n"
-          "                      built-in tennis serve (the same as scenes/tennis.yaml)\n"
+          "                      built-in tennis serve (the same as libball/scenes/tennis.yaml)\n"
           "  --fps N             frames per second, N > 0; overrides the scene's time.frame_time\n"
           "  --duration S        sim seconds to run, S > 0; overrides the scene's duration.\n"
           "                      The run takes ceil(S / dt) frames of dt = frame_time * time_base\n"
