@@ -156,7 +156,7 @@ static inline double core_energy(const ball_model *m, ball_vec3 v, double y) {
   return 0.5 * m->mass * (v.x * v.x + v.y * v.y + v.z * v.z) + m->mass * m->gravity * y;
 }
 
-/* Seeded random shots: tests/support/seeded.h's generator. */
+/* Seeded random shots: kit/seeded.h's generator. */
 typedef seeded_rng core_rng;
 static inline double core_uniform(core_rng *r, double lo, double hi) { return seeded_uniform(r, lo, hi); }
 

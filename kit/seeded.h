@@ -1,9 +1,9 @@
 /* A small deterministic generator for seeded random cases (no libc rand:
  * the same numbers on every platform), for the unit tests and the programs
- * that share their case sets (tests/support/swings.h). Header only, C99 and
+ * that share their case sets (kit/swings.h). Header only, C99 and
  * C++. */
-#ifndef BALL_TESTS_SEEDED_H
-#define BALL_TESTS_SEEDED_H
+#ifndef BALL_KIT_SEEDED_H
+#define BALL_KIT_SEEDED_H
 
 typedef struct seeded_rng {
   unsigned long long s;
@@ -15,4 +15,4 @@ static inline double seeded_uniform(seeded_rng *r, double lo, double hi) {
   return lo + (hi - lo) * ((double)(r->s >> 11) / 9007199254740992.0);
 }
 
-#endif /* BALL_TESTS_SEEDED_H */
+#endif /* BALL_KIT_SEEDED_H */
