@@ -1,16 +1,25 @@
+# cmake -DSOURCE_DIR=<repo> -P public_api_only.cmake
 # Nothing outside libball/src (and its white-box tests in libball/src/tests)
 # includes the library's internals: the tools, the scene loader, the
-# renderer, the server, the validation and the tests use the public headers
-# in libball/include only, like any other client.
-file(GLOB_RECURSE files RELATIVE ${SOURCE_DIR}
-  ${SOURCE_DIR}/*.c ${SOURCE_DIR}/*.h ${SOURCE_DIR}/*.cpp ${SOURCE_DIR}/*.hpp ${SOURCE_DIR}/*.cxx
-  ${SOURCE_DIR}/*.cmake ${SOURCE_DIR}/CMakeLists.txt)
+# renderer, the server, the validation, the kit and the tests use the public
+# headers in libball/include only, like any other client. Fails on an empty
+# file list, and unless libball/src itself is seen including internal.h
+# (else the pattern would match nothing anywhere).
+include(${CMAKE_CURRENT_LIST_DIR}/sources.cmake)
+ball_sources(files)
 set(bad "")
+set(inside 0)
 foreach(f ${files})
-  if(f MATCHES "^(build|out)" OR f MATCHES "^libball/src/" OR f STREQUAL "tests/hard/public_api_only.cmake")
+  if(f STREQUAL "tests/hard/public_api_only.cmake")
     continue()
   endif()
   file(STRINGS ${SOURCE_DIR}/${f} lines REGEX "(#include.*(internal\\.h|libball/src)|libball/src[^/]*\\))")
+  if(f MATCHES "^libball/src/")
+    if(lines MATCHES "#include \"internal\\.h\"")
+      math(EXPR inside "${inside} + 1")
+    endif()
+    continue()
+  endif()
   foreach(line ${lines})
     if(f MATCHES "CMakeLists.txt$|\\.cmake$")
       # build files may compile the library's sources (the fuzz build) but
@@ -26,8 +35,11 @@ foreach(f ${files})
   endforeach()
 endforeach()
 list(LENGTH files n)
+if(inside EQUAL 0)
+  message(FATAL_ERROR "no file of libball/src includes internal.h: the check would prove nothing")
+endif()
 if(bad)
   list(JOIN bad "\n  " text)
   message(FATAL_ERROR "libball internals used outside libball/src:\n  ${text}")
 endif()
-message(STATUS "${n} files: only libball/src uses its internals")
+message(STATUS "${n} files: only libball/src uses its internals (${inside} of its files do)")
