@@ -43,4 +43,8 @@ foreach(harness scene sim)
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "fuzz_${harness} failed (${rc}); the input is in ${WORK_DIR}:\n${out}")
   endif()
+  # a harness that ran no input (an empty corpus and no budget) passed nothing
+  if(NOT runs MATCHES "units: [1-9]")
+    message(FATAL_ERROR "fuzz_${harness} ran no input:\n${out}")
+  endif()
 endforeach()
