@@ -415,12 +415,12 @@ static void test_bad_inputs_leave_the_sim_unchanged(void **state) {
     ball_state s;
     ball_status st;
     ball_event ev[4];
-    int f, n = 0;
+    int n = 0;
     (void)st;
     r.s = seed;
     random_scene(&r, &m, &o);
     if (ball_sim_init(&sim, &m) != BALL_OK) FAIL_SEED(seed, "scene refused");
-    for (f = 0; f < 3; f++) ball_step(&sim, 1.0 / 60.0, NULL, 0, NULL);
+    steps_run(&sim, 1.0 / 60.0, 3, NULL);
     bad = m;
     break_model(&r, &bad);
     if (ball_model_check(&bad, NULL) == BALL_OK) FAIL_SEED(seed, "a broken model passed ball_model_check");
