@@ -572,7 +572,7 @@ void made(std::ostream &o, const Report &r) {
        "the gnuplot scripts in validation/plots/ into docs/img/accuracy/. Nothing on the page is written by "
        "hand: change the program and rerun. "
     << fmt("This run's measurements took %.0f s. ", r.seconds)
-    << "`ctest -L accuracy` runs the program in its quick mode (tiny sets, one short round), which asserts "
+    << "`ctest --test-dir build --no-tests=error -L accuracy` runs the program in its quick mode (tiny sets, one short round), which asserts "
        "nothing about time and every check below.\n\n"
     << fmt("Sanity checks of this run (%zu, %d failed):\n\n", r.checks.size(), failed);
   for (const Check &c : r.checks)
