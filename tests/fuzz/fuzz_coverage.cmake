@@ -9,7 +9,7 @@
 # and goes on (FZ_KEEP_GOING, invariants.h): the table measures reach, the
 # verdicts are the sanitizer build's (fuzz_smoke, fuzz-long):
 #   cmake -DSOURCE_DIR=<repo> -DWORK_DIR=<dir> [-DRUNS_SCENE=200000]
-#         [-DRUNS_SIM=20000] [-DGENERATOR=Ninja] [-DDOC=docs/hard-cases.md]
+#         [-DRUNS_SIM=20000] [-DDOC=docs/hard-cases.md]
 #         -P fuzz_coverage.cmake
 # With DOC the table also replaces the block between the markers
 # "<!-- fuzz-coverage begin -->" and "<!-- fuzz-coverage end -->" there.
