@@ -160,6 +160,18 @@ static void test_ball_parallel_to_net_plane_never_hits_it_fig3(void **state) {
   }
 }
 
+/* A point ball from p at 8 m/s along x toward the net moved to x = 2 m
+ * (m: model_of's, the net only, its top as the caller set it), in the
+ * entry's scheme: the events of 32 frames of 1/64 s. */
+static void toward_the_net_at_2m(void **state, ball_model *m, ball_vec3 p, steps_tally *t) {
+  ball_sim sim;
+  m->scheme = test_scheme(state);
+  m->net.position = 2.0;
+  core_start(m, &sim, p, ball_v3(8.0, 0.0, 0.0));
+  steps_begin(t, NULL, 0);
+  steps_run(&sim, 1.0 / 64.0, 32, t);
+}
+
 /* Grazing the top edge: launched horizontally at 8 m/s, 2 m before the net,
  * the ball crosses the plane at tau = 0.25 s after falling 8 * 0.25^2 / 2 =
  * 0.25 m (all exact in binary). Starting at top + 0.25 it crosses exactly at
@@ -171,15 +183,10 @@ static void test_grazing_the_net_top_edge_fig3(void **state) {
   size_t i;
   for (i = 0; i < 3; i++) {
     ball_model m;
-    ball_sim sim;
     steps_tally t;
     model_of(&m, BALL_EFFECT_NET, 0.0);
-    m.scheme = test_scheme(state);
-    m.net.position = 2.0;
     m.net.top = 1.0;
-    core_start(&m, &sim, ball_v3(0.0, 1.25 + offsets[i], 5.0), ball_v3(8.0, 0.0, 0.0));
-    steps_begin(&t, NULL, 0);
-    steps_run(&sim, 1.0 / 64.0, 32, &t);
+    toward_the_net_at_2m(state, &m, ball_v3(0.0, 1.25 + offsets[i], 5.0), &t);
     assert_int_equal(t.kind[BALL_EVENT_NET], offsets[i] > 0.0 ? 0 : 1);
     if (t.total) {
       assert_near(t.first.time, 0.25, 1e-15);
@@ -196,14 +203,9 @@ static void test_grazing_the_net_side_edges_fig3(void **state) {
   size_t i;
   for (i = 0; i < 4; i++) {
     ball_model m;
-    ball_sim sim;
     steps_tally t;
     model_of(&m, BALL_EFFECT_NET, 0.0);
-    m.scheme = test_scheme(state);
-    m.net.position = 2.0;
-    core_start(&m, &sim, ball_v3(0.0, 0.75, zs[i]), ball_v3(8.0, 0.0, 0.0));
-    steps_begin(&t, NULL, 0);
-    steps_run(&sim, 1.0 / 64.0, 32, &t);
+    toward_the_net_at_2m(state, &m, ball_v3(0.0, 0.75, zs[i]), &t);
     assert_int_equal(t.kind[BALL_EVENT_NET], (i % 2) ? 0 : 1);
   }
 }
