@@ -403,7 +403,7 @@ void statics(std::ostream &o, const Report &r) {
 void rackets(std::ostream &o, const Report &r) {
   const RacketResults &k = r.rackets;
   o << "## Rackets\n\n### The tests against the sample rate\n\n"
-    << fmt("docs/rackets.md's detection study, grown: %d seeded swings (tests/support/swings.h: a tennis ball at "
+    << fmt("docs/rackets.md's detection study, grown: %d seeded swings (kit/swings.h: a tennis ball at "
            "10-30 m/s, a disc of r = 0.15 m swinging at 5-30 m/s, accelerating up to 30 m/s^2, turning up to "
            "6 rad/s; one in five overtaking a slow ball), the racket sampled at 2 to 120 Hz and one frame "
            "stepped per sample, through `ball_step` with each test (d_COLL = r_disc + r for the sphere test). "
@@ -567,12 +567,12 @@ void made(std::ostream &o, const Report &r) {
   for (const Check &c : r.checks) failed += !c.pass;
   o << "## How this page is made\n\n"
        "`./run accuracy` builds `ball_accuracy` (validation/accuracy_*.cpp; it measures with ball_bench's "
-       "pieces, tests/bench/bench_kit.h, and the detection study's swings, tests/support/swings.h; libball's "
+       "pieces, kit/bench_kit.h, and the detection study's swings, kit/swings.h; libball's "
        "public API only), runs it, which writes the plots' data to build/accuracy/ and this page, then runs "
        "the gnuplot scripts in validation/plots/ into docs/img/accuracy/. Nothing on the page is written by "
        "hand: change the program and rerun. "
     << fmt("This run's measurements took %.0f s. ", r.seconds)
-    << "`ctest -L accuracy` runs the program in its quick mode (tiny sets, one short round), which asserts "
+    << "`ctest --test-dir build --no-tests=error -L accuracy` runs the program in its quick mode (tiny sets, one short round), which asserts "
        "nothing about time and every check below.\n\n"
     << fmt("Sanity checks of this run (%zu, %d failed):\n\n", r.checks.size(), failed);
   for (const Check &c : r.checks)

@@ -1,5 +1,5 @@
 // Rackets: the sphere, disc and swept tests on the detection study's seeded
-// swings (tests/support/swings.h) at sample rates from 2 to 120 Hz (hit rate,
+// swings (kit/swings.h) at sample rates from 2 to 120 Hz (hit rate,
 // false hits, time of impact, cost), and the four responses at each game
 // level: how far the ball lands from where the player aimed (from the
 // partner, for the autonomous ball).

@@ -5,7 +5,6 @@
 #include <fcl/fcl.h>
 
 #include <algorithm>
-#include <memory>
 
 #include "common.h"
 
@@ -432,13 +431,16 @@ CaTrace ca_trace(const Motion &mo) {
   fcl::Cylinderd cyl(mo.q.disc_radius, kThin);
   Tf b0, b1, c0, c1;
   fcl_poses(mo, &b0, &b1, &c0, &c1);
-  std::unique_ptr<fcl::MotionBase<double>> m1, m2;
+  // The motions live on the stack. On the heap, libfcl's deleting
+  // destructors (built as C++14: Eigen's aligned operator delete) would free
+  // what this C++17 code's operator new allocated, which AddressSanitizer
+  // rightly reports as an alloc-dealloc mismatch.
+  fcl::InterpMotion<double> turn1(b0, b1), turn2(c0, c1);
+  fcl::TranslationMotion<double> shift1(b0, b1), shift2(c0, c1);
+  fcl::MotionBase<double> *m1 = &shift1, *m2 = &shift2;
   if (mo.rotating) {
-    m1.reset(new fcl::InterpMotion<double>(b0, b1));
-    m2.reset(new fcl::InterpMotion<double>(c0, c1));
-  } else {
-    m1.reset(new fcl::TranslationMotion<double>(b0, b1));
-    m2.reset(new fcl::TranslationMotion<double>(c0, c1));
+    m1 = &turn1;
+    m2 = &turn2;
   }
   Solver solver;
   fcl::RSSd bv1, bv2;

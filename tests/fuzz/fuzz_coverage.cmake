@@ -9,7 +9,7 @@
 # and goes on (FZ_KEEP_GOING, invariants.h): the table measures reach, the
 # verdicts are the sanitizer build's (fuzz_smoke, fuzz-long):
 #   cmake -DSOURCE_DIR=<repo> -DWORK_DIR=<dir> [-DRUNS_SCENE=200000]
-#         [-DRUNS_SIM=20000] [-DGENERATOR=Ninja] [-DDOC=docs/hard-cases.md]
+#         [-DRUNS_SIM=20000] [-DDOC=docs/hard-cases.md]
 #         -P fuzz_coverage.cmake
 # With DOC the table also replaces the block between the markers
 # "<!-- fuzz-coverage begin -->" and "<!-- fuzz-coverage end -->" there.
@@ -73,6 +73,9 @@ endif()
 file(GLOB_RECURSE sources RELATIVE ${SOURCE_DIR} ${SOURCE_DIR}/libball/src/*.c ${SOURCE_DIR}/libball/scene/*.c)
 list(FILTER sources EXCLUDE REGEX "/tests/")
 list(SORT sources)
+if(NOT sources)
+  message(FATAL_ERROR "no libball source file under ${SOURCE_DIR}/libball: nothing to report coverage of")
+endif()
 function(summary profile objects out_var)
   execute_process(COMMAND ${LLVM_COV} export -summary-only -instr-profile=${profile} ${objects}
     OUTPUT_VARIABLE json RESULT_VARIABLE rc ERROR_VARIABLE err)

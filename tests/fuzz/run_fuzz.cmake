@@ -1,6 +1,6 @@
 # Builds the libFuzzer harnesses with clang in WORK_DIR/build and runs each
 # for SECONDS from the seed corpus (docs/hard-cases.md):
-#   cmake -DSOURCE_DIR=<repo> -DWORK_DIR=<dir> -DSECONDS=10 [-DGENERATOR=Ninja]
+#   cmake -DSOURCE_DIR=<repo> -DWORK_DIR=<dir> -DSECONDS=10
 #         [-DJOBS=1] -P run_fuzz.cmake
 # or, deterministically (fixed seed, a fixed number of inputs: what ctest's
 # fuzz_smoke does, so that CI gives the same verdict every time):
@@ -42,5 +42,9 @@ foreach(harness scene sim)
   message(STATUS "fuzz_${harness}: ${runs}")
   if(NOT rc EQUAL 0)
     message(FATAL_ERROR "fuzz_${harness} failed (${rc}); the input is in ${WORK_DIR}:\n${out}")
+  endif()
+  # a harness that ran no input (an empty corpus and no budget) passed nothing
+  if(NOT runs MATCHES "units: [1-9]")
+    message(FATAL_ERROR "fuzz_${harness} ran no input:\n${out}")
   endif()
 endforeach()

@@ -1,7 +1,8 @@
 /* Helpers shared by the unit tests: tolerance assertions that print both
  * numbers, vector arithmetic, the base scenes (a ball in free space, the
- * tennis net, the court with a back wall), starting a sim, and a stepping
- * loop that collects events. Include after <cmocka.h>. */
+ * tennis net, the court with a back wall), starting a sim; with them the
+ * kit's seeded generator, tests/support's stepping loop (steps.h) and its
+ * for-each-scheme driver (schemes.h). Include after <cmocka.h>. */
 #ifndef BALL_TESTS_CORE_COMMON_H
 #define BALL_TESTS_CORE_COMMON_H
 
@@ -11,7 +12,9 @@
 
 #include "ball/ball.h"
 #include "ball/vec3.h"
+#include "schemes.h"
 #include "seeded.h"
+#include "steps.h"
 
 /* |got - want| <= tol, with both expressions and numbers in the failure
  * message. A NaN on either side fails. */
@@ -120,43 +123,12 @@ static inline ball_segment core_segment(double t0, ball_vec3 p0, ball_vec3 v0, b
   return seg;
 }
 
-/* Events collected over a run. */
-#define CORE_MAX_EVENTS 512
-typedef struct core_run {
-  int n;                             /* events kept */
-  ball_event ev[CORE_MAX_EVENTS];    /* in order */
-  unsigned long frames;              /* steps taken */
-} core_run;
-
-/* Steps a fresh sim of m for `frames` frames of dt and collects the events.
- * Fails the test on any status but BALL_OK or on more events than fit. */
-static inline void core_simulate(const ball_model *m, double dt, unsigned long frames, core_run *run,
-                          ball_sim *sim_out) {
-  ball_sim sim;
-  ball_event ev[BALL_MAX_CONTACTS + 4];
-  unsigned long f;
-  int k, n;
-  assert_ok(ball_sim_init(&sim, m));
-  run->n = 0;
-  run->frames = 0;
-  for (f = 0; f < frames; f++) {
-    assert_ok(ball_step(&sim, dt, ev, (int)(sizeof ev / sizeof ev[0]), &n));
-    for (k = 0; k < n; k++) {
-      assert_true(run->n < CORE_MAX_EVENTS);
-      run->ev[run->n++] = ev[k];
-    }
-    run->frames++;
-  }
-  assert_int_equal(sim.warnings[BALL_WARN_EVENT_OVERFLOW], 0);
-  if (sim_out) *sim_out = sim;
-}
-
 /* Kinetic plus potential energy: m v^2 / 2 + m g y. */
 static inline double core_energy(const ball_model *m, ball_vec3 v, double y) {
   return 0.5 * m->mass * (v.x * v.x + v.y * v.y + v.z * v.z) + m->mass * m->gravity * y;
 }
 
-/* Seeded random shots: tests/support/seeded.h's generator. */
+/* Seeded random shots: kit/seeded.h's generator. */
 typedef seeded_rng core_rng;
 static inline double core_uniform(core_rng *r, double lo, double hi) { return seeded_uniform(r, lo, hi); }
 

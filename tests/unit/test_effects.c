@@ -1,6 +1,7 @@
 /* The effect mask: a scene with an effect switched off gives bit-identical
  * results (the sim compared with memcmp after every frame, every event field
- * bit for bit) to the model without that effect, in both schemes.
+ * bit for bit) to the model without that effect, in both schemes (each test
+ * once per scheme: schemes.h).
  *
  * What "the model without it" means, effect by effect:
  *   drag    (eq 2, 3) -> air friction beta = 0 (b infinite: the parabola);
@@ -105,76 +106,66 @@ static void sound_without(ball_model *m) { m->sound_threshold = INFINITY; }
  * the stage ran); the others keep the full scene's parameters. */
 static void rackets_defined(ball_model *m) { m->n_rackets = 2; }
 
-static void check_effect(unsigned effect, edit_fn without, edit_fn off_extra, int must_matter) {
-  int scheme;
-  for (scheme = 0; scheme < BALL_SCHEME_COUNT; scheme++) {
-    ball_model full, off, none;
-    int frame, events;
-    full_scene(&full, (ball_scheme)scheme);
-    off = full;
-    if (off_extra) off_extra(&off);
-    off.effects &= ~effect;
-    none = full;
-    none.effects |= effect;
-    without(&none);
-    frame = first_difference(&off, &none, &events);
-    if (frame >= 0)
-      fail_msg("%s off vs the model without it (%s scheme): differ at frame %d",
-               ball_effect_name((ball_effect)effect), ball_scheme_name((ball_scheme)scheme), frame);
-    assert_true(events >= 1);
-    if (must_matter && first_difference(&full, &off, &events) < 0)
-      fail_msg("%s (%s scheme): the scene does not depend on it; the test would prove nothing",
-               ball_effect_name((ball_effect)effect), ball_scheme_name((ball_scheme)scheme));
-  }
+static void check_effect(ball_scheme scheme, unsigned effect, edit_fn without, edit_fn off_extra, int must_matter) {
+  ball_model full, off, none;
+  int frame, events;
+  full_scene(&full, scheme);
+  off = full;
+  if (off_extra) off_extra(&off);
+  off.effects &= ~effect;
+  none = full;
+  none.effects |= effect;
+  without(&none);
+  frame = first_difference(&off, &none, &events);
+  if (frame >= 0)
+    fail_msg("%s off vs the model without it (%s scheme): differ at frame %d",
+             ball_effect_name((ball_effect)effect), ball_scheme_name(scheme), frame);
+  assert_true(events >= 1);
+  if (must_matter && first_difference(&full, &off, &events) < 0)
+    fail_msg("%s (%s scheme): the scene does not depend on it; the test would prove nothing",
+             ball_effect_name((ball_effect)effect), ball_scheme_name(scheme));
 }
 
 static void effect_drag_off_is_bit_identical_to_beta_zero_eq3(void **state) {
-  (void)state;
-  check_effect(BALL_EFFECT_DRAG, drag_without, NULL, 1);
+  check_effect(test_scheme(state), BALL_EFFECT_DRAG, drag_without, NULL, 1);
 }
 
 static void effect_spin_off_is_bit_identical_to_zero_spin_eq4_eq13_eq14(void **state) {
-  (void)state;
-  check_effect(BALL_EFFECT_SPIN, spin_without, NULL, 1);
+  check_effect(test_scheme(state), BALL_EFFECT_SPIN, spin_without, NULL, 1);
 }
 
 static void effect_floor_off_is_bit_identical_to_an_unreachable_floor_eq5(void **state) {
-  (void)state;
-  check_effect(BALL_EFFECT_FLOOR, floor_without, NULL, 1);
+  check_effect(test_scheme(state), BALL_EFFECT_FLOOR, floor_without, NULL, 1);
 }
 
 static void effect_net_off_is_bit_identical_to_no_net_eq6(void **state) {
-  (void)state;
-  check_effect(BALL_EFFECT_NET, net_without, NULL, 1);
+  check_effect(test_scheme(state), BALL_EFFECT_NET, net_without, NULL, 1);
 }
 
 static void effect_walls_off_is_bit_identical_to_no_walls_eq6(void **state) {
-  (void)state;
-  check_effect(BALL_EFFECT_WALLS, walls_without, NULL, 1);
+  check_effect(test_scheme(state), BALL_EFFECT_WALLS, walls_without, NULL, 1);
 }
 
 /* Without racket samples the rackets cannot change the ball; this checks the
  * mask and the racket-free model agree bit for bit (the racket stage's own
  * effect is for the racket tests). */
 static void effect_rackets_off_is_bit_identical_to_no_rackets(void **state) {
-  (void)state;
-  check_effect(BALL_EFFECT_RACKETS, rackets_without, rackets_defined, 0);
+  check_effect(test_scheme(state), BALL_EFFECT_RACKETS, rackets_without, rackets_defined, 0);
 }
 
 static void effect_sound_off_is_bit_identical_to_infinite_sound_threshold_eq5(void **state) {
-  (void)state;
-  check_effect(BALL_EFFECT_SOUND, sound_without, NULL, 1);
+  check_effect(test_scheme(state), BALL_EFFECT_SOUND, sound_without, NULL, 1);
 }
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(effect_drag_off_is_bit_identical_to_beta_zero_eq3),
-      cmocka_unit_test(effect_spin_off_is_bit_identical_to_zero_spin_eq4_eq13_eq14),
-      cmocka_unit_test(effect_floor_off_is_bit_identical_to_an_unreachable_floor_eq5),
-      cmocka_unit_test(effect_net_off_is_bit_identical_to_no_net_eq6),
-      cmocka_unit_test(effect_walls_off_is_bit_identical_to_no_walls_eq6),
-      cmocka_unit_test(effect_rackets_off_is_bit_identical_to_no_rackets),
-      cmocka_unit_test(effect_sound_off_is_bit_identical_to_infinite_sound_threshold_eq5),
+      EACH_SCHEME(effect_drag_off_is_bit_identical_to_beta_zero_eq3),
+      EACH_SCHEME(effect_spin_off_is_bit_identical_to_zero_spin_eq4_eq13_eq14),
+      EACH_SCHEME(effect_floor_off_is_bit_identical_to_an_unreachable_floor_eq5),
+      EACH_SCHEME(effect_net_off_is_bit_identical_to_no_net_eq6),
+      EACH_SCHEME(effect_walls_off_is_bit_identical_to_no_walls_eq6),
+      EACH_SCHEME(effect_rackets_off_is_bit_identical_to_no_rackets),
+      EACH_SCHEME(effect_sound_off_is_bit_identical_to_infinite_sound_threshold_eq5),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -30,14 +30,32 @@ static void hand_model(ball_model *m) {
   m->initial_velocity = ball_v3(4.0, 3.0, -2.0);
 }
 
-/* Steps until the first event; returns it (fails if none within 10 s). */
+/* Steps until the first frame with an event; returns it (fails unless
+ * that frame has exactly one, within 10 s). */
 static ball_event first_event(const ball_model *m, ball_sim *sim, double dt) {
-  ball_event ev[8];
-  int n = 0, f;
+  steps_tally t;
   assert_ok(ball_sim_init(sim, m));
-  for (f = 0; f < (int)(10.0 / dt) && n == 0; f++) assert_ok(ball_step(sim, dt, ev, 8, &n));
-  assert_int_equal(n, 1);
-  return ev[0];
+  steps_begin(&t, NULL, 0);
+  steps_each(sim, dt, (unsigned long)(10.0 / dt), &t, steps_until_event, NULL);
+  assert_int_equal(t.total, 1);
+  return t.first;
+}
+
+/* A callback (ctx: the model): the ball ends the frame resting or sliding
+ * on the floor: no event, y exactly floor_level + radius, vy exactly 0,
+ * the rest finite. */
+static int on_the_floor(void *ctx, ball_sim *sim, const steps_tally *t, const ball_event *ev, int n) {
+  const ball_model *m = ctx;
+  const double floor_y = m->floor_level + m->radius;
+  unsigned long f = t->frames - 1;
+  ball_state s;
+  (void)ev;
+  if (n != 0) fail_msg("frame %lu on the floor: %d events", f, n);
+  assert_ok(ball_sim_state(sim, &s));
+  if (!(s.position.y == floor_y && s.velocity.y == 0.0 && isfinite(s.position.x) && isfinite(s.position.z) &&
+        isfinite(s.velocity.x) && isfinite(s.velocity.z)))
+    fail_msg("frame %lu on the floor: y = %.17g (floor %.17g), vy = %g", f, s.position.y, floor_y, s.velocity.y);
+  return 1;
 }
 
 static void eq5_exact_bounce_velocity_damped_flipped_and_drag_decayed(void **state) {
@@ -127,7 +145,6 @@ static void eq5_above_bounce_threshold_bounces_below_it_slides(void **state) {
   ball_sim sim;
   ball_event ev;
   ball_state s;
-  int f;
   (void)state;
   drop_model(&m, 2.3, 0.5); /* 2.3267 > 2.3: bounces */
   ev = first_event(&m, &sim, 1.0 / 60.0);
@@ -140,13 +157,9 @@ static void eq5_above_bounce_threshold_bounces_below_it_slides(void **state) {
   assert_true(ev.velocity_out.y == 0.0);
   assert_int_equal(sim.seg.grounded, 1);
   /* sliding: y exactly the floor, vy 0, x by eq 3 from the contact (drag only) */
-  for (f = 0; f < 600; f++) {
-    int n;
-    assert_ok(ball_step(&sim, 1.0 / 60.0, NULL, 0, &n));
-    assert_int_equal(n, 0);
-    assert_ok(ball_sim_state(&sim, &s));
-    assert_true(s.position.y == 0.0 && s.velocity.y == 0.0);
-  }
+  assert_true(m.floor_level + m.radius == 0.0);
+  steps_each(&sim, 1.0 / 60.0, 600, NULL, on_the_floor, &m);
+  assert_ok(ball_sim_state(&sim, &s));
   {
     double tau = sim.time - ev.time;
     assert_near(s.position.x, ev.point.x + ev.velocity_out.x * 2.0 * (1.0 - exp(-tau / 2.0)), TOL);
@@ -201,21 +214,8 @@ static void eq13_eq14_spin_at_the_floor_adds_velocity_and_damps_spin(void **stat
 
 /* Frames of a resting-ball run: exactly at floor_level + radius, finite,
  * no event. */
-static void assert_rests(const ball_model *m, ball_sim *sim, double dt, long frames) {
-  const double floor_y = m->floor_level + m->radius;
-  ball_event ev[4];
-  ball_state s;
-  long f;
-  int n;
-  for (f = 0; f < frames; f++) {
-    assert_ok(ball_step(sim, dt, ev, 4, &n));
-    if (n != 0) fail_msg("frame %ld after rest: %d events", f, n);
-    assert_ok(ball_sim_state(sim, &s));
-    if (!(s.position.y == floor_y && s.velocity.y == 0.0 && isfinite(s.position.x) &&
-          isfinite(s.position.z) && isfinite(s.velocity.x) && isfinite(s.velocity.z)))
-      fail_msg("frame %ld after rest: y = %.17g (floor %.17g), vy = %g", f, s.position.y, floor_y,
-               s.velocity.y);
-  }
+static void assert_rests(const ball_model *m, ball_sim *sim, double dt, unsigned long frames) {
+  steps_each(sim, dt, frames, NULL, on_the_floor, (void *)m);
 }
 
 /* The resting ball, exact scheme: dropped from 2 m onto a floor at 0.25 m
@@ -227,9 +227,9 @@ static void assert_rests(const ball_model *m, ball_sim *sim, double dt, long fra
 static void eq5_dropped_ball_comes_to_rest_after_derived_bounce_count_exact(void **state) {
   ball_model m;
   ball_sim sim;
-  ball_event ev[8];
+  steps_tally t;
   double v, speed;
-  int expected = 0, floor_events = 0, n, k, f;
+  int expected = 0;
   (void)state;
   hand_model(&m);
   m.floor_level = 0.25;
@@ -241,16 +241,12 @@ static void eq5_dropped_ball_comes_to_rest_after_derived_bounce_count_exact(void
     speed *= m.floor_damping;
   assert_int_equal(expected, 11);
   assert_ok(ball_sim_init(&sim, &m));
-  for (f = 0; f < 60 * 20 && !sim.seg.grounded; f++) {
-    assert_ok(ball_step(&sim, 1.0 / 60.0, ev, 8, &n));
-    for (k = 0; k < n; k++) {
-      assert_int_equal(ev[k].kind, BALL_EVENT_FLOOR);
-      floor_events++;
-    }
-  }
+  steps_begin(&t, NULL, 0);
+  steps_each(&sim, 1.0 / 60.0, 60 * 20, &t, steps_until_grounded, NULL);
   assert_int_equal(sim.seg.grounded, 1);
-  assert_int_equal(floor_events, expected);
-  assert_rests(&m, &sim, 1.0 / 60.0, 1000000L);
+  assert_int_equal(t.kind[BALL_EVENT_FLOOR], t.total);
+  assert_int_equal(t.kind[BALL_EVENT_FLOOR], expected);
+  assert_rests(&m, &sim, 1.0 / 60.0, 1000000UL);
 }
 
 /* The resting ball, sampled scheme (the paper's): each bounce is detected up
@@ -263,9 +259,9 @@ static void eq5_dropped_ball_comes_to_rest_within_derived_bounds_sampled(void **
   const double dt = 1.0 / 60.0;
   ball_model m;
   ball_sim sim;
-  ball_event ev[8];
+  steps_tally t;
   double v, speed;
-  int lo, hi, floor_events = 0, n, k, f;
+  int lo, hi;
   (void)state;
   hand_model(&m);
   m.scheme = BALL_SCHEME_SAMPLED;
@@ -278,14 +274,12 @@ static void eq5_dropped_ball_comes_to_rest_within_derived_bounds_sampled(void **
   for (speed = m.floor_damping * (v + m.gravity * dt), hi = 1; speed >= m.bounce_threshold; hi++)
     speed = m.floor_damping * (speed + m.gravity * dt);
   assert_ok(ball_sim_init(&sim, &m));
-  for (f = 0; f < 60 * 30 && !sim.seg.grounded; f++) {
-    assert_ok(ball_step(&sim, dt, ev, 8, &n));
-    for (k = 0; k < n; k++) floor_events += ev[k].kind == BALL_EVENT_FLOOR;
-  }
+  steps_begin(&t, NULL, 0);
+  steps_each(&sim, dt, 60 * 30, &t, steps_until_grounded, NULL);
   assert_int_equal(sim.seg.grounded, 1);
-  if (floor_events < lo || floor_events > hi)
-    fail_msg("sampled: %d floor events, derived bounds [%d, %d]", floor_events, lo, hi);
-  assert_rests(&m, &sim, dt, 1000000L);
+  if (t.kind[BALL_EVENT_FLOOR] < lo || t.kind[BALL_EVENT_FLOOR] > hi)
+    fail_msg("sampled: %d floor events, derived bounds [%d, %d]", t.kind[BALL_EVENT_FLOOR], lo, hi);
+  assert_rests(&m, &sim, dt, 1000000UL);
 }
 
 int main(void) {

@@ -57,58 +57,27 @@ static void state_of(const ball_sim *sim, ball_state *st) {
   assert_finite3(st->velocity);
 }
 
-/* Counts events of each kind over frames; checks every event is finite. */
-typedef struct tally {
-  int kind[BALL_EVENT_KIND_COUNT];
-  int total;
-  ball_event first, last;
-} tally;
-
-static void run(ball_sim *sim, int frames, double dt, tally *t) {
-  ball_event ev[BALL_MAX_CONTACTS + 2];
-  int f, n, i;
-  for (f = 0; f < frames; f++) {
-    assert_int_equal(ball_step(sim, dt, ev, BALL_MAX_CONTACTS + 2, &n), BALL_OK);
-    for (i = 0; i < n; i++) {
-      assert_true(isfinite(ev[i].time) && isfinite(ev[i].velocity_out.x) &&
-                  isfinite(ev[i].velocity_out.y) && isfinite(ev[i].velocity_out.z));
-      if (t->total == 0) t->first = ev[i];
-      t->last = ev[i];
-      t->kind[ev[i].kind]++;
-      t->total++;
-    }
-  }
-}
-
 /* ---- on the floor ------------------------------------------------------- */
 
 /* A ball placed exactly on the floor at rest (floor_level -1.5, radius 0.033):
  * at most one floor event of zero speed, then grounded (eq 5 threshold), and
  * y = floor_level + radius to the bit for 10 s, in both schemes. */
 static void test_ball_at_rest_exactly_on_floor_stays_there_eq5(void **state) {
-  int scheme;
-  (void)state;
-  for (scheme = 0; scheme < 2; scheme++) {
-    ball_model m;
-    ball_sim sim;
-    ball_state st;
-    tally t;
-    int f;
-    memset(&t, 0, sizeof t);
-    model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, 0.033);
-    m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
-    m.floor_level = -1.5;
-    core_start(&m, &sim, ball_v3(3.0, -1.5 + 0.033, 4.0), ball_v3(0.0, 0.0, 0.0));
-    for (f = 0; f < 600; f++) {
-      run(&sim, 1, 1.0 / 60.0, &t);
-      state_of(&sim, &st);
-      assert_near(st.position.y, -1.5 + 0.033, 0.0);
-      assert_near(st.position.x, 3.0, 0.0);
-    }
-    AT_MOST(t.total, 1);
-    if (t.total) assert_near(t.first.velocity_out.y, 0.0, 0.0);
-    assert_int_equal(sim.seg.grounded, 1);
-  }
+  ball_model m;
+  ball_sim sim;
+  steps_tally t;
+  steps_box pinned = steps_anywhere();
+  model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, 0.033);
+  m.scheme = test_scheme(state);
+  m.floor_level = -1.5;
+  core_start(&m, &sim, ball_v3(3.0, -1.5 + 0.033, 4.0), ball_v3(0.0, 0.0, 0.0));
+  pinned.lo.y = pinned.hi.y = -1.5 + 0.033;
+  pinned.lo.x = pinned.hi.x = 3.0;
+  steps_begin(&t, NULL, 0);
+  steps_each(&sim, 1.0 / 60.0, 600, &t, steps_in_box, &pinned);
+  AT_MOST(t.total, 1);
+  if (t.total) assert_near(t.first.velocity_out.y, 0.0, 0.0);
+  assert_int_equal(sim.seg.grounded, 1);
 }
 
 /* Sliding exactly on the floor at 5 m/s with drag: y stays on the floor, x
@@ -119,14 +88,14 @@ static void test_ball_sliding_on_floor_follows_eq3(void **state) {
   ball_model m;
   ball_sim sim;
   ball_state st;
-  tally t;
+  steps_tally t;
   double b;
   (void)state;
-  memset(&t, 0, sizeof t);
   model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_DRAG, 0.0);
   b = m.mass / m.air_friction;
   core_start(&m, &sim, ball_v3(0.0, 0.0, 4.0), ball_v3(5.0, 0.0, 0.0));
-  run(&sim, 120, 1.0 / 64.0, &t);
+  steps_begin(&t, NULL, 0);
+  steps_run(&sim, 1.0 / 64.0, 120, &t);
   state_of(&sim, &st);
   AT_MOST(t.total, 1);
   assert_near(st.position.y, 0.0, 0.0);
@@ -153,11 +122,11 @@ static void test_ball_starting_inside_the_net_gets_out_fig3(void **state) {
       ball_model m;
       ball_sim sim;
       ball_state st;
-      tally t;
-      memset(&t, 0, sizeof t);
+      steps_tally t;
       model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET, radii[i]);
       core_start(&m, &sim, ball_v3(11.885, 0.5, 3.0), ball_v3(speeds[j], 0.0, 0.0));
-      run(&sim, 60, 1.0 / 60.0, &t);
+      steps_begin(&t, NULL, 0);
+      steps_run(&sim, 1.0 / 60.0, 60, &t);
       state_of(&sim, &st);
       AT_MOST(t.kind[BALL_EVENT_NET], 1);
       assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
@@ -174,24 +143,33 @@ static void test_ball_starting_inside_the_net_gets_out_fig3(void **state) {
 static void test_ball_parallel_to_net_plane_never_hits_it_fig3(void **state) {
   static const double radii[] = {0.0, 0.033};
   size_t i;
-  int scheme;
-  (void)state;
-  for (scheme = 0; scheme < 2; scheme++)
-    for (i = 0; i < 2; i++) {
-      ball_model m;
-      ball_sim sim;
-      ball_state st;
-      tally t;
-      memset(&t, 0, sizeof t);
-      model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, radii[i]);
-      m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
-      core_start(&m, &sim, ball_v3(11.885 - radii[i], 0.5, 3.0), ball_v3(0.0, 2.0, 4.0));
-      run(&sim, 120, 1.0 / 60.0, &t);
-      state_of(&sim, &st);
-      assert_int_equal(t.kind[BALL_EVENT_NET], 0);
-      assert_near(st.position.x, 11.885 - radii[i], 0.0);
-      AT_LEAST(st.position.z, 5.0);
-    }
+  for (i = 0; i < 2; i++) {
+    ball_model m;
+    ball_sim sim;
+    ball_state st;
+    steps_tally t;
+    model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, radii[i]);
+    m.scheme = test_scheme(state);
+    core_start(&m, &sim, ball_v3(11.885 - radii[i], 0.5, 3.0), ball_v3(0.0, 2.0, 4.0));
+    steps_begin(&t, NULL, 0);
+    steps_run(&sim, 1.0 / 60.0, 120, &t);
+    state_of(&sim, &st);
+    assert_int_equal(t.kind[BALL_EVENT_NET], 0);
+    assert_near(st.position.x, 11.885 - radii[i], 0.0);
+    AT_LEAST(st.position.z, 5.0);
+  }
+}
+
+/* A point ball from p at 8 m/s along x toward the net moved to x = 2 m
+ * (m: model_of's, the net only, its top as the caller set it), in the
+ * entry's scheme: the events of 32 frames of 1/64 s. */
+static void toward_the_net_at_2m(void **state, ball_model *m, ball_vec3 p, steps_tally *t) {
+  ball_sim sim;
+  m->scheme = test_scheme(state);
+  m->net.position = 2.0;
+  core_start(m, &sim, p, ball_v3(8.0, 0.0, 0.0));
+  steps_begin(t, NULL, 0);
+  steps_run(&sim, 1.0 / 64.0, 32, t);
 }
 
 /* Grazing the top edge: launched horizontally at 8 m/s, 2 m before the net,
@@ -203,27 +181,19 @@ static void test_ball_parallel_to_net_plane_never_hits_it_fig3(void **state) {
 static void test_grazing_the_net_top_edge_fig3(void **state) {
   static const double offsets[] = {0.0, 1e-9, -1e-9};
   size_t i;
-  int scheme;
-  (void)state;
-  for (scheme = 0; scheme < 2; scheme++)
-    for (i = 0; i < 3; i++) {
-      ball_model m;
-      ball_sim sim;
-      tally t;
-      memset(&t, 0, sizeof t);
-      model_of(&m, BALL_EFFECT_NET, 0.0);
-      m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
-      m.net.position = 2.0;
-      m.net.top = 1.0;
-      core_start(&m, &sim, ball_v3(0.0, 1.25 + offsets[i], 5.0), ball_v3(8.0, 0.0, 0.0));
-      run(&sim, 32, 1.0 / 64.0, &t);
-      assert_int_equal(t.kind[BALL_EVENT_NET], offsets[i] > 0.0 ? 0 : 1);
-      if (t.total) {
-        assert_near(t.first.time, 0.25, 1e-15);
-        assert_near(t.first.point.y, 1.0 + offsets[i], 1e-15);
-        assert_near(t.first.velocity_out.x, -8.0 * m.net.damping, 1e-15);
-      }
+  for (i = 0; i < 3; i++) {
+    ball_model m;
+    steps_tally t;
+    model_of(&m, BALL_EFFECT_NET, 0.0);
+    m.net.top = 1.0;
+    toward_the_net_at_2m(state, &m, ball_v3(0.0, 1.25 + offsets[i], 5.0), &t);
+    assert_int_equal(t.kind[BALL_EVENT_NET], offsets[i] > 0.0 ? 0 : 1);
+    if (t.total) {
+      assert_near(t.first.time, 0.25, 1e-15);
+      assert_near(t.first.point.y, 1.0 + offsets[i], 1e-15);
+      assert_near(t.first.velocity_out.x, -8.0 * m.net.damping, 1e-15);
     }
+  }
 }
 
 /* Grazing the side edges z = lo = 0 and z = hi = 10.97 of the net: exactly
@@ -231,21 +201,13 @@ static void test_grazing_the_net_top_edge_fig3(void **state) {
 static void test_grazing_the_net_side_edges_fig3(void **state) {
   static const double zs[] = {0.0, -1e-9, 10.97, 10.97 + 1e-9};
   size_t i;
-  int scheme;
-  (void)state;
-  for (scheme = 0; scheme < 2; scheme++)
-    for (i = 0; i < 4; i++) {
-      ball_model m;
-      ball_sim sim;
-      tally t;
-      memset(&t, 0, sizeof t);
-      model_of(&m, BALL_EFFECT_NET, 0.0);
-      m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
-      m.net.position = 2.0;
-      core_start(&m, &sim, ball_v3(0.0, 0.75, zs[i]), ball_v3(8.0, 0.0, 0.0));
-      run(&sim, 32, 1.0 / 64.0, &t);
-      assert_int_equal(t.kind[BALL_EVENT_NET], (i % 2) ? 0 : 1);
-    }
+  for (i = 0; i < 4; i++) {
+    ball_model m;
+    steps_tally t;
+    model_of(&m, BALL_EFFECT_NET, 0.0);
+    toward_the_net_at_2m(state, &m, ball_v3(0.0, 0.75, zs[i]), &t);
+    assert_int_equal(t.kind[BALL_EVENT_NET], (i % 2) ? 0 : 1);
+  }
 }
 
 /* ---- several contacts in one frame -------------------------------------- */
@@ -300,9 +262,9 @@ static void test_corner_of_two_walls_reflects_both_axes_eq6(void **state) {
     for (i = 0; i < 2; i++) {
       ball_model m;
       ball_sim sim;
-      ball_state st;
       ball_event ev[8];
-      int n, f, k;
+      steps_box inside = steps_anywhere();
+      int n, k;
       double r = radii[i], tc = (1.0 - r) / 2.0;
       model_of(&m, BALL_EFFECT_WALLS | BALL_EFFECT_FLOOR, r);
       wall(&m, 0, 5.0, -10.0, 10.0, 0.5);
@@ -315,13 +277,9 @@ static void test_corner_of_two_walls_reflects_both_axes_eq6(void **state) {
       assert_near(ev[n - 1].velocity_out.x, -0.5 * (with_floor ? 0.75 : 1.0), 1e-15);
       assert_near(ev[n - 1].velocity_out.z, -0.5 * (with_floor ? 0.75 : 1.0), 1e-15);
       if (with_floor) assert_near(ev[n - 1].velocity_out.y, 0.75 * 0.25 * 8.0 * tc, 1e-14);
-      for (f = 0; f < 120; f++) {
-        assert_int_equal(ball_step(&sim, 1.0 / 60.0, NULL, 0, NULL), BALL_OK);
-        state_of(&sim, &st);
-        AT_MOST(st.position.x, 5.0 - r);
-        AT_MOST(st.position.z, 5.0 - r);
-        AT_LEAST(st.position.y, r);
-      }
+      inside.hi.x = inside.hi.z = 5.0 - r;
+      inside.lo.y = r;
+      steps_each(&sim, 1.0 / 60.0, 120, NULL, steps_in_box, &inside);
       assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
     }
 }
@@ -334,8 +292,7 @@ static void test_corner_of_two_walls_reflects_both_axes_eq6(void **state) {
 static void test_sampled_two_walls_in_one_frame_keeps_ball_inside_fig3(void **state) {
   ball_model m;
   ball_sim sim;
-  ball_state st;
-  int f;
+  steps_box inside = steps_anywhere();
   (void)state;
   model_of(&m, BALL_EFFECT_WALLS, 0.0);
   m.scheme = BALL_SCHEME_SAMPLED;
@@ -343,12 +300,8 @@ static void test_sampled_two_walls_in_one_frame_keeps_ball_inside_fig3(void **st
   wall(&m, 2, 5.0, -10.0, 10.0, 1.0);
   m.walls[0].bottom = m.walls[1].bottom = -1e6;
   core_start(&m, &sim, ball_v3(4.0, 3.0, 4.5), ball_v3(2.0, 0.0, 2.0));
-  for (f = 0; f < 10; f++) {
-    assert_int_equal(ball_step(&sim, 0.6, NULL, 0, NULL), BALL_OK);
-    state_of(&sim, &st);
-    AT_MOST(st.position.x, 5.0);
-    AT_MOST(st.position.z, 5.0);
-  }
+  inside.hi.x = inside.hi.z = 5.0;
+  steps_each(&sim, 0.6, 10, NULL, steps_in_box, &inside);
 }
 
 /* Wedged between a wall and the floor: a grounded ball touching the wall
@@ -368,21 +321,19 @@ static void test_ball_wedged_between_wall_and_floor_eq5_eq6(void **state) {
       ball_model m;
       ball_sim sim;
       ball_state st;
-      tally t;
-      int f;
+      steps_tally t;
+      steps_box inside = steps_anywhere();
       double r = radii[i];
-      memset(&t, 0, sizeof t);
       model_of(&m, BALL_EFFECT_WALLS | BALL_EFFECT_FLOOR, r);
       wall(&m, 0, 5.0, -10.0, 10.0, 0.5);
       if (k == 0) core_start(&m, &sim, ball_v3(5.0 - r, r, 0.0), ball_v3(2.0, 0.0, 0.0));
       if (k == 1) core_start(&m, &sim, ball_v3(5.0 - r, r, 0.0), ball_v3(0.0, 0.0, 0.0));
       if (k == 2) core_start(&m, &sim, ball_v3(4.0 - r, r + 4.0 * 0.25, 0.0), ball_v3(2.0, 0.0, 0.0));
-      for (f = 0; f < 120; f++) {
-        run(&sim, 1, 1.0 / 60.0, &t);
-        state_of(&sim, &st);
-        AT_MOST(st.position.x, 5.0 - r);
-        AT_LEAST(st.position.y, r);
-      }
+      inside.hi.x = 5.0 - r;
+      inside.lo.y = r;
+      steps_begin(&t, NULL, 0);
+      steps_each(&sim, 1.0 / 60.0, 120, &t, steps_in_box, &inside);
+      state_of(&sim, &st);
       assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
       if (k == 0) {
         assert_int_equal(t.kind[BALL_EVENT_WALL], 1);
@@ -415,23 +366,23 @@ static void test_resting_ball_stops_after_ten_bounces_eq5(void **state) {
   ball_model m;
   ball_sim sim;
   ball_state st;
-  ball_event ev[BALL_MAX_CONTACTS];
-  int f, n, i, k = 0;
+  ball_event log[16];
+  steps_tally t;
+  int k;
   double t_expect = 0.5;
   (void)state;
   model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_SOUND, 0.0);
   core_start(&m, &sim, ball_v3(0.0, 1.0, 0.0), ball_v3(0.0, 0.0, 0.0));
-  for (f = 0; f < 60 * 20; f++) {
-    assert_int_equal(ball_step(&sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n), BALL_OK);
-    for (i = 0; i < n; i++, k++) {
-      double v_out = 4.0 * pow(0.75, k + 1);
-      assert_int_equal(ev[i].kind, BALL_EVENT_FLOOR);
-      assert_near(ev[i].time, t_expect, 1e-12);
-      assert_near(ev[i].velocity_out.y, v_out < 0.3 ? 0.0 : v_out, 1e-12);
-      t_expect += 2.0 * v_out / 8.0;
-    }
+  steps_begin(&t, log, 16);
+  steps_run(&sim, 1.0 / 60.0, 60 * 20, &t);
+  for (k = 0; k < t.total; k++) {
+    double v_out = 4.0 * pow(0.75, k + 1);
+    assert_int_equal(log[k].kind, BALL_EVENT_FLOOR);
+    assert_near(log[k].time, t_expect, 1e-12);
+    assert_near(log[k].velocity_out.y, v_out < 0.3 ? 0.0 : v_out, 1e-12);
+    t_expect += 2.0 * v_out / 8.0;
   }
-  assert_int_equal(k, 10);
+  assert_int_equal(t.total, 10);
   assert_int_equal(sim.seg.grounded, 1);
   state_of(&sim, &st);
   assert_near(st.position.y, 0.0, 0.0);
@@ -442,43 +393,32 @@ static void test_resting_ball_stops_after_ten_bounces_eq5(void **state) {
  * = 3.5 s). Whatever the stepper does about it, the ball never ends a frame
  * below the floor, stays finite, and is on the floor at rest after 10 s. */
 static void test_resting_ball_with_zero_threshold_never_sinks_eq5(void **state) {
-  int scheme;
+  ball_model m;
+  ball_sim sim;
+  ball_state st;
+  steps_box above = steps_anywhere();
+  model_of(&m, BALL_EFFECT_FLOOR, 0.0);
+  m.scheme = test_scheme(state);
+  m.bounce_threshold = 0.0;
+  core_start(&m, &sim, ball_v3(0.0, 1.0, 0.0), ball_v3(0.0, 0.0, 0.0));
+  above.lo.y = 0.0;
+  steps_each(&sim, 1.0 / 60.0, 60 * 10, NULL, steps_in_box, &above);
+  state_of(&sim, &st);
+  AT_MOST(st.position.y, 0.01); /* sampled: micro-bounces of at most g dt^2 / 2 */
+}
+
+/* And a ball placed at rest on the floor with bounce_threshold = 0 stays on
+ * or above it. */
+static void test_ball_at_rest_with_zero_threshold_never_sinks_eq5(void **state) {
+  ball_model m;
+  ball_sim sim;
+  steps_box above = steps_anywhere();
   (void)state;
-  for (scheme = 0; scheme < 2; scheme++) {
-    ball_model m;
-    ball_sim sim;
-    ball_state st;
-    tally t;
-    int f;
-    memset(&t, 0, sizeof t);
-    model_of(&m, BALL_EFFECT_FLOOR, 0.0);
-    m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
-    m.bounce_threshold = 0.0;
-    core_start(&m, &sim, ball_v3(0.0, 1.0, 0.0), ball_v3(0.0, 0.0, 0.0));
-    for (f = 0; f < 60 * 10; f++) {
-      run(&sim, 1, 1.0 / 60.0, &t);
-      state_of(&sim, &st);
-      AT_LEAST(st.position.y, 0.0);
-    }
-    AT_MOST(st.position.y, 0.01); /* sampled: micro-bounces of at most g dt^2 / 2 */
-  }
-  /* and a ball placed at rest on the floor with threshold 0 */
-  {
-    ball_model m;
-    ball_sim sim;
-    ball_state st;
-    tally t;
-    int f;
-    memset(&t, 0, sizeof t);
-    model_of(&m, BALL_EFFECT_FLOOR, 0.0);
-    m.bounce_threshold = 0.0;
-    core_start(&m, &sim, ball_v3(0.0, 0.0, 0.0), ball_v3(0.0, 0.0, 0.0));
-    for (f = 0; f < 60; f++) {
-      run(&sim, 1, 1.0 / 60.0, &t);
-      state_of(&sim, &st);
-      AT_LEAST(st.position.y, 0.0);
-    }
-  }
+  model_of(&m, BALL_EFFECT_FLOOR, 0.0);
+  m.bounce_threshold = 0.0;
+  core_start(&m, &sim, ball_v3(0.0, 0.0, 0.0), ball_v3(0.0, 0.0, 0.0));
+  above.lo.y = 0.0;
+  steps_each(&sim, 1.0 / 60.0, 60, NULL, steps_in_box, &above);
 }
 
 /* A ball rolling (grounded) into the net at 5 m/s with drag: one net event
@@ -491,19 +431,15 @@ static void test_ball_rolling_into_the_net_bounces_once_eq6(void **state) {
   for (i = 0; i < 2; i++) {
     ball_model m;
     ball_sim sim;
-    ball_state st;
-    tally t;
-    int f;
+    steps_tally t;
+    steps_box rolling = steps_anywhere();
     double r = radii[i];
-    memset(&t, 0, sizeof t);
     model_of(&m, BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_DRAG, r);
     core_start(&m, &sim, ball_v3(10.0, r, 3.0), ball_v3(5.0, 0.0, 0.0));
-    for (f = 0; f < 240; f++) {
-      run(&sim, 1, 1.0 / 60.0, &t);
-      state_of(&sim, &st);
-      AT_MOST(st.position.x, 11.885 - r);
-      assert_near(st.position.y, r, 0.0);
-    }
+    rolling.hi.x = 11.885 - r;
+    rolling.lo.y = rolling.hi.y = r;
+    steps_begin(&t, NULL, 0);
+    steps_each(&sim, 1.0 / 60.0, 240, &t, steps_in_box, &rolling);
     assert_int_equal(t.kind[BALL_EVENT_NET], 1);
     assert_near(t.last.point.x, 11.885 - r, 1e-12);
     assert_near(t.last.velocity_out.x, -0.2 * t.last.velocity_in.x, 1e-15);
@@ -523,19 +459,15 @@ static void test_contact_limit_keeps_ball_between_walls(void **state) {
   for (i = 0; i < 2; i++) {
     ball_model m;
     ball_sim sim;
-    ball_state st;
-    int f;
+    steps_box between = steps_anywhere();
     model_of(&m, BALL_EFFECT_WALLS, 0.0);
     wall(&m, 0, 0.0, -10.0, 10.0, 1.0);
     wall(&m, 0, 0.05, -10.0, 10.0, 1.0);
     m.walls[0].bottom = m.walls[1].bottom = -1e9;
     core_start(&m, &sim, ball_v3(0.025, 5.0, 0.0), ball_v3(100.0, 0.0, 0.0));
-    for (f = 0; f < 30; f++) {
-      assert_int_equal(ball_step(&sim, dts[i], NULL, 0, NULL), BALL_OK);
-      state_of(&sim, &st);
-      AT_LEAST(st.position.x, 0.0);
-      AT_MOST(st.position.x, 0.05);
-    }
+    between.lo.x = 0.0;
+    between.hi.x = 0.05;
+    steps_each(&sim, dts[i], 30, NULL, steps_in_box, &between);
     if (i == 1) assert_true(sim.warnings[BALL_WARN_CONTACT_LIMIT] > 0);
   }
 }
@@ -547,61 +479,70 @@ static void test_contact_limit_keeps_ball_between_walls(void **state) {
  * (64 contacts a frame with damping 1; with 0.8 one bounce became 7 events
  * and the ball left at 1.95 m/s instead of 7.6). Now one event a bounce,
  * leaving at damping x the arriving speed, both schemes, both axes. */
+/* A callback (ctx: a plane_side): the ball's centre never ends a frame
+ * behind the wall (sim->prev_position, the paper's P_old). */
+typedef struct plane_side {
+  int axis;  /* 0: x, 2: z */
+  double at; /* m */
+} plane_side;
+
+static int never_behind(void *ctx, ball_sim *sim, const steps_tally *t, const ball_event *ev, int n) {
+  const plane_side *w = ctx;
+  double c = w->axis == 0 ? sim->prev_position.x : sim->prev_position.z;
+  (void)ev;
+  (void)n;
+  if (!(c >= w->at)) fail_msg("frame %lu: behind the wall at %.17g: %.17g", t->frames - 1, w->at, c);
+  return 1;
+}
+
 static void test_point_ball_bounces_once_off_a_wall_at_an_exact_coordinate_eq6(void **state) {
   static const double at[] = {0.0, -0.0, 1e-300, 4.9406564584124654e-324, -4.9406564584124654e-324};
-  int i, axis, scheme;
-  (void)state;
-  for (scheme = 0; scheme < BALL_SCHEME_COUNT; scheme++)
-    for (axis = 0; axis <= 2; axis += 2)
-      for (i = 0; i < 5; i++) {
-        ball_model m;
-        ball_sim sim;
-        ball_event ev[BALL_MAX_CONTACTS];
-        ball_plane w = {axis, at[i], -100.0, 100.0, -100.0, 100.0, 0.8};
-        ball_vec3 p = axis == 0 ? ball_v3(1.0, 10.0, 0.5) : ball_v3(0.5, 10.0, 1.0);
-        ball_vec3 v = axis == 0 ? ball_v3(-7.6, 0.0, 0.0) : ball_v3(0.0, 0.0, -7.6);
-        int f, n, events = 0;
-        core_model_free(&m);
-        m.air_friction = 0.0;
-        m.gravity = BALL_MIN_GRAVITY; /* no fall to speak of; nothing else in the way */
-        m.effects = BALL_EFFECT_WALLS;
-        m.scheme = (ball_scheme)scheme;
-        assert_ok(ball_model_add_wall(&m, &w));
-        core_start(&m, &sim, p, v);
-        for (f = 0; f < 60; f++) {
-          assert_ok(ball_step(&sim, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n));
-          if (n > 0) {
-            double out = axis == 0 ? ev[0].velocity_out.x : ev[0].velocity_out.z;
-            assert_int_equal(n, 1);
-            assert_int_equal(ev[0].kind, BALL_EVENT_WALL);
-            assert_near(out, 0.8 * 7.6, 1e-12);
-          }
-          events += n;
-          /* never behind the wall */
-          assert_true((axis == 0 ? sim.prev_position.x : sim.prev_position.z) >= at[i]);
-        }
-        assert_int_equal(events, 1);
-        assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
-      }
+  int i, axis;
+  for (axis = 0; axis <= 2; axis += 2)
+    for (i = 0; i < 5; i++) {
+      ball_model m;
+      ball_sim sim;
+      steps_tally t;
+      ball_plane w = {axis, at[i], -100.0, 100.0, -100.0, 100.0, 0.8};
+      plane_side side;
+      ball_vec3 p = axis == 0 ? ball_v3(1.0, 10.0, 0.5) : ball_v3(0.5, 10.0, 1.0);
+      ball_vec3 v = axis == 0 ? ball_v3(-7.6, 0.0, 0.0) : ball_v3(0.0, 0.0, -7.6);
+      core_model_free(&m);
+      m.air_friction = 0.0;
+      m.gravity = BALL_MIN_GRAVITY; /* no fall to speak of; nothing else in the way */
+      m.effects = BALL_EFFECT_WALLS;
+      m.scheme = test_scheme(state);
+      assert_ok(ball_model_add_wall(&m, &w));
+      core_start(&m, &sim, p, v);
+      side.axis = axis;
+      side.at = at[i];
+      steps_begin(&t, NULL, 0);
+      steps_each(&sim, 1.0 / 60.0, 60, &t, never_behind, &side);
+      assert_int_equal(t.total, 1);
+      assert_int_equal(t.first.kind, BALL_EVENT_WALL);
+      assert_near(axis == 0 ? t.first.velocity_out.x : t.first.velocity_out.z, 0.8 * 7.6, 1e-12);
+      assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
+    }
 }
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_ball_at_rest_exactly_on_floor_stays_there_eq5),
+      EACH_SCHEME(test_ball_at_rest_exactly_on_floor_stays_there_eq5),
       cmocka_unit_test(test_ball_sliding_on_floor_follows_eq3),
       cmocka_unit_test(test_ball_starting_inside_the_net_gets_out_fig3),
-      cmocka_unit_test(test_ball_parallel_to_net_plane_never_hits_it_fig3),
-      cmocka_unit_test(test_grazing_the_net_top_edge_fig3),
-      cmocka_unit_test(test_grazing_the_net_side_edges_fig3),
+      EACH_SCHEME(test_ball_parallel_to_net_plane_never_hits_it_fig3),
+      EACH_SCHEME(test_grazing_the_net_top_edge_fig3),
+      EACH_SCHEME(test_grazing_the_net_side_edges_fig3),
       cmocka_unit_test(test_net_then_floor_in_one_frame_eq5_eq6),
       cmocka_unit_test(test_corner_of_two_walls_reflects_both_axes_eq6),
       cmocka_unit_test(test_sampled_two_walls_in_one_frame_keeps_ball_inside_fig3),
       cmocka_unit_test(test_ball_wedged_between_wall_and_floor_eq5_eq6),
       cmocka_unit_test(test_resting_ball_stops_after_ten_bounces_eq5),
-      cmocka_unit_test(test_resting_ball_with_zero_threshold_never_sinks_eq5),
+      EACH_SCHEME(test_resting_ball_with_zero_threshold_never_sinks_eq5),
+      cmocka_unit_test(test_ball_at_rest_with_zero_threshold_never_sinks_eq5),
       cmocka_unit_test(test_ball_rolling_into_the_net_bounces_once_eq6),
       cmocka_unit_test(test_contact_limit_keeps_ball_between_walls),
-      cmocka_unit_test(test_point_ball_bounces_once_off_a_wall_at_an_exact_coordinate_eq6),
+      EACH_SCHEME(test_point_ball_bounces_once_off_a_wall_at_an_exact_coordinate_eq6),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -122,22 +122,20 @@ static void test_beta_huge_stops_ball_at_once_eq3(void **state) {
 static void test_beta_huge_ball_drops_in_place(void **state) {
   ball_model m;
   ball_sim sim;
-  ball_event ev[8];
-  int n, f, floors = 0;
+  ball_event log[64];
+  steps_tally t;
+  int i;
   (void)state;
   plain_model(&m, BALL_EFFECT_DRAG | BALL_EFFECT_FLOOR | BALL_EFFECT_NET);
   m.air_friction = 1e300;
   core_start(&m, &sim, ball_v3(11.0, 0.5, 3.0), ball_v3(30.0, 0.0, 0.0));
-  for (f = 0; f < 60; f++) {
-    int i;
-    assert_int_equal(ball_step(&sim, 1.0 / 60.0, ev, 8, &n), BALL_OK);
-    for (i = 0; i < n; i++) {
-      assert_int_equal(ev[i].kind, BALL_EVENT_FLOOR);
-      assert_near(ev[i].point.x, 11.0, 1e-12);
-      floors++;
-    }
+  steps_begin(&t, log, 64);
+  steps_run(&sim, 1.0 / 60.0, 60, &t);
+  for (i = 0; i < t.total; i++) {
+    assert_int_equal(log[i].kind, BALL_EVENT_FLOOR);
+    assert_near(log[i].point.x, 11.0, 1e-12);
   }
-  assert_true(floors >= 1);
+  assert_true(t.kind[BALL_EVENT_FLOOR] >= 1);
 }
 
 /* ---- time ------------------------------------------------------------- */
@@ -175,7 +173,8 @@ static void test_step_of_1e9_seconds_matches_small_frames_eq5(void **state) {
   ball_sim a, b;
   ball_state sa, sb;
   ball_event ev[BALL_MAX_CONTACTS];
-  int n, f;
+  steps_tally t;
+  int n;
   (void)state;
   ball_model_default(&m);
   assert_int_equal(ball_sim_init(&a, &m), BALL_OK);
@@ -183,7 +182,7 @@ static void test_step_of_1e9_seconds_matches_small_frames_eq5(void **state) {
   assert_int_equal(ball_step(&a, 1e9, ev, BALL_MAX_CONTACTS, &n), BALL_OK);
   assert_true(n >= 3);
   assert_int_equal(a.warnings[BALL_WARN_CONTACT_LIMIT], 0);
-  for (f = 0; f < 600; f++) assert_int_equal(ball_step(&b, 1.0 / 60.0, NULL, 0, NULL), BALL_OK);
+  steps_run(&b, 1.0 / 60.0, 600, NULL);
   assert_int_equal(ball_step(&b, 1e9 - b.time, NULL, 0, NULL), BALL_OK);
   state_of(&a, &sa);
   state_of(&b, &sb);
@@ -192,10 +191,9 @@ static void test_step_of_1e9_seconds_matches_small_frames_eq5(void **state) {
   assert_near(sa.position.x, sb.position.x, 1e-9);
   assert_near(sa.position.z, sb.position.z, 1e-9);
   assert_near(sa.velocity.x, 0.0, 0.0);
-  for (f = 0; f < 600; f++) {
-    assert_int_equal(ball_step(&a, 1.0 / 60.0, ev, BALL_MAX_CONTACTS, &n), BALL_OK);
-    assert_int_equal(n, 0);
-  }
+  steps_begin(&t, NULL, 0);
+  steps_run(&a, 1.0 / 60.0, 600, &t);
+  assert_int_equal(t.total, 0);
   state_of(&a, &sa);
   assert_near(sa.position.y, m.floor_level + m.radius, 0.0);
   assert_near(a.time, 1e9 + 10.0, 600 * 1.2e-7); /* each frame rounds to the clock's ulp */
@@ -208,26 +206,21 @@ static void test_step_of_1e9_seconds_matches_small_frames_eq5(void **state) {
 static void test_drop_on_a_clock_at_1e9_seconds_lands_exactly_eq3(void **state) {
   ball_model m;
   ball_sim sim;
-  ball_event ev[4];
-  int n, f, got = 0;
+  steps_tally t;
   (void)state;
   plain_model(&m, BALL_EFFECT_FLOOR);
   assert_int_equal(ball_sim_init(&sim, &m), BALL_OK);
   assert_int_equal(ball_step(&sim, 1e9, NULL, 0, NULL), BALL_OK);
   restart(&sim, ball_v3(2.0, 1.0, 3.0), ball_v3(0.0, 0.0, 0.0));
-  for (f = 0; f < 60 && !got; f++) {
-    assert_int_equal(ball_step(&sim, 1.0 / 60.0, ev, 4, &n), BALL_OK);
-    if (n > 0) {
-      got = 1;
-      assert_near(ev[0].time, 1e9 + sqrt(2.0 / 9.81), 2.4e-7);
-      assert_near(ev[0].point.x, 2.0, 0.0);
-      assert_near(ev[0].point.y, 0.0, 0.0);
-      /* the contact time is rounded to the clock (ulp 1.2e-7 s) before the
-       * velocity is evaluated: g * 2 ulp = 2.4e-6 m/s */
-      assert_near(ev[0].velocity_in.y, -sqrt(2.0 * 9.81), 2.4e-6);
-    }
-  }
-  assert_true(got);
+  steps_begin(&t, NULL, 0);
+  steps_each(&sim, 1.0 / 60.0, 60, &t, steps_until_event, NULL);
+  assert_true(t.total > 0);
+  assert_near(t.first.time, 1e9 + sqrt(2.0 / 9.81), 2.4e-7);
+  assert_near(t.first.point.x, 2.0, 0.0);
+  assert_near(t.first.point.y, 0.0, 0.0);
+  /* the contact time is rounded to the clock (ulp 1.2e-7 s) before the
+   * velocity is evaluated: g * 2 ulp = 2.4e-6 m/s */
+  assert_near(t.first.velocity_in.y, -sqrt(2.0 * 9.81), 2.4e-6);
 }
 
 /* ---- frame time ------------------------------------------------------- */
@@ -240,7 +233,8 @@ static void test_dt_of_1e_minus_9_seconds_resolves_a_bounce_like_one_frame_eq5(v
   ball_sim a, b;
   ball_state sa, sb;
   ball_event ev[4];
-  int n, f, events = 0;
+  steps_tally t;
+  int n;
   double tc, vin, y_end;
   (void)state;
   plain_model(&m, BALL_EFFECT_FLOOR);
@@ -249,15 +243,11 @@ static void test_dt_of_1e_minus_9_seconds_resolves_a_bounce_like_one_frame_eq5(v
   core_start(&m, &b, ball_v3(0.0, 1e-6, 0.0), ball_v3(0.0, -1.0, 0.0));
   tc = (-1.0 + sqrt(1.0 + 2.0 * 9.81 * 1e-6)) / 9.81; /* ~9.99990e-7 s */
   vin = -1.0 - 9.81 * tc;
-  for (f = 0; f < 4000; f++) {
-    assert_int_equal(ball_step(&a, 1e-9, ev, 4, &n), BALL_OK);
-    if (n > 0) {
-      events += n;
-      assert_near(ev[0].time, tc, 1e-15);
-      assert_near(ev[0].velocity_out.y, -0.75 * vin, 1e-12);
-    }
-  }
-  assert_int_equal(events, 1);
+  steps_begin(&t, NULL, 0);
+  steps_run(&a, 1e-9, 4000, &t);
+  assert_int_equal(t.total, 1);
+  assert_near(t.first.time, tc, 1e-15);
+  assert_near(t.first.velocity_out.y, -0.75 * vin, 1e-12);
   assert_int_equal(ball_step(&b, 4000 * 1e-9, ev, 4, &n), BALL_OK);
   assert_int_equal(n, 1);
   assert_near(ev[0].time, tc, 1e-15);
@@ -275,14 +265,13 @@ static void test_dt_10_seconds_exact_matches_64_hz(void **state) {
   ball_model m;
   ball_sim a, b;
   ball_state sa, sb;
-  int f;
   (void)state;
   ball_model_default(&m);
   m.initial_spin = ball_v3(0.0, 0.0, -20.0);
   assert_int_equal(ball_sim_init(&a, &m), BALL_OK);
   assert_int_equal(ball_sim_init(&b, &m), BALL_OK);
   assert_int_equal(ball_step(&a, 10.0, NULL, 0, NULL), BALL_OK);
-  for (f = 0; f < 640; f++) assert_int_equal(ball_step(&b, 1.0 / 64.0, NULL, 0, NULL), BALL_OK);
+  steps_run(&b, 1.0 / 64.0, 640, NULL);
   assert_true(b.time == 10.0);
   state_of(&a, &sa);
   state_of(&b, &sb);
@@ -298,9 +287,9 @@ static void test_dt_10_seconds_exact_matches_64_hz(void **state) {
 static void test_dt_10_seconds_sampled_snaps_to_floor_eq5(void **state) {
   ball_model m;
   ball_sim sim;
-  ball_state st;
   ball_event ev[4];
-  int n, f;
+  steps_box above = steps_anywhere();
+  int n;
   (void)state;
   plain_model(&m, BALL_EFFECT_FLOOR);
   m.scheme = BALL_SCHEME_SAMPLED;
@@ -311,11 +300,8 @@ static void test_dt_10_seconds_sampled_snaps_to_floor_eq5(void **state) {
   assert_near(ev[0].velocity_in.y, -98.1, 1e-12);
   assert_near(ev[0].velocity_out.y, 0.75 * 98.1, 1e-12);
   assert_near(ev[0].point.y, 0.0, 0.0);
-  for (f = 0; f < 100; f++) {
-    assert_int_equal(ball_step(&sim, 10.0, NULL, 0, NULL), BALL_OK);
-    state_of(&sim, &st);
-    assert_true(st.position.y >= 0.0);
-  }
+  above.lo.y = 0.0;
+  steps_each(&sim, 10.0, 100, NULL, steps_in_box, &above);
 }
 
 /* dt = 0 and dt = -0: a no-op, byte for byte, no events. */
@@ -464,16 +450,14 @@ static void test_speed_1e300_and_subnormal_never_reach_the_net_eq3(void **state)
   for (drag = 0; drag < 2; drag++)
     for (i = 0; i < sizeof speeds / sizeof speeds[0]; i++) {
       ball_sim sim;
-      ball_event ev[4];
       ball_state st;
-      int n, f;
+      steps_tally t;
       plain_model(&m, BALL_EFFECT_NET | BALL_EFFECT_FLOOR | (drag ? BALL_EFFECT_DRAG : 0u));
       core_start(&m, &sim, ball_v3(11.0, 0.0, 3.0), ball_v3(speeds[i], 0.0, speeds[i]));
-      for (f = 0; f < 121; f++) {
-        int k;
-        assert_int_equal(ball_step(&sim, f < 120 ? 1.0 / 60.0 : 1e6, ev, 4, &n), BALL_OK);
-        for (k = 0; k < n; k++) assert_int_equal(ev[k].kind, BALL_EVENT_FLOOR); /* settling */
-      }
+      steps_begin(&t, NULL, 0);
+      steps_run(&sim, 1.0 / 60.0, 120, &t);
+      steps_run(&sim, 1e6, 1, &t);
+      assert_int_equal(t.kind[BALL_EVENT_FLOOR], t.total); /* settling */
       state_of(&sim, &st);
       assert_near(st.position.x, 11.0, 1e-290);
       assert_true(st.velocity.x >= 0.0);
@@ -486,34 +470,25 @@ static void test_speed_1e300_and_subnormal_never_reach_the_net_eq3(void **state)
  * frame on the near side. */
 static void test_speed_1e6_does_not_tunnel_through_the_net_fig3(void **state) {
   ball_model m;
-  int scheme;
-  (void)state;
-  for (scheme = 0; scheme < 2; scheme++) {
-    ball_sim sim;
-    ball_event ev[8];
-    ball_state st;
-    int n, f, nets = 0;
-    ball_model_default(&m);
-    m.scheme = scheme ? BALL_SCHEME_SAMPLED : BALL_SCHEME_EXACT;
-    m.radius = 0.033;
-    core_start(&m, &sim, ball_v3(11.0, 0.5, 3.0), ball_v3(1e6, 0.0, 0.0));
-    for (f = 0; f < 30; f++) {
-      int i;
-      assert_int_equal(ball_step(&sim, 1.0 / 60.0, ev, 8, &n), BALL_OK);
-      for (i = 0; i < n; i++)
-        if (ev[i].kind == BALL_EVENT_NET) {
-          nets++;
-          if (scheme == 0) {
-            double b = m.mass / m.air_friction, u = (11.885 - 0.033 - 11.0) / 1e6;
-            assert_near(ev[i].time, -b * log1p(-u / b), 1e-15);
-            assert_near(ev[i].velocity_out.x, -0.2 * 1e6 * (1.0 - u / b), 1e-3);
-          }
-        }
-      state_of(&sim, &st);
-      assert_true(st.position.x <= 11.885 - 0.033 + 1e-9);
+  ball_sim sim;
+  ball_event log[64];
+  steps_tally t;
+  steps_box near_side = steps_anywhere();
+  int i;
+  ball_model_default(&m);
+  m.scheme = test_scheme(state);
+  m.radius = 0.033;
+  core_start(&m, &sim, ball_v3(11.0, 0.5, 3.0), ball_v3(1e6, 0.0, 0.0));
+  near_side.hi.x = 11.885 - 0.033 + 1e-9;
+  steps_begin(&t, log, 64);
+  steps_each(&sim, 1.0 / 60.0, 30, &t, steps_in_box, &near_side);
+  assert_int_equal(t.kind[BALL_EVENT_NET], 1);
+  for (i = 0; i < t.total; i++)
+    if (log[i].kind == BALL_EVENT_NET && m.scheme == BALL_SCHEME_EXACT) {
+      double b = m.mass / m.air_friction, u = (11.885 - 0.033 - 11.0) / 1e6;
+      assert_near(log[i].time, -b * log1p(-u / b), 1e-15);
+      assert_near(log[i].velocity_out.x, -0.2 * 1e6 * (1.0 - u / b), 1e-3);
     }
-    assert_int_equal(nets, 1);
-  }
 }
 
 /* 1e6 m/s straight up: apex 1e12 / (2 g) = 5.1e10 m, back on the floor after
@@ -602,7 +577,7 @@ int main(void) {
       cmocka_unit_test(test_overflowing_bounce_is_refused_unchanged_eq5_eq13),
       cmocka_unit_test(test_speed_zero_drops_straight_eq3),
       cmocka_unit_test(test_speed_1e300_and_subnormal_never_reach_the_net_eq3),
-      cmocka_unit_test(test_speed_1e6_does_not_tunnel_through_the_net_fig3),
+      EACH_SCHEME(test_speed_1e6_does_not_tunnel_through_the_net_fig3),
       cmocka_unit_test(test_speed_1e6_upward_returns_eq3),
       cmocka_unit_test(test_positions_at_1e7_metres_stay_in_their_box),
   };

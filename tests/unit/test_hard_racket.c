@@ -33,39 +33,41 @@ static void racket_model(ball_model *m, ball_detect detect, ball_response respon
   m->initial_spin = ball_v3(0.0, 0.0, 0.0);
 }
 
-/* Steps frames; checks finite state and events; counts racket hits and
- * enforces the sleep rule (hits at least sleep_frames + 1 frames apart). */
+/* Steps frames (steps.h checks the events); checks the state is finite,
+ * counts racket hits and enforces the sleep rule (hits at least
+ * sleep_frames + 1 frames apart). */
 typedef struct racket_run {
   int hits;
   int last_hit_frame;
   ball_event first;
+  const ball_model *m;
 } racket_run;
 
-static void step_frames(const ball_model *m, ball_sim *sim, int frames, racket_run *r) {
-  int f;
-  for (f = 0; f < frames; f++) {
-    ball_event ev[BALL_MAX_CONTACTS + 2];
-    ball_state st;
-    int n, i;
-    assert_int_equal(ball_step(sim, FRAME, ev, BALL_MAX_CONTACTS + 2, &n), BALL_OK);
-    assert_int_equal(ball_sim_state(sim, &st), BALL_OK);
-    assert_finite3(st.position);
-    assert_finite3(st.velocity);
-    assert_finite3(st.spin);
-    for (i = 0; i < n; i++) {
-      assert_finite3(ev[i].point);
-      assert_finite3(ev[i].velocity_out);
-      assert_finite3(ev[i].spin_out);
-      assert_true(isfinite(ev[i].time));
-      if (ev[i].kind != BALL_EVENT_RACKET) continue;
-      if (r->hits == 0) r->first = ev[i];
-      if (r->hits > 0 && f - r->last_hit_frame <= m->sleep_frames)
-        fail_msg("racket hits in frames %d and %d: closer than sleep_frames %d", r->last_hit_frame, f,
-                 m->sleep_frames);
-      r->hits++;
-      r->last_hit_frame = f;
-    }
+static int racket_frame(void *ctx, ball_sim *sim, const steps_tally *t, const ball_event *ev, int n) {
+  racket_run *r = ctx;
+  ball_state st;
+  int i, f = (int)t->frames - 1;
+  assert_int_equal(ball_sim_state(sim, &st), BALL_OK);
+  assert_finite3(st.position);
+  assert_finite3(st.velocity);
+  assert_finite3(st.spin);
+  for (i = 0; i < n; i++) {
+    if (ev[i].kind != BALL_EVENT_RACKET) continue;
+    if (r->hits == 0) r->first = ev[i];
+    if (r->hits > 0 && f - r->last_hit_frame <= r->m->sleep_frames)
+      fail_msg("racket hits in frames %d and %d: closer than sleep_frames %d", r->last_hit_frame, f,
+               r->m->sleep_frames);
+    r->hits++;
+    r->last_hit_frame = f;
   }
+  return 1;
+}
+
+static void step_frames(const ball_model *m, ball_sim *sim, int frames, racket_run *r) {
+  steps_tally t;
+  r->m = m;
+  steps_begin(&t, NULL, 0);
+  steps_each(sim, FRAME, (unsigned long)frames, &t, racket_frame, r);
 }
 
 static const ball_detect detects[] = {BALL_DETECT_SPHERE, BALL_DETECT_DISC, BALL_DETECT_SWEPT};

@@ -32,15 +32,12 @@ static void net_model(ball_model *m) {
 
 /* Runs `frames` frames and returns how many events; the first in *first. */
 static int run_events(const ball_model *m, ball_sim *sim, double dt, int frames, ball_event *first) {
-  ball_event ev[8];
-  int f, n, total = 0;
+  steps_tally t;
   assert_ok(ball_sim_init(sim, m));
-  for (f = 0; f < frames; f++) {
-    assert_ok(ball_step(sim, dt, ev, 8, &n));
-    if (n > 0 && total == 0 && first) *first = ev[0];
-    total += n;
-  }
-  return total;
+  steps_begin(&t, NULL, 0);
+  steps_run(sim, dt, (unsigned long)frames, &t);
+  if (t.total > 0 && first) *first = t.first;
+  return t.total;
 }
 
 static void eq6_exact_net_reflection_matches_hand_values(void **state) {
@@ -124,31 +121,27 @@ static void fig3_ball_beside_or_above_the_net_passes(void **state) {
   ball_sim sim;
   ball_event ev;
   ball_state s;
-  int scheme;
-  (void)state;
-  for (scheme = 0; scheme < BALL_SCHEME_COUNT; scheme++) {
-    net_model(&m);
-    m.scheme = (ball_scheme)scheme;
-    /* beside: z = 11 + 0.236 at the net, outside [0, 10.97] */
-    m.initial_position = ball_v3(10.0, 0.5, 11.0);
-    assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 30, &ev), 0);
-    assert_ok(ball_sim_state(&sim, &s));
-    assert_true(s.position.x > 11.885);
-    /* on the other side of z = 0 */
-    m.initial_position = ball_v3(10.0, 0.5, -0.5);
-    m.initial_velocity = ball_v3(8.0, 2.0, -1.0);
-    assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 30, &ev), 0);
-    /* above: y at the net = 1.0 + 0.193 > 0.914 */
-    m.initial_position = ball_v3(10.0, 1.0, 5.0);
-    m.initial_velocity = ball_v3(8.0, 2.0, 1.0);
-    assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 30, &ev), 0);
-    assert_ok(ball_sim_state(&sim, &s));
-    assert_true(s.position.x > 11.885);
-    /* just under the top: a hit */
-    m.initial_position = ball_v3(10.0, 0.7, 5.0);
-    assert_true(run_events(&m, &sim, 1.0 / 60.0, 30, &ev) >= 1);
-    assert_int_equal(ev.kind, BALL_EVENT_NET);
-  }
+  net_model(&m);
+  m.scheme = test_scheme(state);
+  /* beside: z = 11 + 0.236 at the net, outside [0, 10.97] */
+  m.initial_position = ball_v3(10.0, 0.5, 11.0);
+  assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 30, &ev), 0);
+  assert_ok(ball_sim_state(&sim, &s));
+  assert_true(s.position.x > 11.885);
+  /* on the other side of z = 0 */
+  m.initial_position = ball_v3(10.0, 0.5, -0.5);
+  m.initial_velocity = ball_v3(8.0, 2.0, -1.0);
+  assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 30, &ev), 0);
+  /* above: y at the net = 1.0 + 0.193 > 0.914 */
+  m.initial_position = ball_v3(10.0, 1.0, 5.0);
+  m.initial_velocity = ball_v3(8.0, 2.0, 1.0);
+  assert_int_equal(run_events(&m, &sim, 1.0 / 60.0, 30, &ev), 0);
+  assert_ok(ball_sim_state(&sim, &s));
+  assert_true(s.position.x > 11.885);
+  /* just under the top: a hit */
+  m.initial_position = ball_v3(10.0, 0.7, 5.0);
+  assert_true(run_events(&m, &sim, 1.0 / 60.0, 30, &ev) >= 1);
+  assert_int_equal(ev.kind, BALL_EVENT_NET);
 }
 
 /* Walls on a z plane and an x plane (Fig. 3 on other planes, eq 6 with the
@@ -208,42 +201,39 @@ static void fig3_radius_moves_the_contact_plane_toward_the_ball(void **state) {
   ball_sim sim;
   ball_event ev;
   ball_plane zwall = {2, 3.0, -5.0, 5.0, 0.0, 3.0, 0.5};
-  int scheme;
-  (void)state;
-  for (scheme = 0; scheme < BALL_SCHEME_COUNT; scheme++) {
-    net_model(&m);
-    m.radius = 0.1;
-    m.scheme = (ball_scheme)scheme;
-    assert_true(run_events(&m, &sim, 1.0 / 60.0, 30, &ev) >= 1);
-    assert_int_equal(ev.kind, BALL_EVENT_NET);
-    assert_near(ev.point.x, 11.885 - 0.1, TOL);
-    if (scheme == BALL_SCHEME_EXACT) assert_near(ev.time, 0.23658195427363626, TOL);
-    m.initial_position = ball_v3(13.77, 0.5, 5.0);
-    m.initial_velocity = ball_v3(-8.0, 2.0, 1.0);
-    assert_true(run_events(&m, &sim, 1.0 / 60.0, 30, &ev) >= 1);
-    assert_int_equal(ev.kind, BALL_EVENT_NET);
-    assert_near(ev.point.x, 11.885 + 0.1, TOL);
-    /* a z wall approached along +z: the centre stops at z = 3 - 0.1 */
-    core_model_free(&m);
-    m.radius = 0.1;
-    m.scheme = (ball_scheme)scheme;
-    m.effects |= BALL_EFFECT_WALLS;
-    assert_ok(ball_model_add_wall(&m, &zwall));
-    m.initial_position = ball_v3(0.0, 1.0, 0.0);
-    m.initial_velocity = ball_v3(1.0, 2.0, 6.0);
-    assert_true(run_events(&m, &sim, 1.0 / 60.0, 40, &ev) >= 1);
-    assert_int_equal(ev.kind, BALL_EVENT_WALL);
-    assert_near(ev.point.z, 2.9, TOL);
-  }
+  const ball_scheme scheme = test_scheme(state);
+  net_model(&m);
+  m.radius = 0.1;
+  m.scheme = scheme;
+  assert_true(run_events(&m, &sim, 1.0 / 60.0, 30, &ev) >= 1);
+  assert_int_equal(ev.kind, BALL_EVENT_NET);
+  assert_near(ev.point.x, 11.885 - 0.1, TOL);
+  if (scheme == BALL_SCHEME_EXACT) assert_near(ev.time, 0.23658195427363626, TOL);
+  m.initial_position = ball_v3(13.77, 0.5, 5.0);
+  m.initial_velocity = ball_v3(-8.0, 2.0, 1.0);
+  assert_true(run_events(&m, &sim, 1.0 / 60.0, 30, &ev) >= 1);
+  assert_int_equal(ev.kind, BALL_EVENT_NET);
+  assert_near(ev.point.x, 11.885 + 0.1, TOL);
+  /* a z wall approached along +z: the centre stops at z = 3 - 0.1 */
+  core_model_free(&m);
+  m.radius = 0.1;
+  m.scheme = scheme;
+  m.effects |= BALL_EFFECT_WALLS;
+  assert_ok(ball_model_add_wall(&m, &zwall));
+  m.initial_position = ball_v3(0.0, 1.0, 0.0);
+  m.initial_velocity = ball_v3(1.0, 2.0, 6.0);
+  assert_true(run_events(&m, &sim, 1.0 / 60.0, 40, &ev) >= 1);
+  assert_int_equal(ev.kind, BALL_EVENT_WALL);
+  assert_near(ev.point.z, 2.9, TOL);
 }
 
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(eq6_exact_net_reflection_matches_hand_values),
       cmocka_unit_test(eq6_sampled_net_hit_shifts_dt_over_10_along_new_velocity),
-      cmocka_unit_test(fig3_ball_beside_or_above_the_net_passes),
+      EACH_SCHEME(fig3_ball_beside_or_above_the_net_passes),
       cmocka_unit_test(eq6_walls_on_z_and_x_planes_reflect_the_normal_component),
-      cmocka_unit_test(fig3_radius_moves_the_contact_plane_toward_the_ball),
+      EACH_SCHEME(fig3_radius_moves_the_contact_plane_toward_the_ball),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -38,21 +38,11 @@
 
 #include "core_common.h"
 
-/* ---- a small seeded generator (splitmix64) ---- */
+/* ---- seeded draws (kit/seeded.h: a case's seed is the generator's state) ---- */
 
-typedef struct rng {
-  uint64_t s;
-} rng;
+typedef seeded_rng rng;
 
-static uint64_t next_u64(rng *r) {
-  uint64_t z = (r->s += 0x9E3779B97F4A7C15ULL);
-  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
-  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
-  return z ^ (z >> 31);
-}
-static double uni(rng *r, double lo, double hi) {
-  return lo + (hi - lo) * ((double)(next_u64(r) >> 11) * (1.0 / 9007199254740992.0));
-}
+static double uni(rng *r, double lo, double hi) { return seeded_uniform(r, lo, hi); }
 static int coin(rng *r, double p) { return uni(r, 0.0, 1.0) < p; }
 static ball_vec3 uvec(rng *r, double a) { return ball_v3(uni(r, -a, a), uni(r, -a, a), uni(r, -a, a)); }
 static double norm(ball_vec3 v) { return hypot(hypot(v.x, v.y), v.z); } /* no underflow at 1e-160 */
@@ -141,7 +131,7 @@ static void random_scene(rng *r, ball_model *m, const scene_opts *o) {
       w.position = c + (k % 2 ? 1.0 : -1.0) * uni(r, 1.0 + m->radius, 15.0);
       if (k % 2 == 0 && coin(r, 0.15)) {
         /* this wall at an exact coordinate, the start moved to keep its distance */
-        double at = exact[next_u64(r) % 5], shift = at - w.position;
+        double at = exact[seeded_below(r, 5)], shift = at - w.position;
         w.position = at;
         if (k < 2) x0 += shift; else z0 += shift;
       }
@@ -167,7 +157,7 @@ static void random_scene(rng *r, ball_model *m, const scene_opts *o) {
 }
 
 static double random_dt(rng *r) {
-  switch ((int)(next_u64(r) % 4)) {
+  switch (seeded_below(r, 4)) {
   case 0: return 1.0 / 60.0;
   case 1: return 1.0 / 2.0;
   case 2: return pow(10.0, uni(r, -4.0, 0.0));
@@ -390,8 +380,8 @@ static void test_random_exact_scenes_are_frame_rate_independent(void **state) {
 /* Breaks one random field of a valid model. */
 static void break_model(rng *r, ball_model *m) {
   static const double bad[] = {NAN, INFINITY, -INFINITY, -1.0, 2.0, -1e-300};
-  double v = bad[next_u64(r) % 6];
-  switch ((int)(next_u64(r) % 16)) {
+  double v = bad[seeded_below(r, 6)];
+  switch (seeded_below(r, 16)) {
   case 0: m->gravity = v > 0.0 && isfinite(v) ? -v : v; break;
   case 1: m->mass = isfinite(v) && v > 0.0 ? 0.0 : v; break;
   case 2: m->air_friction = isfinite(v) && v > 0.0 ? -v : v; break;
@@ -425,12 +415,12 @@ static void test_bad_inputs_leave_the_sim_unchanged(void **state) {
     ball_state s;
     ball_status st;
     ball_event ev[4];
-    int f, n = 0;
+    int n = 0;
     (void)st;
     r.s = seed;
     random_scene(&r, &m, &o);
     if (ball_sim_init(&sim, &m) != BALL_OK) FAIL_SEED(seed, "scene refused");
-    for (f = 0; f < 3; f++) ball_step(&sim, 1.0 / 60.0, NULL, 0, NULL);
+    steps_run(&sim, 1.0 / 60.0, 3, NULL);
     bad = m;
     break_model(&r, &bad);
     if (ball_model_check(&bad, NULL) == BALL_OK) FAIL_SEED(seed, "a broken model passed ball_model_check");
@@ -449,7 +439,7 @@ static void test_bad_inputs_leave_the_sim_unchanged(void **state) {
     }
     if (ball_sim_set_model(&sim, &bad) == BALL_OK) FAIL_SEED(seed, "set_model with a broken model was accepted");
     if (memcmp(&sim, &copy, sizeof sim) != 0) FAIL_SEED(seed, "a refused set_model changed the sim");
-    switch ((int)(next_u64(&r) % 5)) {
+    switch (seeded_below(&r, 5)) {
     case 0: s.position.x = NAN; break;
     case 1: s.velocity.z = INFINITY; break;
     case 2: s.spin.y = -INFINITY; break;

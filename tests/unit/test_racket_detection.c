@@ -1,6 +1,6 @@
 /* Detection study: 1000 seeded swings at 6, 10 and 15 Hz (frame rate = racket
  * sample rate), each run through ball_step with the sphere, disc and swept
- * tests. The swings and their ground truth are tests/support/swings.h: the
+ * tests. The swings and their ground truth are kit/swings.h: the
  * same motions the sim sees (the ball on its analytic flight, the racket
  * moving linearly between its samples with a normalised-lerp normal) sampled
  * every SWING_GT_STEP seconds: the first time the ball's distance to the disc

@@ -24,23 +24,29 @@ static void still_racket_model(ball_model *m, int sleep_frames) {
   m->initial_position = ball_v3(0, 1, 0);
 }
 
+/* A callback (ctx: the hit frames so far): a frame's events are one
+ * racket hit or none; records the 1-based frame of each hit. */
+static int record_hit(void *ctx, ball_sim *sim, const steps_tally *t, const ball_event *ev, int n) {
+  int *which = ctx;
+  (void)sim;
+  if (n > 0) {
+    assert_int_equal(n, 1);
+    assert_int_equal(ev[0].kind, BALL_EVENT_RACKET);
+    which[t->total - 1] = (int)t->frames;
+  }
+  return 1;
+}
+
 /* Frames (1-based) in which a racket event came, over `frames` steps of dt. */
 static int hit_frames(const ball_model *m, double dt, int frames, int *which, ball_event *first) {
   ball_sim sim;
-  ball_event ev[8];
-  int f, n, count = 0;
+  steps_tally t;
   assert_ok(ball_sim_init(&sim, m));
   assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
-  for (f = 1; f <= frames; f++) {
-    assert_ok(ball_step(&sim, dt, ev, 8, &n));
-    if (n > 0) {
-      assert_int_equal(n, 1);
-      assert_int_equal(ev[0].kind, BALL_EVENT_RACKET);
-      if (count == 0 && first) *first = ev[0];
-      which[count++] = f;
-    }
-  }
-  return count;
+  steps_begin(&t, NULL, 0);
+  steps_each(&sim, dt, (unsigned long)frames, &t, record_hit, which);
+  if (t.total > 0 && first) *first = t.first;
+  return t.total;
 }
 
 static void sleep_frames_prevent_double_hit_of_one_stroke(void **state) {

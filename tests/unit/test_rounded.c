@@ -23,42 +23,61 @@ static double rect_distance(const ball_plane *pl, ball_vec3 c) {
   return d;
 }
 
+/* What run_net checks after each frame, and the net events it keeps. */
+typedef struct net_watch {
+  const ball_model *m;
+  double dt;
+  ball_segment before; /* the segment at the start of the frame */
+  double t0;           /* the time at the start of the frame, s */
+  ball_event *out;
+  int cap, got;
+} net_watch;
+
+static int watch_net(void *ctx, ball_sim *sim, const steps_tally *t, const ball_event *ev, int n) {
+  net_watch *w = ctx;
+  const ball_model *m = w->m;
+  const double tol = 1e-9;
+  unsigned long f = t->frames - 1;
+  ball_state s;
+  int i;
+  for (i = 0; i < n; i++)
+    if (ev[i].kind == BALL_EVENT_NET) {
+      if (w->got < w->cap) w->out[w->got] = ev[i];
+      w->got++;
+    }
+  assert_ok(ball_sim_state(sim, &s));
+  if (rect_distance(&m->net, s.position) < m->radius - tol)
+    fail_msg("frame %lu: inside the grown net (%.17g < r = %.17g)", f, rect_distance(&m->net, s.position),
+             m->radius);
+  if (m->scheme == BALL_SCHEME_EXACT && n == 0) {
+    int k;
+    for (k = 1; k <= 16; k++) {
+      ball_state p;
+      assert_ok(ball_segment_eval(m, &w->before, w->t0 + w->dt * k / 16.0, &p));
+      if (rect_distance(&m->net, p.position) < m->radius - tol)
+        fail_msg("frame %lu: the path went into the grown net without an event", f);
+    }
+  }
+  w->before = sim->seg;
+  w->t0 = sim->time;
+  return 1;
+}
+
 /* Steps frames of dt; returns the net events (up to cap) and checks that
  * the ball never ends a frame inside the net grown by its radius, nor (in
  * the exact scheme) anywhere on the frame's path when the frame had no net
  * event (16 points of the segment). */
 static int run_net(const ball_model *m, ball_sim *sim, int frames, double dt, ball_event *out, int cap) {
-  ball_event ev[BALL_MAX_CONTACTS + 2];
-  int f, n, i, got = 0;
-  const double tol = 1e-9;
-  for (f = 0; f < frames; f++) {
-    ball_segment before = sim->seg;
-    double t0 = sim->time;
-    int net_events = 0;
-    ball_state s;
-    assert_ok(ball_step(sim, dt, ev, BALL_MAX_CONTACTS + 2, &n));
-    for (i = 0; i < n; i++)
-      if (ev[i].kind == BALL_EVENT_NET) {
-        if (got < cap) out[got] = ev[i];
-        got++;
-        net_events++;
-      }
-    assert_ok(ball_sim_state(sim, &s));
-    if (rect_distance(&m->net, s.position) < m->radius - tol)
-      fail_msg("frame %d: inside the grown net (%.17g < r = %.17g)", f, rect_distance(&m->net, s.position),
-               m->radius);
-    if (m->scheme == BALL_SCHEME_EXACT && n == 0) {
-      int k;
-      for (k = 1; k <= 16; k++) {
-        ball_state p;
-        assert_ok(ball_segment_eval(m, &before, t0 + dt * k / 16.0, &p));
-        if (rect_distance(&m->net, p.position) < m->radius - tol)
-          fail_msg("frame %d: the path went into the grown net without an event", f);
-      }
-    }
-    (void)net_events;
-  }
-  return got;
+  net_watch w;
+  w.m = m;
+  w.dt = dt;
+  w.before = sim->seg;
+  w.t0 = sim->time;
+  w.out = out;
+  w.cap = cap;
+  w.got = 0;
+  steps_each(sim, dt, (unsigned long)frames, NULL, watch_net, &w);
+  return w.got;
 }
 
 static void net_model(ball_model *m, ball_scheme scheme, double radius) {
@@ -99,30 +118,27 @@ static void assert_reflected_about(const ball_event *e, const ball_plane *net, d
  * (11.735 + 0.3 t - 11.885)^2 + (2 - g t^2 / 2 - 0.914)^2 = 0.1^2, near
  * t = 0.449 s, and bounces up about that normal. */
 static void test_ball_drifting_onto_the_top_edge_bounces_off_it(void **state) {
-  int scheme;
-  (void)state;
-  for (scheme = 0; scheme < BALL_SCHEME_COUNT; scheme++) {
-    ball_model m;
-    ball_sim sim;
-    ball_event ev[8];
-    int n;
-    net_model(&m, (ball_scheme)scheme, 0.1);
-    core_start(&m, &sim, ball_v3(11.735, 2.0, 5.0), ball_v3(0.3, 0.0, 0.0));
-    n = run_net(&m, &sim, 600, 1.0 / 60.0, ev, 8);
-    assert_true(n >= 1);
-    if (scheme == BALL_SCHEME_EXACT) {
-      double t = ev[0].time, x = 11.735 + 0.3 * t, y = 2.0 - 0.5 * 9.81 * t * t;
-      /* on the cylinder: the root of the equation above */
-      assert_near(sqrt((x - 11.885) * (x - 11.885) + (y - 0.914) * (y - 0.914)), 0.1, 1e-12);
-      assert_true(t > 0.448 && t < 0.45);
-      assert_reflected_about(&ev[0], &m.net, 0.1);
-      assert_true(ev[0].velocity_out.y > 0.0); /* up and off the edge */
-    } else {
-      /* the sampled scheme: on the frame's chord, at the frame's end */
-      double d;
-      assert_ok(ball_sphere_rect_distance(&m.net, ev[0].point, 0.0, &d));
-      assert_near(d, 0.1, 1e-9);
-    }
+  const ball_scheme scheme = test_scheme(state);
+  ball_model m;
+  ball_sim sim;
+  ball_event ev[8];
+  int n;
+  net_model(&m, scheme, 0.1);
+  core_start(&m, &sim, ball_v3(11.735, 2.0, 5.0), ball_v3(0.3, 0.0, 0.0));
+  n = run_net(&m, &sim, 600, 1.0 / 60.0, ev, 8);
+  assert_true(n >= 1);
+  if (scheme == BALL_SCHEME_EXACT) {
+    double t = ev[0].time, x = 11.735 + 0.3 * t, y = 2.0 - 0.5 * 9.81 * t * t;
+    /* on the cylinder: the root of the equation above */
+    assert_near(sqrt((x - 11.885) * (x - 11.885) + (y - 0.914) * (y - 0.914)), 0.1, 1e-12);
+    assert_true(t > 0.448 && t < 0.45);
+    assert_reflected_about(&ev[0], &m.net, 0.1);
+    assert_true(ev[0].velocity_out.y > 0.0); /* up and off the edge */
+  } else {
+    /* the sampled scheme: on the frame's chord, at the frame's end */
+    double d;
+    assert_ok(ball_sphere_rect_distance(&m.net, ev[0].point, 0.0, &d));
+    assert_near(d, 0.1, 1e-9);
   }
 }
 
@@ -131,26 +147,23 @@ static void test_ball_drifting_onto_the_top_edge_bounces_off_it(void **state) {
  * face test passes it by; the vertical edge's cylinder
  * (x - 11.885)^2 + (z - 10.97)^2 = 0.01 meets it at x = 11.885 - sqrt(0.0075). */
 static void test_ball_passing_a_side_edge_within_its_radius_hits_it(void **state) {
-  int scheme;
-  (void)state;
-  for (scheme = 0; scheme < BALL_SCHEME_COUNT; scheme++) {
-    ball_model m;
-    ball_sim sim;
-    ball_event ev[8];
-    int n;
-    net_model(&m, (ball_scheme)scheme, 0.1);
-    m.effects = BALL_EFFECT_NET; /* no floor, no fall to speak of */
-    m.gravity = BALL_MIN_GRAVITY;
-    core_start(&m, &sim, ball_v3(10.0, 0.5, 10.97 + 0.05), ball_v3(4.0, 0.0, 0.0));
-    n = run_net(&m, &sim, 120, 1.0 / 240.0, ev, 8);
-    assert_int_equal(n, 1);
-    if (scheme == BALL_SCHEME_EXACT) {
-      assert_near(ev[0].point.x, 11.885 - sqrt(0.0075), 1e-9);
-      assert_reflected_about(&ev[0], &m.net, 0.1);
-      /* the normal (-sqrt(0.75), 0, 0.5): v_out = 0.2 (4 - 2 (4)(0.75), 0, -2 (-2 sqrt(0.75))(0.5) ...) */
-      assert_near(ev[0].velocity_out.x, 0.2 * (4.0 - 2.0 * 4.0 * 0.75), 1e-6);
-      assert_near(ev[0].velocity_out.z, 0.2 * (2.0 * 4.0 * sqrt(0.75) * 0.5), 1e-6);
-    }
+  const ball_scheme scheme = test_scheme(state);
+  ball_model m;
+  ball_sim sim;
+  ball_event ev[8];
+  int n;
+  net_model(&m, scheme, 0.1);
+  m.effects = BALL_EFFECT_NET; /* no floor, no fall to speak of */
+  m.gravity = BALL_MIN_GRAVITY;
+  core_start(&m, &sim, ball_v3(10.0, 0.5, 10.97 + 0.05), ball_v3(4.0, 0.0, 0.0));
+  n = run_net(&m, &sim, 120, 1.0 / 240.0, ev, 8);
+  assert_int_equal(n, 1);
+  if (scheme == BALL_SCHEME_EXACT) {
+    assert_near(ev[0].point.x, 11.885 - sqrt(0.0075), 1e-9);
+    assert_reflected_about(&ev[0], &m.net, 0.1);
+    /* the normal (-sqrt(0.75), 0, 0.5): v_out = 0.2 (4 - 2 (4)(0.75), 0, -2 (-2 sqrt(0.75))(0.5) ...) */
+    assert_near(ev[0].velocity_out.x, 0.2 * (4.0 - 2.0 * 4.0 * 0.75), 1e-6);
+    assert_near(ev[0].velocity_out.z, 0.2 * (2.0 * 4.0 * sqrt(0.75) * 0.5), 1e-6);
   }
 }
 
@@ -183,19 +196,17 @@ static void test_ball_at_a_corner_reflects_about_the_corner_normal(void **state)
  * m more) nothing happens; by 1e-6 m less, a contact. */
 static void test_a_graze_just_outside_the_radius_passes(void **state) {
   static const double off[] = {1e-6, -1e-6};
-  int scheme, i;
-  (void)state;
-  for (scheme = 0; scheme < BALL_SCHEME_COUNT; scheme++)
-    for (i = 0; i < 2; i++) {
-      ball_model m;
-      ball_sim sim;
-      ball_event ev[8];
-      net_model(&m, (ball_scheme)scheme, 0.1);
-      m.effects = BALL_EFFECT_NET;
-      m.gravity = BALL_MIN_GRAVITY;
-      core_start(&m, &sim, ball_v3(10.0, 0.5, 10.97 + 0.1 + off[i]), ball_v3(4.0, 0.0, 0.0));
-      assert_int_equal(run_net(&m, &sim, 120, 1.0 / 240.0, ev, 8), i == 0 ? 0 : 1);
-    }
+  int i;
+  for (i = 0; i < 2; i++) {
+    ball_model m;
+    ball_sim sim;
+    ball_event ev[8];
+    net_model(&m, test_scheme(state), 0.1);
+    m.effects = BALL_EFFECT_NET;
+    m.gravity = BALL_MIN_GRAVITY;
+    core_start(&m, &sim, ball_v3(10.0, 0.5, 10.97 + 0.1 + off[i]), ball_v3(4.0, 0.0, 0.0));
+    assert_int_equal(run_net(&m, &sim, 120, 1.0 / 240.0, ev, 8), i == 0 ? 0 : 1);
+  }
 }
 
 /* The point ball has no edges: exactly the paper's Fig. 3 (the grazing tests
@@ -241,10 +252,10 @@ static void test_the_sampled_push_stops_short_of_the_next_wall(void **state) {
 
 int main(void) {
   const struct CMUnitTest tests[] = {
-      cmocka_unit_test(test_ball_drifting_onto_the_top_edge_bounces_off_it),
-      cmocka_unit_test(test_ball_passing_a_side_edge_within_its_radius_hits_it),
+      EACH_SCHEME(test_ball_drifting_onto_the_top_edge_bounces_off_it),
+      EACH_SCHEME(test_ball_passing_a_side_edge_within_its_radius_hits_it),
       cmocka_unit_test(test_ball_at_a_corner_reflects_about_the_corner_normal),
-      cmocka_unit_test(test_a_graze_just_outside_the_radius_passes),
+      EACH_SCHEME(test_a_graze_just_outside_the_radius_passes),
       cmocka_unit_test(test_the_point_ball_keeps_fig3),
       cmocka_unit_test(test_the_sampled_push_stops_short_of_the_next_wall),
   };

@@ -14,6 +14,7 @@
 /* ---- sampled -> exact ------------------------------------------------- */
 
 #define BOUNCES 5
+#define LOG_CAP 512 /* events kept of a run */
 
 /* A ball dropped from 2 m with some horizontal speed onto the floor only
  * (fd 0.75; the 5th rebound still leaves at 6.26 * 0.75^5 = 1.5 m/s, far
@@ -28,15 +29,19 @@ static void drop_scene(ball_model *m, ball_scheme scheme) {
 }
 
 static void bounce_times(ball_scheme scheme, double fps, double *times) {
+  static ball_event log[LOG_CAP]; /* large: not on the stack */
   ball_model m;
-  static core_run run; /* large: not on the stack */
+  ball_sim sim;
+  steps_tally t;
   int k;
   drop_scene(&m, scheme);
-  core_simulate(&m, 1.0 / fps, (unsigned long)(4.5 * fps), &run, NULL);
-  assert_true(run.n >= BOUNCES);
+  assert_ok(ball_sim_init(&sim, &m));
+  steps_begin(&t, log, LOG_CAP);
+  steps_run(&sim, 1.0 / fps, (unsigned long)(4.5 * fps), &t);
+  assert_true(t.total >= BOUNCES);
   for (k = 0; k < BOUNCES; k++) {
-    assert_int_equal(run.ev[k].kind, BALL_EVENT_FLOOR);
-    times[k] = run.ev[k].time;
+    assert_int_equal(log[k].kind, BALL_EVENT_FLOOR);
+    times[k] = log[k].time;
   }
 }
 
@@ -105,32 +110,32 @@ static double vdiff(ball_vec3 a, ball_vec3 b) {
 static void frame_rate_independence(double radius) {
   const double rates[] = {2.0, 6.0, 15.0, 60.0, 1000.0};
   const double duration = 6.0;
-  static core_run ref, run;
+  static ball_event ref_log[LOG_CAP], log[LOG_CAP];
   ball_model m;
   ball_sim sim;
   ball_state s_ref, s;
+  steps_tally ref, run;
   size_t r;
-  int k, floors = 0, nets = 0, walls = 0;
+  int k;
   core_court_scene(&m);
   m.radius = radius;
-  core_simulate(&m, 1.0 / rates[0], (unsigned long)(duration * rates[0]), &ref, &sim);
+  assert_ok(ball_sim_init(&sim, &m));
+  steps_begin(&ref, ref_log, LOG_CAP);
+  steps_run(&sim, 1.0 / rates[0], (unsigned long)(duration * rates[0]), &ref);
   assert_int_equal(sim.warnings[BALL_WARN_CONTACT_LIMIT], 0);
   assert_ok(ball_sim_state(&sim, &s_ref));
-  for (k = 0; k < ref.n; k++) {
-    floors += ref.ev[k].kind == BALL_EVENT_FLOOR;
-    nets += ref.ev[k].kind == BALL_EVENT_NET;
-    walls += ref.ev[k].kind == BALL_EVENT_WALL;
-  }
   /* the scene does what it is for */
-  assert_int_equal(nets, 1);
-  assert_int_equal(walls, 1);
-  assert_true(floors >= 4);
-  assert_int_equal(ref.ev[0].kind, BALL_EVENT_NET);
+  assert_int_equal(ref.kind[BALL_EVENT_NET], 1);
+  assert_int_equal(ref.kind[BALL_EVENT_WALL], 1);
+  assert_true(ref.kind[BALL_EVENT_FLOOR] >= 4);
+  assert_int_equal(ref.first.kind, BALL_EVENT_NET);
   for (r = 1; r < sizeof rates / sizeof rates[0]; r++) {
-    core_simulate(&m, 1.0 / rates[r], (unsigned long)(duration * rates[r] + 0.5), &run, &sim);
-    if (run.n != ref.n) fail_msg("%g Hz: %d events, %g Hz: %d", rates[r], run.n, rates[0], ref.n);
-    for (k = 0; k < ref.n; k++) {
-      const ball_event *a = &ref.ev[k], *b = &run.ev[k];
+    assert_ok(ball_sim_init(&sim, &m));
+    steps_begin(&run, log, LOG_CAP);
+    steps_run(&sim, 1.0 / rates[r], (unsigned long)(duration * rates[r] + 0.5), &run);
+    if (run.total != ref.total) fail_msg("%g Hz: %d events, %g Hz: %d", rates[r], run.total, rates[0], ref.total);
+    for (k = 0; k < ref.total; k++) {
+      const ball_event *a = &ref_log[k], *b = &log[k];
       assert_int_equal(a->kind, b->kind);
       assert_int_equal(a->index, b->index);
       assert_int_equal(a->sound, b->sound);
@@ -168,10 +173,12 @@ static void eq3_eq5_eq6_exact_scheme_is_frame_rate_independent_point_ball(void *
  * [0, 1], random radius; relative tolerance 1e-12 for the rounding of v^2. */
 static void eq5_eq6_energy_never_increases_at_a_collision_exact(void **state) {
   core_rng rng = {12345u};
-  static core_run run;
+  static ball_event log[LOG_CAP];
   ball_plane side = {2, 10.97, -1.0, 25.0, 0.0, 3.0, 1.0};
   ball_plane back = {0, 23.77, -1.0, 12.0, 0.0, 3.0, 1.0};
   ball_model m;
+  ball_sim sim;
+  steps_tally run;
   int shot, k, events = 0, nets = 0, walls = 0;
   (void)state;
   for (shot = 0; shot < 200; shot++) {
@@ -189,9 +196,11 @@ static void eq5_eq6_energy_never_increases_at_a_collision_exact(void **state) {
                                  core_uniform(&rng, 0.5, 10.5));
     m.initial_velocity = ball_v3(core_uniform(&rng, -5.0, 30.0), core_uniform(&rng, -5.0, 8.0),
                                  core_uniform(&rng, -6.0, 6.0));
-    core_simulate(&m, 1.0 / 30.0, 240, &run, NULL);
-    for (k = 0; k < run.n; k++) {
-      const ball_event *e = &run.ev[k];
+    assert_ok(ball_sim_init(&sim, &m));
+    steps_begin(&run, log, LOG_CAP);
+    steps_run(&sim, 1.0 / 30.0, 240, &run);
+    for (k = 0; k < run.total; k++) {
+      const ball_event *e = &log[k];
       double before = core_energy(&m, e->velocity_in, e->point.y);
       double after = core_energy(&m, e->velocity_out, e->point.y);
       if (!(after <= before * (1.0 + 1e-12) + 1e-15))
@@ -212,44 +221,60 @@ static void eq5_eq6_energy_never_increases_at_a_collision_exact(void **state) {
  * fd^2. So E(after, on the floor) - E(before, true position) <= m g depth,
  * and depth <= |vy_in| dt (the ball crossed the floor within the frame,
  * speeding up). Checked for 100 seeded random drops and throws. */
+/* Each frame's floor events against the segment the frame started on. */
+typedef struct snap_check {
+  const ball_model *m;
+  double dt;
+  int shot, events;
+  double worst_gain;
+  ball_segment before; /* the segment at the start of the frame */
+} snap_check;
+
+static int check_snaps(void *ctx, ball_sim *sim, const steps_tally *t, const ball_event *ev, int n) {
+  snap_check *c = ctx;
+  const ball_model *m = c->m;
+  int k;
+  (void)t;
+  for (k = 0; k < n; k++) {
+    ball_state truth;
+    double depth, e_before, e_after;
+    assert_int_equal(ev[k].kind, BALL_EVENT_FLOOR);
+    assert_ok(ball_segment_eval(m, &c->before, ev[k].time, &truth));
+    depth = ev[k].point.y - truth.position.y;
+    assert_true(depth > 0.0 && depth <= fabs(ev[k].velocity_in.y) * c->dt * (1.0 + 1e-12));
+    e_before = core_energy(m, ev[k].velocity_in, truth.position.y);
+    e_after = core_energy(m, ev[k].velocity_out, ev[k].point.y);
+    if (!(e_after - e_before <= m->mass * m->gravity * depth * (1.0 + 1e-9) + 1e-15))
+      fail_msg("shot %d: gain %.6g J > m g depth %.6g J", c->shot, e_after - e_before,
+               m->mass * m->gravity * depth);
+    if (e_after - e_before > c->worst_gain) c->worst_gain = e_after - e_before;
+    c->events++;
+  }
+  c->before = sim->seg;
+  return 1;
+}
+
 static void eq5_sampled_snap_adds_at_most_m_g_depth(void **state) {
   core_rng rng = {777u};
-  const double dt = 1.0 / 30.0;
   ball_model m;
   ball_sim sim;
-  ball_event ev[8];
-  int shot, f, n, k, events = 0;
-  double worst_gain = 0.0;
+  snap_check c;
   (void)state;
-  for (shot = 0; shot < 100; shot++) {
+  memset(&c, 0, sizeof c);
+  c.m = &m;
+  c.dt = 1.0 / 30.0;
+  for (c.shot = 0; c.shot < 100; c.shot++) {
     drop_scene(&m, BALL_SCHEME_SAMPLED);
     m.floor_damping = core_uniform(&rng, 0.2, 1.0);
     m.initial_position = ball_v3(0.0, core_uniform(&rng, 0.1, 4.0), 0.0);
     m.initial_velocity = ball_v3(core_uniform(&rng, -10.0, 10.0), core_uniform(&rng, -5.0, 8.0),
                                  core_uniform(&rng, -10.0, 10.0));
     assert_ok(ball_sim_init(&sim, &m));
-    for (f = 0; f < 150; f++) {
-      ball_segment before_seg = sim.seg;
-      assert_ok(ball_step(&sim, dt, ev, 8, &n));
-      for (k = 0; k < n; k++) {
-        ball_state truth;
-        double depth, e_before, e_after;
-        assert_int_equal(ev[k].kind, BALL_EVENT_FLOOR);
-        assert_ok(ball_segment_eval(&m, &before_seg, ev[k].time, &truth));
-        depth = ev[k].point.y - truth.position.y;
-        assert_true(depth > 0.0 && depth <= fabs(ev[k].velocity_in.y) * dt * (1.0 + 1e-12));
-        e_before = core_energy(&m, ev[k].velocity_in, truth.position.y);
-        e_after = core_energy(&m, ev[k].velocity_out, ev[k].point.y);
-        if (!(e_after - e_before <= m.mass * m.gravity * depth * (1.0 + 1e-9) + 1e-15))
-          fail_msg("shot %d: gain %.6g J > m g depth %.6g J", shot, e_after - e_before,
-                   m.mass * m.gravity * depth);
-        if (e_after - e_before > worst_gain) worst_gain = e_after - e_before;
-        events++;
-      }
-    }
+    c.before = sim.seg;
+    steps_each(&sim, c.dt, 150, NULL, check_snaps, &c);
   }
-  print_message("sampled snap: %d bounces, worst energy gain %.3g J\n", events, worst_gain);
-  assert_true(events > 300);
+  print_message("sampled snap: %d bounces, worst energy gain %.3g J\n", c.events, c.worst_gain);
+  assert_true(c.events > 300);
 }
 
 int main(void) {

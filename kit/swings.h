@@ -6,8 +6,8 @@
  * analytic flight, the racket linear between its samples with a
  * normalised-lerp normal) sampled every SWING_GT_STEP seconds. Public API
  * only; header only, C99 and C++. */
-#ifndef BALL_TESTS_SWINGS_H
-#define BALL_TESTS_SWINGS_H
+#ifndef BALL_KIT_SWINGS_H
+#define BALL_KIT_SWINGS_H
 
 #include <math.h>
 #include <string.h>
@@ -215,4 +215,4 @@ static inline ball_status swing_simulate(const ball_model *m, const swing *sw, d
   return BALL_OK;
 }
 
-#endif /* BALL_TESTS_SWINGS_H */
+#endif /* BALL_KIT_SWINGS_H */
