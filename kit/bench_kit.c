@@ -48,7 +48,7 @@ double bench_timer_overhead(void) {
 
 /* ---- eval ---- */
 
-/* The issue's "lean variant": 1/b and b worked out beforehand, one expm1,
+/* The lean evaluation (the yardstick): 1/b and b worked out beforehand, one expm1,
  * no argument checks: what an evaluation costs at the least (eq 3, 4). */
 __attribute__((noinline)) static void lean_eval(const ball_segment *seg, double k, double b, double g, double sd,
                                                 double t, ball_state *out) {

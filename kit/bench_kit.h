@@ -17,9 +17,9 @@ extern "C" {
 #define BENCH_MAX_ROUNDS 101
 
 /* Machines differ (and a shared one drifts): the lean evaluation, measured
- * in the same run, is the yardstick. Issue 8 measured it at 7.6 ns on the
- * machine its targets were set on; "@ref" figures scale a run's numbers to
- * that machine: ns * BENCH_REF_LEAN_NS / lean. */
+ * in the same run, is the yardstick. It took 7.6 ns on the machine the
+ * targets of docs/benchmarks.md were set on; "@ref" figures scale a run's
+ * numbers to that machine: ns * BENCH_REF_LEAN_NS / lean. */
 #define BENCH_REF_LEAN_NS 7.6
 
 /* Keeps timed work alive. */

@@ -1,5 +1,5 @@
 // libball's static contact verdicts and swept racket test against FCL 0.7.
-// FCL pitfalls (DESIGN.md section 6): no distance to Halfspace/Plane, so the
+// FCL pitfalls (docs/design.md, "Pitfalls of the dependencies"): no distance to Halfspace/Plane, so the
 // floor and the net are boxes; continuous collision by conservative
 // advancement (the naive solver samples poses and can tunnel).
 #include <fcl/fcl.h>

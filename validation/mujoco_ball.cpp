@@ -1,4 +1,4 @@
-// MuJoCo 2.2.2 twin of a ball_model (see DESIGN.md section 6 for the pitfalls
+// MuJoCo 2.2.2 twin of a ball_model (docs/design.md, "Pitfalls of the dependencies":
 // handled here: no mj_addBufferVFS, a 2 MB mjVFS, exiting error handler).
 #include "mujoco_ball.h"
 

@@ -526,7 +526,7 @@ elseif(CASE STREQUAL "bad_scenes")
   endif()
 
 elseif(CASE STREQUAL "output_injection")
-  # issue 9: a name with a newline and an escape code cannot fake a line or
+  # a name with a newline and an escape code cannot fake a line or
   # reach the terminal: printed escaped, one scene line, no raw ESC
   run_scene("${HERE}/injection.yaml")
   expect_out("^scene: a\\\\nevent t=0\\.000000 kind=net index=0 fake\\\\x1b\\[31m \\(")

@@ -297,7 +297,8 @@ static void flight_eval_is_segment_eval_to_the_bit(void **state) {
 }
 
 /* One transcendental call per evaluation gives what the textbook pair
- * -b expm1(-t/b), e^(-t/b) gives, to 1e-14 relative (issue 8's bound). */
+ * -b expm1(-t/b), e^(-t/b) gives, to 1e-14 relative (the bound docs/benchmarks.md's
+ * fast evaluation promises). */
 static void one_expm1_gives_the_two_textbook_terms(void **state) {
   core_rng r;
   int i;

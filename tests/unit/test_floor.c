@@ -1,5 +1,5 @@
-/* The floor: eq 5 bounce, the bounce and sound thresholds (DESIGN 3: below
- * bounce_threshold the ball stops bouncing and slides), spin at the floor
+/* The floor: eq 5 bounce, the bounce and sound thresholds (docs/design.md
+ * R4: below bounce_threshold the ball stops bouncing and slides), spin at the floor
  * (eq 13, 14), and the resting ball.
  *
  * Hand case (the same as test_flight.c): b = 2 s, g = 9.81 m/s^2,

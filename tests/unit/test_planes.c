@@ -1,7 +1,7 @@
 /* The net and the walls: Fig. 3 (the segment test and its extents), eq 6
  * (the reflection, netDamping on the whole velocity, the dt / 10 shift along
  * the NEW x velocity in the sampled scheme, no shift in the exact scheme:
- * DESIGN 3), walls on x and z planes, and the ball radius moving the contact
+ * docs/design.md R5), walls on x and z planes, and the ball radius moving the contact
  * plane toward the approaching ball.
  *
  * Hand case: the default tennis net (x = 11.885 m, z in [0, 10.97] m, top

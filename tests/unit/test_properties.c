@@ -454,7 +454,7 @@ static void test_bad_inputs_leave_the_sim_unchanged(void **state) {
 }
 
 /* P8, every range that ball_model_check accepts is one the stepper handles
- * (issue 9: gravity up to 9e307 was accepted and the ball then sank). Each
+ * (gravity up to 9e307 was once accepted and the ball then sank). Each
  * case starts from the default court (every effect but rackets on, a net
  * and a box of four walls) and puts each real field, vector component and
  * plane coordinate at an end of its range (the field table's lo or hi, the
@@ -635,7 +635,7 @@ static void check_crossings(uint64_t seed, const scene_opts *o) {
   int f, i, n;
   r.s = seed;
   random_scene(&r, &m, o);
-  dt = coin(&r, 0.2) ? uni(&r, 1.0, 3.0) : random_dt(&r); /* below 1 Hz too (issue 9) */
+  dt = coin(&r, 0.2) ? uni(&r, 1.0, 3.0) : random_dt(&r); /* below 1 Hz too */
   active_planes(&m, &ps);
   if (ball_sim_init(&sim, &m) != BALL_OK) FAIL_SEED(seed, "a valid random scene was refused");
   for (f = 0; f < FRAMES; f++) {

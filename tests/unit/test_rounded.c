@@ -1,8 +1,8 @@
 /* A ball with a radius against the net and the walls as rectangles grown by
- * the radius: the face, four edge cylinders, four corner spheres (issue 9;
- * docs/model.md, "Ball radius, edges and corners"). The cases: the issue's
- * ball drifting onto the top edge, a side edge, a corner, a graze that
- * passes, both schemes; the response about the contact normal by hand; the
+ * the radius: the face, four edge cylinders, four corner spheres
+ * (docs/design.md R15; docs/model.md, "Ball radius, edges and corners").
+ * The cases: that section's example, a ball drifting onto the top edge, a
+ * side edge, a corner, a graze that passes, both schemes; the response about the contact normal by hand; the
  * sampled scheme's dt / 10 push in frames of seconds; and after every
  * contact the ball never inside the grown rectangle. */
 #include <math.h>
@@ -111,7 +111,7 @@ static void assert_reflected_about(const ball_event *e, const ball_plane *net, d
   }
 }
 
-/* The issue's case: a 0.1 m ball at (11.735, 2.0, 5.0) drifting at
+/* The example of docs/model.md, "Ball radius, edges and corners": a 0.1 m ball at (11.735, 2.0, 5.0) drifting at
  * (0.3, 0, 0) onto the default net. It reaches the net's plane (x = 11.785)
  * at 1.86 m, above the top: the face test saw nothing, and it fell through.
  * Now it meets the top edge's cylinder when
@@ -210,7 +210,7 @@ static void test_a_graze_just_outside_the_radius_passes(void **state) {
 }
 
 /* The point ball has no edges: exactly the paper's Fig. 3 (the grazing tests
- * of test_hard_contacts.c hold it to the bit). From the issue's start it
+ * of test_hard_contacts.c hold it to the bit). From the same start it
  * reaches the net's plane x = 11.885 at t = 0.5 s, at y = 2 - g / 8 = 0.77375
  * m, below the top: the face, as before. */
 static void test_the_point_ball_keeps_fig3(void **state) {

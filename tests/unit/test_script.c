@@ -379,7 +379,7 @@ static void bad_scripts_and_polls_are_rejected(void **state) {
   s.keyframes[0].normal = ball_v3(0.0, 0.0, 0.0);
   assert_int_equal(ball_script_check(&s, &field), BALL_ERANGE);
   assert_string_equal(field, "keyframes[0].normal");
-  /* issue 9: keyframes far out gave infinite poses; the world's limits hold */
+  /* keyframes far out once gave infinite poses; the world's limits hold */
   still_script(&s, 60.0);
   s.keyframes[0].center.x = 1e308;
   assert_int_equal(ball_script_check(&s, &field), BALL_ERANGE);
@@ -520,7 +520,7 @@ static void example_scenes_with_scripts_load(void **state) {
   }
 }
 
-/* issue 9: every script ball_script_check accepts gives finite poses and
+/* Every script ball_script_check accepts gives finite poses and
  * samples ball_racket_push takes: keyframes at the limits, the largest
  * noise, the longest repeat (the example was keyframes at +-1e308, which
  * gave 600 infinite samples). */

@@ -202,8 +202,8 @@ static void swept_analytic_flight_ball_dropped_on_still_disc_toi_to_1e9(void **s
   assert_near(t, 10.0 + (-1.0 + sqrt(1.0 + 2.0 * 9.81 * 0.98)) / 9.81, 1e-9);
 }
 
-/* issue 9: ball_swept_disc took 32 ms in one call on extreme but finite
- * inputs. The search's work is bounded: at most 2048 distance evaluations
+/* ball_swept_disc once took 32 ms in one call on extreme but finite inputs
+ * (docs/hard-cases.md, "The catalogue"). The search's work is bounded: at most 2048 distance evaluations
  * (plus the root refinements' share of the budget), whatever the input. */
 static void swept_work_is_bounded_on_extreme_inputs(void **state) {
   static const double big[] = {1e-300, 1e-9, 1.0, 1e9, 1e150, 1e300};
