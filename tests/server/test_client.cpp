@@ -3,7 +3,7 @@
 // match from what MatchInfo says.
 #include <cmath>
 
-#include "check.h"
+#include "check.hpp"
 #include "game.h"
 #include "player.h"
 

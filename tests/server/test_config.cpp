@@ -1,6 +1,6 @@
 // ball-server's configuration file: defaults, matches, catalogue, and errors
 // that name the file, the line and the JSON pointer.
-#include "check.h"
+#include "check.hpp"
 #include "config.h"
 
 using namespace ballsrv;

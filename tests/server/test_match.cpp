@@ -4,7 +4,7 @@
 #include <set>
 
 #include "ball/vec3.h"
-#include "check.h"
+#include "check.hpp"
 #include "game.h"
 #include "host.h"
 

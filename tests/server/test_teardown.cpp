@@ -12,7 +12,7 @@
 #include <string>
 #include <thread>
 
-#include "check.h"
+#include "check.hpp"
 #include "common.h"
 #include "domain.h"
 
