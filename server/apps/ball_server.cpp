@@ -144,7 +144,7 @@ bool write_stats_json(const std::string &path, const StatusOut &o, const Stats &
   j["samples_ok"] = o.samples_ok;
   j["samples_idle"] = st.samples_idle;
   nlohmann::json drops = nlohmann::json::object();
-  for (int i = 0; i < kDropReasons; ++i) drops[drop_name(static_cast<SampleResult>(i))] = o.drops[i];
+  for (int i = 0; i < kDropReasons; ++i) drops[name_of(static_cast<SampleResult>(i))] = o.drops[i];
   j["drops"] = drops;
   j["controls_in"] = o.controls_in;
   j["controls_refused"] = o.controls_refused;
@@ -167,7 +167,7 @@ bool write_stats_json(const std::string &path, const StatusOut &o, const Stats &
   nlohmann::json matches = nlohmann::json::array();
   for (const auto &m : host.matches()) {
     const MatchCounters &c = m->counters();
-    matches.push_back({{"id", m->id()}, {"state", state_name(m->state())}, {"frames", c.frames},
+    matches.push_back({{"id", m->id()}, {"state", name_of(m->state())}, {"frames", c.frames},
                        {"hits", c.hits}, {"bounces", c.bounces}, {"points", c.points}, {"serves", c.serves},
                        {"pauses", c.pauses}, {"lets", c.lets}, {"score", {m->score()[0], m->score()[1]}},
                        {"sim_time", m->sim().time}, {"sim_hash", ball_sim_hash(&m->sim())}});

@@ -177,13 +177,13 @@ std::string rally_line(const EventOut &e, const Watched &w) {
                     ball_v3_norm(e.velocity_out), e.in_play ? "" : " (dead ball)");
       break;
     case EventKind::point:
-      if (e.side < 0) std::snprintf(buf, sizeof buf, "let (%s): replayed", reason_name(e.reason));
+      if (e.side < 0) std::snprintf(buf, sizeof buf, "let (%s): replayed", name_of(e.reason));
       else
         std::snprintf(buf, sizeof buf, "point to the %s side (%s), score %d-%d", e.side == 0 ? "near" : "far",
-                      reason_name(e.reason), e.score[0], e.score[1]);
+                      name_of(e.reason), e.score[0], e.score[1]);
       break;
     case EventKind::pause:
-      std::snprintf(buf, sizeof buf, "pause: player %d %s", e.index, reason_name(e.reason));
+      std::snprintf(buf, sizeof buf, "pause: player %d %s", e.index, name_of(e.reason));
       break;
     case EventKind::resume:
       std::snprintf(buf, sizeof buf, "resume");
@@ -335,11 +335,11 @@ int main(int argc, char **argv) {
       w.clock.observe(info.sim_time, info.server_time, info.time_base, info.state == MatchState::playing, real);
       if (first || before != info.state)
         say(info.match_id, info.sim_time,
-            std::string("match ") + state_name(info.state) + " (" + info.scene + ", level " +
+            std::string("match ") + name_of(info.state) + " (" + info.scene + ", level " +
                 ball_level_name(static_cast<ball_level>(info.level)) + ", " + std::to_string(info.players) +
                 " players, server " + std::to_string(info.server_id) + ")");
       log({{"type", "match_info"}, {"recv", real}, {"match", info.match_id}, {"server", info.server_id},
-           {"revision", info.revision}, {"state", state_name(info.state)}, {"scene", info.scene},
+           {"revision", info.revision}, {"state", name_of(info.state)}, {"scene", info.scene},
            {"level", info.level}, {"players", info.players}, {"score", {info.score[0], info.score[1]}},
            {"sim_time", info.sim_time}, {"server_time", info.server_time}, {"time_base", info.time_base},
            {"player_timeout", info.player_timeout}, {"model_hash", info.model_hash},
@@ -358,7 +358,7 @@ int main(int argc, char **argv) {
         latency_server.add(seg.server_time - seg.sample.source_time);
       }
       log({{"type", "segment"}, {"recv", real}, {"match", seg.match_id}, {"server", seg.server_id}, {"seq", seg.seq},
-           {"cause", cause_name(seg.cause)}, {"index", seg.cause_index}, {"t0", seg.segment.t0},
+           {"cause", name_of(seg.cause)}, {"index", seg.cause_index}, {"t0", seg.segment.t0},
            {"p0", vec(seg.segment.p0)}, {"v0", vec(seg.segment.v0)}, {"s0", vec(seg.segment.s0)},
            {"grounded", seg.segment.grounded != 0}, {"server_time", seg.server_time}, {"model_hash", seg.model_hash},
            {"sample_seq", seg.sample.seq}, {"sample_source_time", seg.sample.source_time}});
@@ -387,10 +387,10 @@ int main(int argc, char **argv) {
       if (!snap.dir.empty() && event_marker(e, &marker)) w.recent.push_back(marker);
       say(e.match_id, e.time, rally_line(e, w));
       log({{"type", "event"}, {"recv", real}, {"match", e.match_id}, {"server", e.server_id}, {"seq", e.seq},
-           {"kind", event_name(e.kind)}, {"index", e.index}, {"side", e.side}, {"in_play", e.in_play},
+           {"kind", name_of(e.kind)}, {"index", e.index}, {"side", e.side}, {"in_play", e.in_play},
            {"sound", e.sound}, {"time", e.time}, {"server_time", e.server_time}, {"point", vec(e.point)},
            {"velocity_in", vec(e.velocity_in)}, {"velocity_out", vec(e.velocity_out)},
-           {"segment_seq", e.segment_seq}, {"reason", reason_name(e.reason)},
+           {"segment_seq", e.segment_seq}, {"reason", name_of(e.reason)},
            {"score", {e.score[0], e.score[1]}}, {"value", e.value}});
     }
 
@@ -506,7 +506,7 @@ int main(int argc, char **argv) {
     uint64_t dropped = 0;
     for (int i = 0; i < kDropReasons; ++i) {
       dropped += o.drops[i];
-      if (o.drops[i]) drops[drop_name(static_cast<SampleResult>(i))] = o.drops[i];
+      if (o.drops[i]) drops[name_of(static_cast<SampleResult>(i))] = o.drops[i];
     }
     sv.push_back({{"server", o.server_id}, {"samples_in", o.samples_in}, {"samples_ok", o.samples_ok},
                   {"dropped", dropped}, {"drops", drops}, {"overruns", o.overruns}, {"frames", o.frames}});

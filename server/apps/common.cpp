@@ -147,7 +147,7 @@ std::string drops_text(const std::array<uint64_t, kDropSlots> &drops) {
   for (int i = 0; i < kDropReasons; ++i) {
     total += drops[i];
     if (drops[i])
-      reasons += std::string(reasons.empty() ? "" : ", ") + drop_name(static_cast<SampleResult>(i)) + " " +
+      reasons += std::string(reasons.empty() ? "" : ", ") + name_of(static_cast<SampleResult>(i)) + " " +
                  std::to_string(drops[i]);
   }
   return std::to_string(total) + (reasons.empty() ? "" : " (" + reasons + ")");

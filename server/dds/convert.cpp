@@ -6,15 +6,31 @@
 namespace ballsrv {
 namespace dds {
 
-// The server's enums have the IDL's order; these keep the two in step.
+// The IDL's sizes, and every enumerator of the server's enums against its
+// IDL constant, one by one (the lists are in types.h).
 static_assert(balldds::MAX_PLAYERS == kMaxPlayers, "IDL MAX_PLAYERS");
 static_assert(balldds::NAME_LEN == kNameLen, "IDL NAME_LEN");
 static_assert(balldds::DROP_REASONS == kDropSlots && kDropReasons <= kDropSlots, "IDL DROP_REASONS");
-static_assert(static_cast<int>(balldds::MATCH_PAUSED) == static_cast<int>(MatchState::paused), "MatchState");
-static_assert(static_cast<int>(balldds::CAUSE_RACKET) == static_cast<int>(Cause::racket), "Cause");
-static_assert(static_cast<int>(balldds::EVENT_REFUSED) == static_cast<int>(EventKind::refused), "EventKind");
-static_assert(static_cast<int>(balldds::REFUSED_STATE) == static_cast<int>(Reason::refused_state), "Reason");
-static_assert(static_cast<int>(balldds::CONTROL_TIME_BASE) == static_cast<int>(ControlKind::time_base), "ControlKind");
+#define BALL_CHECK_STATE(e, name, idl) \
+  static_assert(static_cast<int>(MatchState::e) == static_cast<int>(balldds::idl), "MatchState::" #e " is IDL " #idl);
+#define BALL_CHECK_CAUSE(e, name, idl) \
+  static_assert(static_cast<int>(Cause::e) == static_cast<int>(balldds::idl), "Cause::" #e " is IDL " #idl);
+#define BALL_CHECK_EVENT(e, name, idl) \
+  static_assert(static_cast<int>(EventKind::e) == static_cast<int>(balldds::idl), "EventKind::" #e " is IDL " #idl);
+#define BALL_CHECK_REASON(e, name, idl) \
+  static_assert(static_cast<int>(Reason::e) == static_cast<int>(balldds::idl), "Reason::" #e " is IDL " #idl);
+#define BALL_CHECK_CONTROL(e, name, idl) \
+  static_assert(static_cast<int>(ControlKind::e) == static_cast<int>(balldds::idl), "ControlKind::" #e " is IDL " #idl);
+BALL_MATCH_STATES(BALL_CHECK_STATE)
+BALL_CAUSES(BALL_CHECK_CAUSE)
+BALL_EVENT_KINDS(BALL_CHECK_EVENT)
+BALL_REASONS(BALL_CHECK_REASON)
+BALL_CONTROL_KINDS(BALL_CHECK_CONTROL)
+#undef BALL_CHECK_STATE
+#undef BALL_CHECK_CAUSE
+#undef BALL_CHECK_EVENT
+#undef BALL_CHECK_REASON
+#undef BALL_CHECK_CONTROL
 
 namespace {
 
@@ -88,7 +104,7 @@ void from_idl(const balldds::MatchControl &in, ControlIn *o) {
   o->match_id = in.match_id();
   o->seq = in.seq();
   uint32_t kind = static_cast<uint32_t>(in.kind());
-  o->valid = kind <= static_cast<uint32_t>(ControlKind::time_base) && get_name(in.scene(), &o->scene);
+  o->valid = kind < static_cast<uint32_t>(kEnumCount<ControlKind>) && get_name(in.scene(), &o->scene);
   o->kind = o->valid ? static_cast<ControlKind>(kind) : ControlKind::join;
   o->player = in.player();
   o->level = in.level();

@@ -27,7 +27,7 @@
 #include <map>
 #include <set>
 
-#include "ballPubSubTypes.h"
+#include "ball_wirePubSubTypes.h"
 #include "convert.h"
 
 namespace fdds = eprosima::fastdds::dds;

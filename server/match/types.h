@@ -20,58 +20,131 @@ constexpr int kNameLen = 32;                   // scene names on the wire, NUL i
 // DDS Security it is the authenticated participant). All zeros: nobody.
 using ParticipantId = std::array<uint8_t, 12>;
 
-enum class MatchState { waiting, playing, paused };
-enum class Cause { serve, floor, net, wall, racket };
-enum class EventKind {
-  floor, net, wall, racket, sound, serve, point, pause, resume, join, leave, level, time_base, refused
-};
-enum class Reason {
-  none,
-  point_double_bounce,
-  point_out,
-  point_net,
-  point_own_side,
-  point_not_returned,
-  point_let,
-  pause_vanished,
-  pause_left,
-  pause_requested,
-  refused_slot_held,
-  refused_not_player,
-  refused_bad_value,
-  refused_no_room,
-  refused_state
-};
-enum class ControlKind { create, join, leave, serve, level, pause, resume, time_base };
+// Every enum of the vocabulary is listed once, below, as an X-macro of
+// (enumerator, name, IDL constant): the enum itself, its name and its
+// parsing (types.cpp, name_of/parse_name) and the compile-time check that
+// each enumerator equals its IDL twin (server/dds/convert.cpp) are all made
+// from the one list. The names are those of the JSON records, the status
+// line and docs/protocol.md.
+#define BALL_MATCH_STATES(X)                                                          \
+  X(waiting, "waiting", MATCH_WAITING) /* a slot is free or away: nothing moves */    \
+  X(playing, "playing", MATCH_PLAYING) /* the sim runs */                             \
+  X(paused, "paused", MATCH_PAUSED)    /* a player vanished or asked: the clock stands still */
+
+#define BALL_CAUSES(X)                                                                \
+  X(serve, "serve", CAUSE_SERVE)                                                      \
+  X(floor, "floor", CAUSE_FLOOR)                                                      \
+  X(net, "net", CAUSE_NET)                                                            \
+  X(wall, "wall", CAUSE_WALL)       /* cause_index: the wall */                       \
+  X(racket, "racket", CAUSE_RACKET) /* cause_index: the racket, which is the player slot */
+
+#define BALL_EVENT_KINDS(X)                                                           \
+  X(floor, "floor", EVENT_FLOOR)                                                      \
+  X(net, "net", EVENT_NET)                                                            \
+  X(wall, "wall", EVENT_WALL)                                                         \
+  X(racket, "racket", EVENT_RACKET)                                                   \
+  X(sound, "sound", EVENT_SOUND)                                                      \
+  X(serve, "serve", EVENT_SERVE)                                                      \
+  X(point, "point", EVENT_POINT)                                                      \
+  X(pause, "pause", EVENT_PAUSE)                                                      \
+  X(resume, "resume", EVENT_RESUME)                                                   \
+  X(join, "join", EVENT_JOIN)                                                         \
+  X(leave, "leave", EVENT_LEAVE)                                                      \
+  X(level, "level", EVENT_LEVEL)                                                      \
+  X(time_base, "time_base", EVENT_TIME_BASE)                                          \
+  X(refused, "refused", EVENT_REFUSED)
+
+#define BALL_REASONS(X)                                                               \
+  X(none, "none", REASON_NONE)                                                        \
+  X(point_double_bounce, "double_bounce", POINT_DOUBLE_BOUNCE)                        \
+  X(point_out, "out", POINT_OUT)                                                      \
+  X(point_net, "net", POINT_NET)                                                      \
+  X(point_own_side, "own_side", POINT_OWN_SIDE)                                       \
+  X(point_not_returned, "not_returned", POINT_NOT_RETURNED)                           \
+  X(point_let, "let", POINT_LET)                                                      \
+  X(pause_vanished, "vanished", PAUSE_VANISHED)                                       \
+  X(pause_left, "left", PAUSE_LEFT)                                                   \
+  X(pause_requested, "requested", PAUSE_REQUESTED)                                    \
+  X(refused_slot_held, "slot_held", REFUSED_SLOT_HELD)                                \
+  X(refused_not_player, "not_player", REFUSED_NOT_PLAYER)                             \
+  X(refused_bad_value, "bad_value", REFUSED_BAD_VALUE)                                \
+  X(refused_no_room, "no_room", REFUSED_NO_ROOM)                                      \
+  X(refused_state, "state", REFUSED_STATE)
+
+#define BALL_CONTROL_KINDS(X)                                                         \
+  X(create, "create", CONTROL_CREATE)                                                 \
+  X(join, "join", CONTROL_JOIN)                                                       \
+  X(leave, "leave", CONTROL_LEAVE)                                                    \
+  X(serve, "serve", CONTROL_SERVE)                                                    \
+  X(level, "level", CONTROL_LEVEL)                                                    \
+  X(pause, "pause", CONTROL_PAUSE)                                                    \
+  X(resume, "resume", CONTROL_RESUME)                                                 \
+  X(time_base, "time_base", CONTROL_TIME_BASE)
 
 // What became of a racket sample. Everything but accepted and idle is a drop,
-// counted by reason (the order is the wire order of ServerStatus.drops).
+// counted by reason; the order is the index of ServerStatus.drops on the
+// wire (docs/protocol.md, "What the server does with a racket sample").
+// The third column is not an IDL constant: drops are indices, not an enum.
+#define BALL_DROP_REASONS(X)                                                          \
+  X(unknown_match, "unknown_match", 0) /* no match with that id on this server */     \
+  X(bad_slot, "bad_slot", 1)           /* player index outside the match's slots */   \
+  X(not_joined, "not_joined", 2)       /* nobody holds that slot */                   \
+  X(not_owner, "not_owner", 3)         /* the slot is held by another participant */  \
+  X(nonfinite, "nonfinite", 4)         /* NaN or Inf in the time, the centre or the normal */ \
+  X(zero_normal, "zero_normal", 5)     /* |normal| < 1e-6 */                          \
+  X(out_of_range, "out_of_range", 6)   /* outside the match's box, |normal| > 1e6, too far ahead */ \
+  X(duplicate, "duplicate", 7)         /* the same seq again, or libball's BALL_EDUPLICATE */ \
+  X(out_of_order, "out_of_order", 8)   /* seq older than the newest accepted one */   \
+  X(stale, "stale", 9)                 /* too old, or libball's BALL_ESTALE */        \
+  X(rejected, "rejected", 10)          /* refused by DDS itself (resource limits); DDS layer only */ \
+  X(lost, "lost", 11)                  /* never arrived: a gap or a full history; DDS layer only */
+
+#define BALL_ENUMERATOR(e, name, idl) e,
+enum class MatchState { BALL_MATCH_STATES(BALL_ENUMERATOR) };
+enum class Cause { BALL_CAUSES(BALL_ENUMERATOR) };
+enum class EventKind { BALL_EVENT_KINDS(BALL_ENUMERATOR) };
+enum class Reason { BALL_REASONS(BALL_ENUMERATOR) };
+enum class ControlKind { BALL_CONTROL_KINDS(BALL_ENUMERATOR) };
 enum class SampleResult : int {
-  unknown_match = 0,  // no match with that id on this server
-  bad_slot,           // player index outside the match's slots
-  not_joined,         // nobody holds that slot
-  not_owner,          // the slot is held by another participant
-  nonfinite,          // NaN or Inf in the time, the centre or the normal
-  zero_normal,        // |normal| < 1e-6
-  out_of_range,       // centre outside the match's box, |normal| > 1e6, capture time too far ahead
-  duplicate,          // the same seq again, or the same pose and time as a kept sample
-  out_of_order,       // seq older than the newest accepted one (reordered by the network)
-  stale,              // capture time older than the match's sample age limit, or not newer than the newest kept
-  rejected,           // refused by DDS itself before the server saw it (resource limits); DDS layer only
-  lost,               // never arrived: DDS saw a gap in a writer's sequence numbers; DDS layer only
-  drop_count,         // (number of drop reasons)
-  accepted = 100,     // fed to the racket track
-  idle,               // well formed, but the match is not playing: refreshes presence only
+  BALL_DROP_REASONS(BALL_ENUMERATOR)
+  drop_count,      // (the number of drop reasons)
+  accepted = 100,  // fed to the racket track
+  idle,            // well formed, but the match is not playing: refreshes presence only
 };
+#undef BALL_ENUMERATOR
+
 constexpr int kDropReasons = static_cast<int>(SampleResult::drop_count);
 constexpr int kDropSlots = 16;  // IDL DROP_REASONS: room on the wire for more reasons
 
-const char *drop_name(SampleResult r);  // "unknown_match", ..., "accepted", "idle"
-const char *state_name(MatchState s);
-const char *cause_name(Cause c);
-const char *event_name(EventKind k);
-const char *reason_name(Reason r);
-const char *control_name(ControlKind k);
+// How many enumerators each enum has (drop reasons: without accepted and idle).
+#define BALL_ONE(e, name, idl) +1
+template <class E>
+constexpr int kEnumCount = 0;
+template <>
+constexpr int kEnumCount<MatchState> = 0 BALL_MATCH_STATES(BALL_ONE);
+template <>
+constexpr int kEnumCount<Cause> = 0 BALL_CAUSES(BALL_ONE);
+template <>
+constexpr int kEnumCount<EventKind> = 0 BALL_EVENT_KINDS(BALL_ONE);
+template <>
+constexpr int kEnumCount<Reason> = 0 BALL_REASONS(BALL_ONE);
+template <>
+constexpr int kEnumCount<ControlKind> = 0 BALL_CONTROL_KINDS(BALL_ONE);
+template <>
+constexpr int kEnumCount<SampleResult> = kDropReasons;
+#undef BALL_ONE
+// The name of a value ("unknown" for a value outside the list); drop
+// reasons also name accepted and idle.
+const char *name_of(MatchState v);
+const char *name_of(Cause v);
+const char *name_of(EventKind v);
+const char *name_of(Reason v);
+const char *name_of(ControlKind v);
+const char *name_of(SampleResult v);
+// The value of a name; false (and *out unchanged) for a name not in the list.
+template <class E>
+bool parse_name(const std::string &name, E *out);
+
 
 struct RacketSampleIn {
   uint32_t match_id = 0;

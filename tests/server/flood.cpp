@@ -147,7 +147,7 @@ int main(int argc, char **argv) {
         default: break;
       }
       (from_b ? b_samples : a_samples).write(s);
-      sent[drop_name(kind)]++;
+      sent[name_of(kind)]++;
       flood_index++;
       next_bad += interval;
     }
@@ -170,7 +170,7 @@ int main(int argc, char **argv) {
   j["burst"] = burst_sent;
   // what it last heard, to tell why a flood did not start
   j["last_info"] = {{"have", have_info},
-                    {"state", state_name(info.state)},
+                    {"state", name_of(info.state)},
                     {"held", {info.slots[0].held, info.slots[1].held}},
                     {"samples", {info.slots[0].samples, info.slots[1].samples}},
                     {"revision", info.revision}};
