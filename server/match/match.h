@@ -93,7 +93,7 @@ class Match {
   uint32_t id() const { return config_.id; }
   MatchState state() const { return state_; }
   const MatchConfig &config() const { return config_; }
-  const ball_model &model() const { return model_; }
+  const ball_model &model() const { return *ball_sim_model(&sim_); }  // the sim's own
   const ball_sim &sim() const { return sim_; }
   const Court &court() const { return court_; }
   const MatchCounters &counters() const { return counters_; }
@@ -110,8 +110,7 @@ class Match {
     uint32_t samples = 0;
     bool has_seq = false;
     uint32_t last_seq = 0;
-    ball_racket_sample last{}; // newest accepted sample
-    SampleRef ref;
+    SampleRef ref;             // the newest accepted sample
   };
 
   void emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason = Reason::none,
@@ -128,9 +127,8 @@ class Match {
   int side_of_point(ball_vec3 p) const { return court_.side_of(p.x); }
 
   MatchConfig config_;
-  ball_scene scene_{};
-  ball_model model_{};
   ball_sim sim_{};
+  uint64_t model_hash_ = 0;  // ball_model_hash of the sim's model, kept as the model changes
   Court court_;
   std::array<Slot, kMaxPlayers> slots_{};
   MatchState state_ = MatchState::waiting;
@@ -145,7 +143,6 @@ class Match {
   uint32_t points_played_ = 0;
   uint32_t segment_seq_ = 0;
   uint32_t event_seq_ = 0;
-  uint32_t revision_ = 0;
   double state_accum_ = 0.0; // fraction of a ball state owed (state_rate / frame_rate per frame)
   MatchCounters counters_;
   std::vector<ball_event> step_events_;
