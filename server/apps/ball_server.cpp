@@ -184,87 +184,25 @@ int main(int argc, char **argv) {
   CLI::App cli{"ball-server: a ball server hosting many matches over Fast DDS (docs/server.md).\n"
                "Command-line settings override the config file's defaults; without a\n"
                "config file or --matches it hosts one match on the default tennis scene."};
-  std::string config_file, stats_json, scene, level;
-  int n_matches = -1, players = -1;
-  double frame_rate = -1, state_rate = -1, time_base = -1, extrapolation = -2, serve_delay = -1;
+  std::string stats_json;
   double duration = 0.0;
-  long server_id = -1;
-  long max_matches = -1;
-  bool no_create = false, quiet = false;
-  double startup_wait = -1;
-  DdsOptions dds_opt;
-  dds_opt.domain = -1;
-  dds_opt.participant = "";
-  cli.add_option("--config", config_file, "JSON config file (docs/server.md, \"Configuration\")");
-  cli.add_option("--matches", n_matches, "host N matches, ids 0..N-1, replacing the config's list")
-      ->check(CLI::Range(1, 100000));
-  cli.add_option("--scene", scene, "scene of those matches: a file, a libball scene name, or default");
-  cli.add_option("--level", level, "game level: easy, mid, advanced, or custom (the scene's)");
-  cli.add_option("--players", players, "player slots per match, [1, 4]")->check(CLI::Range(1, 4));
-  cli.add_option("--frame-rate", frame_rate, "frames per second of every match")->check(CLI::Range(1.0, 1000.0));
-  cli.add_option("--state-rate", state_rate, "ball states per second, 0: off")->check(CLI::Range(0.0, 1000.0));
-  cli.add_option("--time-base", time_base, "sim seconds per real second: < 1 slow motion, > 1 fast forward")
-      ->check(CLI::Range(0.05, 20.0));
-  cli.add_option("--extrapolation", extrapolation, "eq 15's cap on racket extrapolation, s; -1: the scene's")
-      ->check(CLI::Range(-1.0, 10.0));
-  cli.add_option("--serve-delay", serve_delay, "sim s between a point and the next serve")->check(CLI::Range(0.0, 60.0));
-  cli.add_option("--server-id", server_id, "this server's id in every sample it writes")->check(CLI::Range(0L, 4294967295L));
-  cli.add_option("--max-matches", max_matches, "room for matches (sizes DDS); default: configured + 8")
-      ->check(CLI::Range(1L, 100000L));
-  cli.add_flag("--no-create", no_create, "refuse CREATE requests");
-  cli.add_option("--startup-wait", startup_wait, "s to listen for another server owning our matches, 0: none")
-      ->check(CLI::Range(0.0, 60.0));
+  bool quiet = false;
+  ServerOptions opt;
+  opt.add(cli);
   cli.add_option("--duration", duration, "stop after S real seconds (0: run until SIGINT/SIGTERM)")
       ->check(CLI::Range(0.0, 1e9));
   cli.add_option("--stats-json", stats_json, "write the final counters to FILE as JSON");
   cli.add_flag("--quiet,-q", quiet, "no status line");
-  add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
+  if (!opt.keys.empty()) {
+    std::fputs(keys_table(opt.keys).c_str(), stdout);
+    return 0;
+  }
 
   ServerConfig config;
   std::string err;
-  if (!config_file.empty() && !load_config_file(config_file, &config, &err)) return fail(kProgram, err);
-  // the command line over the file
-  if (dds_opt.domain >= 0) config.domain = dds_opt.domain;
-  if (!dds_opt.profile.empty()) config.profile = dds_opt.profile;
-  if (!dds_opt.participant.empty()) config.participant = dds_opt.participant;
-  if (server_id >= 0) config.server_id = static_cast<uint32_t>(server_id);
-  if (no_create) config.allow_create = false;
-  if (startup_wait >= 0) config.startup_wait = startup_wait;
-  if (!level.empty() && !parse_level(level, &config.defaults.level))
-    return fail(kProgram, "--level: expected easy, mid, advanced or custom, got \"" + level + "\"");
-  auto apply_cli = [&](MatchConfig &c) {
-    if (!level.empty()) parse_level(level, &c.level);
-    if (players > 0) c.players = players;
-    if (frame_rate > 0) c.frame_rate = frame_rate;
-    if (state_rate >= 0) c.state_rate = state_rate;
-    else if (c.state_rate > c.frame_rate) c.state_rate = c.frame_rate;
-    if (time_base > 0) c.time_base = time_base;
-    if (extrapolation > -2) c.extrapolation_time = extrapolation;
-    if (serve_delay >= 0) c.serve_delay = serve_delay;
-  };
-  apply_cli(config.defaults);
-  if (n_matches > 0 || config.matches.empty()) {
-    config.matches.clear();
-    for (int i = 0; i < (n_matches > 0 ? n_matches : 1); ++i) {
-      MatchEntry e;
-      e.config = config.defaults;
-      e.config.id = static_cast<uint32_t>(i);
-      e.config.seed = config.defaults.seed + static_cast<uint64_t>(i);
-      e.scene = scene.empty() ? "default" : scene;
-      config.matches.push_back(e);
-    }
-  } else {
-    for (auto &e : config.matches) {
-      apply_cli(e.config);
-      if (!scene.empty()) e.scene = scene;
-    }
-  }
-  if (max_matches > 0) config.max_matches = static_cast<size_t>(max_matches);
-  if (config.max_matches == 0) config.max_matches = config.matches.size() + (config.allow_create ? 8 : 0);
-  if (config.max_matches < config.matches.size())
-    return fail(kProgram, "max_matches " + std::to_string(config.max_matches) + " is less than the " +
-                              std::to_string(config.matches.size()) + " matches configured");
+  if (!opt.config_file.empty() && !load_config_file(opt.config_file, &config, &err)) return fail(kProgram, err);
+  if (!opt.apply(&config, &err)) return fail(kProgram, err);
 
   // every scene is read before DDS is touched: a bad config fails fast
   std::map<std::string, ball_scene> catalogue;
@@ -345,7 +283,7 @@ int main(int argc, char **argv) {
     publish_info(sched.back(), config.server_id, w, st);
   }
   if (!quiet)
-    std::printf("%s %u: %zu matches on domain %d (profile %s, participant %s), player timeout %.2f s, room for %zu matches\n",
+    std::printf("%s %u: %zu matches on domain %d (profile %s, participant %s), player timeout %.2f s, room for %u matches\n",
                 kProgram, config.server_id, host.matches().size(), config.domain, profile.c_str(),
                 hex(domain->id()).c_str(), config.defaults.player_timeout, config.max_matches);
   std::fflush(stdout);

@@ -97,7 +97,8 @@ std::string scenes_dir() {
 }
 
 void add_dds_options(CLI::App &app, DdsOptions *o) {
-  app.add_option("--domain", o->domain, "DDS domain id, [0, 232] (default 0)");
+  app.add_option("--domain", o->domain,
+                 "DDS domain id, [0, " + std::to_string(kMaxDomain) + "] (default " + std::to_string(o->domain) + ")");
   app.add_option("--profile", o->profile,
                  "QoS profile file (default: $BALL_QOS_PROFILE, the installed one, the source tree's)");
   app.add_option("--participant-profile", o->participant,

@@ -56,8 +56,6 @@ BALL_WIRE(StatusOut, ServerStatus)
 
 namespace {
 
-constexpr int kMaxDomain = 232;  // RTPS ports 7400 + 250 * domain + ... stay below 65536
-
 ParticipantId prefix_of(const eprosima::fastrtps::rtps::GUID_t &guid) {
   ParticipantId id;
   std::copy(std::begin(guid.guidPrefix.value), std::end(guid.guidPrefix.value), id.begin());

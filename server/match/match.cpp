@@ -19,31 +19,6 @@ bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
 
 }  // namespace
 
-bool check_match_config(const MatchConfig &c, std::string *err) {
-  auto fail = [err](const char *field, const char *rule) {
-    *err = std::string(field) + ": must be " + rule;
-    return false;
-  };
-  if (c.players < 1 || c.players > kMaxPlayers) return fail("players", "in [1, 4]");
-  if (!(c.frame_rate > 0.0 && c.frame_rate <= 1000.0)) return fail("frame_rate", "in (0, 1000] Hz");
-  if (!(c.time_base >= 0.05 && c.time_base <= 20.0)) return fail("time_base", "in [0.05, 20]");
-  if (!(c.state_rate >= 0.0 && c.state_rate <= c.frame_rate))
-    return fail("state_rate", "in [0, frame_rate] Hz");
-  if (!(c.serve_delay >= 0.0 && c.serve_delay <= 60.0)) return fail("serve_delay", "in [0, 60] s");
-  if (!(c.max_rally_time > 0.0 && c.max_rally_time <= 3600.0)) return fail("max_rally_time", "in (0, 3600] s");
-  if (!(c.extrapolation_time <= 10.0) || std::isnan(c.extrapolation_time))
-    return fail("extrapolation_time", "at most 10 s (negative: the scene's)");
-  if (!(c.stale_time <= 60.0) || std::isnan(c.stale_time)) return fail("stale_time", "at most 60 s (negative: the scene's)");
-  if (!(c.player_timeout > 0.0 && c.player_timeout <= 60.0)) return fail("player_timeout", "in (0, 60] s");
-  if (!(c.max_sample_age > 0.0 && c.max_sample_age <= 60.0)) return fail("max_sample_age", "in (0, 60] s");
-  if (!(c.max_sample_lead >= 0.0 && c.max_sample_lead <= 10.0)) return fail("max_sample_lead", "in [0, 10] s");
-  if (!(c.serve_v_up > 0.0 && c.serve_v_up <= 30.0)) return fail("serve_v_up", "in (0, 30] m/s");
-  if (!std::isfinite(c.court_x_lo)) return fail("court_x_lo", "finite");
-  if (c.scene_name.empty() || c.scene_name.size() >= static_cast<size_t>(kNameLen))
-    return fail("scene name", "1 to 31 bytes");
-  return true;
-}
-
 bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string *err) {
   if (!check_match_config(config, err)) return false;
   config_ = config;
@@ -453,7 +428,8 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       emit(out, EventKind::resume, -1, sim_.time);
       return Reason::none;
     case ControlKind::time_base:
-      if (!(c.time_base >= 0.05 && c.time_base <= 20.0)) return refuse(c, Reason::refused_bad_value, out);
+      if (!in_bounds(find_field(match_fields(), "time_base")->bounds, c.time_base))
+        return refuse(c, Reason::refused_bad_value, out);
       config_.time_base = c.time_base;
       emit(out, EventKind::time_base, -1, sim_.time, Reason::none, c.time_base);
       out->info_changed = true;

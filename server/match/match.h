@@ -15,33 +15,11 @@
 #include "ball/ball.h"
 #include "ball/scene.h"
 #include "court.h"
+#include "match_config.h"
 #include "rules.h"
 #include "types.h"
 
 namespace ballsrv {
-
-struct MatchConfig {
-  uint32_t id = 0;
-  std::string scene_name = "tennis";  // what MatchInfo calls it
-  int players = 2;                    // [1, kMaxPlayers]
-  ball_level level = BALL_LEVEL_EASY; // custom: the scene's own racket fields
-  double frame_rate = 60.0;           // frames per real s, (0, 1000]
-  double time_base = 1.0;             // sim s per real s, [0.05, 20]
-  double state_rate = 60.0;           // ball states per real s, [0, frame_rate]; 0: off
-  double serve_delay = 1.5;           // sim s between a point and the next serve
-  double max_rally_time = 60.0;       // sim s: a longer rally is a let
-  double extrapolation_time = 0.25;   // s, eq 15's cap; < 0: the scene's
-  double stale_time = -1.0;           // s; < 0: the scene's
-  double player_timeout = 1.0;        // real s without a sample before a player has vanished
-  double max_sample_age = 2.0;        // sim s: older samples are stale
-  double max_sample_lead = 0.5;       // sim s: capture times further ahead are out of range
-  double serve_v_up = 4.0;            // m/s: vertical launch speed of a serve
-  double court_x_lo = 0.0;            // m: where the court starts (Court)
-  uint64_t seed = 1;                  // serve placement
-};
-
-// Checks a config's ranges; false with the field's name and the rule in err.
-bool check_match_config(const MatchConfig &config, std::string *err);
 
 // What one call produced. The vectors keep their capacity between frames.
 struct MatchOutput {

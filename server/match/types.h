@@ -14,6 +14,8 @@ namespace ballsrv {
 
 constexpr int kMaxPlayers = BALL_MAX_RACKETS;  // player slots per match (IDL MAX_PLAYERS)
 constexpr int kNameLen = 32;                   // scene names on the wire, NUL included (IDL NAME_LEN)
+constexpr int kMaxDomain = 232;                // DDS domain ids [0, 232]: RTPS maps domain d onto UDP ports
+                                               // from 7400 + 250 d, which must stay below 65536
 
 // Who sent a sample or a control message: the DDS participant GUID prefix of
 // the client (the DDS layer fills it in from the sample's writer GUID; under

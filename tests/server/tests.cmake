@@ -21,9 +21,19 @@ endif()
 add_executable(test_config ${CMAKE_CURRENT_LIST_DIR}/test_config.cpp)
 target_include_directories(test_config PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
 target_link_libraries(test_config PRIVATE ball_app)
+target_compile_definitions(test_config PRIVATE BALL_EXAMPLE_CONFIG="${PROJECT_SOURCE_DIR}/server/config/example.json")
 target_compile_options(test_config PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_config COMMAND test_config)
 set_tests_properties(test_config PROPERTIES LABELS server TIMEOUT 60)
+
+# docs/server.md's key tables are the field tables (ball-server --keys)
+foreach(table server match)
+  add_test(NAME docs_server_${table}_keys_current
+    COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:ball-server> "-DARGS=--keys;${table}" "-DMARK=${table} keys"
+      "-DBY=ball-server --keys ${table}" -DDOC=${PROJECT_SOURCE_DIR}/docs/server.md
+      -P ${PROJECT_SOURCE_DIR}/tests/cli/keys_doc.cmake)
+  set_tests_properties(docs_server_${table}_keys_current PROPERTIES LABELS server)
+endforeach()
 
 # the teardown guard (server/dds/domain.h); one participant on domain 141
 add_executable(test_teardown ${CMAKE_CURRENT_LIST_DIR}/test_teardown.cpp)
