@@ -105,16 +105,6 @@ void add_dds_options(CLI::App &app, DdsOptions *o) {
                  "participant profile of that file: loopback (default), lan, secure_lan");
 }
 
-std::string hex(const ParticipantId &id) {
-  static const char *digits = "0123456789abcdef";
-  std::string s;
-  for (uint8_t b : id) {
-    s += digits[b >> 4];
-    s += digits[b & 15];
-  }
-  return s;
-}
-
 bool parse_level(const std::string &text, ball_level *out) {
   for (int l = 0; l < BALL_LEVEL_COUNT; ++l)
     if (text == ball_level_name(static_cast<ball_level>(l))) {

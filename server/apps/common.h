@@ -81,7 +81,6 @@ struct DdsOptions {
 };
 void add_dds_options(CLI::App &app, DdsOptions *o);
 
-std::string hex(const ParticipantId &id);
 bool parse_level(const std::string &text, ball_level *out);  // easy, mid, advanced, custom
 // Loads a scene: "" or "default" is ball_scene_default, a name without a
 // slash is libball's scenes/NAME.yaml, else a file. false with the loader's

@@ -255,15 +255,9 @@ balldds::MatchInfo to_idl(const MatchInfoOut &in) {
   o.max_sample_age(in.max_sample_age);
   o.max_sample_lead(in.max_sample_lead);
   o.model_hash(in.model_hash);
-  o.gravity(in.model.gravity);
-  o.mass(in.model.mass);
-  o.air_friction(in.model.air_friction);
-  o.spin_damping(in.model.spin_damping);
-  o.radius(in.model.radius);
-  o.floor_level(in.model.floor_level);
-  o.effects(in.model.effects);
-  o.extrapolation_time(in.model.extrapolation_time);
-  o.stale_time(in.model.stale_time);
+#define BALL_PUT(f) o.f(in.model.f);
+  BALL_FLIGHT_FIELDS(BALL_PUT)
+#undef BALL_PUT
   o.net_x(in.net_x);
   o.court_x({in.court_x[0], in.court_x[1]});
   o.court_z({in.court_z[0], in.court_z[1]});
@@ -302,15 +296,9 @@ void from_idl(const balldds::MatchInfo &in, MatchInfoOut *o) {
   o->max_sample_lead = in.max_sample_lead();
   o->model_hash = in.model_hash();
   ball_model_default(&o->model);
-  o->model.gravity = in.gravity();
-  o->model.mass = in.mass();
-  o->model.air_friction = in.air_friction();
-  o->model.spin_damping = in.spin_damping();
-  o->model.radius = in.radius();
-  o->model.floor_level = in.floor_level();
-  o->model.effects = in.effects();
-  o->model.extrapolation_time = in.extrapolation_time();
-  o->model.stale_time = in.stale_time();
+#define BALL_GET(f) o->model.f = in.f();
+  BALL_FLIGHT_FIELDS(BALL_GET)
+#undef BALL_GET
   o->net_x = in.net_x();
   o->court_x[0] = in.court_x()[0];
   o->court_x[1] = in.court_x()[1];

@@ -38,6 +38,22 @@ BALL_DROP_REASONS(BALL_CHECK_INDEX)
 
 }  // namespace
 
+std::string hex(const ParticipantId &id) {
+  static const char *digits = "0123456789abcdef";
+  std::string s;
+  for (uint8_t b : id) {
+    s += digits[b >> 4];
+    s += digits[b & 15];
+  }
+  return s;
+}
+
+bool parse_hex(const std::string &text, ParticipantId *id) {
+  if (text.size() != 2 * id->size() || text.find_first_not_of("0123456789abcdef") != std::string::npos) return false;
+  for (size_t i = 0; i < id->size(); ++i) (*id)[i] = static_cast<uint8_t>(std::stoul(text.substr(2 * i, 2), nullptr, 16));
+  return true;
+}
+
 const char *name_of(MatchState v) { return lookup(kStates, static_cast<int>(v)); }
 const char *name_of(Cause v) { return lookup(kCauses, static_cast<int>(v)); }
 const char *name_of(EventKind v) { return lookup(kEventKinds, static_cast<int>(v)); }

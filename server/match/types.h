@@ -21,6 +21,8 @@ constexpr int kMaxDomain = 232;                // DDS domain ids [0, 232]: RTPS 
 // the client (the DDS layer fills it in from the sample's writer GUID; under
 // DDS Security it is the authenticated participant). All zeros: nobody.
 using ParticipantId = std::array<uint8_t, 12>;
+std::string hex(const ParticipantId &id);                   // 24 hex digits
+bool parse_hex(const std::string &text, ParticipantId *id);  // false unless 24 hex digits
 
 // Every enum of the vocabulary is listed once, below, as an X-macro of
 // (enumerator, name, IDL constant): the enum itself, its name and its
@@ -235,6 +237,11 @@ struct SlotInfo {
   double last_capture_time = 0.0;
 };
 
+// The fields of a match's ball_model that MatchInfo carries (each in the
+// model's own unit: ball.h), listed once for the DDS layer and the records.
+#define BALL_FLIGHT_FIELDS(X) \
+  X(gravity) X(mass) X(air_friction) X(spin_damping) X(radius) X(floor_level) X(effects) X(extrapolation_time) X(stale_time)
+
 struct MatchInfoOut {
   uint32_t match_id = 0;
   uint32_t server_id = 0;
@@ -257,10 +264,8 @@ struct MatchInfoOut {
   double max_sample_age = 0.0;
   double max_sample_lead = 0.0;
   uint64_t model_hash = 0;
-  // the model; on the wire only its flight fields (gravity, mass,
-  // air_friction, spin_damping, radius, floor_level, effects,
-  // extrapolation_time, stale_time) travel, and a receiver gets them over
-  // ball_model_default: enough for ball_segment_eval
+  // the model; on the wire only its BALL_FLIGHT_FIELDS travel, and a
+  // receiver gets them over ball_model_default: enough for ball_segment_eval
   ball_model model{};
   double net_x = 0.0;
   double court_x[2] = {0, 0};

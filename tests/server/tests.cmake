@@ -5,7 +5,7 @@ if(NOT TARGET ball_match)
   return()
 endif()
 
-foreach(name test_match test_bot test_client)
+foreach(name test_match test_bot test_client test_records)
   add_executable(${name} ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp)
   target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
   target_link_libraries(${name} PRIVATE ball_client)
