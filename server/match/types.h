@@ -150,91 +150,101 @@ template <class E>
 bool parse_name(const std::string &name, E *out);
 
 
+// The fields below carry their unit or meaning in a trailing comment, as
+// libball's structs do: "sim s" is the match's sim clock, "server s" the
+// server's realtime clock (s since 1970-01-01 UTC), "real s" a duration on
+// a wall clock; counts and indices have none. docs/protocol.md, "Time".
+
+// client -> server: one racket pose (RacketSample).
 struct RacketSampleIn {
-  uint32_t match_id = 0;
-  int player = 0;
-  uint32_t seq = 0;
-  double capture_time = 0.0;  // sim s
-  ball_vec3 center{0, 0, 0};  // m
-  ball_vec3 normal{1, 0, 0};
-  ParticipantId from{};       // the sender
-  double source_time = 0.0;   // the writer's timestamp, server-comparable realtime s (0: unknown)
+  uint32_t match_id = 0;      // the match
+  int player = 0;             // the slot, [0, players)
+  uint32_t seq = 0;           // per (match, player) stream: larger than every earlier one
+  double capture_time = 0.0;  // sim s: when the pose was taken, as the client maps its clock
+  ball_vec3 center{0, 0, 0};  // m: the disc centre
+  ball_vec3 normal{1, 0, 0};  // the disc normal, any length in [1e-6, 1e6] (normalised by libball)
+  ParticipantId from{};       // the sender: its writer's participant GUID prefix (filled in by the DDS layer)
+  double source_time = 0.0;   // server s: the writer's DDS source timestamp (0: unknown)
 };
 
+// client -> server: a control message (MatchControl).
 struct ControlIn {
-  uint32_t match_id = 0;
-  uint32_t seq = 0;
+  uint32_t match_id = 0;      // the match (CREATE: the new one's id)
+  uint32_t seq = 0;           // per writer; echoed in a refusal
   ControlKind kind = ControlKind::join;
-  int player = -1;
-  int level = 0;
-  double time_base = 1.0;
-  int players = 2;
-  std::string scene;  // CREATE
-  ParticipantId from{};
-  bool valid = true;  // false: an enum out of range or a scene name without its NUL on the wire
+  int player = -1;            // JOIN: the slot wanted, -1 any; LEAVE: the slot
+  int level = 0;              // LEVEL, CREATE: 1 easy, 2 mid, 3 advanced (CREATE: 0 the scene's)
+  double time_base = 1.0;     // TIME_BASE: sim s per real s
+  int players = 2;            // CREATE: slots
+  std::string scene;          // CREATE: a scene name of the server's catalogue
+  ParticipantId from{};       // the sender (filled in by the DDS layer)
+  bool valid = true;          // false: an enum out of range or a scene name without its NUL on the wire
 };
 
 // The newest sample of a racket when it hit the ball, for latency.
 struct SampleRef {
-  bool valid = false;
-  uint32_t seq = 0;
-  double source_time = 0.0;   // realtime s
-  double capture_time = 0.0;  // sim s
+  bool valid = false;         // false: no sample (the segment is not a racket hit)
+  uint32_t seq = 0;           // its seq
+  double source_time = 0.0;   // server s: its DDS source timestamp (the player's realtime clock)
+  double capture_time = 0.0;  // sim s: its capture time
 };
 
-// Server -> client samples carry the server's id and its realtime clock at
-// publication (s since 1970); the DDS layer writes them as they are.
+// server -> clients: a flight segment (Segment). Every server sample carries
+// the server's id and the server s of its publication; the loop fills them in.
 struct SegmentOut {
-  uint32_t match_id = 0;
-  uint32_t server_id = 0;
-  double server_time = 0.0;
-  uint32_t seq = 0;
-  Cause cause = Cause::serve;
-  int cause_index = -1;
-  ball_segment segment{};
-  uint64_t model_hash = 0;
-  SampleRef sample;
+  uint32_t match_id = 0;      // the match
+  uint32_t server_id = 0;     // the server that wrote it
+  double server_time = 0.0;   // server s: when it was published
+  uint32_t seq = 0;           // 1, 2, ... per match
+  Cause cause = Cause::serve; // what started it
+  int cause_index = -1;       // WALL: the wall; RACKET: the racket (slot); SERVE: the serving slot; else -1
+  ball_segment segment{};     // t0 sim s, p0 m, v0 m/s, s0 m/s, grounded (libball's ball_segment)
+  uint64_t model_hash = 0;    // ball_model_hash of the model that made it
+  SampleRef sample;           // RACKET: the hitting racket's newest sample
 };
 
+// server -> clients: a collision or a match event (Event).
 struct EventOut {
-  uint32_t match_id = 0;
-  uint32_t server_id = 0;
-  double server_time = 0.0;
-  uint32_t seq = 0;
+  uint32_t match_id = 0;           // the match
+  uint32_t server_id = 0;          // the server that wrote it
+  double server_time = 0.0;        // server s: when it was published
+  uint32_t seq = 0;                // 1, 2, ... per match: a gap means events were lost
   EventKind kind = EventKind::floor;
-  int index = -1;
-  int side = -1;
-  bool in_play = false;
-  bool sound = false;
-  double time = 0.0;  // sim s
-  ball_vec3 point{0, 0, 0};
-  ball_vec3 velocity_in{0, 0, 0};
-  ball_vec3 velocity_out{0, 0, 0};
-  uint32_t segment_seq = 0;
-  Reason reason = Reason::none;
-  std::array<int, 2> score{0, 0};
-  double value = 0.0;
+  int index = -1;                  // by kind (docs/protocol.md, "Events"): wall, racket, slot or control kind
+  int side = -1;                   // collisions: 0 x < net_x, 1 beyond; POINT: the winner, -1 a let
+  bool in_play = false;            // collisions: during a rally, before its point was decided
+  bool sound = false;              // collisions: loud enough for the paper's sound event
+  double time = 0.0;               // sim s
+  ball_vec3 point{0, 0, 0};        // m: the ball's centre at the collision
+  ball_vec3 velocity_in{0, 0, 0};  // m/s
+  ball_vec3 velocity_out{0, 0, 0}; // m/s
+  uint32_t segment_seq = 0;        // the segment the collision starts (others: the current one)
+  Reason reason = Reason::none;    // POINT, PAUSE, REFUSED: why
+  std::array<int, 2> score{0, 0};  // points of side 0 and side 1 after the event
+  double value = 0.0;              // LEVEL: the level; TIME_BASE: sim s per real s; REFUSED: the control's seq
 };
 
+// server -> clients: the ball after a frame (BallState).
 struct StateOut {
-  uint32_t match_id = 0;
-  uint32_t server_id = 0;
-  double server_time = 0.0;  // the frame's deadline
-  uint64_t frame = 0;
-  double sim_time = 0.0;
+  uint32_t match_id = 0;      // the match
+  uint32_t server_id = 0;     // the server that wrote it
+  double server_time = 0.0;   // server s: the frame's deadline
+  uint64_t frame = 0;         // sim steps taken
+  double sim_time = 0.0;      // sim s
   MatchState state = MatchState::playing;
-  uint32_t segment_seq = 0;
-  ball_state ball{};
-  uint64_t sim_hash = 0;
+  uint32_t segment_seq = 0;   // the segment this state lies on
+  ball_state ball{};          // position m, velocity m/s, spin m/s (libball's ball_state)
+  uint64_t sim_hash = 0;      // ball_sim_hash after the step
 };
 
+// A player slot as MatchInfo shows it.
 struct SlotInfo {
-  bool held = false;
-  bool present = false;
-  ParticipantId owner{};
-  uint32_t samples = 0;
-  uint32_t last_seq = 0;
-  double last_capture_time = 0.0;
+  bool held = false;               // a participant holds it
+  bool present = false;            // its samples arrive within player_timeout and its writer lives
+  ParticipantId owner{};           // the holder's participant GUID prefix; zeros when free
+  uint32_t samples = 0;            // samples accepted from the holder
+  uint32_t last_seq = 0;           // seq of the newest accepted one
+  double last_capture_time = 0.0;  // sim s: its capture time
 };
 
 // The fields of a match's ball_model that MatchInfo carries (each in the
@@ -242,55 +252,57 @@ struct SlotInfo {
 #define BALL_FLIGHT_FIELDS(X) \
   X(gravity) X(mass) X(air_friction) X(spin_damping) X(radius) X(floor_level) X(effects) X(extrapolation_time) X(stale_time)
 
+// server -> clients: a match's setup and state (MatchInfo).
 struct MatchInfoOut {
-  uint32_t match_id = 0;
-  uint32_t server_id = 0;
-  double server_time = 0.0;  // the instant sim_time holds for
-  uint32_t revision = 0;
+  uint32_t match_id = 0;           // the match
+  uint32_t server_id = 0;          // the server that wrote it
+  double server_time = 0.0;        // server s: the instant sim_time holds for (the newest frame's deadline)
+  uint32_t revision = 0;           // increments with every MatchInfo the server writes for the match
   MatchState state = MatchState::waiting;
-  std::string scene;
-  int level = 0;
-  int players = 0;
+  std::string scene;               // the scene's name, at most 31 bytes
+  int level = 0;                   // 0 the scene's own, 1 easy, 2 mid, 3 advanced
+  int players = 0;                 // slots in use
   std::array<SlotInfo, kMaxPlayers> slots{};
-  std::array<int, 2> score{0, 0};
-  int serving_side = 0;
-  uint32_t rally = 0;
-  uint32_t segment_seq = 0;
-  double frame_time = 0.0;
-  double time_base = 1.0;
-  double sim_time = 0.0;
-  double state_rate = 0.0;
-  double player_timeout = 0.0;
-  double max_sample_age = 0.0;
-  double max_sample_lead = 0.0;
-  uint64_t model_hash = 0;
+  std::array<int, 2> score{0, 0};  // points of side 0 and side 1
+  int serving_side = 0;            // the side that serves next
+  uint32_t rally = 0;              // points played so far
+  uint32_t segment_seq = 0;        // the current segment
+  double frame_time = 0.0;         // real s per frame
+  double time_base = 1.0;          // sim s per real s
+  double sim_time = 0.0;           // sim s at server_time
+  double state_rate = 0.0;         // BallState samples per real s; 0: off
+  double player_timeout = 0.0;     // real s: a slot silent this long has vanished
+  double max_sample_age = 0.0;     // sim s: a sample older than sim_time minus this is stale
+  double max_sample_lead = 0.0;    // sim s: a capture time beyond sim_time plus this is out of range
+  uint64_t model_hash = 0;         // ball_model_hash of the model the server steps
   // the model; on the wire only its BALL_FLIGHT_FIELDS travel, and a
   // receiver gets them over ball_model_default: enough for ball_segment_eval
   ball_model model{};
-  double net_x = 0.0;
-  double court_x[2] = {0, 0};
-  double court_z[2] = {0, 0};
+  double net_x = 0.0;              // m: the net plane x = net_x
+  double court_x[2] = {0, 0};      // m: the court's extent in x
+  double court_z[2] = {0, 0};      // m: and in z
 };
 
-// The server's status line as data (ServerStatus on the wire).
+// The server's status line as data (ServerStatus on the wire): totals since
+// the start, but for the frame times.
 struct StatusOut {
-  uint32_t server_id = 0;
-  double server_time = 0.0;
-  double uptime = 0.0;
-  uint32_t matches = 0;
-  uint32_t playing = 0;
-  uint64_t samples_in = 0;
-  uint64_t samples_ok = 0;
-  std::array<uint64_t, kDropSlots> drops{};
-  uint64_t controls_in = 0;
-  uint64_t controls_refused = 0;
-  uint64_t states_out = 0;
-  uint64_t segments_out = 0;
-  uint64_t events_out = 0;
-  uint64_t frames = 0;
-  uint64_t overruns = 0;
-  double frame_p50 = 0.0;  // s
-  double frame_p99 = 0.0;  // s
+  uint32_t server_id = 0;                    // the server
+  double server_time = 0.0;                  // server s: when it was written
+  double uptime = 0.0;                       // real s since the server started
+  uint32_t matches = 0;                      // hosted
+  uint32_t playing = 0;                      // of those, playing
+  uint64_t samples_in = 0;                   // racket samples taken, plus those DDS counted as rejected or lost
+  uint64_t samples_ok = 0;                   // of those, fed to a racket track
+  std::array<uint64_t, kDropSlots> drops{};  // dropped, by reason (BALL_DROP_REASONS order)
+  uint64_t controls_in = 0;                  // control messages taken
+  uint64_t controls_refused = 0;             // of those, refused or malformed
+  uint64_t states_out = 0;                   // BallState samples written
+  uint64_t segments_out = 0;                 // Segment samples written
+  uint64_t events_out = 0;                   // Event samples written
+  uint64_t frames = 0;                       // frames stepped, every match's
+  uint64_t overruns = 0;                     // frames that ended after the next deadline
+  double frame_p50 = 0.0;                    // real s of work per wake-up, median of the last status period
+  double frame_p99 = 0.0;                    // real s, its 99th percentile
 };
 
 }  // namespace ballsrv
