@@ -194,6 +194,39 @@ const std::vector<Field<ServerConfig>> &server_fields() {
   return table;
 }
 
+bool load_scenes(const ServerConfig &config, ServerScenes *scenes, std::string *err) {
+  for (const auto &c : config.catalogue)
+    if (!load_scene(c.second, &scenes->catalogue[c.first], err)) {
+      *err = "catalogue \"" + c.first + "\": " + *err;
+      return false;
+    }
+  scenes->matches.resize(config.matches.size());
+  for (size_t i = 0; i < config.matches.size(); ++i)
+    if (!load_scene(config.matches[i].scene, &scenes->matches[i], err)) return false;
+  return true;
+}
+
+std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes, double player_timeout,
+                                std::string *err) {
+  if (player_timeout > 0.0) config->defaults.player_timeout = player_timeout;
+  auto host = std::make_unique<Host>(config->max_matches, config->allow_create, config->defaults);
+  for (const auto &c : scenes.catalogue)
+    if (!host->add_scene(c.first, c.second, err)) return nullptr;
+  for (size_t i = 0; i < config->matches.size(); ++i) {
+    MatchEntry &e = config->matches[i];
+    const ball_scene &sc = scenes.matches[i];
+    if (player_timeout > 0.0) e.config.player_timeout = player_timeout;
+    // what MatchInfo calls the scene: its own name, else the file's as given, else libball's court
+    if (e.scene != "default" && !sc.name[0]) e.config.scene_name = e.scene.substr(0, kNameLen - 1);
+    else e.config.scene_name = sc.name[0] ? sc.name : "tennis";
+    if (!host->add_match(e.config, sc, err)) {
+      *err = "match " + std::to_string(e.config.id) + " (" + e.scene + "): " + *err;
+      return nullptr;
+    }
+  }
+  return host;
+}
+
 std::string keys_table(const std::string &which) {
   if (which == "server") return doc_table(server_fields(), ServerConfig{});
   if (which == "match") return doc_table(match_fields(), MatchConfig{});
@@ -202,86 +235,6 @@ std::string keys_table(const std::string &which) {
 
 // ---- the command line ------------------------------------------------------
 
-template <class S>
-void FieldOptions<S>::add(CLI::App &app, const std::vector<Field<S>> &table) {
-  for (const auto &f : table) {
-    if (!f.option) continue;
-    entries_.emplace_back();
-    entries_.back().field = &f;
-    Entry &e = entries_.back();
-    std::string range = range_text(f);
-    std::string help = f.doc;
-    std::visit(
-        [&](auto m) {
-          using M = decltype(m);
-          if constexpr (std::is_same_v<M, double S::*>) {
-            Bounds b = f.bounds;
-            b.hi_field = nullptr;  // a bound by another field is checked once both are known
-            const Field<S> *field = &f;
-            e.option = app.add_option(f.option, e.real, help)->check(CLI::Validator(
-                [b, field](std::string &v) -> std::string {
-                  char *end = nullptr;
-                  double x = std::strtod(v.c_str(), &end);
-                  if (end == v.c_str() || *end) return "expected a number, got " + v;
-                  return in_bounds(b, x) ? "" : "must be in " + range_text(*field);
-                },
-                range));
-          } else if constexpr (std::is_same_v<M, int S::*> || std::is_same_v<M, uint32_t S::*> ||
-                               std::is_same_v<M, uint64_t S::*>) {
-            e.option = app.add_option(f.option, e.integer, help)->check(CLI::Range(f.bounds.ilo, f.bounds.ihi));
-          } else if constexpr (std::is_same_v<M, ball_level S::*>) {
-            e.option = app.add_option(f.option, e.text, help)->check(CLI::Validator(
-                [](std::string &v) -> std::string {
-                  ball_level l;
-                  return parse_level(v, &l) ? "" : "expected easy, mid, advanced or custom, got \"" + v + "\"";
-                },
-                "LEVEL"));
-          } else {
-            e.option = app.add_option(f.option, e.text, help);
-          }
-        },
-        f.member);
-  }
-}
-
-template <class S>
-bool FieldOptions<S>::given(const std::string &key) const {
-  for (const auto &e : entries_)
-    if (key == e.field->key) return e.option->count() > 0;
-  return false;
-}
-
-template <class S>
-std::string FieldOptions<S>::text(const std::string &key) const {
-  for (const auto &e : entries_)
-    if (key == e.field->key && e.option->count() > 0) return e.text;
-  return "";
-}
-
-template <class S>
-void FieldOptions<S>::apply(S *s) const {
-  for (const auto &e : entries_) {
-    if (e.option->count() == 0) continue;
-    std::visit(
-        [&](auto m) {
-          using M = decltype(m);
-          if constexpr (std::is_same_v<M, double S::*>) {
-            s->*m = e.real;
-          } else if constexpr (std::is_same_v<M, int S::*> || std::is_same_v<M, uint32_t S::*> ||
-                               std::is_same_v<M, uint64_t S::*>) {
-            s->*m = static_cast<std::remove_reference_t<decltype(s->*m)>>(e.integer);
-          } else if constexpr (std::is_same_v<M, ball_level S::*>) {
-            parse_level(e.text, &(s->*m));
-          } else if constexpr (std::is_same_v<M, std::string S::*>) {
-            s->*m = e.text;
-          }
-        },
-        e.field->member);
-  }
-}
-
-template class FieldOptions<ServerConfig>;
-template class FieldOptions<MatchConfig>;
 
 void ServerOptions::add(CLI::App &app) {
   app.add_option("--config", config_file, "JSON config file (docs/server.md, \"Configuration\")");
@@ -290,8 +243,8 @@ void ServerOptions::add(CLI::App &app) {
   app.add_option("--matches", matches_, "host N matches, ids 0..N-1, replacing the config's list")
       ->check(CLI::Range(1, 100000));
   app.add_flag("--no-create", no_create_, "refuse CREATE requests (allow_create false)");
-  server_.add(app, server_fields());
-  match_.add(app, match_fields());
+  server_.add(app, server_fields(), ServerConfig{});
+  match_.add(app, match_fields(), MatchConfig{});
   add_dds_options(app, &dds_);
   domain_ = app.get_option("--domain");
   profile_ = app.get_option("--profile");

@@ -7,16 +7,14 @@
 
 #include <deque>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include "common.h"
+#include "options.h"
+#include "host.h"
 #include "match_config.h"
-
-namespace CLI {
-class App;
-class Option;
-}  // namespace CLI
 
 namespace ballsrv {
 namespace app {
@@ -56,27 +54,6 @@ bool parse_config(const std::string &text, const std::string &name, const std::s
 // it is missing, where its nearest existing parent starts); 0 if unknown.
 int json_pointer_line(const std::string &text, const std::string &pointer);
 
-// The command-line options of a field table: one per field with an option,
-// checked against the field's range as it is parsed.
-template <class S>
-class FieldOptions {
- public:
-  void add(CLI::App &app, const std::vector<Field<S>> &table);
-  bool given(const std::string &key) const;
-  std::string text(const std::string &key) const;  // a given option's text ("" if not given)
-  void apply(S *s) const;                          // every given option with a member into *s
-
- private:
-  struct Entry {
-    const Field<S> *field;
-    CLI::Option *option = nullptr;
-    double real = 0.0;
-    long long integer = 0;
-    std::string text;
-  };
-  std::deque<Entry> entries_;  // stable addresses: CLI11 writes into them
-};
-
 // ball-server's command line over its config: the options of both field
 // tables, --matches N, --no-create, the DDS options.
 class ServerOptions {
@@ -99,6 +76,19 @@ class ServerOptions {
   int matches_ = 0;
   bool no_create_ = false;
 };
+
+// Every scene the config names, read before DDS is touched (a bad config fails fast).
+struct ServerScenes {
+  std::map<std::string, ball_scene> catalogue;  // by the name a CREATE gives
+  std::vector<ball_scene> matches;              // one per configured match
+};
+bool load_scenes(const ServerConfig &config, ServerScenes *scenes, std::string *err);
+
+// The host of the configured matches and catalogue. A player_timeout > 0
+// (the deadline the racket samples reader requests) replaces the
+// configured one, in *config too. nullptr with err ("match 3 (x.yaml): ...").
+std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes, double player_timeout,
+                                std::string *err);
 
 // The markdown table docs/server.md shows for "server" or "match" keys ("" for another name).
 std::string keys_table(const std::string &which);

@@ -54,6 +54,18 @@ bool parse_hex(const std::string &text, ParticipantId *id) {
   return true;
 }
 
+std::string drops_text(const std::array<uint64_t, kDropSlots> &drops) {
+  uint64_t total = 0;
+  std::string reasons;
+  for (int i = 0; i < kDropReasons; ++i) {
+    total += drops[i];
+    if (drops[i])
+      reasons += std::string(reasons.empty() ? "" : ", ") + name_of(static_cast<SampleResult>(i)) + " " +
+                 std::to_string(drops[i]);
+  }
+  return std::to_string(total) + (reasons.empty() ? "" : " (" + reasons + ")");
+}
+
 const char *name_of(MatchState v) { return lookup(kStates, static_cast<int>(v)); }
 const char *name_of(Cause v) { return lookup(kCauses, static_cast<int>(v)); }
 const char *name_of(EventKind v) { return lookup(kEventKinds, static_cast<int>(v)); }

@@ -120,6 +120,9 @@ enum class SampleResult : int {
 constexpr int kDropReasons = static_cast<int>(SampleResult::drop_count);
 constexpr int kDropSlots = 16;  // IDL DROP_REASONS: room on the wire for more reasons
 
+// Drop counters as words: "12 (stale 10, duplicate 2)", or "0".
+std::string drops_text(const std::array<uint64_t, kDropSlots> &drops);
+
 // How many enumerators each enum has (drop reasons: without accepted and idle).
 #define BALL_ONE(e, name, idl) +1
 template <class E>
