@@ -23,8 +23,9 @@ class PlayerGroup {
   PlayerGroup &operator=(const PlayerGroup &) = delete;
 
   // One tick at local time (monotonic `mono`, realtime `real`); every
-  // segment read is shown to on_segment too (a meter's). false (with
-  // error()) when a bot cannot build its match's model from its scene.
+  // segment of the group's matches is shown to on_segment too (a meter's,
+  // with its reception time). false (with error()) when a bot cannot
+  // build its match's model from its scene.
   bool tick(ClientPort &port, double mono, double real,
             const std::function<void(const SegmentOut &, double)> &on_segment = {});
   // Each joined bot's LEAVE, written (a clean exit); how many.
