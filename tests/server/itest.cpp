@@ -539,6 +539,26 @@ void case_server_cli(const Env &env) {
   rc = run({"--domain", "300"}, "domain", &err);
   note("domain 300: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
   CHECK_MSG(rc != 0 && err.find("domain") != std::string::npos, "status %d: %s", rc, err.c_str());
+  // an output file that cannot be written fails the run, naming the file and the reason
+  rc = run({"--domain", env.dom(), "--startup-wait", "0", "--duration", "0.2", "--quiet", "--stats-json",
+            path(env, "no/such/dir/stats.json")},
+           "stats", &err);
+  note("stats file in a missing folder: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
+  CHECK_MSG(rc == 1 && err.find("cannot write " + path(env, "no/such/dir/stats.json") + ": No such file or directory") !=
+                           std::string::npos,
+            "status %d: %s", rc, err.c_str());
+  // and a record that cannot be written stops the watcher with its reason
+  {
+    Process w = Process::start({env.bin + "/ball-watch", "--domain", env.dom(), "--duration", "5", "--record",
+                                "/dev/full"},
+                               path(env, "full.out"), path(env, "full.err"));
+    rc = w.wait(20.0);
+    std::ifstream f(path(env, "full.err"));
+    err.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    note("ball-watch --record /dev/full: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
+    CHECK_MSG(rc == 1 && err.find("cannot write /dev/full: No space left on device") != std::string::npos,
+              "status %d: %s", rc, err.c_str());
+  }
   std::string notxml = write("notxml.xml", "this is not xml\n");
   rc = run({"--profile", notxml, "--domain", env.dom()}, "notxml", &err);
   CHECK_MSG(rc == 1 && err.find("not a valid Fast DDS profile") != std::string::npos, "status %d: %s", rc, err.c_str());

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <unistd.h>
 
 #include "check.hpp"
 #include "config.h"
@@ -225,6 +226,29 @@ TEST(the_example_uses_every_key) {
   CHECK_EQ(c.matches.size(), 4u);
   CHECK_NEAR(c.matches[3].config.time_base, 0.5, 0.0);
   CHECK_NEAR(c.defaults.state_rate, 30.0, 0.0);
+}
+
+// Output files say which file failed and why, at open, at a write or a flush.
+TEST(output_files_say_what_failed) {
+  std::string err;
+  CHECK(!write_file("/nonexistent/dir/stats.json", "{}", &err));
+  CHECK_EQ(err, std::string("cannot write /nonexistent/dir/stats.json: No such file or directory"));
+  OutputFile full;  // a device that takes nothing: the buffered line fails at its flush
+  CHECK(full.open("/dev/full"));
+  CHECK(full.write_line("{\"type\": \"start\"}"));
+  CHECK(!full.flush());
+  CHECK_EQ(full.error(), std::string("cannot write /dev/full: No space left on device"));
+  CHECK(!write_file("/dev/full", "{}", &err));
+  CHECK_EQ(err, std::string("cannot write /dev/full: No space left on device"));
+  char dir[] = "/tmp/test_config-XXXXXX";
+  CHECK(mkdtemp(dir) != nullptr);
+  std::string path = std::string(dir) + "/ok.json";
+  CHECK(write_file(path, "{\"a\": 1}", &err));
+  std::ifstream f(path);
+  std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  CHECK_EQ(text, std::string("{\"a\": 1}\n"));
+  std::remove(path.c_str());
+  rmdir(dir);
 }
 
 CHECK_MAIN
