@@ -36,17 +36,6 @@ struct MatchOutput {
   }
 };
 
-struct MatchCounters {
-  uint64_t frames = 0;       // sim steps
-  uint64_t hits = 0;         // racket hits in play
-  uint64_t dead_hits = 0;    // racket hits after the point was decided
-  uint64_t bounces = 0;      // floor contacts in play
-  uint64_t points = 0;
-  uint64_t lets = 0;
-  uint64_t serves = 0;
-  uint64_t pauses = 0;
-  uint64_t step_errors = 0;  // ball_step refused a frame (never seen; counted, not fatal)
-};
 
 class Match {
  public:

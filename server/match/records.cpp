@@ -9,27 +9,19 @@ void from_json(const nlohmann::json &j, ball_vec3 &v) {
 
 namespace ballsrv {
 
-#define BALL_JSON_ENUM(E)                                                                   \
-  void to_json(json &j, const E &v) { j = name_of(v); }                                     \
-  void from_json(const json &j, E &v) {                                                     \
+#define BALL_JSON_ENUM(E)                                                                               \
+  void to_json(json &j, const E &v) { j = name_of(v); }                                                 \
+  void from_json(const json &j, E &v) {                                                                 \
     if (!parse_name(j.get<std::string>(), &v)) throw std::invalid_argument("not a " #E ": " + j.dump()); \
   }
-BALL_JSON_ENUM(MatchState)
-BALL_JSON_ENUM(Cause)
-BALL_JSON_ENUM(EventKind)
-BALL_JSON_ENUM(Reason)
-BALL_JSON_ENUM(ControlKind)
+BALL_JSON_ENUMS(BALL_JSON_ENUM)
 #undef BALL_JSON_ENUM
 
-namespace {
-
-// reads a key into a value of its type: every key of a record must be there
-template <class T>
-void get(const json &j, const char *key, T *v) {
-  j.at(key).get_to(*v);
-}
-
-}  // namespace
+// Each form below is one list of (key, field), written by BALL_PUT and read
+// by BALL_GET: a key is stated once for both directions, and every key of
+// a record must be there when it is read.
+#define BALL_PUT(key, field) j[key] = (field);
+#define BALL_GET(key, field) j.at(key).get_to(field);
 
 json drops_json(const std::array<uint64_t, kDropSlots> &drops) {
   json j = json::object();
@@ -54,279 +46,181 @@ std::string record_type(const json &line) {
 
 // ---- the samples -------------------------------------------------------------
 
+#define BALL_SEGMENT_KEYS(X, s)                                                                        \
+  X("match", s.match_id) X("server", s.server_id) X("seq", s.seq) X("cause", s.cause)                  \
+  X("index", s.cause_index) X("t0", s.segment.t0) X("p0", s.segment.p0) X("v0", s.segment.v0)          \
+  X("s0", s.segment.s0) X("server_time", s.server_time) X("model_hash", s.model_hash)                  \
+  X("sample_seq", s.sample.seq) X("sample_source_time", s.sample.source_time)                          \
+  X("sample_capture_time", s.sample.capture_time)
+
 void to_json(json &j, const SegmentOut &s) {
-  j = {{"match", s.match_id}, {"server", s.server_id}, {"seq", s.seq}, {"cause", s.cause},
-       {"index", s.cause_index}, {"t0", s.segment.t0}, {"p0", s.segment.p0}, {"v0", s.segment.v0},
-       {"s0", s.segment.s0}, {"grounded", s.segment.grounded != 0}, {"server_time", s.server_time},
-       {"model_hash", s.model_hash}, {"sample_seq", s.sample.seq}, {"sample_source_time", s.sample.source_time},
-       {"sample_capture_time", s.sample.capture_time}};
+  j = json::object();
+  BALL_SEGMENT_KEYS(BALL_PUT, s)
+  j["grounded"] = s.segment.grounded != 0;
 }
 
 void from_json(const json &j, SegmentOut &s) {
-  get(j, "match", &s.match_id);
-  get(j, "server", &s.server_id);
-  get(j, "seq", &s.seq);
-  get(j, "cause", &s.cause);
-  get(j, "index", &s.cause_index);
-  get(j, "t0", &s.segment.t0);
-  get(j, "p0", &s.segment.p0);
-  get(j, "v0", &s.segment.v0);
-  get(j, "s0", &s.segment.s0);
+  BALL_SEGMENT_KEYS(BALL_GET, s)
   s.segment.grounded = j.at("grounded").get<bool>() ? 1 : 0;
-  get(j, "server_time", &s.server_time);
-  get(j, "model_hash", &s.model_hash);
-  get(j, "sample_seq", &s.sample.seq);
-  get(j, "sample_source_time", &s.sample.source_time);
-  get(j, "sample_capture_time", &s.sample.capture_time);
   s.sample.valid = s.sample.source_time != 0.0;  // as on the wire
 }
 
-void to_json(json &j, const EventOut &e) {
-  j = {{"match", e.match_id},      {"server", e.server_id},       {"seq", e.seq},
-       {"kind", e.kind},           {"index", e.index},            {"side", e.side},
-       {"in_play", e.in_play},     {"sound", e.sound},            {"time", e.time},
-       {"server_time", e.server_time}, {"point", e.point},        {"velocity_in", e.velocity_in},
-       {"velocity_out", e.velocity_out}, {"segment_seq", e.segment_seq}, {"reason", e.reason},
-       {"score", e.score},         {"value", e.value}};
-}
+#define BALL_EVENT_KEYS(X, e)                                                                           \
+  X("match", e.match_id) X("server", e.server_id) X("seq", e.seq) X("kind", e.kind) X("index", e.index) \
+  X("side", e.side) X("in_play", e.in_play) X("sound", e.sound) X("time", e.time)                       \
+  X("server_time", e.server_time) X("point", e.point) X("velocity_in", e.velocity_in)                   \
+  X("velocity_out", e.velocity_out) X("segment_seq", e.segment_seq) X("reason", e.reason)               \
+  X("score", e.score) X("value", e.value)
 
-void from_json(const json &j, EventOut &e) {
-  get(j, "match", &e.match_id);
-  get(j, "server", &e.server_id);
-  get(j, "seq", &e.seq);
-  get(j, "kind", &e.kind);
-  get(j, "index", &e.index);
-  get(j, "side", &e.side);
-  get(j, "in_play", &e.in_play);
-  get(j, "sound", &e.sound);
-  get(j, "time", &e.time);
-  get(j, "server_time", &e.server_time);
-  get(j, "point", &e.point);
-  get(j, "velocity_in", &e.velocity_in);
-  get(j, "velocity_out", &e.velocity_out);
-  get(j, "segment_seq", &e.segment_seq);
-  get(j, "reason", &e.reason);
-  get(j, "score", &e.score);
-  get(j, "value", &e.value);
+void to_json(json &j, const EventOut &e) {
+  j = json::object();
+  BALL_EVENT_KEYS(BALL_PUT, e)
 }
+void from_json(const json &j, EventOut &e) { BALL_EVENT_KEYS(BALL_GET, e) }
+
+#define BALL_STATE_KEYS(X, s)                                                                           \
+  X("match", s.match_id) X("server", s.server_id) X("frame", s.frame) X("sim_time", s.sim_time)         \
+  X("server_time", s.server_time) X("state", s.state) X("segment_seq", s.segment_seq)                   \
+  X("position", s.ball.position) X("velocity", s.ball.velocity) X("spin", s.ball.spin)                  \
+  X("sim_hash", s.sim_hash)
 
 void to_json(json &j, const StateOut &s) {
-  j = {{"match", s.match_id},  {"server", s.server_id},         {"frame", s.frame},
-       {"sim_time", s.sim_time}, {"server_time", s.server_time}, {"state", s.state},
-       {"segment_seq", s.segment_seq}, {"position", s.ball.position}, {"velocity", s.ball.velocity},
-       {"spin", s.ball.spin},  {"sim_hash", s.sim_hash}};
+  j = json::object();
+  BALL_STATE_KEYS(BALL_PUT, s)
+}
+void from_json(const json &j, StateOut &s) { BALL_STATE_KEYS(BALL_GET, s) }
+
+#define BALL_SLOT_KEYS(X, s)                                                                            \
+  X("held", s.held) X("present", s.present) X("samples", s.samples) X("last_seq", s.last_seq)           \
+  X("last_capture_time", s.last_capture_time)
+
+#define BALL_INFO_KEYS(X, i)                                                                            \
+  X("match", i.match_id) X("server", i.server_id) X("server_time", i.server_time)                       \
+  X("revision", i.revision) X("state", i.state) X("scene", i.scene) X("level", i.level)                 \
+  X("players", i.players) X("score", i.score) X("serving_side", i.serving_side) X("rally", i.rally)     \
+  X("segment_seq", i.segment_seq) X("frame_time", i.frame_time) X("time_base", i.time_base)             \
+  X("sim_time", i.sim_time) X("state_rate", i.state_rate) X("player_timeout", i.player_timeout)         \
+  X("max_sample_age", i.max_sample_age) X("max_sample_lead", i.max_sample_lead)                         \
+  X("model_hash", i.model_hash) X("net_x", i.net_x) X("court_x", i.court_x) X("court_z", i.court_z)
+
+void to_json(json &j, const SlotInfo &s) {
+  j = json::object();
+  BALL_SLOT_KEYS(BALL_PUT, s)
+  j["owner"] = hex(s.owner);
 }
 
-void from_json(const json &j, StateOut &s) {
-  get(j, "match", &s.match_id);
-  get(j, "server", &s.server_id);
-  get(j, "frame", &s.frame);
-  get(j, "sim_time", &s.sim_time);
-  get(j, "server_time", &s.server_time);
-  get(j, "state", &s.state);
-  get(j, "segment_seq", &s.segment_seq);
-  get(j, "position", &s.ball.position);
-  get(j, "velocity", &s.ball.velocity);
-  get(j, "spin", &s.ball.spin);
-  get(j, "sim_hash", &s.sim_hash);
+void from_json(const json &j, SlotInfo &s) {
+  BALL_SLOT_KEYS(BALL_GET, s)
+  if (!parse_hex(j.at("owner").get<std::string>(), &s.owner)) throw std::invalid_argument("not an owner: " + j.dump());
 }
 
 void to_json(json &j, const MatchInfoOut &i) {
-  json slots = json::array();
-  for (int k = 0; k < kMaxPlayers; ++k) {
-    const SlotInfo &s = i.slots[k];
-    slots.push_back({{"held", s.held}, {"present", s.present}, {"owner", hex(s.owner)}, {"samples", s.samples},
-                     {"last_seq", s.last_seq}, {"last_capture_time", s.last_capture_time}});
-  }
-  json model = json::object();
-#define BALL_PUT(f) model[#f] = i.model.f;
-  BALL_FLIGHT_FIELDS(BALL_PUT)
-#undef BALL_PUT
-  j = {{"match", i.match_id},         {"server", i.server_id},
-       {"server_time", i.server_time}, {"revision", i.revision},
-       {"state", i.state},            {"scene", i.scene},
-       {"level", i.level},            {"players", i.players},
-       {"slots", slots},              {"score", i.score},
-       {"serving_side", i.serving_side}, {"rally", i.rally},
-       {"segment_seq", i.segment_seq}, {"frame_time", i.frame_time},
-       {"time_base", i.time_base},    {"sim_time", i.sim_time},
-       {"state_rate", i.state_rate},  {"player_timeout", i.player_timeout},
-       {"max_sample_age", i.max_sample_age}, {"max_sample_lead", i.max_sample_lead},
-       {"model_hash", i.model_hash},  {"model", model},
-       {"net_x", i.net_x},            {"court_x", {i.court_x[0], i.court_x[1]}},
-       {"court_z", {i.court_z[0], i.court_z[1]}}};
+  j = json::object();
+  BALL_INFO_KEYS(BALL_PUT, i)
+  j["slots"] = i.slots;
+  json &model = j["model"] = json::object();
+#define BALL_PUT_MODEL(f) model[#f] = i.model.f;
+  BALL_FLIGHT_FIELDS(BALL_PUT_MODEL)
+#undef BALL_PUT_MODEL
 }
 
 void from_json(const json &j, MatchInfoOut &i) {
-  get(j, "match", &i.match_id);
-  get(j, "server", &i.server_id);
-  get(j, "server_time", &i.server_time);
-  get(j, "revision", &i.revision);
-  get(j, "state", &i.state);
-  get(j, "scene", &i.scene);
-  get(j, "level", &i.level);
-  get(j, "players", &i.players);
-  const json &slots = j.at("slots");
-  for (int k = 0; k < kMaxPlayers; ++k) {
-    const json &s = slots.at(static_cast<size_t>(k));
-    SlotInfo &o = i.slots[k];
-    get(s, "held", &o.held);
-    get(s, "present", &o.present);
-    if (!parse_hex(s.at("owner").get<std::string>(), &o.owner)) throw std::invalid_argument("not an owner: " + s.dump());
-    get(s, "samples", &o.samples);
-    get(s, "last_seq", &o.last_seq);
-    get(s, "last_capture_time", &o.last_capture_time);
-  }
-  get(j, "score", &i.score);
-  get(j, "serving_side", &i.serving_side);
-  get(j, "rally", &i.rally);
-  get(j, "segment_seq", &i.segment_seq);
-  get(j, "frame_time", &i.frame_time);
-  get(j, "time_base", &i.time_base);
-  get(j, "sim_time", &i.sim_time);
-  get(j, "state_rate", &i.state_rate);
-  get(j, "player_timeout", &i.player_timeout);
-  get(j, "max_sample_age", &i.max_sample_age);
-  get(j, "max_sample_lead", &i.max_sample_lead);
-  get(j, "model_hash", &i.model_hash);
-  ball_model_default(&i.model);  // as a receiver of MatchInfo has it
+  BALL_INFO_KEYS(BALL_GET, i)
+  j.at("slots").get_to(i.slots);
+  ball_model_default(&i.model);  // as a receiver of MatchInfo has it: only the flight fields travel
   const json &model = j.at("model");
-#define BALL_GET(f) get(model, #f, &i.model.f);
-  BALL_FLIGHT_FIELDS(BALL_GET)
-#undef BALL_GET
-  get(j, "net_x", &i.net_x);
-  i.court_x[0] = j.at("court_x").at(0).get<double>();
-  i.court_x[1] = j.at("court_x").at(1).get<double>();
-  i.court_z[0] = j.at("court_z").at(0).get<double>();
-  i.court_z[1] = j.at("court_z").at(1).get<double>();
+#define BALL_GET_MODEL(f) model.at(#f).get_to(i.model.f);
+  BALL_FLIGHT_FIELDS(BALL_GET_MODEL)
+#undef BALL_GET_MODEL
 }
 
-// The counters of a status, shared by its own form and the server's report.
-namespace {
-
-void put_counters(json &j, const StatusOut &s) {
-  j["server_id"] = s.server_id;
-  j["uptime"] = s.uptime;
-  j["samples_in"] = s.samples_in;
-  j["samples_ok"] = s.samples_ok;
-  j["drops"] = drops_json(s.drops);
-  j["controls_in"] = s.controls_in;
-  j["controls_refused"] = s.controls_refused;
-  j["states_out"] = s.states_out;
-  j["segments_out"] = s.segments_out;
-  j["events_out"] = s.events_out;
-  j["frames"] = s.frames;
-  j["overruns"] = s.overruns;
-}
-
-void get_counters(const json &j, StatusOut &s) {
-  get(j, "server_id", &s.server_id);
-  get(j, "uptime", &s.uptime);
-  get(j, "samples_in", &s.samples_in);
-  get(j, "samples_ok", &s.samples_ok);
-  drops_from_json(j.at("drops"), &s.drops);
-  get(j, "controls_in", &s.controls_in);
-  get(j, "controls_refused", &s.controls_refused);
-  get(j, "states_out", &s.states_out);
-  get(j, "segments_out", &s.segments_out);
-  get(j, "events_out", &s.events_out);
-  get(j, "frames", &s.frames);
-  get(j, "overruns", &s.overruns);
-}
-
-}  // namespace
+// The counters of a status (its own form and the server's report share them).
+#define BALL_STATUS_COUNTER_KEYS(X, s)                                                                  \
+  X("server_id", s.server_id) X("uptime", s.uptime) X("samples_in", s.samples_in)                       \
+  X("samples_ok", s.samples_ok) X("controls_in", s.controls_in) X("controls_refused", s.controls_refused) \
+  X("states_out", s.states_out) X("segments_out", s.segments_out) X("events_out", s.events_out)         \
+  X("frames", s.frames) X("overruns", s.overruns)
+#define BALL_STATUS_KEYS(X, s)                                                                          \
+  X("server_time", s.server_time) X("matches", s.matches) X("playing", s.playing)                       \
+  X("frame_p50", s.frame_p50) X("frame_p99", s.frame_p99)
 
 void to_json(json &j, const StatusOut &s) {
   j = json::object();
-  put_counters(j, s);
-  j["server_time"] = s.server_time;
-  j["matches"] = s.matches;
-  j["playing"] = s.playing;
-  j["frame_p50"] = s.frame_p50;
-  j["frame_p99"] = s.frame_p99;
+  BALL_STATUS_COUNTER_KEYS(BALL_PUT, s)
+  BALL_STATUS_KEYS(BALL_PUT, s)
+  j["drops"] = drops_json(s.drops);
 }
 
 void from_json(const json &j, StatusOut &s) {
-  get_counters(j, s);
-  get(j, "server_time", &s.server_time);
-  get(j, "matches", &s.matches);
-  get(j, "playing", &s.playing);
-  get(j, "frame_p50", &s.frame_p50);
-  get(j, "frame_p99", &s.frame_p99);
+  BALL_STATUS_COUNTER_KEYS(BALL_GET, s)
+  BALL_STATUS_KEYS(BALL_GET, s)
+  drops_from_json(j.at("drops"), &s.drops);
 }
 
 // ---- the watcher's own lines and summary -----------------------------------
 
+#define BALL_FRAME_KEYS(X, f)                                                                           \
+  X("real", f.real) X("match", f.match) X("sim_time", f.sim_time) X("segment_seq", f.segment_seq)       \
+  X("position", f.position)
+
 void to_json(json &j, const OwnFrame &f) {
-  j = {{"type", "frame"}, {"real", f.real}, {"match", f.match}, {"sim_time", f.sim_time},
-       {"segment_seq", f.segment_seq}, {"position", f.position}};
+  j = {{"type", "frame"}};
+  BALL_FRAME_KEYS(BALL_PUT, f)
 }
-void from_json(const json &j, OwnFrame &f) {
-  get(j, "real", &f.real);
-  get(j, "match", &f.match);
-  get(j, "sim_time", &f.sim_time);
-  get(j, "segment_seq", &f.segment_seq);
-  get(j, "position", &f.position);
-}
+void from_json(const json &j, OwnFrame &f) { BALL_FRAME_KEYS(BALL_GET, f) }
+
+#define BALL_SNAPSHOT_KEYS(X, s)                                                                        \
+  X("real", s.real) X("match", s.match) X("sim_time", s.sim_time) X("file", s.file)                     \
+  X("position", s.position) X("camera", s.camera) X("size", s.size)
 
 void to_json(json &j, const SnapshotRecord &s) {
-  j = {{"type", "snapshot"}, {"real", s.real},         {"match", s.match},   {"sim_time", s.sim_time},
-       {"file", s.file},     {"position", s.position}, {"camera", s.camera}, {"size", s.size}};
+  j = {{"type", "snapshot"}};
+  BALL_SNAPSHOT_KEYS(BALL_PUT, s)
 }
-void from_json(const json &j, SnapshotRecord &s) {
-  get(j, "real", &s.real);
-  get(j, "match", &s.match);
-  get(j, "sim_time", &s.sim_time);
-  get(j, "file", &s.file);
-  get(j, "position", &s.position);
-  get(j, "camera", &s.camera);
-  get(j, "size", &s.size);
-}
-
+void from_json(const json &j, SnapshotRecord &s) { BALL_SNAPSHOT_KEYS(BALL_GET, s) }
 
 // ---- the server's report -------------------------------------------------------
 
+#define BALL_MATCH_REPORT_KEYS(X, m)                                                                    \
+  X("id", m.id) X("state", m.state) X("score", m.score) X("sim_time", m.sim_time) X("sim_hash", m.sim_hash)
+
+void to_json(json &j, const MatchReport &m) {
+  j = json::object();
+  BALL_MATCH_REPORT_KEYS(BALL_PUT, m)
+#define BALL_PUT_COUNTER(name) j[#name] = m.counters.name;
+  BALL_MATCH_COUNTERS(BALL_PUT_COUNTER)
+#undef BALL_PUT_COUNTER
+}
+
+void from_json(const json &j, MatchReport &m) {
+  BALL_MATCH_REPORT_KEYS(BALL_GET, m)
+#define BALL_GET_COUNTER(name) j.at(#name).get_to(m.counters.name);
+  BALL_MATCH_COUNTERS(BALL_GET_COUNTER)
+#undef BALL_GET_COUNTER
+}
+
+// the absolute frame clock: how late frames start (each status period's p99, then its median and max)
+#define BALL_REPORT_KEYS(X, r)                                                                          \
+  X("samples_idle", r.samples_idle) X("infos_out", r.infos_out) X("write_failures", r.write_failures)   \
+  X("skipped_frames", r.skipped_frames) X("late_p99_median", r.late_p99_median)                         \
+  X("late_p99_max", r.late_p99_max) X("late_max", r.late_max) X("deadline_missed", r.deadline_missed)   \
+  X("writers_lost", r.writers_lost) X("conflicts", r.conflicts) X("latency_p50", r.latency_p50)         \
+  X("latency_p99", r.latency_p99) X("latency_count", r.latency_count) X("matches", r.matches)
 
 void to_json(json &j, const ServerReport &r) {
   j = json::object();
-  put_counters(j, r.status);
-  j["samples_idle"] = r.samples_idle;
-  j["infos_out"] = r.infos_out;
-  j["write_failures"] = r.write_failures;
-  j["skipped_frames"] = r.skipped_frames;
-  // the absolute frame clock: how late frames start (each status period's p99, then its median and max)
-  j["late_p99_median"] = r.late_p99_median;
-  j["late_p99_max"] = r.late_p99_max;
-  j["late_max"] = r.late_max;
-  j["deadline_missed"] = r.deadline_missed;
-  j["writers_lost"] = r.writers_lost;
-  j["conflicts"] = r.conflicts;
-  j["latency_p50"] = r.latency_p50;
-  j["latency_p99"] = r.latency_p99;
-  j["latency_count"] = r.latency_count;
-  j["matches"] = r.matches;
+  BALL_STATUS_COUNTER_KEYS(BALL_PUT, r.status)
+  j["drops"] = drops_json(r.status.drops);
+  BALL_REPORT_KEYS(BALL_PUT, r)
 }
 
 void from_json(const json &j, ServerReport &r) {
-  get_counters(j, r.status);
-  get(j, "samples_idle", &r.samples_idle);
-  get(j, "infos_out", &r.infos_out);
-  get(j, "write_failures", &r.write_failures);
-  get(j, "skipped_frames", &r.skipped_frames);
-  get(j, "late_p99_median", &r.late_p99_median);
-  get(j, "late_p99_max", &r.late_p99_max);
-  get(j, "late_max", &r.late_max);
-  get(j, "deadline_missed", &r.deadline_missed);
-  get(j, "writers_lost", &r.writers_lost);
-  get(j, "conflicts", &r.conflicts);
-  get(j, "latency_p50", &r.latency_p50);
-  get(j, "latency_p99", &r.latency_p99);
-  get(j, "latency_count", &r.latency_count);
-  get(j, "matches", &r.matches);
-  r.status.matches = static_cast<uint32_t>(r.matches.size());
+  BALL_STATUS_COUNTER_KEYS(BALL_GET, r.status)
+  drops_from_json(j.at("drops"), &r.status.drops);
+  BALL_REPORT_KEYS(BALL_GET, r)
+  r.status.matches = static_cast<uint32_t>(r.matches.size());  // the list's
   r.status.playing = 0;
   for (const auto &m : r.matches) r.status.playing += m.state == MatchState::playing;
 }
-
 
 }  // namespace ballsrv

@@ -22,14 +22,12 @@ namespace ballsrv {
 
 using json = nlohmann::json;
 
-#define BALL_JSON_ENUM(E)               \
-  void to_json(json &j, const E &v);    \
+// the enums written by name
+#define BALL_JSON_ENUMS(X) X(MatchState) X(Cause) X(EventKind) X(Reason) X(ControlKind)
+#define BALL_JSON_ENUM(E)            \
+  void to_json(json &j, const E &v); \
   void from_json(const json &j, E &v);
-BALL_JSON_ENUM(MatchState)
-BALL_JSON_ENUM(Cause)
-BALL_JSON_ENUM(EventKind)
-BALL_JSON_ENUM(Reason)
-BALL_JSON_ENUM(ControlKind)
+BALL_JSON_ENUMS(BALL_JSON_ENUM)
 #undef BALL_JSON_ENUM
 
 void to_json(json &j, const SegmentOut &s);
@@ -38,6 +36,8 @@ void to_json(json &j, const EventOut &e);
 void from_json(const json &j, EventOut &e);
 void to_json(json &j, const StateOut &s);
 void from_json(const json &j, StateOut &s);
+void to_json(json &j, const SlotInfo &s);
+void from_json(const json &j, SlotInfo &s);
 void to_json(json &j, const MatchInfoOut &i);
 void from_json(const json &j, MatchInfoOut &i);
 // drop counters by reason name, every reason ({"unknown_match": 0, ...})
@@ -126,17 +126,16 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WatchSummary, seconds, first_segment_after, m
 
 // ---- ball-server --stats-json ----------------------------------------------
 
-struct MatchReport {
+struct MatchReport {  // written flat: id, state, each counter, score, sim_time, sim_hash
   uint32_t id = 0;
   MatchState state = MatchState::waiting;
-  uint64_t frames = 0, hits = 0, dead_hits = 0, bounces = 0, points = 0, serves = 0, pauses = 0, lets = 0;
-  uint64_t step_errors = 0;
-  std::array<int, 2> score{0, 0};
-  double sim_time = 0.0;  // sim s
-  uint64_t sim_hash = 0;  // ball_sim_hash
+  MatchCounters counters;
+  std::array<int, 2> score{0, 0};  // points of side 0 and side 1
+  double sim_time = 0.0;           // sim s
+  uint64_t sim_hash = 0;           // ball_sim_hash
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(MatchReport, id, state, frames, hits, dead_hits, bounces, points, serves, pauses,
-                                   lets, step_errors, score, sim_time, sim_hash)
+void to_json(json &j, const MatchReport &m);
+void from_json(const json &j, MatchReport &m);
 
 // The totals (its last status line) and what only the file has. Written
 // flat: the status's fields (its match count and playing count are the

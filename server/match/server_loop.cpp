@@ -50,7 +50,7 @@ void ServerLoop::publish(const MatchOutput &out, Scheduled &s, double now) {
   for (SegmentOut seg : out.segments) {
     seg.server_id = settings_.server_id;
     seg.server_time = now;
-    write(seg, &stats_.segments_out);
+    write(seg, &stats_.totals.segments_out);
     if (seg.cause == Cause::racket && seg.sample.valid && seg.sample.source_time > 0.0) {
       double lat = now - seg.sample.source_time;
       stats_.latency.add(lat);
@@ -60,13 +60,13 @@ void ServerLoop::publish(const MatchOutput &out, Scheduled &s, double now) {
   for (EventOut e : out.events) {
     e.server_id = settings_.server_id;
     e.server_time = now;
-    write(e, &stats_.events_out);
+    write(e, &stats_.totals.events_out);
   }
   if (out.has_state) {
     StateOut state = out.state;
     state.server_id = settings_.server_id;
     state.server_time = s.last_frame_real;
-    write(state, &stats_.states_out);
+    write(state, &stats_.totals.states_out);
   }
 }
 
@@ -97,8 +97,8 @@ void ServerLoop::take_notes() {
         // refused by the reader or lost on the link: counted in and dropped, so that
         // samples_in = samples_ok + idle + every drop (docs/protocol.md)
         SampleResult why = n.kind == PortNote::rejected ? SampleResult::rejected : SampleResult::lost;
-        stats_.drops[static_cast<int>(why)] += n.count;
-        stats_.samples_in += n.count;
+        stats_.totals.drops[static_cast<int>(why)] += n.count;
+        stats_.totals.samples_in += n.count;
         break;
       }
     }
@@ -108,27 +108,27 @@ void ServerLoop::take_notes() {
 void ServerLoop::take_samples(double now) {
   RacketSampleIn sample;
   while (port_.take_sample(&sample)) {
-    stats_.samples_in++;
+    stats_.totals.samples_in++;
     SampleResult r = host_.on_sample(sample, now);
-    if (r == SampleResult::accepted) stats_.samples_ok++;
+    if (r == SampleResult::accepted) stats_.totals.samples_ok++;
     else if (r == SampleResult::idle) stats_.samples_idle++;
-    else stats_.drops[static_cast<int>(r)]++;
+    else stats_.totals.drops[static_cast<int>(r)]++;
   }
 }
 
 void ServerLoop::take_controls(double now) {
   ControlIn control;
   while (port_.take_control(&control)) {
-    stats_.controls_in++;
+    stats_.totals.controls_in++;
     if (!control.valid) {
-      stats_.controls_refused++;
+      stats_.totals.controls_refused++;
       continue;
     }
     out_.clear();
     Match *m = nullptr;
     size_t before = host_.matches().size();
     Reason r = host_.on_control(control, now, &out_, &m);
-    if (r != Reason::none) stats_.controls_refused++;
+    if (r != Reason::none) stats_.totals.controls_refused++;
     if (host_.matches().size() > before) sched_.push_back(schedule(host_.matches().back().get()));  // CREATE
     if (!m) continue;
     for (auto &s : sched_)
@@ -157,14 +157,14 @@ void ServerLoop::run_due_frames(double t0, double now) {
     out_.clear();
     s.match->frame(now, &out_);
     s.k++;
-    stats_.frames++;
+    stats_.totals.frames++;
     publish(out_, s, now);
     if (out_.info_changed || t0 >= s.next_info) {
       publish_info(s);
       s.next_info = t0 + settings_.info_interval;
     }
     // an overrun: the frame was done only after the next one was due
-    if (clock_.mono() > s.clock.deadline(s.k)) stats_.overruns++;
+    if (clock_.mono() > s.clock.deadline(s.k)) stats_.totals.overruns++;
   }
 }
 
@@ -238,22 +238,12 @@ StatusOut ServerLoop::finish() {
 double ServerLoop::uptime() const { return clock_.mono() - start_; }
 
 StatusOut ServerLoop::status_now() const {
-  StatusOut o;
+  StatusOut o = stats_.totals;
   o.server_id = settings_.server_id;
   o.server_time = clock_.realtime();
   o.uptime = uptime();
   o.matches = static_cast<uint32_t>(host_.matches().size());
   for (const auto &m : host_.matches()) o.playing += m->state() == MatchState::playing;
-  o.samples_in = stats_.samples_in;
-  o.samples_ok = stats_.samples_ok;
-  o.drops = stats_.drops;
-  o.controls_in = stats_.controls_in;
-  o.controls_refused = stats_.controls_refused;
-  o.states_out = stats_.states_out;
-  o.segments_out = stats_.segments_out;
-  o.events_out = stats_.events_out;
-  o.frames = stats_.frames;
-  o.overruns = stats_.overruns;
   o.frame_p50 = stats_.frame_time.quantile(0.5);
   o.frame_p99 = stats_.frame_time.quantile(0.99);
   return o;
@@ -276,19 +266,10 @@ ServerReport ServerLoop::report() const {
   r.latency_p99 = stats_.latency_all.quantile(0.99);
   r.latency_count = stats_.latency_all.size();
   for (const auto &m : host_.matches()) {
-    const MatchCounters &c = m->counters();
     MatchReport mr;
     mr.id = m->id();
     mr.state = m->state();
-    mr.frames = c.frames;
-    mr.hits = c.hits;
-    mr.dead_hits = c.dead_hits;
-    mr.bounces = c.bounces;
-    mr.points = c.points;
-    mr.serves = c.serves;
-    mr.pauses = c.pauses;
-    mr.lets = c.lets;
-    mr.step_errors = c.step_errors;
+    mr.counters = m->counters();
     mr.score = m->score();
     mr.sim_time = m->sim().time;
     mr.sim_hash = ball_sim_hash(&m->sim());

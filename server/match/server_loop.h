@@ -62,13 +62,10 @@ struct LoopSettings {
 
 // The loop's counters: the status line, ServerStatus, the stats file.
 struct LoopStats {
-  uint64_t samples_in = 0, samples_ok = 0, samples_idle = 0;
-  std::array<uint64_t, kDropSlots> drops{};  // by reason
-  uint64_t controls_in = 0, controls_refused = 0;
-  uint64_t states_out = 0, segments_out = 0, events_out = 0, infos_out = 0, statuses_out = 0;  // written
+  StatusOut totals;             // the counters ServerStatus carries: samples, drops, controls, writes, frames, overruns
+  uint64_t samples_idle = 0;    // well formed, but their match was not playing
+  uint64_t infos_out = 0, statuses_out = 0;  // MatchInfo and ServerStatus written
   uint64_t write_failures = 0;  // writes the port refused (every kind, the status too)
-  uint64_t frames = 0;          // frames stepped, every match's
-  uint64_t overruns = 0;        // frames that ended after the match's next deadline
   uint64_t skipped = 0;         // frames skipped after a stall
   uint64_t deadline_missed = 0, writers_lost = 0;
   uint64_t conflicts = 0;       // MatchInfo of one of our matches from another server

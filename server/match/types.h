@@ -286,6 +286,24 @@ struct MatchInfoOut {
   double court_z[2] = {0, 0};      // m: and in z
 };
 
+// What a match counts (the server's --stats-json has them per match),
+// listed once for the struct and its JSON form.
+#define BALL_MATCH_COUNTERS(X)                                                    \
+  X(frames)      /* sim steps */                                                  \
+  X(hits)        /* racket hits in play */                                        \
+  X(dead_hits)   /* racket hits after the point was decided */                    \
+  X(bounces)     /* floor contacts in play */                                     \
+  X(points)      /* points decided (not lets) */                                  \
+  X(lets)        /* rallies replayed */                                           \
+  X(serves)      /* serves */                                                     \
+  X(pauses)      /* pauses, every reason */                                       \
+  X(step_errors) /* frames ball_step refused (never seen; counted, not fatal) */
+struct MatchCounters {
+#define BALL_COUNTER(name) uint64_t name = 0;
+  BALL_MATCH_COUNTERS(BALL_COUNTER)
+#undef BALL_COUNTER
+};
+
 // The server's status line as data (ServerStatus on the wire): totals since
 // the start, but for the frame times.
 struct StatusOut {

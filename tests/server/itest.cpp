@@ -398,7 +398,7 @@ void case_flood(const Env &env) {
   CHECK_MSG(!clean_stats.matches.empty() && !dirty_stats.matches.empty(), "no match in the server's counters");
   if (clean_stats.matches.empty() || dirty_stats.matches.empty()) return;
   note("match 0: %llu pauses without the flood, %llu with it (one as each run ends)",
-       (unsigned long long)clean_stats.matches[0].pauses, (unsigned long long)dirty_stats.matches[0].pauses);
+       (unsigned long long)clean_stats.matches[0].counters.pauses, (unsigned long long)dirty_stats.matches[0].counters.pauses);
   CHECK_MSG(total == 10000 + burst, "%ld malformed samples sent", total);
   long clean_drops = 0;
   for (int i = 0; i < kDropReasons; ++i)

@@ -136,7 +136,7 @@ TEST(reports_come_back) {
   MatchReport m;
   m.id = 9;
   m.state = MatchState::playing;
-  m.hits = 10;
+  m.counters.hits = 10;
   m.score = {3, 1};
   m.sim_time = 11.983333333333333;
   m.sim_hash = 0xfedcba9876543210ull;

@@ -138,8 +138,8 @@ TEST(frames_come_at_their_deadlines) {
   // deadlines kStart + k/60 and kStart + k/30 in [kStart, kStart + 1): the
   // 30 Hz ones fall on 60 Hz wake-ups
   CHECK_EQ(wakes, 60);
-  CHECK_EQ(r.loop->stats().frames, 90u);
-  CHECK_EQ(r.loop->stats().overruns, 0u);
+  CHECK_EQ(r.loop->stats().totals.frames, 90u);
+  CHECK_EQ(r.loop->stats().totals.overruns, 0u);
   CHECK_EQ(r.loop->stats().skipped, 0u);
   CHECK_EQ(r.loop->stats().late_max, 0.0);  // the fake clock wakes exactly on time
   CHECK_NEAR(r.clock.now, kStart + 59.0 / 60.0, 1e-9);
@@ -196,10 +196,10 @@ TEST(a_frame_done_after_the_next_deadline_is_an_overrun) {
   r.port.work[3] = 0.15;  // the frame at 0.3 s ends at 0.45 s, after the deadline at 0.4 s
   r.run_until(kStart + 1.0);
   const LoopStats &st = r.loop->stats();
-  CHECK_EQ(st.overruns, 1u);
+  CHECK_EQ(st.totals.overruns, 1u);
   CHECK_NEAR(st.late_max, 0.05, 1e-9);  // the frame of 0.4 s starts at 0.45 s
   CHECK_EQ(st.skipped, 0u);
-  CHECK_EQ(st.frames, 10u);  // no frame lost: 0, 0.1, ..., 0.9 s
+  CHECK_EQ(st.totals.frames, 10u);  // no frame lost: 0, 0.1, ..., 0.9 s
 }
 
 TEST(a_stall_of_more_than_five_frames_skips_to_the_present) {
@@ -208,17 +208,17 @@ TEST(a_stall_of_more_than_five_frames_skips_to_the_present) {
   r.run_until(kStart + 1.0);
   const LoopStats &st = r.loop->stats();
   CHECK_EQ(st.skipped, 6u);         // frames 3 to 8
-  CHECK_EQ(st.frames, 4u);          // 0, 0.1, 0.2, then 0.9 s at 0.93 s
+  CHECK_EQ(st.totals.frames, 4u);          // 0, 0.1, 0.2, then 0.9 s at 0.93 s
   CHECK_NEAR(st.late_max, 0.03, 1e-9);
-  CHECK_EQ(st.overruns, 0u);
+  CHECK_EQ(st.totals.overruns, 0u);
   // a stall of 4.3 frames is caught up, one frame a wake-up
   Rig q({10.0});
   q.clock.oversleep[3] = 0.43;
   q.run_until(kStart + 1.0);
   CHECK_EQ(q.loop->stats().skipped, 0u);
-  CHECK_EQ(q.loop->stats().frames, 10u);
+  CHECK_EQ(q.loop->stats().totals.frames, 10u);
   CHECK_NEAR(q.loop->stats().late_max, 0.43, 1e-9);
-  CHECK_EQ(q.loop->stats().overruns, 4u);  // the frames of 0.3 to 0.6 s end after their next deadline
+  CHECK_EQ(q.loop->stats().totals.overruns, 4u);  // the frames of 0.3 to 0.6 s end after their next deadline
 }
 
 TEST(samples_and_notes_balance_the_books) {
@@ -226,7 +226,7 @@ TEST(samples_and_notes_balance_the_books) {
   const ParticipantId A = participant(1), B = participant(2), C = participant(3);
   r.port.controls = {join(0, 0, A), join(0, 1, B)};
   r.loop->step();  // the controls, then the frame: both present, the match serves
-  CHECK_EQ(r.loop->stats().controls_in, 2u);
+  CHECK_EQ(r.loop->stats().totals.controls_in, 2u);
   CHECK_EQ(r.port.events.size(), 3u);
   CHECK(r.port.events[0].kind == EventKind::join && r.port.events[1].kind == EventKind::join);
   CHECK(r.port.events[2].kind == EventKind::serve);
@@ -254,17 +254,17 @@ TEST(samples_and_notes_balance_the_books) {
   r.port.notes = {{PortNote::rejected, {}, 3}, {PortNote::lost, {}, 2}, {PortNote::deadline_missed, {}, 1}};
   r.loop->step();
   const LoopStats &s = r.loop->stats();
-  CHECK_EQ(s.samples_in, 5u + 3u + 2u);
-  CHECK_EQ(s.samples_ok, 2u);
-  CHECK_EQ(s.drops[static_cast<int>(SampleResult::not_owner)], 1u);
-  CHECK_EQ(s.drops[static_cast<int>(SampleResult::unknown_match)], 1u);
-  CHECK_EQ(s.drops[static_cast<int>(SampleResult::duplicate)], 1u);
-  CHECK_EQ(s.drops[static_cast<int>(SampleResult::rejected)], 3u);
-  CHECK_EQ(s.drops[static_cast<int>(SampleResult::lost)], 2u);
+  CHECK_EQ(s.totals.samples_in, 5u + 3u + 2u);
+  CHECK_EQ(s.totals.samples_ok, 2u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::not_owner)], 1u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::unknown_match)], 1u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::duplicate)], 1u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::rejected)], 3u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::lost)], 2u);
   CHECK_EQ(s.deadline_missed, 1u);
   uint64_t dropped = 0;
-  for (int i = 0; i < kDropReasons; ++i) dropped += s.drops[i];
-  CHECK_EQ(s.samples_in, s.samples_ok + s.samples_idle + dropped);
+  for (int i = 0; i < kDropReasons; ++i) dropped += s.totals.drops[i];
+  CHECK_EQ(s.totals.samples_in, s.totals.samples_ok + s.samples_idle + dropped);
   // a writer lost: its slot vanishes, the match pauses at the next frame
   r.port.notes = {{PortNote::writer_lost, B, 1}};
   r.loop->step();
@@ -308,13 +308,13 @@ TEST(a_create_schedules_the_new_match) {
   r.run_until(kStart + 0.5);  // 30 wake-ups at 60 Hz
   CHECK_EQ(r.host.matches().size(), 2u);
   // created in the first wake-up's controls, before its frames: its first frame is due at once
-  CHECK_EQ(r.loop->stats().frames, 30u + 30u);
-  CHECK_EQ(r.loop->stats().controls_refused, 0u);
+  CHECK_EQ(r.loop->stats().totals.frames, 30u + 30u);
+  CHECK_EQ(r.loop->stats().totals.controls_refused, 0u);
   c.match_id = 9;
   c.scene = "nowhere";
   r.port.controls = {c};
   r.loop->step();
-  CHECK_EQ(r.loop->stats().controls_refused, 1u);
+  CHECK_EQ(r.loop->stats().totals.controls_refused, 1u);
   CHECK_EQ(r.host.matches().size(), 2u);
 }
 
