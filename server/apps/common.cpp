@@ -103,6 +103,15 @@ bool parse_level(const std::string &text, ball_level *out) {
   return false;
 }
 
+std::string level_names() {
+  std::string s;
+  for (int l = 1; l <= BALL_LEVEL_COUNT; ++l) {
+    s += ball_level_name(static_cast<ball_level>(l % BALL_LEVEL_COUNT));
+    s += l + 2 < BALL_LEVEL_COUNT + 1 ? ", " : l < BALL_LEVEL_COUNT ? " or " : "";
+  }
+  return s;
+}
+
 bool load_scene(const std::string &what, ball_scene *scene, std::string *err) {
   if (what.empty() || what == "default") {
     ball_scene_default(scene);

@@ -55,7 +55,8 @@ struct DdsOptions {
 };
 void add_dds_options(CLI::App &app, DdsOptions *o);
 
-bool parse_level(const std::string &text, ball_level *out);  // easy, mid, advanced, custom
+bool parse_level(const std::string &text, ball_level *out);  // a name of ball_level_name
+std::string level_names();  // "easy, mid, advanced or custom": the game levels, then the scene's own
 // Loads a scene: "" or "default" is ball_scene_default, a name without a
 // slash is libball's scenes/NAME.yaml, else a file. false with the loader's
 // "file:line:column: field: message" in err.

@@ -90,7 +90,7 @@ void read_field(const Field<S> &f, const json &v, const std::string &p, S *s) {
         } else if constexpr (std::is_same_v<M, std::string S::*>) {
           s->*m = text(v, p);
         } else if constexpr (std::is_same_v<M, ball_level S::*>) {
-          if (!parse_level(text(v, p), &(s->*m))) bad(p, "expected easy, mid, advanced or custom");
+          if (!parse_level(text(v, p), &(s->*m))) bad(p, "expected " + level_names());
         }
       },
       f.member);

@@ -2,7 +2,6 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
-#include <cstdlib>
 
 #include "common.h"
 #include "config.h"
@@ -31,9 +30,8 @@ void FieldOptions<S>::add(CLI::App &app, const std::vector<Field<S>> &table, con
             const Field<S> *field = &f;
             e.option = app.add_option(f.option, e.real, help)->check(CLI::Validator(
                 [b, field](std::string &v) -> std::string {
-                  char *end = nullptr;
-                  double x = std::strtod(v.c_str(), &end);
-                  if (end == v.c_str() || *end) return "expected a number, got " + v;
+                  double x = 0.0;
+                  if (!CLI::detail::lexical_cast(v, x)) return "expected a number, got " + v;
                   return in_bounds(b, x) ? "" : "must be in " + range_text(*field);
                 },
                 range));
@@ -44,7 +42,7 @@ void FieldOptions<S>::add(CLI::App &app, const std::vector<Field<S>> &table, con
             e.option = app.add_option(f.option, e.text, help)->check(CLI::Validator(
                 [](std::string &v) -> std::string {
                   ball_level l;
-                  return parse_level(v, &l) ? "" : "expected easy, mid, advanced or custom, got \"" + v + "\"";
+                  return parse_level(v, &l) ? "" : "expected " + level_names() + ", got \"" + v + "\"";
                 },
                 "LEVEL"));
           } else {

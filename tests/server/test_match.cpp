@@ -372,6 +372,7 @@ TEST(state_rate) {
   Game g = two_players(c);
   g.run(3.0);
   int playing_frames = static_cast<int>(g.match.counters().frames);
+  CHECK_EQ(playing_frames, 180);  // both slots held from the start: 3 s at 60 Hz
   CHECK(std::abs(static_cast<int>(g.states.size()) - playing_frames / 3) <= 1);
   c.state_rate = 0.0;
   Game off = two_players(c);
