@@ -7,6 +7,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <ctime>
 #include <fstream>
 
@@ -61,18 +62,6 @@ void sleep_until(double t) {
   }
 }
 
-double Percentiles::quantile(double q) const {
-  if (values_.empty()) return 0.0;
-  std::vector<double> v = values_;
-  size_t k = static_cast<size_t>(q * static_cast<double>(v.size() - 1) + 0.5);
-  std::nth_element(v.begin(), v.begin() + static_cast<long>(k), v.end());
-  return v[k];
-}
-
-double Percentiles::max() const {
-  return values_.empty() ? 0.0 : *std::max_element(values_.begin(), values_.end());
-}
-
 std::string find_profile(const std::string &given) {
   if (!given.empty()) return given;
   if (const char *env = std::getenv("BALL_QOS_PROFILE")) return env;
@@ -97,21 +86,12 @@ std::string scenes_dir() {
 }
 
 void add_dds_options(CLI::App &app, DdsOptions *o) {
-  app.add_option("--domain", o->domain, "DDS domain id, [0, 232] (default 0)");
+  app.add_option("--domain", o->domain,
+                 "DDS domain id, [0, " + std::to_string(kMaxDomain) + "] (default " + std::to_string(o->domain) + ")");
   app.add_option("--profile", o->profile,
                  "QoS profile file (default: $BALL_QOS_PROFILE, the installed one, the source tree's)");
   app.add_option("--participant-profile", o->participant,
                  "participant profile of that file: loopback (default), lan, secure_lan");
-}
-
-std::string hex(const ParticipantId &id) {
-  static const char *digits = "0123456789abcdef";
-  std::string s;
-  for (uint8_t b : id) {
-    s += digits[b >> 4];
-    s += digits[b & 15];
-  }
-  return s;
 }
 
 bool parse_level(const std::string &text, ball_level *out) {
@@ -121,6 +101,15 @@ bool parse_level(const std::string &text, ball_level *out) {
       return true;
     }
   return false;
+}
+
+std::string level_names() {
+  std::string s;
+  for (int l = 1; l <= BALL_LEVEL_COUNT; ++l) {
+    s += ball_level_name(static_cast<ball_level>(l % BALL_LEVEL_COUNT));
+    s += l + 2 < BALL_LEVEL_COUNT + 1 ? ", " : l < BALL_LEVEL_COUNT ? " or " : "";
+  }
+  return s;
 }
 
 bool load_scene(const std::string &what, ball_scene *scene, std::string *err) {
@@ -141,16 +130,43 @@ bool load_scene(const std::string &what, ball_scene *scene, std::string *err) {
   return true;
 }
 
-std::string drops_text(const std::array<uint64_t, kDropSlots> &drops) {
-  uint64_t total = 0;
-  std::string reasons;
-  for (int i = 0; i < kDropReasons; ++i) {
-    total += drops[i];
-    if (drops[i])
-      reasons += std::string(reasons.empty() ? "" : ", ") + drop_name(static_cast<SampleResult>(i)) + " " +
-                 std::to_string(drops[i]);
-  }
-  return std::to_string(total) + (reasons.empty() ? "" : " (" + reasons + ")");
+bool write_file(const std::string &path, const std::string &text, std::string *err) {
+  OutputFile f;
+  if (f.open(path) && f.write_line(text) && f.close()) return true;
+  *err = f.error();
+  return false;
+}
+
+OutputFile::~OutputFile() {
+  if (f_) std::fclose(f_);
+}
+
+bool OutputFile::failed() {
+  error_ = "cannot write " + path_ + ": " + std::strerror(errno);
+  return false;
+}
+
+bool OutputFile::open(const std::string &path) {
+  path_ = path;
+  f_ = std::fopen(path.c_str(), "w");
+  return f_ ? true : failed();
+}
+
+bool OutputFile::write_line(const std::string &line) {
+  if (!f_) return false;
+  return std::fputs(line.c_str(), f_) >= 0 && std::fputc('\n', f_) != EOF ? true : failed();
+}
+
+bool OutputFile::flush() {
+  if (!f_) return false;
+  return std::fflush(f_) == 0 ? true : failed();
+}
+
+bool OutputFile::close() {
+  if (!f_) return false;
+  std::FILE *f = f_;
+  f_ = nullptr;
+  return std::fclose(f) == 0 ? true : failed();
 }
 
 int fail(const char *program, const std::string &message) {

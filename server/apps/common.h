@@ -1,16 +1,17 @@
-// What the thin mains share: the stop flag (the one global), clocks, the
-// absolute frame clock, percentiles, finding the QoS profile file, command
-// line pieces and printing.
+// What the thin mains share: the stop flag (the one global), the system's
+// clocks, finding the QoS profile file, command line pieces and printing.
 #pragma once
 
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "ball/scene.h"
+#include "frame_clock.h"
 #include "types.h"
 
 namespace CLI {
@@ -29,39 +30,12 @@ double mono_now();      // CLOCK_MONOTONIC, s
 // Sleeps until CLOCK_MONOTONIC reaches t (absolute: no drift); returns early on a signal.
 void sleep_until(double t);
 
-// Absolute frame deadlines D_k = D_0 + k * period on the monotonic clock; the
-// realtime clock at each is R_0 + (D_k - D_0), R_0 read once at the start,
-// so stamps never jump when NTP steps the wall clock during a run.
-class FrameClock {
+// The system's clocks for the server loop (frame_clock.h).
+class SystemClock : public Clock {
  public:
-  explicit FrameClock(double period) : period_(period), d0_(mono_now()), r0_(realtime_now()) {}
-  // deadlines that share an origin with another clock's (matches stepped together)
-  FrameClock(double period, const FrameClock &origin) : period_(period), d0_(origin.d0_), r0_(origin.r0_) {}
-  // the first frame index whose deadline is not before mono
-  uint64_t first_at(double mono) const {
-    double k = std::ceil((mono - d0_) / period_ - 1e-9);
-    return k > 0.0 ? static_cast<uint64_t>(k) : 0;
-  }
-  double period() const { return period_; }
-  double deadline(uint64_t k) const { return d0_ + static_cast<double>(k) * period_; }
-  double realtime_at(double mono) const { return r0_ + (mono - d0_); }
-  double start() const { return d0_; }
-
- private:
-  double period_, d0_, r0_;
-};
-
-// Values of one period (frame times, latencies); quantiles by sorting a copy.
-class Percentiles {
- public:
-  void add(double v) { values_.push_back(v); }
-  void clear() { values_.clear(); }
-  size_t size() const { return values_.size(); }
-  double quantile(double q) const;  // 0 when empty
-  double max() const;
-
- private:
-  std::vector<double> values_;
+  double mono() override { return mono_now(); }
+  double realtime() override { return realtime_now(); }
+  void sleep_until(double t) override { app::sleep_until(t); }
 };
 
 // The QoS profile file: `given`, else $BALL_QOS_PROFILE, else the one
@@ -81,15 +55,37 @@ struct DdsOptions {
 };
 void add_dds_options(CLI::App &app, DdsOptions *o);
 
-std::string hex(const ParticipantId &id);
-bool parse_level(const std::string &text, ball_level *out);  // easy, mid, advanced, custom
+bool parse_level(const std::string &text, ball_level *out);  // a name of ball_level_name
+std::string level_names();  // "easy, mid, advanced or custom": the game levels, then the scene's own
 // Loads a scene: "" or "default" is ball_scene_default, a name without a
 // slash is libball's scenes/NAME.yaml, else a file. false with the loader's
 // "file:line:column: field: message" in err.
 bool load_scene(const std::string &what, ball_scene *scene, std::string *err);
 
-// Drop counters as words: "12 (stale 10, duplicate 2)", or "0".
-std::string drops_text(const std::array<uint64_t, kDropSlots> &drops);
+
+// Output files, every write checked: a failure says "cannot write PATH:
+// REASON" (the system's words) and makes the program's exit status 1.
+bool write_file(const std::string &path, const std::string &text, std::string *err);
+// A file written as it goes (a JSON Lines record): each line and each
+// flush checked; after a failure, error() says what and where.
+class OutputFile {
+ public:
+  OutputFile() = default;
+  ~OutputFile();
+  OutputFile(const OutputFile &) = delete;
+  OutputFile &operator=(const OutputFile &) = delete;
+  bool open(const std::string &path);  // truncates
+  bool is_open() const { return f_ != nullptr; }
+  bool write_line(const std::string &line);
+  bool flush();
+  bool close();  // also what is still buffered
+  const std::string &error() const { return error_; }
+
+ private:
+  bool failed();
+  std::string path_, error_;
+  std::FILE *f_ = nullptr;
+};
 
 // "name: message" to stderr, and the exit status 1
 int fail(const char *program, const std::string &message);

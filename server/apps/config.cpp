@@ -2,8 +2,9 @@
 
 #include <yaml.h>
 
-#include <cstdlib>
+#include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -71,24 +72,28 @@ std::string resolve(const std::string &scene, const std::string &base_dir) {
   return relative_to(scene, base_dir);
 }
 
-// The match settings that are plain numbers: the JSON key is the member's name.
-double MatchConfig::*real_field(const std::string &key) {
-  static const std::pair<const char *, double MatchConfig::*> fields[] = {
-      {"frame_rate", &MatchConfig::frame_rate},
-      {"time_base", &MatchConfig::time_base},
-      {"state_rate", &MatchConfig::state_rate},
-      {"serve_delay", &MatchConfig::serve_delay},
-      {"max_rally_time", &MatchConfig::max_rally_time},
-      {"extrapolation_time", &MatchConfig::extrapolation_time},
-      {"stale_time", &MatchConfig::stale_time},
-      {"max_sample_age", &MatchConfig::max_sample_age},
-      {"max_sample_lead", &MatchConfig::max_sample_lead},
-      {"serve_v_up", &MatchConfig::serve_v_up},
-      {"court_x_lo", &MatchConfig::court_x_lo},
-  };
-  for (const auto &f : fields)
-    if (key == f.first) return f.second;
-  return nullptr;
+// One field of a table from its JSON value (a monostate member is the
+// caller's to read); the range of a number is the check's to report.
+template <class S>
+void read_field(const Field<S> &f, const json &v, const std::string &p, S *s) {
+  std::visit(
+      [&](auto m) {
+        using M = decltype(m);
+        if constexpr (std::is_same_v<M, double S::*>) {
+          s->*m = number(v, p);
+        } else if constexpr (std::is_same_v<M, int S::*> || std::is_same_v<M, uint32_t S::*> ||
+                             std::is_same_v<M, uint64_t S::*>) {
+          using T = std::remove_reference_t<decltype(s->*m)>;
+          s->*m = static_cast<T>(integer(v, p, f.bounds.ilo, f.bounds.ihi));
+        } else if constexpr (std::is_same_v<M, bool S::*>) {
+          s->*m = boolean(v, p);
+        } else if constexpr (std::is_same_v<M, std::string S::*>) {
+          s->*m = text(v, p);
+        } else if constexpr (std::is_same_v<M, ball_level S::*>) {
+          if (!parse_level(text(v, p), &(s->*m))) bad(p, "expected " + level_names());
+        }
+      },
+      f.member);
 }
 
 // The settings of a match (or of the defaults) from a JSON object.
@@ -99,28 +104,16 @@ void match_settings(const json &obj, const std::string &ptr, bool is_match, cons
     const std::string &k = it.key();
     const json &v = it.value();
     std::string p = ptr + "/" + escape_key(k);
-    if (k == "scene") {
-      *scene = resolve(text(v, p), base_dir);
-    } else if (k == "level") {
-      if (!parse_level(text(v, p), &c->level)) bad(p, "expected easy, mid, advanced or custom");
-    } else if (k == "players") {
-      c->players = static_cast<int>(integer(v, p, 1, kMaxPlayers));
-    } else if (k == "id" && is_match) {
-      c->id = static_cast<uint32_t>(integer(v, p, 0, 0xffffffffLL));
-    } else if (k == "seed") {
-      c->seed = static_cast<uint64_t>(integer(v, p, 0, 0x7fffffffffffffffLL));
-    } else if (double MatchConfig::*field = real_field(k)) {
-      c->*field = number(v, p);
-    } else {
-      bad(p, "unknown key \"" + k + "\"");
-    }
+    const Field<MatchConfig> *f = find_field(match_fields(), k);
+    if (!f || !f->in_file || (k == "id" && !is_match)) bad(p, "unknown key \"" + k + "\"");
+    if (k == "scene") *scene = resolve(text(v, p), base_dir);
+    else if (k == "id") c->id = static_cast<uint32_t>(integer(v, p, f->bounds.ilo, f->bounds.ihi));
+    else read_field(*f, v, p, c);
   }
-  // a match's state rate follows its frame rate unless it says otherwise
-  if (!obj.contains("state_rate") && c->state_rate > c->frame_rate) c->state_rate = c->frame_rate;
+  if (!obj.contains("state_rate")) follow_frame_rate(c);
   std::string why;
   if (!check_match_config(*c, &why)) {
-    size_t colon = why.find(':');
-    std::string field = why.substr(0, colon);
+    std::string field = why.substr(0, why.find(':'));
     bad(obj.contains(field) ? ptr + "/" + field : ptr, why);
   }
 }
@@ -137,24 +130,18 @@ void parse_into(const json &root, const std::string &base_dir, ServerConfig *c) 
     const std::string &k = it.key();
     const json &v = it.value();
     std::string p = "/" + escape_key(k);
+    const Field<ServerConfig> *f = find_field(server_fields(), k);
+    if (!f) bad(p, "unknown key \"" + k + "\"");
     if (k == "defaults") continue;
-    if (k == "server_id") c->server_id = static_cast<uint32_t>(integer(v, p, 0, 0xffffffffLL));
-    else if (k == "domain") c->domain = static_cast<int>(integer(v, p, 0, 232));
-    else if (k == "profile") c->profile = relative_to(text(v, p), base_dir);
-    else if (k == "participant_profile") c->participant = text(v, p);
-    else if (k == "max_matches") c->max_matches = static_cast<size_t>(integer(v, p, 1, 100000));
-    else if (k == "allow_create") c->allow_create = boolean(v, p);
-    else if (k == "status_interval") {
-      c->status_interval = number(v, p);
-      if (!(c->status_interval > 0.0)) bad(p, "must be > 0 s");
-    } else if (k == "startup_wait") {
-      c->startup_wait = number(v, p);
-      if (!(c->startup_wait >= 0.0 && c->startup_wait <= 60.0)) bad(p, "must be in [0, 60] s");
+    if (k == "profile") {
+      c->profile = relative_to(text(v, p), base_dir);
     } else if (k == "catalogue") {
       if (!v.is_object()) bad(p, "expected an object of scene names and scenes");
+      const Field<MatchConfig> &name = *find_field(match_fields(), "scene_name");
       for (auto s = v.begin(); s != v.end(); ++s) {
         std::string sp = p + "/" + escape_key(s.key());
-        if (s.key().empty() || s.key().size() >= static_cast<size_t>(kNameLen)) bad(sp, "a scene name has 1 to 31 bytes");
+        long long n = static_cast<long long>(s.key().size());
+        if (n < name.bounds.ilo || n > name.bounds.ihi) bad(sp, "a scene name has " + range_text(name));
         c->catalogue[s.key()] = resolve(text(s.value(), sp), base_dir);
       }
     } else if (k == "matches") {
@@ -172,12 +159,135 @@ void parse_into(const json &root, const std::string &base_dir, ServerConfig *c) 
         c->matches.push_back(e);
       }
     } else {
-      bad(p, "unknown key \"" + k + "\"");
+      read_field(*f, v, p, c);
+      std::string why;
+      if (!check_fields(std::vector<Field<ServerConfig>>{*f}, *c, &why)) bad(p, why);
     }
   }
 }
 
 }  // namespace
+
+const std::vector<Field<ServerConfig>> &server_fields() {
+  using F = Field<ServerConfig>;
+  using C = ServerConfig;
+  static const std::string create_room = "configured + " + std::to_string(kCreateRoom) + " when CREATE is allowed";
+  static const std::vector<F> table = {
+      {"server_id", &C::server_id, whole(0, UINT32_MAX), "", "in every sample the server writes", "--server-id"},
+      {"domain", &C::domain, whole(0, kMaxDomain), "", "DDS domain id (docs/server.md, \"DDS domains\")"},
+      {"profile", std::monostate{}, {}, "", "the QoS profile file, relative to the config file", nullptr,
+       "found as above"},
+      {"participant_profile", &C::participant, {}, "", "`loopback`, `lan`, `secure_lan`"},
+      {"max_matches", &C::max_matches, whole(1, 100000), "", "room for matches; sizes every DDS resource limit",
+       "--max-matches", create_room.c_str()},
+      {"allow_create", &C::allow_create, {}, "", "clients may CREATE matches from the catalogue (`--no-create`)"},
+      {"status_interval", &C::status_interval, open_closed(0.0, 3600.0), "s", "between status lines",
+       "--status-interval"},
+      {"startup_wait", &C::startup_wait, closed(0.0, 60.0), "s",
+       "listen for another server owning one of our matches before starting", "--startup-wait"},
+      {"catalogue", std::monostate{}, {}, "", "scene names a CREATE may ask for", nullptr,
+       "`{\"tennis\": \"default\"}`"},
+      {"defaults", std::monostate{}, {}, "", "the match settings below, for every match", nullptr, ""},
+      {"matches", std::monostate{}, {}, "", "a list of match settings, each with `id` (default: its index) and `scene`",
+       nullptr, "one match on `default`"},
+  };
+  return table;
+}
+
+bool load_scenes(const ServerConfig &config, ServerScenes *scenes, std::string *err) {
+  for (const auto &c : config.catalogue)
+    if (!load_scene(c.second, &scenes->catalogue[c.first], err)) {
+      *err = "catalogue \"" + c.first + "\": " + *err;
+      return false;
+    }
+  scenes->matches.resize(config.matches.size());
+  for (size_t i = 0; i < config.matches.size(); ++i)
+    if (!load_scene(config.matches[i].scene, &scenes->matches[i], err)) return false;
+  return true;
+}
+
+std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes, double player_timeout,
+                                std::string *err) {
+  if (player_timeout > 0.0) config->defaults.player_timeout = player_timeout;
+  auto host = std::make_unique<Host>(config->max_matches, config->allow_create, config->defaults);
+  for (const auto &c : scenes.catalogue)
+    if (!host->add_scene(c.first, c.second, err)) return nullptr;
+  for (size_t i = 0; i < config->matches.size(); ++i) {
+    MatchEntry &e = config->matches[i];
+    const ball_scene &sc = scenes.matches[i];
+    if (player_timeout > 0.0) e.config.player_timeout = player_timeout;
+    // what MatchInfo calls the scene: its own name, else the file's as given, else libball's court
+    if (e.scene != "default" && !sc.name[0]) e.config.scene_name = e.scene.substr(0, kNameLen - 1);
+    else e.config.scene_name = sc.name[0] ? sc.name : "tennis";
+    if (!host->add_match(e.config, sc, err)) {
+      *err = "match " + std::to_string(e.config.id) + " (" + e.scene + "): " + *err;
+      return nullptr;
+    }
+  }
+  return host;
+}
+
+std::string keys_table(const std::string &which) {
+  if (which == "server") return doc_table(server_fields(), ServerConfig{});
+  if (which == "match") return doc_table(match_fields(), MatchConfig{});
+  return "";
+}
+
+// ---- the command line ------------------------------------------------------
+
+
+void ServerOptions::add(CLI::App &app) {
+  app.add_option("--config", config_file, "JSON config file (docs/server.md, \"Configuration\")");
+  app.add_option("--keys", keys, "print the key table (server or match) of docs/server.md and exit")
+      ->check(CLI::IsMember({"server", "match"}));
+  app.add_option("--matches", matches_, "host N matches, ids 0..N-1, replacing the config's list")
+      ->check(CLI::Range(1, 100000));
+  app.add_flag("--no-create", no_create_, "refuse CREATE requests (allow_create false)");
+  server_.add(app, server_fields(), ServerConfig{});
+  match_.add(app, match_fields(), MatchConfig{});
+  add_dds_options(app, &dds_);
+  domain_ = app.get_option("--domain");
+  profile_ = app.get_option("--profile");
+  participant_ = app.get_option("--participant-profile");
+}
+
+bool ServerOptions::apply(ServerConfig *config, std::string *err) const {
+  if (domain_->count()) config->domain = dds_.domain;
+  if (profile_->count()) config->profile = dds_.profile;
+  if (participant_->count()) config->participant = dds_.participant;
+  server_.apply(config);
+  if (no_create_) config->allow_create = false;
+  auto settle = [&](MatchConfig *c) {
+    match_.apply(c);
+    if (!match_.given("state_rate")) follow_frame_rate(c);
+  };
+  settle(&config->defaults);
+  std::string scene = match_.text("scene");
+  if (matches_ > 0 || config->matches.empty()) {
+    config->matches.clear();
+    for (int i = 0; i < (matches_ > 0 ? matches_ : 1); ++i) {
+      MatchEntry e;
+      e.config = config->defaults;
+      e.config.id = static_cast<uint32_t>(i);
+      e.config.seed = config->defaults.seed + static_cast<uint64_t>(i);
+      e.scene = scene.empty() ? "default" : scene;
+      config->matches.push_back(e);
+    }
+  } else {
+    for (auto &e : config->matches) {
+      settle(&e.config);
+      if (!scene.empty()) e.scene = scene;
+    }
+  }
+  if (config->max_matches == 0)
+    config->max_matches = static_cast<uint32_t>(config->matches.size()) + (config->allow_create ? kCreateRoom : 0);
+  if (config->max_matches < config->matches.size()) {
+    *err = "max_matches " + std::to_string(config->max_matches) + " is less than the " +
+           std::to_string(config->matches.size()) + " matches configured";
+    return false;
+  }
+  return true;
+}
 
 bool parse_config(const std::string &text_in, const std::string &name, const std::string &base_dir,
                   ServerConfig *config, std::string *err) {

@@ -1,13 +1,20 @@
 // ball-server's configuration: defaults like ball_model_default, then a JSON
-// file (docs/server.md, "Configuration"), then the command line. A bad file
-// is reported as FILE:LINE: /json/pointer: what is wrong.
+// file (docs/server.md, "Configuration"), then the command line. Both the
+// file and the command line are read from the field tables (fields.h:
+// server_fields here, match_fields in match_config.h). A bad file is
+// reported as FILE:LINE: /json/pointer: what is wrong.
 #pragma once
 
+#include <deque>
 #include <map>
+#include <memory>
 #include <string>
 #include <vector>
 
-#include "match.h"
+#include "common.h"
+#include "options.h"
+#include "host.h"
+#include "match_config.h"
 
 namespace ballsrv {
 namespace app {
@@ -17,12 +24,15 @@ struct MatchEntry {
   std::string scene;  // a catalogue name, a libball scene name, a file, or "default"
 };
 
+// Matches a server makes room for beyond its configured ones when CREATE is allowed.
+constexpr uint32_t kCreateRoom = 8;
+
 struct ServerConfig {
   uint32_t server_id = 1;
   int domain = 0;
   std::string profile;                       // QoS profile file ("": find_profile)
   std::string participant = "loopback";      // its participant profile
-  size_t max_matches = 0;                    // 0: the configured matches, plus 8 when CREATE is allowed
+  uint32_t max_matches = 0;                  // 0: the configured matches, plus kCreateRoom when CREATE is allowed
   bool allow_create = true;                  // clients may CREATE matches from the catalogue
   double status_interval = 1.0;              // s between status lines
   double startup_wait = 1.0;                 // s to listen for another server owning our matches
@@ -30,6 +40,9 @@ struct ServerConfig {
   MatchConfig defaults;                      // every match's settings unless it says otherwise
   std::vector<MatchEntry> matches;
 };
+
+// The server's own settings, in the order of docs/server.md.
+const std::vector<Field<ServerConfig>> &server_fields();
 
 // Reads a JSON config over *config (defaults first). Relative scene paths
 // are taken from the file's directory. false with "FILE:LINE: /pointer: ..." in err.
@@ -40,6 +53,45 @@ bool parse_config(const std::string &text, const std::string &name, const std::s
 // The 1-based line where the value at a JSON pointer starts in text (or, if
 // it is missing, where its nearest existing parent starts); 0 if unknown.
 int json_pointer_line(const std::string &text, const std::string &pointer);
+
+// ball-server's command line over its config: the options of both field
+// tables, --matches N, --no-create, the DDS options.
+class ServerOptions {
+ public:
+  void add(CLI::App &app);
+  // Applies what was given over *config (the file's or the defaults): the
+  // server's settings, every match's (a state rate follows its frame rate
+  // unless set), N matches 0..N-1 on --scene with --matches or when none is
+  // configured, then max_matches. false with err when it does not fit.
+  bool apply(ServerConfig *config, std::string *err) const;
+
+  std::string config_file;  // --config
+  std::string keys;         // --keys server|match: print that table of docs/server.md and exit
+
+ private:
+  FieldOptions<ServerConfig> server_;
+  FieldOptions<MatchConfig> match_;
+  DdsOptions dds_;
+  CLI::Option *domain_ = nullptr, *profile_ = nullptr, *participant_ = nullptr;
+  int matches_ = 0;
+  bool no_create_ = false;
+};
+
+// Every scene the config names, read before DDS is touched (a bad config fails fast).
+struct ServerScenes {
+  std::map<std::string, ball_scene> catalogue;  // by the name a CREATE gives
+  std::vector<ball_scene> matches;              // one per configured match
+};
+bool load_scenes(const ServerConfig &config, ServerScenes *scenes, std::string *err);
+
+// The host of the configured matches and catalogue. A player_timeout > 0
+// (the deadline the racket samples reader requests) replaces the
+// configured one, in *config too. nullptr with err ("match 3 (x.yaml): ...").
+std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes, double player_timeout,
+                                std::string *err);
+
+// The markdown table docs/server.md shows for "server" or "match" keys ("" for another name).
+std::string keys_table(const std::string &which);
 
 }  // namespace app
 }  // namespace ballsrv

@@ -6,15 +6,31 @@
 namespace ballsrv {
 namespace dds {
 
-// The server's enums have the IDL's order; these keep the two in step.
+// The IDL's sizes, and every enumerator of the server's enums against its
+// IDL constant, one by one (the lists are in types.h).
 static_assert(balldds::MAX_PLAYERS == kMaxPlayers, "IDL MAX_PLAYERS");
 static_assert(balldds::NAME_LEN == kNameLen, "IDL NAME_LEN");
 static_assert(balldds::DROP_REASONS == kDropSlots && kDropReasons <= kDropSlots, "IDL DROP_REASONS");
-static_assert(static_cast<int>(balldds::MATCH_PAUSED) == static_cast<int>(MatchState::paused), "MatchState");
-static_assert(static_cast<int>(balldds::CAUSE_RACKET) == static_cast<int>(Cause::racket), "Cause");
-static_assert(static_cast<int>(balldds::EVENT_REFUSED) == static_cast<int>(EventKind::refused), "EventKind");
-static_assert(static_cast<int>(balldds::REFUSED_STATE) == static_cast<int>(Reason::refused_state), "Reason");
-static_assert(static_cast<int>(balldds::CONTROL_TIME_BASE) == static_cast<int>(ControlKind::time_base), "ControlKind");
+#define BALL_CHECK_STATE(e, name, idl) \
+  static_assert(static_cast<int>(MatchState::e) == static_cast<int>(balldds::idl), "MatchState::" #e " is IDL " #idl);
+#define BALL_CHECK_CAUSE(e, name, idl) \
+  static_assert(static_cast<int>(Cause::e) == static_cast<int>(balldds::idl), "Cause::" #e " is IDL " #idl);
+#define BALL_CHECK_EVENT(e, name, idl) \
+  static_assert(static_cast<int>(EventKind::e) == static_cast<int>(balldds::idl), "EventKind::" #e " is IDL " #idl);
+#define BALL_CHECK_REASON(e, name, idl) \
+  static_assert(static_cast<int>(Reason::e) == static_cast<int>(balldds::idl), "Reason::" #e " is IDL " #idl);
+#define BALL_CHECK_CONTROL(e, name, idl) \
+  static_assert(static_cast<int>(ControlKind::e) == static_cast<int>(balldds::idl), "ControlKind::" #e " is IDL " #idl);
+BALL_MATCH_STATES(BALL_CHECK_STATE)
+BALL_CAUSES(BALL_CHECK_CAUSE)
+BALL_EVENT_KINDS(BALL_CHECK_EVENT)
+BALL_REASONS(BALL_CHECK_REASON)
+BALL_CONTROL_KINDS(BALL_CHECK_CONTROL)
+#undef BALL_CHECK_STATE
+#undef BALL_CHECK_CAUSE
+#undef BALL_CHECK_EVENT
+#undef BALL_CHECK_REASON
+#undef BALL_CHECK_CONTROL
 
 namespace {
 
@@ -88,7 +104,7 @@ void from_idl(const balldds::MatchControl &in, ControlIn *o) {
   o->match_id = in.match_id();
   o->seq = in.seq();
   uint32_t kind = static_cast<uint32_t>(in.kind());
-  o->valid = kind <= static_cast<uint32_t>(ControlKind::time_base) && get_name(in.scene(), &o->scene);
+  o->valid = kind < static_cast<uint32_t>(kEnumCount<ControlKind>) && get_name(in.scene(), &o->scene);
   o->kind = o->valid ? static_cast<ControlKind>(kind) : ControlKind::join;
   o->player = in.player();
   o->level = in.level();
@@ -239,15 +255,9 @@ balldds::MatchInfo to_idl(const MatchInfoOut &in) {
   o.max_sample_age(in.max_sample_age);
   o.max_sample_lead(in.max_sample_lead);
   o.model_hash(in.model_hash);
-  o.gravity(in.model.gravity);
-  o.mass(in.model.mass);
-  o.air_friction(in.model.air_friction);
-  o.spin_damping(in.model.spin_damping);
-  o.radius(in.model.radius);
-  o.floor_level(in.model.floor_level);
-  o.effects(in.model.effects);
-  o.extrapolation_time(in.model.extrapolation_time);
-  o.stale_time(in.model.stale_time);
+#define BALL_PUT(f) o.f(in.model.f);
+  BALL_FLIGHT_FIELDS(BALL_PUT)
+#undef BALL_PUT
   o.net_x(in.net_x);
   o.court_x({in.court_x[0], in.court_x[1]});
   o.court_z({in.court_z[0], in.court_z[1]});
@@ -286,15 +296,9 @@ void from_idl(const balldds::MatchInfo &in, MatchInfoOut *o) {
   o->max_sample_lead = in.max_sample_lead();
   o->model_hash = in.model_hash();
   ball_model_default(&o->model);
-  o->model.gravity = in.gravity();
-  o->model.mass = in.mass();
-  o->model.air_friction = in.air_friction();
-  o->model.spin_damping = in.spin_damping();
-  o->model.radius = in.radius();
-  o->model.floor_level = in.floor_level();
-  o->model.effects = in.effects();
-  o->model.extrapolation_time = in.extrapolation_time();
-  o->model.stale_time = in.stale_time();
+#define BALL_GET(f) o->model.f = in.f();
+  BALL_FLIGHT_FIELDS(BALL_GET)
+#undef BALL_GET
   o->net_x = in.net_x();
   o->court_x[0] = in.court_x()[0];
   o->court_x[1] = in.court_x()[1];

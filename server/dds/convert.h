@@ -3,7 +3,7 @@
 // except enums and strings, which are checked here (ControlIn::valid).
 #pragma once
 
-#include "ball.h"
+#include "ball_wire.h"  // generated from idl/ball.idl
 #include "types.h"
 
 namespace ballsrv {

@@ -27,7 +27,7 @@
 #include <map>
 #include <set>
 
-#include "ballPubSubTypes.h"
+#include "ball_wirePubSubTypes.h"
 #include "convert.h"
 
 namespace fdds = eprosima::fastdds::dds;
@@ -55,8 +55,6 @@ BALL_WIRE(StatusOut, ServerStatus)
 #undef BALL_WIRE
 
 namespace {
-
-constexpr int kMaxDomain = 232;  // RTPS ports 7400 + 250 * domain + ... stay below 65536
 
 ParticipantId prefix_of(const eprosima::fastrtps::rtps::GUID_t &guid) {
   ParticipantId id;

@@ -77,7 +77,7 @@ template <class T>
 class Writer {
  public:
   Writer() = default;
-  bool write(const T &sample);
+  [[nodiscard]] bool write(const T &sample);  // false: DDS refused it (count it)
   int matched() const;  // readers matched now
   bool valid() const { return w_ != nullptr; }
 

@@ -57,7 +57,8 @@ Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match 
   if (*match) return (*match)->on_control(c, now, out);  // refused there: it exists
   auto scene = scenes_.find(c.scene);
   if (!allow_create_ || matches_.size() >= max_matches_) return Reason::refused_no_room;
-  if (scene == scenes_.end() || c.players < 1 || c.players > kMaxPlayers || c.level < 0 ||
+  const Bounds &players = find_field(match_fields(), "players")->bounds;
+  if (scene == scenes_.end() || c.players < players.ilo || c.players > players.ihi || c.level < 0 ||
       c.level > BALL_LEVEL_ADVANCED)
     return Reason::refused_bad_value;
   MatchConfig config = template_;

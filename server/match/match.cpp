@@ -15,56 +15,27 @@ constexpr double kBoxMargin = 30.0;   // m around the court a racket may be
 constexpr double kBoxHeight = 30.0;   // m above the floor
 constexpr double kFarAway = 30.0;     // m beyond the court: the ball has left it
 
-bool same_sample(const ball_racket_sample &a, const RacketSampleIn &b) {
-  return a.t == b.capture_time && a.center.x == b.center.x && a.center.y == b.center.y &&
-         a.center.z == b.center.z;
-}
-
 bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
 
 }  // namespace
 
-bool check_match_config(const MatchConfig &c, std::string *err) {
-  auto fail = [err](const char *field, const char *rule) {
-    *err = std::string(field) + ": must be " + rule;
-    return false;
-  };
-  if (c.players < 1 || c.players > kMaxPlayers) return fail("players", "in [1, 4]");
-  if (!(c.frame_rate > 0.0 && c.frame_rate <= 1000.0)) return fail("frame_rate", "in (0, 1000] Hz");
-  if (!(c.time_base >= 0.05 && c.time_base <= 20.0)) return fail("time_base", "in [0.05, 20]");
-  if (!(c.state_rate >= 0.0 && c.state_rate <= c.frame_rate))
-    return fail("state_rate", "in [0, frame_rate] Hz");
-  if (!(c.serve_delay >= 0.0 && c.serve_delay <= 60.0)) return fail("serve_delay", "in [0, 60] s");
-  if (!(c.max_rally_time > 0.0 && c.max_rally_time <= 3600.0)) return fail("max_rally_time", "in (0, 3600] s");
-  if (!(c.extrapolation_time <= 10.0) || std::isnan(c.extrapolation_time))
-    return fail("extrapolation_time", "at most 10 s (negative: the scene's)");
-  if (!(c.stale_time <= 60.0) || std::isnan(c.stale_time)) return fail("stale_time", "at most 60 s (negative: the scene's)");
-  if (!(c.player_timeout > 0.0 && c.player_timeout <= 60.0)) return fail("player_timeout", "in (0, 60] s");
-  if (!(c.max_sample_age > 0.0 && c.max_sample_age <= 60.0)) return fail("max_sample_age", "in (0, 60] s");
-  if (!(c.max_sample_lead >= 0.0 && c.max_sample_lead <= 10.0)) return fail("max_sample_lead", "in [0, 10] s");
-  if (!(c.serve_v_up > 0.0 && c.serve_v_up <= 30.0)) return fail("serve_v_up", "in (0, 30] m/s");
-  if (!std::isfinite(c.court_x_lo)) return fail("court_x_lo", "finite");
-  if (c.scene_name.empty() || c.scene_name.size() >= static_cast<size_t>(kNameLen))
-    return fail("scene name", "1 to 31 bytes");
-  return true;
-}
-
 bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string *err) {
   if (!check_match_config(config, err)) return false;
   config_ = config;
-  scene_ = scene;
   if (!court_from_model(scene.model, config.court_x_lo, &court_, err)) return false;
   ModelSetup setup;
   setup.players = config.players;
   setup.level = config.level;
   setup.extrapolation_time = config.extrapolation_time;
   setup.stale_time = config.stale_time;
-  if (!build_match_model(scene, court_, setup, &model_, err)) return false;
-  ball_status st = ball_sim_init(&sim_, &model_);
+  ball_model model;
+  if (!build_match_model(scene, court_, setup, &model, err)) return false;
+  ball_status st = ball_sim_init(&sim_, &model);  // the sim keeps its own copy
   if (st != BALL_OK) {
     *err = std::string("sim: ") + ball_strerror(st);
     return false;
   }
+  model_hash_ = ball_model_hash(ball_sim_model(&sim_));
   step_events_.assign(BALL_MAX_CONTACTS + BALL_MAX_RACKETS + 8, ball_event{});
   state_ = MatchState::waiting;
   need_serve_ = true;
@@ -95,7 +66,7 @@ void Match::emit_segment(MatchOutput *out, Cause cause, int index, const ball_se
   s.cause = cause;
   s.cause_index = index;
   s.segment = seg;
-  s.model_hash = ball_model_hash(&model_);
+  s.model_hash = model_hash_;
   s.sample = ref;
   out->segments.push_back(s);
 }
@@ -295,7 +266,7 @@ void Match::serve(MatchOutput *out) {
   ball_vec3 target = court_.spot(1 - side, 0.7, rng.uniform(-0.3, 0.3) * half_width);
   ball_state b{};
   b.position = from;
-  if (lob_velocity(model_, from, target, config_.serve_v_up, &b.velocity) != BALL_OK)
+  if (lob_velocity(model(), from, target, config_.serve_v_up, &b.velocity) != BALL_OK)
     b.velocity = ball_v3(Court::toward_net(side) * 15.0, config_.serve_v_up, 0.0);
   if (ball_sim_set_state(&sim_, &b) != BALL_OK) {
     counters_.step_errors++;
@@ -340,7 +311,8 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now) {
   }
   if (s.capture_time < sim_.time - config_.max_sample_age) return SampleResult::stale;
   if (state_ != MatchState::playing) return SampleResult::idle;
-  if (slot.samples > 0 && same_sample(slot.last, s)) return SampleResult::duplicate;
+  // a sample identical to a kept one (BALL_EDUPLICATE) or not newer than the
+  // newest kept (BALL_ESTALE) is libball's to tell; the sim stays as it was
   ball_racket_sample rs;
   rs.t = s.capture_time;
   rs.center = s.center;
@@ -355,7 +327,6 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now) {
   }
   slot.has_seq = true;
   slot.last_seq = s.seq;
-  slot.last = rs;
   slot.samples++;
   slot.ref.valid = true;
   slot.ref.seq = s.seq;
@@ -432,11 +403,11 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       return Reason::none;
     case ControlKind::level: {
       if (c.level < BALL_LEVEL_EASY || c.level > BALL_LEVEL_ADVANCED) return refuse(c, Reason::refused_bad_value, out);
-      ball_model m = model_;
+      ball_model m = model();
       if (ball_model_set_level(&m, static_cast<ball_level>(c.level)) != BALL_OK ||
           ball_sim_set_model(&sim_, &m) != BALL_OK)
         return refuse(c, Reason::refused_bad_value, out);
-      model_ = m;
+      model_hash_ = ball_model_hash(ball_sim_model(&sim_));
       config_.level = static_cast<ball_level>(c.level);
       emit(out, EventKind::level, -1, sim_.time, Reason::none, c.level);
       out->info_changed = true;
@@ -457,7 +428,8 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       emit(out, EventKind::resume, -1, sim_.time);
       return Reason::none;
     case ControlKind::time_base:
-      if (!(c.time_base >= 0.05 && c.time_base <= 20.0)) return refuse(c, Reason::refused_bad_value, out);
+      if (!in_bounds(find_field(match_fields(), "time_base")->bounds, c.time_base))
+        return refuse(c, Reason::refused_bad_value, out);
       config_.time_base = c.time_base;
       emit(out, EventKind::time_base, -1, sim_.time, Reason::none, c.time_base);
       out->info_changed = true;
@@ -483,7 +455,7 @@ MatchInfoOut Match::info() const {
     i.slots[k].owner = s.owner;
     i.slots[k].samples = s.samples;
     i.slots[k].last_seq = s.last_seq;
-    i.slots[k].last_capture_time = s.last.t;
+    i.slots[k].last_capture_time = s.ref.capture_time;
   }
   i.score = score_;
   i.serving_side = serving_side_;
@@ -496,8 +468,8 @@ MatchInfoOut Match::info() const {
   i.player_timeout = config_.player_timeout;
   i.max_sample_age = config_.max_sample_age;
   i.max_sample_lead = config_.max_sample_lead;
-  i.model_hash = ball_model_hash(&model_);
-  i.model = model_;
+  i.model_hash = model_hash_;
+  i.model = model();
   i.net_x = court_.net_x;
   i.court_x[0] = court_.x_lo;
   i.court_x[1] = court_.x_hi;

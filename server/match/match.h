@@ -15,33 +15,11 @@
 #include "ball/ball.h"
 #include "ball/scene.h"
 #include "court.h"
+#include "match_config.h"
 #include "rules.h"
 #include "types.h"
 
 namespace ballsrv {
-
-struct MatchConfig {
-  uint32_t id = 0;
-  std::string scene_name = "tennis";  // what MatchInfo calls it
-  int players = 2;                    // [1, kMaxPlayers]
-  ball_level level = BALL_LEVEL_EASY; // custom: the scene's own racket fields
-  double frame_rate = 60.0;           // frames per real s, (0, 1000]
-  double time_base = 1.0;             // sim s per real s, [0.05, 20]
-  double state_rate = 60.0;           // ball states per real s, [0, frame_rate]; 0: off
-  double serve_delay = 1.5;           // sim s between a point and the next serve
-  double max_rally_time = 60.0;       // sim s: a longer rally is a let
-  double extrapolation_time = 0.25;   // s, eq 15's cap; < 0: the scene's
-  double stale_time = -1.0;           // s; < 0: the scene's
-  double player_timeout = 1.0;        // real s without a sample before a player has vanished
-  double max_sample_age = 2.0;        // sim s: older samples are stale
-  double max_sample_lead = 0.5;       // sim s: capture times further ahead are out of range
-  double serve_v_up = 4.0;            // m/s: vertical launch speed of a serve
-  double court_x_lo = 0.0;            // m: where the court starts (Court)
-  uint64_t seed = 1;                  // serve placement
-};
-
-// Checks a config's ranges; false with the field's name and the rule in err.
-bool check_match_config(const MatchConfig &config, std::string *err);
 
 // What one call produced. The vectors keep their capacity between frames.
 struct MatchOutput {
@@ -58,17 +36,6 @@ struct MatchOutput {
   }
 };
 
-struct MatchCounters {
-  uint64_t frames = 0;       // sim steps
-  uint64_t hits = 0;         // racket hits in play
-  uint64_t dead_hits = 0;    // racket hits after the point was decided
-  uint64_t bounces = 0;      // floor contacts in play
-  uint64_t points = 0;
-  uint64_t lets = 0;
-  uint64_t serves = 0;
-  uint64_t pauses = 0;
-  uint64_t step_errors = 0;  // ball_step refused a frame (never seen; counted, not fatal)
-};
 
 class Match {
  public:
@@ -93,7 +60,7 @@ class Match {
   uint32_t id() const { return config_.id; }
   MatchState state() const { return state_; }
   const MatchConfig &config() const { return config_; }
-  const ball_model &model() const { return model_; }
+  const ball_model &model() const { return *ball_sim_model(&sim_); }  // the sim's own
   const ball_sim &sim() const { return sim_; }
   const Court &court() const { return court_; }
   const MatchCounters &counters() const { return counters_; }
@@ -110,8 +77,7 @@ class Match {
     uint32_t samples = 0;
     bool has_seq = false;
     uint32_t last_seq = 0;
-    ball_racket_sample last{}; // newest accepted sample
-    SampleRef ref;
+    SampleRef ref;             // the newest accepted sample
   };
 
   void emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason = Reason::none,
@@ -128,9 +94,8 @@ class Match {
   int side_of_point(ball_vec3 p) const { return court_.side_of(p.x); }
 
   MatchConfig config_;
-  ball_scene scene_{};
-  ball_model model_{};
   ball_sim sim_{};
+  uint64_t model_hash_ = 0;  // ball_model_hash of the sim's model, kept as the model changes
   Court court_;
   std::array<Slot, kMaxPlayers> slots_{};
   MatchState state_ = MatchState::waiting;
@@ -145,7 +110,6 @@ class Match {
   uint32_t points_played_ = 0;
   uint32_t segment_seq_ = 0;
   uint32_t event_seq_ = 0;
-  uint32_t revision_ = 0;
   double state_accum_ = 0.0; // fraction of a ball state owed (state_rate / frame_rate per frame)
   MatchCounters counters_;
   std::vector<ball_event> step_events_;

@@ -1,101 +1,98 @@
 #include "types.h"
 
+#include <iterator>
+
 namespace ballsrv {
 
-const char *drop_name(SampleResult r) {
-  switch (r) {
-    case SampleResult::unknown_match: return "unknown_match";
-    case SampleResult::bad_slot: return "bad_slot";
-    case SampleResult::not_joined: return "not_joined";
-    case SampleResult::not_owner: return "not_owner";
-    case SampleResult::nonfinite: return "nonfinite";
-    case SampleResult::zero_normal: return "zero_normal";
-    case SampleResult::out_of_range: return "out_of_range";
-    case SampleResult::duplicate: return "duplicate";
-    case SampleResult::out_of_order: return "out_of_order";
-    case SampleResult::stale: return "stale";
-    case SampleResult::rejected: return "rejected";
-    case SampleResult::lost: return "lost";
-    case SampleResult::drop_count: break;
-    case SampleResult::accepted: return "accepted";
-    case SampleResult::idle: return "idle";
-  }
-  return "unknown";
+namespace {
+
+#define BALL_NAME(e, name, idl) name,
+constexpr const char *kStates[] = {BALL_MATCH_STATES(BALL_NAME)};
+constexpr const char *kCauses[] = {BALL_CAUSES(BALL_NAME)};
+constexpr const char *kEventKinds[] = {BALL_EVENT_KINDS(BALL_NAME)};
+constexpr const char *kReasons[] = {BALL_REASONS(BALL_NAME)};
+constexpr const char *kControlKinds[] = {BALL_CONTROL_KINDS(BALL_NAME)};
+constexpr const char *kDrops[] = {BALL_DROP_REASONS(BALL_NAME)};
+#undef BALL_NAME
+
+template <size_t N>
+const char *lookup(const char *const (&names)[N], int i) {
+  return i >= 0 && i < static_cast<int>(N) ? names[i] : "unknown";
 }
 
-const char *state_name(MatchState s) {
-  switch (s) {
-    case MatchState::waiting: return "waiting";
-    case MatchState::playing: return "playing";
-    case MatchState::paused: return "paused";
-  }
-  return "unknown";
+template <class E, size_t N>
+bool find(const char *const (&names)[N], const std::string &name, E *out) {
+  for (size_t i = 0; i < N; ++i)
+    if (name == names[i]) {
+      *out = static_cast<E>(i);
+      return true;
+    }
+  return false;
 }
 
-const char *cause_name(Cause c) {
-  switch (c) {
-    case Cause::serve: return "serve";
-    case Cause::floor: return "floor";
-    case Cause::net: return "net";
-    case Cause::wall: return "wall";
-    case Cause::racket: return "racket";
+// a drop reason's third column is its index in ServerStatus.drops
+#define BALL_CHECK_INDEX(e, name, index) \
+  static_assert(static_cast<int>(SampleResult::e) == index, "drop reason " #e " is index " #index);
+BALL_DROP_REASONS(BALL_CHECK_INDEX)
+#undef BALL_CHECK_INDEX
+
+}  // namespace
+
+std::string hex(const ParticipantId &id) {
+  static const char *digits = "0123456789abcdef";
+  std::string s;
+  for (uint8_t b : id) {
+    s += digits[b >> 4];
+    s += digits[b & 15];
   }
-  return "unknown";
+  return s;
 }
 
-const char *event_name(EventKind k) {
-  switch (k) {
-    case EventKind::floor: return "floor";
-    case EventKind::net: return "net";
-    case EventKind::wall: return "wall";
-    case EventKind::racket: return "racket";
-    case EventKind::sound: return "sound";
-    case EventKind::serve: return "serve";
-    case EventKind::point: return "point";
-    case EventKind::pause: return "pause";
-    case EventKind::resume: return "resume";
-    case EventKind::join: return "join";
-    case EventKind::leave: return "leave";
-    case EventKind::level: return "level";
-    case EventKind::time_base: return "time_base";
-    case EventKind::refused: return "refused";
-  }
-  return "unknown";
+bool parse_hex(const std::string &text, ParticipantId *id) {
+  if (text.size() != 2 * id->size() || text.find_first_not_of("0123456789abcdef") != std::string::npos) return false;
+  for (size_t i = 0; i < id->size(); ++i) (*id)[i] = static_cast<uint8_t>(std::stoul(text.substr(2 * i, 2), nullptr, 16));
+  return true;
 }
 
-const char *reason_name(Reason r) {
-  switch (r) {
-    case Reason::none: return "none";
-    case Reason::point_double_bounce: return "double_bounce";
-    case Reason::point_out: return "out";
-    case Reason::point_net: return "net";
-    case Reason::point_own_side: return "own_side";
-    case Reason::point_not_returned: return "not_returned";
-    case Reason::point_let: return "let";
-    case Reason::pause_vanished: return "vanished";
-    case Reason::pause_left: return "left";
-    case Reason::pause_requested: return "requested";
-    case Reason::refused_slot_held: return "slot_held";
-    case Reason::refused_not_player: return "not_player";
-    case Reason::refused_bad_value: return "bad_value";
-    case Reason::refused_no_room: return "no_room";
-    case Reason::refused_state: return "state";
+std::string drops_text(const std::array<uint64_t, kDropSlots> &drops) {
+  uint64_t total = 0;
+  std::string reasons;
+  for (int i = 0; i < kDropReasons; ++i) {
+    total += drops[i];
+    if (drops[i])
+      reasons += std::string(reasons.empty() ? "" : ", ") + name_of(static_cast<SampleResult>(i)) + " " +
+                 std::to_string(drops[i]);
   }
-  return "unknown";
+  return std::to_string(total) + (reasons.empty() ? "" : " (" + reasons + ")");
 }
 
-const char *control_name(ControlKind k) {
-  switch (k) {
-    case ControlKind::create: return "create";
-    case ControlKind::join: return "join";
-    case ControlKind::leave: return "leave";
-    case ControlKind::serve: return "serve";
-    case ControlKind::level: return "level";
-    case ControlKind::pause: return "pause";
-    case ControlKind::resume: return "resume";
-    case ControlKind::time_base: return "time_base";
-  }
-  return "unknown";
+const char *name_of(MatchState v) { return lookup(kStates, static_cast<int>(v)); }
+const char *name_of(Cause v) { return lookup(kCauses, static_cast<int>(v)); }
+const char *name_of(EventKind v) { return lookup(kEventKinds, static_cast<int>(v)); }
+const char *name_of(Reason v) { return lookup(kReasons, static_cast<int>(v)); }
+const char *name_of(ControlKind v) { return lookup(kControlKinds, static_cast<int>(v)); }
+const char *name_of(SampleResult v) {
+  if (v == SampleResult::accepted) return "accepted";
+  if (v == SampleResult::idle) return "idle";
+  return lookup(kDrops, static_cast<int>(v));
+}
+
+template <>
+bool parse_name(const std::string &n, MatchState *out) { return find(kStates, n, out); }
+template <>
+bool parse_name(const std::string &n, Cause *out) { return find(kCauses, n, out); }
+template <>
+bool parse_name(const std::string &n, EventKind *out) { return find(kEventKinds, n, out); }
+template <>
+bool parse_name(const std::string &n, Reason *out) { return find(kReasons, n, out); }
+template <>
+bool parse_name(const std::string &n, ControlKind *out) { return find(kControlKinds, n, out); }
+template <>
+bool parse_name(const std::string &n, SampleResult *out) {
+  if (n == "accepted") *out = SampleResult::accepted;
+  else if (n == "idle") *out = SampleResult::idle;
+  else return find(kDrops, n, out);
+  return true;
 }
 
 }  // namespace ballsrv

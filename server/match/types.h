@@ -14,203 +14,316 @@ namespace ballsrv {
 
 constexpr int kMaxPlayers = BALL_MAX_RACKETS;  // player slots per match (IDL MAX_PLAYERS)
 constexpr int kNameLen = 32;                   // scene names on the wire, NUL included (IDL NAME_LEN)
+constexpr int kMaxDomain = 232;                // DDS domain ids [0, 232]: RTPS maps domain d onto UDP ports
+                                               // from 7400 + 250 d, which must stay below 65536
 
 // Who sent a sample or a control message: the DDS participant GUID prefix of
 // the client (the DDS layer fills it in from the sample's writer GUID; under
 // DDS Security it is the authenticated participant). All zeros: nobody.
 using ParticipantId = std::array<uint8_t, 12>;
+std::string hex(const ParticipantId &id);                   // 24 hex digits
+bool parse_hex(const std::string &text, ParticipantId *id);  // false unless 24 hex digits
 
-enum class MatchState { waiting, playing, paused };
-enum class Cause { serve, floor, net, wall, racket };
-enum class EventKind {
-  floor, net, wall, racket, sound, serve, point, pause, resume, join, leave, level, time_base, refused
-};
-enum class Reason {
-  none,
-  point_double_bounce,
-  point_out,
-  point_net,
-  point_own_side,
-  point_not_returned,
-  point_let,
-  pause_vanished,
-  pause_left,
-  pause_requested,
-  refused_slot_held,
-  refused_not_player,
-  refused_bad_value,
-  refused_no_room,
-  refused_state
-};
-enum class ControlKind { create, join, leave, serve, level, pause, resume, time_base };
+// Every enum of the vocabulary is listed once, below, as an X-macro of
+// (enumerator, name, IDL constant): the enum itself, its name and its
+// parsing (types.cpp, name_of/parse_name) and the compile-time check that
+// each enumerator equals its IDL twin (server/dds/convert.cpp) are all made
+// from the one list. The names are those of the JSON records, the status
+// line and docs/protocol.md.
+#define BALL_MATCH_STATES(X)                                                          \
+  X(waiting, "waiting", MATCH_WAITING) /* a slot is free or away: nothing moves */    \
+  X(playing, "playing", MATCH_PLAYING) /* the sim runs */                             \
+  X(paused, "paused", MATCH_PAUSED)    /* a player vanished or asked: the clock stands still */
+
+#define BALL_CAUSES(X)                                                                \
+  X(serve, "serve", CAUSE_SERVE)                                                      \
+  X(floor, "floor", CAUSE_FLOOR)                                                      \
+  X(net, "net", CAUSE_NET)                                                            \
+  X(wall, "wall", CAUSE_WALL)       /* cause_index: the wall */                       \
+  X(racket, "racket", CAUSE_RACKET) /* cause_index: the racket, which is the player slot */
+
+#define BALL_EVENT_KINDS(X)                                                           \
+  X(floor, "floor", EVENT_FLOOR)                                                      \
+  X(net, "net", EVENT_NET)                                                            \
+  X(wall, "wall", EVENT_WALL)                                                         \
+  X(racket, "racket", EVENT_RACKET)                                                   \
+  X(sound, "sound", EVENT_SOUND)                                                      \
+  X(serve, "serve", EVENT_SERVE)                                                      \
+  X(point, "point", EVENT_POINT)                                                      \
+  X(pause, "pause", EVENT_PAUSE)                                                      \
+  X(resume, "resume", EVENT_RESUME)                                                   \
+  X(join, "join", EVENT_JOIN)                                                         \
+  X(leave, "leave", EVENT_LEAVE)                                                      \
+  X(level, "level", EVENT_LEVEL)                                                      \
+  X(time_base, "time_base", EVENT_TIME_BASE)                                          \
+  X(refused, "refused", EVENT_REFUSED)
+
+#define BALL_REASONS(X)                                                               \
+  X(none, "none", REASON_NONE)                                                        \
+  X(point_double_bounce, "double_bounce", POINT_DOUBLE_BOUNCE)                        \
+  X(point_out, "out", POINT_OUT)                                                      \
+  X(point_net, "net", POINT_NET)                                                      \
+  X(point_own_side, "own_side", POINT_OWN_SIDE)                                       \
+  X(point_not_returned, "not_returned", POINT_NOT_RETURNED)                           \
+  X(point_let, "let", POINT_LET)                                                      \
+  X(pause_vanished, "vanished", PAUSE_VANISHED)                                       \
+  X(pause_left, "left", PAUSE_LEFT)                                                   \
+  X(pause_requested, "requested", PAUSE_REQUESTED)                                    \
+  X(refused_slot_held, "slot_held", REFUSED_SLOT_HELD)                                \
+  X(refused_not_player, "not_player", REFUSED_NOT_PLAYER)                             \
+  X(refused_bad_value, "bad_value", REFUSED_BAD_VALUE)                                \
+  X(refused_no_room, "no_room", REFUSED_NO_ROOM)                                      \
+  X(refused_state, "state", REFUSED_STATE)
+
+#define BALL_CONTROL_KINDS(X)                                                         \
+  X(create, "create", CONTROL_CREATE)                                                 \
+  X(join, "join", CONTROL_JOIN)                                                       \
+  X(leave, "leave", CONTROL_LEAVE)                                                    \
+  X(serve, "serve", CONTROL_SERVE)                                                    \
+  X(level, "level", CONTROL_LEVEL)                                                    \
+  X(pause, "pause", CONTROL_PAUSE)                                                    \
+  X(resume, "resume", CONTROL_RESUME)                                                 \
+  X(time_base, "time_base", CONTROL_TIME_BASE)
 
 // What became of a racket sample. Everything but accepted and idle is a drop,
-// counted by reason (the order is the wire order of ServerStatus.drops).
+// counted by reason; the order is the index of ServerStatus.drops on the
+// wire (docs/protocol.md, "What the server does with a racket sample").
+// The third column is not an IDL constant: drops are indices, not an enum.
+#define BALL_DROP_REASONS(X)                                                          \
+  X(unknown_match, "unknown_match", 0) /* no match with that id on this server */     \
+  X(bad_slot, "bad_slot", 1)           /* player index outside the match's slots */   \
+  X(not_joined, "not_joined", 2)       /* nobody holds that slot */                   \
+  X(not_owner, "not_owner", 3)         /* the slot is held by another participant */  \
+  X(nonfinite, "nonfinite", 4)         /* NaN or Inf in the time, the centre or the normal */ \
+  X(zero_normal, "zero_normal", 5)     /* |normal| < 1e-6 */                          \
+  X(out_of_range, "out_of_range", 6)   /* outside the match's box, |normal| > 1e6, too far ahead */ \
+  X(duplicate, "duplicate", 7)         /* the same seq again, or libball's BALL_EDUPLICATE */ \
+  X(out_of_order, "out_of_order", 8)   /* seq older than the newest accepted one */   \
+  X(stale, "stale", 9)                 /* too old, or libball's BALL_ESTALE */        \
+  X(rejected, "rejected", 10)          /* refused by DDS itself (resource limits); DDS layer only */ \
+  X(lost, "lost", 11)                  /* never arrived: a gap or a full history; DDS layer only */
+
+#define BALL_ENUMERATOR(e, name, idl) e,
+enum class MatchState { BALL_MATCH_STATES(BALL_ENUMERATOR) };
+enum class Cause { BALL_CAUSES(BALL_ENUMERATOR) };
+enum class EventKind { BALL_EVENT_KINDS(BALL_ENUMERATOR) };
+enum class Reason { BALL_REASONS(BALL_ENUMERATOR) };
+enum class ControlKind { BALL_CONTROL_KINDS(BALL_ENUMERATOR) };
 enum class SampleResult : int {
-  unknown_match = 0,  // no match with that id on this server
-  bad_slot,           // player index outside the match's slots
-  not_joined,         // nobody holds that slot
-  not_owner,          // the slot is held by another participant
-  nonfinite,          // NaN or Inf in the time, the centre or the normal
-  zero_normal,        // |normal| < 1e-6
-  out_of_range,       // centre outside the match's box, |normal| > 1e6, capture time too far ahead
-  duplicate,          // the same seq again, or the same pose and time as a kept sample
-  out_of_order,       // seq older than the newest accepted one (reordered by the network)
-  stale,              // capture time older than the match's sample age limit, or not newer than the newest kept
-  rejected,           // refused by DDS itself before the server saw it (resource limits); DDS layer only
-  lost,               // never arrived: DDS saw a gap in a writer's sequence numbers; DDS layer only
-  drop_count,         // (number of drop reasons)
-  accepted = 100,     // fed to the racket track
-  idle,               // well formed, but the match is not playing: refreshes presence only
+  BALL_DROP_REASONS(BALL_ENUMERATOR)
+  drop_count,      // (the number of drop reasons)
+  accepted = 100,  // fed to the racket track
+  idle,            // well formed, but the match is not playing: refreshes presence only
 };
+#undef BALL_ENUMERATOR
+
 constexpr int kDropReasons = static_cast<int>(SampleResult::drop_count);
 constexpr int kDropSlots = 16;  // IDL DROP_REASONS: room on the wire for more reasons
 
-const char *drop_name(SampleResult r);  // "unknown_match", ..., "accepted", "idle"
-const char *state_name(MatchState s);
-const char *cause_name(Cause c);
-const char *event_name(EventKind k);
-const char *reason_name(Reason r);
-const char *control_name(ControlKind k);
+// Drop counters as words: "12 (stale 10, duplicate 2)", or "0".
+std::string drops_text(const std::array<uint64_t, kDropSlots> &drops);
 
+// How many enumerators each enum has (drop reasons: without accepted and idle).
+#define BALL_ONE(e, name, idl) +1
+template <class E>
+constexpr int kEnumCount = 0;
+template <>
+constexpr int kEnumCount<MatchState> = 0 BALL_MATCH_STATES(BALL_ONE);
+template <>
+constexpr int kEnumCount<Cause> = 0 BALL_CAUSES(BALL_ONE);
+template <>
+constexpr int kEnumCount<EventKind> = 0 BALL_EVENT_KINDS(BALL_ONE);
+template <>
+constexpr int kEnumCount<Reason> = 0 BALL_REASONS(BALL_ONE);
+template <>
+constexpr int kEnumCount<ControlKind> = 0 BALL_CONTROL_KINDS(BALL_ONE);
+template <>
+constexpr int kEnumCount<SampleResult> = kDropReasons;
+#undef BALL_ONE
+// The name of a value ("unknown" for a value outside the list); drop
+// reasons also name accepted and idle.
+const char *name_of(MatchState v);
+const char *name_of(Cause v);
+const char *name_of(EventKind v);
+const char *name_of(Reason v);
+const char *name_of(ControlKind v);
+const char *name_of(SampleResult v);
+// The value of a name; false (and *out unchanged) for a name not in the list.
+template <class E>
+bool parse_name(const std::string &name, E *out);
+
+
+// The fields below carry their unit or meaning in a trailing comment, as
+// libball's structs do: "sim s" is the match's sim clock, "server s" the
+// server's realtime clock (s since 1970-01-01 UTC), "real s" a duration on
+// a wall clock; counts and indices have none. docs/protocol.md, "Time".
+
+// client -> server: one racket pose (RacketSample).
 struct RacketSampleIn {
-  uint32_t match_id = 0;
-  int player = 0;
-  uint32_t seq = 0;
-  double capture_time = 0.0;  // sim s
-  ball_vec3 center{0, 0, 0};  // m
-  ball_vec3 normal{1, 0, 0};
-  ParticipantId from{};       // the sender
-  double source_time = 0.0;   // the writer's timestamp, server-comparable realtime s (0: unknown)
+  uint32_t match_id = 0;      // the match
+  int player = 0;             // the slot, [0, players)
+  uint32_t seq = 0;           // per (match, player) stream: larger than every earlier one
+  double capture_time = 0.0;  // sim s: when the pose was taken, as the client maps its clock
+  ball_vec3 center{0, 0, 0};  // m: the disc centre
+  ball_vec3 normal{1, 0, 0};  // the disc normal, any length in [1e-6, 1e6] (normalised by libball)
+  ParticipantId from{};       // the sender: its writer's participant GUID prefix (filled in by the DDS layer)
+  double source_time = 0.0;   // server s: the writer's DDS source timestamp (0: unknown)
 };
 
+// client -> server: a control message (MatchControl).
 struct ControlIn {
-  uint32_t match_id = 0;
-  uint32_t seq = 0;
+  uint32_t match_id = 0;      // the match (CREATE: the new one's id)
+  uint32_t seq = 0;           // per writer; echoed in a refusal
   ControlKind kind = ControlKind::join;
-  int player = -1;
-  int level = 0;
-  double time_base = 1.0;
-  int players = 2;
-  std::string scene;  // CREATE
-  ParticipantId from{};
-  bool valid = true;  // false: an enum out of range or a scene name without its NUL on the wire
+  int player = -1;            // JOIN: the slot wanted, -1 any; LEAVE: the slot
+  int level = 0;              // LEVEL, CREATE: 1 easy, 2 mid, 3 advanced (CREATE: 0 the scene's)
+  double time_base = 1.0;     // TIME_BASE: sim s per real s
+  int players = 2;            // CREATE: slots
+  std::string scene;          // CREATE: a scene name of the server's catalogue
+  ParticipantId from{};       // the sender (filled in by the DDS layer)
+  bool valid = true;          // false: an enum out of range or a scene name without its NUL on the wire
 };
 
 // The newest sample of a racket when it hit the ball, for latency.
 struct SampleRef {
-  bool valid = false;
-  uint32_t seq = 0;
-  double source_time = 0.0;   // realtime s
-  double capture_time = 0.0;  // sim s
+  bool valid = false;         // false: no sample (the segment is not a racket hit)
+  uint32_t seq = 0;           // its seq
+  double source_time = 0.0;   // server s: its DDS source timestamp (the player's realtime clock)
+  double capture_time = 0.0;  // sim s: its capture time
 };
 
-// Server -> client samples carry the server's id and its realtime clock at
-// publication (s since 1970); the DDS layer writes them as they are.
+// server -> clients: a flight segment (Segment). Every server sample carries
+// the server's id and the server s of its publication; the loop fills them in.
 struct SegmentOut {
-  uint32_t match_id = 0;
-  uint32_t server_id = 0;
-  double server_time = 0.0;
-  uint32_t seq = 0;
-  Cause cause = Cause::serve;
-  int cause_index = -1;
-  ball_segment segment{};
-  uint64_t model_hash = 0;
-  SampleRef sample;
+  uint32_t match_id = 0;      // the match
+  uint32_t server_id = 0;     // the server that wrote it
+  double server_time = 0.0;   // server s: when it was published
+  uint32_t seq = 0;           // 1, 2, ... per match
+  Cause cause = Cause::serve; // what started it
+  int cause_index = -1;       // WALL: the wall; RACKET: the racket (slot); SERVE: the serving slot; else -1
+  ball_segment segment{};     // t0 sim s, p0 m, v0 m/s, s0 m/s, grounded (libball's ball_segment)
+  uint64_t model_hash = 0;    // ball_model_hash of the model that made it
+  SampleRef sample;           // RACKET: the hitting racket's newest sample
 };
 
+// server -> clients: a collision or a match event (Event).
 struct EventOut {
-  uint32_t match_id = 0;
-  uint32_t server_id = 0;
-  double server_time = 0.0;
-  uint32_t seq = 0;
+  uint32_t match_id = 0;           // the match
+  uint32_t server_id = 0;          // the server that wrote it
+  double server_time = 0.0;        // server s: when it was published
+  uint32_t seq = 0;                // 1, 2, ... per match: a gap means events were lost
   EventKind kind = EventKind::floor;
-  int index = -1;
-  int side = -1;
-  bool in_play = false;
-  bool sound = false;
-  double time = 0.0;  // sim s
-  ball_vec3 point{0, 0, 0};
-  ball_vec3 velocity_in{0, 0, 0};
-  ball_vec3 velocity_out{0, 0, 0};
-  uint32_t segment_seq = 0;
-  Reason reason = Reason::none;
-  std::array<int, 2> score{0, 0};
-  double value = 0.0;
+  int index = -1;                  // by kind (docs/protocol.md, "Events"): wall, racket, slot or control kind
+  int side = -1;                   // collisions: 0 x < net_x, 1 beyond; POINT: the winner, -1 a let
+  bool in_play = false;            // collisions: during a rally, before its point was decided
+  bool sound = false;              // collisions: loud enough for the paper's sound event
+  double time = 0.0;               // sim s
+  ball_vec3 point{0, 0, 0};        // m: the ball's centre at the collision
+  ball_vec3 velocity_in{0, 0, 0};  // m/s
+  ball_vec3 velocity_out{0, 0, 0}; // m/s
+  uint32_t segment_seq = 0;        // the segment the collision starts (others: the current one)
+  Reason reason = Reason::none;    // POINT, PAUSE, REFUSED: why
+  std::array<int, 2> score{0, 0};  // points of side 0 and side 1 after the event
+  double value = 0.0;              // LEVEL: the level; TIME_BASE: sim s per real s; REFUSED: the control's seq
 };
 
+// server -> clients: the ball after a frame (BallState).
 struct StateOut {
-  uint32_t match_id = 0;
-  uint32_t server_id = 0;
-  double server_time = 0.0;  // the frame's deadline
-  uint64_t frame = 0;
-  double sim_time = 0.0;
+  uint32_t match_id = 0;      // the match
+  uint32_t server_id = 0;     // the server that wrote it
+  double server_time = 0.0;   // server s: the frame's deadline
+  uint64_t frame = 0;         // sim steps taken
+  double sim_time = 0.0;      // sim s
   MatchState state = MatchState::playing;
-  uint32_t segment_seq = 0;
-  ball_state ball{};
-  uint64_t sim_hash = 0;
+  uint32_t segment_seq = 0;   // the segment this state lies on
+  ball_state ball{};          // position m, velocity m/s, spin m/s (libball's ball_state)
+  uint64_t sim_hash = 0;      // ball_sim_hash after the step
 };
 
+// A player slot as MatchInfo shows it.
 struct SlotInfo {
-  bool held = false;
-  bool present = false;
-  ParticipantId owner{};
-  uint32_t samples = 0;
-  uint32_t last_seq = 0;
-  double last_capture_time = 0.0;
+  bool held = false;               // a participant holds it
+  bool present = false;            // its samples arrive within player_timeout and its writer lives
+  ParticipantId owner{};           // the holder's participant GUID prefix; zeros when free
+  uint32_t samples = 0;            // samples accepted from the holder
+  uint32_t last_seq = 0;           // seq of the newest accepted one
+  double last_capture_time = 0.0;  // sim s: its capture time
 };
 
+// The fields of a match's ball_model that MatchInfo carries (each in the
+// model's own unit: ball.h), listed once for the DDS layer and the records.
+#define BALL_FLIGHT_FIELDS(X) \
+  X(gravity) X(mass) X(air_friction) X(spin_damping) X(radius) X(floor_level) X(effects) X(extrapolation_time) X(stale_time)
+
+// server -> clients: a match's setup and state (MatchInfo).
 struct MatchInfoOut {
-  uint32_t match_id = 0;
-  uint32_t server_id = 0;
-  double server_time = 0.0;  // the instant sim_time holds for
-  uint32_t revision = 0;
+  uint32_t match_id = 0;           // the match
+  uint32_t server_id = 0;          // the server that wrote it
+  double server_time = 0.0;        // server s: the instant sim_time holds for (the newest frame's deadline)
+  uint32_t revision = 0;           // increments with every MatchInfo the server writes for the match
   MatchState state = MatchState::waiting;
-  std::string scene;
-  int level = 0;
-  int players = 0;
+  std::string scene;               // the scene's name, at most 31 bytes
+  int level = 0;                   // 0 the scene's own, 1 easy, 2 mid, 3 advanced
+  int players = 0;                 // slots in use
   std::array<SlotInfo, kMaxPlayers> slots{};
-  std::array<int, 2> score{0, 0};
-  int serving_side = 0;
-  uint32_t rally = 0;
-  uint32_t segment_seq = 0;
-  double frame_time = 0.0;
-  double time_base = 1.0;
-  double sim_time = 0.0;
-  double state_rate = 0.0;
-  double player_timeout = 0.0;
-  double max_sample_age = 0.0;
-  double max_sample_lead = 0.0;
-  uint64_t model_hash = 0;
-  // the model; on the wire only its flight fields (gravity, mass,
-  // air_friction, spin_damping, radius, floor_level, effects,
-  // extrapolation_time, stale_time) travel, and a receiver gets them over
-  // ball_model_default: enough for ball_segment_eval
+  std::array<int, 2> score{0, 0};  // points of side 0 and side 1
+  int serving_side = 0;            // the side that serves next
+  uint32_t rally = 0;              // points played so far
+  uint32_t segment_seq = 0;        // the current segment
+  double frame_time = 0.0;         // real s per frame
+  double time_base = 1.0;          // sim s per real s
+  double sim_time = 0.0;           // sim s at server_time
+  double state_rate = 0.0;         // BallState samples per real s; 0: off
+  double player_timeout = 0.0;     // real s: a slot silent this long has vanished
+  double max_sample_age = 0.0;     // sim s: a sample older than sim_time minus this is stale
+  double max_sample_lead = 0.0;    // sim s: a capture time beyond sim_time plus this is out of range
+  uint64_t model_hash = 0;         // ball_model_hash of the model the server steps
+  // the model; on the wire only its BALL_FLIGHT_FIELDS travel, and a
+  // receiver gets them over ball_model_default: enough for ball_segment_eval
   ball_model model{};
-  double net_x = 0.0;
-  double court_x[2] = {0, 0};
-  double court_z[2] = {0, 0};
+  double net_x = 0.0;              // m: the net plane x = net_x
+  double court_x[2] = {0, 0};      // m: the court's extent in x
+  double court_z[2] = {0, 0};      // m: and in z
 };
 
-// The server's status line as data (ServerStatus on the wire).
+// What a match counts (the server's --stats-json has them per match),
+// listed once for the struct and its JSON form.
+#define BALL_MATCH_COUNTERS(X)                                                    \
+  X(frames)      /* sim steps */                                                  \
+  X(hits)        /* racket hits in play */                                        \
+  X(dead_hits)   /* racket hits after the point was decided */                    \
+  X(bounces)     /* floor contacts in play */                                     \
+  X(points)      /* points decided (not lets) */                                  \
+  X(lets)        /* rallies replayed */                                           \
+  X(serves)      /* serves */                                                     \
+  X(pauses)      /* pauses, every reason */                                       \
+  X(step_errors) /* frames ball_step refused (never seen; counted, not fatal) */
+struct MatchCounters {
+#define BALL_COUNTER(name) uint64_t name = 0;
+  BALL_MATCH_COUNTERS(BALL_COUNTER)
+#undef BALL_COUNTER
+};
+
+// The server's status line as data (ServerStatus on the wire): totals since
+// the start, but for the frame times.
 struct StatusOut {
-  uint32_t server_id = 0;
-  double server_time = 0.0;
-  double uptime = 0.0;
-  uint32_t matches = 0;
-  uint32_t playing = 0;
-  uint64_t samples_in = 0;
-  uint64_t samples_ok = 0;
-  std::array<uint64_t, kDropSlots> drops{};
-  uint64_t controls_in = 0;
-  uint64_t controls_refused = 0;
-  uint64_t states_out = 0;
-  uint64_t segments_out = 0;
-  uint64_t events_out = 0;
-  uint64_t frames = 0;
-  uint64_t overruns = 0;
-  double frame_p50 = 0.0;  // s
-  double frame_p99 = 0.0;  // s
+  uint32_t server_id = 0;                    // the server
+  double server_time = 0.0;                  // server s: when it was written
+  double uptime = 0.0;                       // real s since the server started
+  uint32_t matches = 0;                      // hosted
+  uint32_t playing = 0;                      // of those, playing
+  uint64_t samples_in = 0;                   // racket samples taken, plus those DDS counted as rejected or lost
+  uint64_t samples_ok = 0;                   // of those, fed to a racket track
+  std::array<uint64_t, kDropSlots> drops{};  // dropped, by reason (BALL_DROP_REASONS order)
+  uint64_t controls_in = 0;                  // control messages taken
+  uint64_t controls_refused = 0;             // of those, refused or malformed
+  uint64_t states_out = 0;                   // BallState samples written
+  uint64_t segments_out = 0;                 // Segment samples written
+  uint64_t events_out = 0;                   // Event samples written
+  uint64_t frames = 0;                       // frames stepped, every match's
+  uint64_t overruns = 0;                     // frames that ended after the next deadline
+  double frame_p50 = 0.0;                    // real s of work per wake-up, median of the last status period
+  double frame_p99 = 0.0;                    // real s, its 99th percentile
 };
 
 }  // namespace ballsrv

@@ -64,7 +64,10 @@ int main(int argc, char **argv) {
   uint32_t seq[2] = {0, 0}, control_seq = 0;
   RacketSampleIn last_valid[2];
   std::map<std::string, long> sent;
-  long valid = 0, flood_index = 0, burst_sent = 0;
+  long valid = 0, flood_index = 0, burst_sent = 0, write_failures = 0;
+  auto put = [&](auto &writer, const auto &sample) {  // every write checked: a refused one fails the run
+    if (!writer.write(sample)) write_failures++;
+  };
   const double start = mono_now();
   double next_valid = start, next_join = start, next_bad = start, flood_started = -1.0, first_valid = -1.0;
   bool playing = false;
@@ -108,7 +111,7 @@ int main(int argc, char **argv) {
         c.seq = ++control_seq;
         c.kind = ControlKind::join;
         c.player = slot;
-        a_controls.write(c);
+        put(a_controls, c);
       }
       next_join = now + 0.5;
     }
@@ -116,7 +119,7 @@ int main(int argc, char **argv) {
     if (mine && now >= next_valid) {
       for (int slot = 0; slot < 2; ++slot) {
         last_valid[slot] = parked(slot, sim);
-        a_samples.write(last_valid[slot]);
+        put(a_samples, last_valid[slot]);
         valid++;
       }
       // no catching up: a burst would repeat one capture time (a duplicate)
@@ -146,8 +149,8 @@ int main(int argc, char **argv) {
         case SampleResult::stale: s.capture_time = sim - 10.0; break;
         default: break;
       }
-      (from_b ? b_samples : a_samples).write(s);
-      sent[drop_name(kind)]++;
+      put(from_b ? b_samples : a_samples, s);
+      sent[name_of(kind)]++;
       flood_index++;
       next_bad += interval;
     }
@@ -157,7 +160,7 @@ int main(int argc, char **argv) {
       for (; burst_sent < burst; ++burst_sent) {
         RacketSampleIn s = parked(0, sim);
         s.center.y = 1e4;  // out_of_range
-        a_samples.write(s);
+        put(a_samples, s);
       }
     }
     sleep_until(std::min(next_valid, now + 0.0005));
@@ -168,16 +171,18 @@ int main(int argc, char **argv) {
   j["sent"] = sent;
   j["malformed"] = flood_index;
   j["burst"] = burst_sent;
+  j["write_failures"] = write_failures;
   // what it last heard, to tell why a flood did not start
   j["last_info"] = {{"have", have_info},
-                    {"state", state_name(info.state)},
+                    {"state", name_of(info.state)},
                     {"held", {info.slots[0].held, info.slots[1].held}},
                     {"samples", {info.slots[0].samples, info.slots[1].samples}},
                     {"revision", info.revision}};
-  if (!out_json.empty()) std::ofstream(out_json) << j.dump(1) << "\n";
-  std::printf("%s: %ld parked samples, %ld malformed\n", kProgram, valid, flood_index);
+  if (!out_json.empty() && !write_file(out_json, j.dump(1), &err)) return fail(kProgram, err);
+  std::printf("%s: %ld parked samples, %ld malformed, %ld writes refused\n", kProgram, valid, flood_index,
+              write_failures);
   std::fflush(stdout);
-  int status = (per_kind > 0 && flood_index < per_kind * 10) || burst_sent < burst ? 1 : 0;
+  int status = (per_kind > 0 && flood_index < per_kind * 10) || burst_sent < burst || write_failures ? 1 : 0;
   dds::set_exit_status_if_stuck(status);  // two participants in one process: the case of Fast-DDS#6193
   return status;
 }

@@ -13,25 +13,26 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <array>
 #include <cmath>
-#include <cstdarg>
 #include <cstdio>
 #include <fstream>
 #include <functional>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <thread>
 
 #include "ball/render.h"
 #include "ball/scene.h"
 #include "ball/vec3.h"
 #include "ball_pixels.h"
+#include "check.hpp"
 #include "common.h"
 #include "process.h"
+#include "records.h"
 
 using namespace ballsrv;
 using namespace ballsrv::app;
-using json = nlohmann::json;
+using check::note;
 
 namespace {
 
@@ -40,29 +41,7 @@ struct Env {
   int domain = 0;
   std::string dom() const { return std::to_string(domain); }
 };
-
-int failures = 0;
-
-#define EXPECT(cond, ...)                                             \
-  do {                                                                \
-    if (!(cond)) {                                                    \
-      std::printf("FAILED %s:%d: %s: ", __FILE__, __LINE__, #cond);   \
-      std::printf(__VA_ARGS__);                                       \
-      std::printf("\n");                                              \
-      failures++;                                                     \
-    }                                                                 \
-  } while (0)
-
-void note(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-void note(const char *fmt, ...) {
-  va_list ap;
-  va_start(ap, fmt);
-  std::printf("  ");
-  std::vprintf(fmt, ap);
-  std::printf("\n");
-  va_end(ap);
-  std::fflush(stdout);
-}
+Env g_env;  // the case's, from the command line
 
 // Follows a JSON Lines file as it grows.
 class Tail {
@@ -99,7 +78,7 @@ struct Server {
   ~Server() {
     if (p.pid() <= 0 && p.status() == -1) return;  // moved from
     int rc = p.stop(5.0);
-    EXPECT(rc == 0, "the server's exit status on SIGTERM: %d", rc);
+    CHECK_MSG(rc == 0, "the server's exit status on SIGTERM: %d", rc);
   }
 };
 
@@ -150,8 +129,11 @@ json wait_for(Tail &t, double timeout, const std::function<bool(const json &)> &
   return json();
 }
 
-bool is_event(const json &j, const char *kind) { return j.value("type", "") == "event" && j.value("kind", "") == kind; }
-bool is_hit(const json &j) { return is_event(j, "racket") && j.value("in_play", false); }
+// the record's lines, read with records.h
+double recv(const json &line) { return line.at("recv").get<double>(); }
+bool is_event(const json &j, EventKind kind) { return record_type(j) == "event" && j.get<EventOut>().kind == kind; }
+bool is_hit(const json &j) { return is_event(j, EventKind::racket) && j.get<EventOut>().in_play; }
+bool is_type(const json &j, const char *type) { return record_type(j) == type; }
 
 size_t count(const std::vector<json> &lines, const std::function<bool(const json &)> &pred) {
   size_t n = 0;
@@ -164,8 +146,8 @@ size_t count(const std::vector<json> &lines, const std::function<bool(const json
 Process ready_watcher(Case &c, const std::string &record, const std::vector<std::string> &extra) {
   Process w = c.watcher(record, extra);
   Tail t(record);
-  json r = wait_for(t, 15.0, [](const json &j) { return j.value("type", "") == "ready"; });
-  EXPECT(!r.is_null(), "the watcher did not match the server within 15 s");
+  json r = wait_for(t, 15.0, [](const json &j) { return is_type(j, "ready"); });
+  CHECK_MSG(!r.is_null(), "the watcher did not match the server within 15 s");
   return w;
 }
 
@@ -186,9 +168,9 @@ Play play(Case &c, const std::vector<std::string> &bot_args, const std::string &
 
 // the first serve's reception time, or a failed check and -1
 double first_serve(Tail &t) {
-  json serve = wait_for(t, 15.0, [](const json &j) { return is_event(j, "serve"); });
-  EXPECT(!serve.is_null(), "no serve within 15 s");
-  return serve.is_null() ? -1.0 : serve["recv"].get<double>();
+  json serve = wait_for(t, 15.0, [](const json &j) { return is_event(j, EventKind::serve); });
+  CHECK_MSG(!serve.is_null(), "no serve within 15 s");
+  return serve.is_null() ? -1.0 : recv(serve);
 }
 
 // racket hits in play received within `seconds` of t0, up to `want`; *last: when the last came
@@ -200,7 +182,7 @@ int hits_within(Tail &t, double t0, int want, double seconds, double *last) {
     json h = wait_for(t, t0 + seconds - realtime_now(), is_hit, &from);
     if (h.is_null()) break;
     hits++;
-    *last = h["recv"].get<double>();
+    *last = recv(h);
   }
   return hits;
 }
@@ -215,7 +197,7 @@ void rally_with(const Env &env, const std::vector<std::string> &bot_args, int wa
   if (t0 < 0.0) return;
   int hits = hits_within(p.t, t0, want, 30.0, &last);
   note("%s: %d racket hits in %.1f s after the first serve", what, hits, last - t0);
-  EXPECT(hits >= want, "%d hits in 30 s, want %d", hits, want);
+  CHECK_MSG(hits >= want, "%d hits in 30 s, want %d", hits, want);
 }
 
 void case_rally(const Env &env) { rally_with(env, {"--rate", "15"}, 10, "15 Hz"); }
@@ -236,44 +218,46 @@ void case_desync(const Env &env) {
   p.w.stop();
   t.poll();
   // the watcher's own check
-  std::ifstream f(sum);
-  json s = json::parse(f, nullptr, false);
-  EXPECT(!s.is_discarded() && !s["matches"].empty(), "no summary");
-  if (s.is_discarded() || s["matches"].empty()) return;
-  const json &m = s["matches"][0];
-  note("watcher: %d states, %d checked, %d unmatched, max error %.3g m, %d segments, %d hits",
-       m["states"].get<int>(), m["states_checked"].get<int>(), m["states_unmatched"].get<int>(),
-       m["max_error"].get<double>(), m["segments"].get<int>(), m["hits"].get<int>());
-  EXPECT(m["states_checked"].get<int>() >= 400, "only %d states checked", m["states_checked"].get<int>());
-  EXPECT(m["max_error"].get<double>() <= 1e-9, "max error %.3g m", m["max_error"].get<double>());
-  EXPECT(m["segments"].get<int>() >= 8, "only %d segments", m["segments"].get<int>());
+  WatchSummary s;
+  try {
+    std::ifstream f(sum);
+    s = json::parse(f).get<WatchSummary>();
+  } catch (const std::exception &e) {
+    CHECK_MSG(false, "no summary in %s: %s", sum.c_str(), e.what());
+    return;
+  }
+  CHECK_MSG(s.matches.size() == 1, "%zu matches in the summary", s.matches.size());
+  if (s.matches.empty()) return;
+  const WatchedMatchSummary &m = s.matches[0];
+  note("watcher: %llu states, %llu checked, %llu unmatched, max error %.3g m, %u segments, %llu hits",
+       (unsigned long long)m.states, (unsigned long long)m.states_checked, (unsigned long long)m.states_unmatched,
+       m.max_error, m.segments, (unsigned long long)m.hits);
+  CHECK_MSG(m.states_checked >= 400, "only %llu states checked", (unsigned long long)m.states_checked);
+  CHECK_MSG(m.max_error <= 1e-9, "max error %.3g m", m.max_error);
+  CHECK_MSG(m.segments >= 8, "only %u segments", m.segments);
   // and again here, from the record, with libball and the scene's own model
   ball_scene scene;
   ball_scene_default(&scene);
-  std::map<long, ball_segment> segs;
+  std::map<uint32_t, ball_segment> segs;
   for (const auto &j : t.lines)
-    if (j.value("type", "") == "segment") {
-      ball_segment g{};
-      g.t0 = j["t0"];
-      g.p0 = ball_v3(j["p0"][0], j["p0"][1], j["p0"][2]);
-      g.v0 = ball_v3(j["v0"][0], j["v0"][1], j["v0"][2]);
-      g.s0 = ball_v3(j["s0"][0], j["s0"][1], j["s0"][2]);
-      g.grounded = j["grounded"].get<bool>();
-      segs[j["seq"].get<long>()] = g;
+    if (is_type(j, "segment")) {
+      SegmentOut g = j.get<SegmentOut>();
+      segs[g.seq] = g.segment;
     }
   double worst = 0.0;
   int checked = 0;
   for (const auto &j : t.lines) {
-    if (j.value("type", "") != "state") continue;
-    auto it = segs.find(j["segment_seq"].get<long>());
+    if (!is_type(j, "state")) continue;
+    StateOut st = j.get<StateOut>();
+    auto it = segs.find(st.segment_seq);
     if (it == segs.end()) continue;
     ball_state b;
-    ball_segment_eval(&scene.model, &it->second, j["sim_time"].get<double>(), &b);
-    worst = std::fmax(worst, ball_v3_max_diff(b.position, ball_v3(j["position"][0], j["position"][1], j["position"][2])));
+    ball_segment_eval(&scene.model, &it->second, st.sim_time, &b);
+    worst = std::fmax(worst, ball_v3_max_diff(b.position, st.ball.position));
     checked++;
   }
   note("driver: %d states re-evaluated from the record, max error %.3g m", checked, worst);
-  EXPECT(checked >= 400 && worst <= 1e-9, "%d states, max error %.3g m", checked, worst);
+  CHECK_MSG(checked >= 400 && worst <= 1e-9, "%d states, max error %.3g m", checked, worst);
 }
 
 // a killed bot pauses its match within 2 deadline periods; a new bot resumes it
@@ -284,42 +268,45 @@ void case_pause(const Env &env) {
   size_t from = 0;
   for (int i = 0; i < 3; ++i) {
     json h = wait_for(t, 15.0, is_hit, &from);
-    EXPECT(!h.is_null(), "no rally before the kill");
+    CHECK_MSG(!h.is_null(), "no rally before the kill");
     if (h.is_null()) return;
   }
-  json info = wait_for(t, 5.0, [](const json &j) { return j.value("type", "") == "match_info"; });
-  double timeout = info.is_null() ? 1.0 : info["player_timeout"].get<double>();
+  json info = wait_for(t, 5.0, [](const json &j) { return is_type(j, "match_info"); });
+  CHECK_MSG(!info.is_null(), "no match info in the record");
+  double timeout = info.is_null() ? 1.0 : info.get<MatchInfoOut>().player_timeout;
   double killed = realtime_now();
   p.b1.signal(SIGKILL);
   p.b1.wait(2.0);
-  json pause = wait_for(t, 10.0, [](const json &j) { return is_event(j, "pause"); }, &from);
-  EXPECT(!pause.is_null(), "no pause within 10 s of the kill");
+  json pause = wait_for(t, 10.0, [](const json &j) { return is_event(j, EventKind::pause); }, &from);
+  CHECK_MSG(!pause.is_null(), "no pause within 10 s of the kill");
   if (pause.is_null()) return;
-  double after = pause["recv"].get<double>() - killed;
-  note("bot 1 killed; pause (%s, player %d) %.3f s later; deadline period %.2f s",
-       pause["reason"].get<std::string>().c_str(), pause["index"].get<int>(), after, timeout);
-  EXPECT(after <= 2.0 * timeout, "pause %.3f s after the kill, more than 2 deadline periods (%.2f s)", after, 2 * timeout);
-  EXPECT(pause["reason"] == "vanished" && pause["index"] == 1, "reason %s index %d",
-         pause["reason"].get<std::string>().c_str(), pause["index"].get<int>());
+  double after = recv(pause) - killed;
+  EventOut pe = pause.get<EventOut>();
+  note("bot 1 killed; pause (%s, player %d) %.3f s later; deadline period %.2f s", name_of(pe.reason), pe.index,
+       after, timeout);
+  CHECK_MSG(after <= 2.0 * timeout, "pause %.3f s after the kill, more than 2 deadline periods (%.2f s)", after, 2 * timeout);
+  CHECK_MSG(pe.reason == Reason::pause_vanished && pe.index == 1, "reason %s index %d", name_of(pe.reason), pe.index);
   // the match stands still while paused
   usleep(1500000);
   t.poll();
   size_t hits_paused = count(std::vector<json>(t.lines.begin() + static_cast<long>(from), t.lines.end()), is_hit);
-  EXPECT(hits_paused == 0, "%zu hits while paused", hits_paused);
+  CHECK_MSG(hits_paused == 0, "%zu hits while paused", hits_paused);
   double rejoin = realtime_now();
   Process b2 = c.bot(1, {"--rate", "20", "--seed", "9"});
-  json r = wait_for(t, 15.0, [](const json &j) { return is_event(j, "resume"); }, &from);
-  EXPECT(!r.is_null(), "no resume within 15 s of a new bot");
+  json r = wait_for(t, 15.0, [](const json &j) { return is_event(j, EventKind::resume); }, &from);
+  CHECK_MSG(!r.is_null(), "no resume within 15 s of a new bot");
   if (r.is_null()) return;
-  note("a new bot for slot 1 started; resume %.3f s later", r["recv"].get<double>() - rejoin);
+  note("a new bot for slot 1 started; resume %.3f s later", recv(r) - rejoin);
   json h = wait_for(t, 10.0, is_hit, &from);
-  EXPECT(!h.is_null(), "no hit after the resume");
+  CHECK_MSG(!h.is_null(), "no hit after the resume");
 }
 
 // 10,000 malformed samples: the server lives, the ball is the same, every drop counted
 void case_flood(const Env &env) {
-  auto run = [&](const char *name, long per_kind, long burst, json *server_stats, json *sent,
-                 std::map<long, std::string> *states) {
+  // the ball by sim frame, every bit of its position, velocity and spin
+  using Ball = std::array<double, 9>;
+  auto run = [&](const char *name, long per_kind, long burst, ServerReport *server_stats, json *sent,
+                 std::map<uint64_t, Ball> *states) {
     Case c{env};
     std::string rec = path(env, std::string(name) + ".jsonl");
     std::string stats = path(env, std::string(name) + "-server.json");
@@ -333,73 +320,91 @@ void case_flood(const Env &env) {
                                 "--out", flood_out},
                                rec + ".flood.out", rec + ".flood.err");
     int frc = f.wait(40.0);
-    EXPECT(frc == 0, "%s: ball_flood exit status %d", name, frc);
-    EXPECT(server.running(), "%s: the server died", name);
+    CHECK_MSG(frc == 0, "%s: ball_flood exit status %d", name, frc);
+    CHECK_MSG(server.running(), "%s: the server died", name);
     w.stop();
     int src = server.stop(5.0);
-    EXPECT(src == 0, "%s: the server's exit status %d", name, src);
-    std::ifstream fs(stats), ff(flood_out);
-    *server_stats = json::parse(fs, nullptr, false);
-    *sent = json::parse(ff, nullptr, false);
+    CHECK_MSG(src == 0, "%s: the server's exit status %d", name, src);
+    try {
+      std::ifstream fs(stats), ff(flood_out);
+      *server_stats = json::parse(fs).get<ServerReport>();
+      *sent = json::parse(ff);
+    } catch (const std::exception &e) {
+      CHECK_MSG(false, "%s: the server's or the flood's counters: %s", name, e.what());
+      return false;
+    }
     Tail t(rec);
     t.poll();
     for (const auto &j : t.lines)
-      if (j.value("type", "") == "state") {
-        // the ball by sim frame, every digit (nlohmann prints doubles to round-trip)
-        (*states)[j["frame"].get<long>()] = j["position"].dump() + j["velocity"].dump() + j["spin"].dump();
+      if (is_type(j, "state")) {
+        StateOut st = j.get<StateOut>();
+        const ball_state &b = st.ball;
+        (*states)[st.frame] = {b.position.x, b.position.y, b.position.z, b.velocity.x, b.velocity.y,
+                               b.velocity.z, b.spin.x,     b.spin.y,     b.spin.z};
       }
+    return true;
   };
-  json clean_stats, clean_sent, dirty_stats, dirty_sent;
-  std::map<long, std::string> clean, dirty;
+  ServerReport clean_stats, dirty_stats;
+  json clean_sent, dirty_sent;
+  std::map<uint64_t, Ball> clean, dirty;
   const long burst = 300;  // at once: more than the server's reader keeps for a slot (64)
-  run("clean", 0, 0, &clean_stats, &clean_sent, &clean);
-  run("flood", 1000, burst, &dirty_stats, &dirty_sent, &dirty);
-  if (dirty_stats.is_discarded() || dirty_sent.is_discarded() || clean_stats.is_discarded()) {
-    EXPECT(false, "missing stats");
+  if (!run("clean", 0, 0, &clean_stats, &clean_sent, &clean) ||
+      !run("flood", 1000, burst, &dirty_stats, &dirty_sent, &dirty))
     return;
-  }
+  auto drops = [](const ServerReport &r, const std::string &reason) {
+    SampleResult why = SampleResult::accepted;
+    CHECK_MSG(parse_name(reason, &why) && static_cast<int>(why) < kDropReasons, "not a drop reason: %s",
+              reason.c_str());
+    return static_cast<long>(static_cast<int>(why) < kDropReasons ? r.status.drops[static_cast<int>(why)] : 0);
+  };
   // Every sample is accounted for: dropped for its reason, or counted by DDS
   // as refused by the server's reader (rejected) or not delivered (lost: a
   // gap in a writer's sequence, or no room in the reader's history, which
   // the burst overflows); none of them accepted. Best effort on a loaded
   // machine may also lose a few of the flood.
-  long total = 0, missing = 0;
-  for (auto &kv : dirty_sent["sent"].items()) {
-    long n = kv.value().get<long>() + (kv.key() == "out_of_range" ? dirty_sent["burst"].get<long>() : 0);
-    long dropped = dirty_stats["drops"][kv.key()].get<long>();
+  long total = 0, missing = 0, kinds = 0;
+  for (auto &kv : dirty_sent.at("sent").items()) {
+    long n = kv.value().get<long>() + (kv.key() == "out_of_range" ? dirty_sent.at("burst").get<long>() : 0);
+    long dropped = drops(dirty_stats, kv.key());
     total += n;
     missing += n - dropped;
-    EXPECT(dropped <= n, "%s: %ld sent, %ld dropped", kv.key().c_str(), n, dropped);
+    kinds++;
+    CHECK_MSG(dropped <= n, "%s: %ld sent, %ld dropped", kv.key().c_str(), n, dropped);
   }
-  long valid = dirty_sent["valid"].get<long>();
-  long dds_counted = dirty_stats["drops"]["rejected"].get<long>() + dirty_stats["drops"]["lost"].get<long>();
+  CHECK_MSG(kinds == 10, "%ld kinds of malformed sample sent, not 10", kinds);
+  long valid = dirty_sent.at("valid").get<long>();
+  long dds_counted = drops(dirty_stats, "rejected") + drops(dirty_stats, "lost");
   note("%ld malformed samples sent in 10 kinds and a burst of %ld; drops by reason: %s; %ld not seen by the server, "
        "%ld counted by DDS",
-       total, dirty_sent["burst"].get<long>(), dirty_stats["drops"].dump().c_str(), missing, dds_counted);
-  EXPECT(dirty_sent["burst"].get<long>() == burst, "burst of %ld", dirty_sent["burst"].get<long>());
-  EXPECT(missing <= dds_counted, "%ld malformed samples neither dropped nor counted by DDS (%ld)", missing,
-         dds_counted);
-  EXPECT(dds_counted <= missing + valid, "DDS counted %ld, %ld malformed and %ld valid were sent", dds_counted,
-         missing, valid);
-  EXPECT(missing > 0, "the burst of %ld all fit in the server's reader", burst);
-  EXPECT(missing - burst <= (total - burst) / 20, "%ld of the flood not seen by the server (more than 5 %%)",
-         missing - burst);
+       total, dirty_sent.at("burst").get<long>(), drops_text(dirty_stats.status.drops).c_str(), missing, dds_counted);
+  CHECK_MSG(dirty_sent.at("burst").get<long>() == burst, "burst of %ld", dirty_sent.at("burst").get<long>());
+  CHECK_MSG(missing <= dds_counted, "%ld malformed samples neither dropped nor counted by DDS (%ld)", missing,
+            dds_counted);
+  CHECK_MSG(dds_counted <= missing + valid, "DDS counted %ld, %ld malformed and %ld valid were sent", dds_counted,
+            missing, valid);
+  CHECK_MSG(missing > 0, "the burst of %ld all fit in the server's reader", burst);
+  CHECK_MSG(missing - burst <= (total - burst) / 20, "%ld of the flood not seen by the server (more than 5 %%)",
+            missing - burst);
   // the server's own books: every sample in is accepted, idle or dropped
-  long in = dirty_stats["samples_in"].get<long>(), all_drops = 0;
-  for (auto &kv : dirty_stats["drops"].items()) all_drops += kv.value().get<long>();
-  long books = dirty_stats["samples_ok"].get<long>() + dirty_stats["samples_idle"].get<long>() + all_drops;
-  EXPECT(in == books, "samples_in %ld, accepted + idle + dropped %ld", in, books);
+  const StatusOut &ds = dirty_stats.status;
+  long in = static_cast<long>(ds.samples_in), all_drops = 0;
+  for (int i = 0; i < kDropReasons; ++i) all_drops += static_cast<long>(ds.drops[i]);
+  long books = static_cast<long>(ds.samples_ok + dirty_stats.samples_idle) + all_drops;
+  CHECK_MSG(in == books, "samples_in %ld, accepted + idle + dropped %ld", in, books);
   long sent_all = total + valid;
-  note("the server's books: %ld in (%ld sent), %ld accepted, %ld idle, %ld dropped", in, sent_all,
-       dirty_stats["samples_ok"].get<long>(), dirty_stats["samples_idle"].get<long>(), all_drops);
-  EXPECT(in <= sent_all, "samples_in %ld, more than the %ld sent", in, sent_all);
-  note("match 0: %d pauses without the flood, %d with it (one as each run ends)",
-       clean_stats["matches"][0]["pauses"].get<int>(), dirty_stats["matches"][0]["pauses"].get<int>());
-  EXPECT(total == 10000 + burst, "%ld malformed samples sent", total);
+  note("the server's books: %ld in (%ld sent), %llu accepted, %llu idle, %ld dropped", in, sent_all,
+       (unsigned long long)ds.samples_ok, (unsigned long long)dirty_stats.samples_idle, all_drops);
+  CHECK_MSG(in <= sent_all, "samples_in %ld, more than the %ld sent", in, sent_all);
+  CHECK_MSG(!clean_stats.matches.empty() && !dirty_stats.matches.empty(), "no match in the server's counters");
+  if (clean_stats.matches.empty() || dirty_stats.matches.empty()) return;
+  note("match 0: %llu pauses without the flood, %llu with it (one as each run ends)",
+       (unsigned long long)clean_stats.matches[0].counters.pauses, (unsigned long long)dirty_stats.matches[0].counters.pauses);
+  CHECK_MSG(total == 10000 + burst, "%ld malformed samples sent", total);
   long clean_drops = 0;
-  for (auto &kv : clean_stats["drops"].items())
-    if (kv.key() != "rejected" && kv.key() != "lost") clean_drops += kv.value().get<long>();
-  EXPECT(clean_drops == 0, "%ld drops without the flood", clean_drops);
+  for (int i = 0; i < kDropReasons; ++i)
+    if (i != static_cast<int>(SampleResult::rejected) && i != static_cast<int>(SampleResult::lost))
+      clean_drops += static_cast<long>(clean_stats.status.drops[i]);
+  CHECK_MSG(clean_drops == 0, "%ld drops without the flood", clean_drops);
   // the ball, frame by frame, in both runs
   long common = 0, differ = 0;
   for (const auto &kv : clean) {
@@ -409,8 +414,8 @@ void case_flood(const Env &env) {
     if (it->second != kv.second) differ++;
   }
   note("ball states of %ld sim frames in both runs, %ld differ", common, differ);
-  EXPECT(common >= 300, "only %ld frames in common", common);
-  EXPECT(differ == 0, "%ld frames differ", differ);
+  CHECK_MSG(common >= 300, "only %ld frames in common", common);
+  CHECK_MSG(differ == 0, "%ld frames differ", differ);
 }
 
 // a watcher that joins late gets the current segment at once
@@ -424,10 +429,10 @@ void case_late_join(const Env &env) {
   double started = realtime_now();
   Process w2 = c.watcher(late);
   Tail tl(late);
-  json first = wait_for(tl, 10.0, [](const json &j) { return j.value("type", "") == "segment"; });
-  EXPECT(!first.is_null(), "the late watcher got no segment");
+  json first = wait_for(tl, 10.0, [](const json &j) { return is_type(j, "segment"); });
+  CHECK_MSG(!first.is_null(), "the late watcher got no segment");
   if (first.is_null()) return;
-  double got = first["recv"].get<double>();
+  double got = recv(first);
   usleep(300000);
   tl.poll();
   te.poll();
@@ -435,14 +440,13 @@ void case_late_join(const Env &env) {
   // newest the early watcher had by then
   long current = 0, newest_late = 0;
   for (const auto &j : te.lines)
-    if (j.value("type", "") == "segment" && j["recv"].get<double>() <= got) current = std::max(current, j["seq"].get<long>());
+    if (is_type(j, "segment") && recv(j) <= got) current = std::max<long>(current, j.get<SegmentOut>().seq);
   for (const auto &j : tl.lines)
-    if (j.value("type", "") == "segment" && j["recv"].get<double>() <= got + 0.05)
-      newest_late = std::max(newest_late, j["seq"].get<long>());
+    if (is_type(j, "segment") && recv(j) <= got + 0.05) newest_late = std::max<long>(newest_late, j.get<SegmentOut>().seq);
   note("late watcher: first segment %.3f s after it started; it holds segment %ld, the current one is %ld",
        got - started, newest_late, current);
-  EXPECT(newest_late >= current && current > 0, "late watcher has %ld, current is %ld", newest_late, current);
-  EXPECT(got - started <= 5.0, "first segment %.3f s after start", got - started);
+  CHECK_MSG(newest_late >= current && current > 0, "late watcher has %ld, current is %ld", newest_late, current);
+  CHECK_MSG(got - started <= 5.0, "first segment %.3f s after start", got - started);
 }
 
 // ball-watch --snapshots: PNG frames of the live match every 0.5 sim s, the
@@ -459,25 +463,26 @@ void case_snapshots(const Env &env) {
   ball_scene scene;
   ball_scene_default(&scene);  // the server's default scene: the court the frames show
   ball_camera cam;
-  EXPECT(ball_camera_from_preset(&scene.model, BALL_CAMERA_TOP, 480.0 / 320.0, &cam) == BALL_OK, "no camera");
+  CHECK_MSG(ball_camera_from_preset(&scene.model, BALL_CAMERA_TOP, 480.0 / 320.0, &cam) == BALL_OK, "no camera");
   int frames = 0, found = 0;
   double worst = 0.0, last_t = -1.0;
   for (const auto &j : p.t.lines) {
-    if (j.value("type", "") != "snapshot") continue;
+    if (!is_type(j, "snapshot")) continue;
     frames++;
-    double t = j["sim_time"].get<double>();
-    EXPECT(t > last_t, "snapshot times not increasing: %.3f after %.3f", t, last_t);
+    SnapshotRecord snap = j.get<SnapshotRecord>();
+    double t = snap.sim_time;
+    CHECK_MSG(t > last_t, "snapshot times not increasing: %.3f after %.3f", t, last_t);
     last_t = t;
     unsigned char *rgb = nullptr;
     int w = 0, h = 0;
-    std::string file = j["file"];
+    const std::string &file = snap.file;
     if (ball_png_read(file.c_str(), &rgb, &w, &h) != BALL_OK) {
-      EXPECT(false, "cannot read %s", file.c_str());
+      CHECK_MSG(false, "cannot read %s", file.c_str());
       continue;
     }
-    EXPECT(w == 480 && h == 320, "%s is %dx%d, not 480x320", file.c_str(), w, h);
+    CHECK_MSG(w == 480 && h == 320, "%s is %dx%d, not 480x320", file.c_str(), w, h);
     double px, py, cx, cy;
-    ball_vec3 b = ball_v3(j["position"][0], j["position"][1], j["position"][2]);
+    ball_vec3 b = snap.position;
     if (ball_camera_project(&cam, w, h, b, &px, &py, nullptr) == BALL_OK && ball_centroid(rgb, w, h, &cx, &cy) > 0) {
       worst = std::fmax(worst, std::hypot(cx - px, cy - py));
       found++;
@@ -485,8 +490,8 @@ void case_snapshots(const Env &env) {
     std::free(rgb);
   }
   note("%d snapshots, the ball found in %d, at most %.2f px from its projection", frames, found, worst);
-  EXPECT(frames >= 6, "only %d snapshots in about 4 s of play", frames);
-  EXPECT(found == frames && worst <= 2.0, "ball found in %d of %d frames, %.2f px off", found, frames, worst);
+  CHECK_MSG(frames >= 6, "only %d snapshots in about 4 s of play", frames);
+  CHECK_MSG(found == frames && worst <= 2.0, "ball found in %d of %d frames, %.2f px off", found, frames, worst);
 }
 
 // ball-server's command line: --help, bad configs, a missing profile, a bad domain
@@ -507,7 +512,7 @@ void case_server_cli(const Env &env) {
   };
   std::string err;
   int rc = run({"--help"}, "help", &err);
-  EXPECT(rc == 0, "--help: status %d", rc);
+  CHECK_MSG(rc == 0, "--help: status %d", rc);
   struct Bad {
     const char *name, *text, *expect;
   } cases[] = {
@@ -526,17 +531,37 @@ void case_server_cli(const Env &env) {
     std::string file = write(b.name, b.text);
     rc = run({"--config", file, "--domain", env.dom()}, b.name, &err);
     note("%s: status %d: %s", b.name, rc, err.substr(0, err.find('\n')).c_str());
-    EXPECT(rc == 1 && err.find(b.expect) != std::string::npos, "%s: status %d, stderr: %s", b.name, rc, err.c_str());
+    CHECK_MSG(rc == 1 && err.find(b.expect) != std::string::npos, "%s: status %d, stderr: %s", b.name, rc, err.c_str());
   }
   rc = run({"--profile", path(env, "missing.xml"), "--domain", env.dom()}, "profile", &err);
   note("missing profile: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
-  EXPECT(rc == 1 && err.find("missing.xml") != std::string::npos, "status %d: %s", rc, err.c_str());
+  CHECK_MSG(rc == 1 && err.find("missing.xml") != std::string::npos, "status %d: %s", rc, err.c_str());
   rc = run({"--domain", "300"}, "domain", &err);
   note("domain 300: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
-  EXPECT(rc != 0 && err.find("domain") != std::string::npos, "status %d: %s", rc, err.c_str());
+  CHECK_MSG(rc != 0 && err.find("domain") != std::string::npos, "status %d: %s", rc, err.c_str());
+  // an output file that cannot be written fails the run, naming the file and the reason
+  rc = run({"--domain", env.dom(), "--startup-wait", "0", "--duration", "0.2", "--quiet", "--stats-json",
+            path(env, "no/such/dir/stats.json")},
+           "stats", &err);
+  note("stats file in a missing folder: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
+  CHECK_MSG(rc == 1 && err.find("cannot write " + path(env, "no/such/dir/stats.json") + ": No such file or directory") !=
+                           std::string::npos,
+            "status %d: %s", rc, err.c_str());
+  // and a record that cannot be written stops the watcher with its reason
+  {
+    Process w = Process::start({env.bin + "/ball-watch", "--domain", env.dom(), "--duration", "5", "--record",
+                                "/dev/full"},
+                               path(env, "full.out"), path(env, "full.err"));
+    rc = w.wait(20.0);
+    std::ifstream f(path(env, "full.err"));
+    err.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    note("ball-watch --record /dev/full: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
+    CHECK_MSG(rc == 1 && err.find("cannot write /dev/full: No space left on device") != std::string::npos,
+              "status %d: %s", rc, err.c_str());
+  }
   std::string notxml = write("notxml.xml", "this is not xml\n");
   rc = run({"--profile", notxml, "--domain", env.dom()}, "notxml", &err);
-  EXPECT(rc == 1 && err.find("not a valid Fast DDS profile") != std::string::npos, "status %d: %s", rc, err.c_str());
+  CHECK_MSG(rc == 1 && err.find("not a valid Fast DDS profile") != std::string::npos, "status %d: %s", rc, err.c_str());
 }
 
 // a second server for the same match on the same domain refuses to start
@@ -552,41 +577,55 @@ void case_busy(const Env &env) {
   std::ifstream f(path(env, "second.err"));
   std::string err((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
   note("second server: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
-  EXPECT(rc == 1 && err.find("busy") != std::string::npos, "status %d: %s", rc, err.c_str());
-  EXPECT(first.running(), "the first server stopped");
+  CHECK_MSG(rc == 1 && err.find("busy") != std::string::npos, "status %d: %s", rc, err.c_str());
+  CHECK_MSG(first.running(), "the first server stopped");
+}
+
+// A case, then no Fast DDS file left behind; every Process of the case is
+// stopped when it returns.
+void in_case(void (*fn)(const Env &)) {
+  std::vector<std::string> shm_before = dds_shm_files();
+  fn(g_env);
+  std::vector<std::string> shm_after = dds_shm_files();
+  CHECK_MSG(shm_after.size() <= shm_before.size(), "%zu Fast DDS files left in /dev/shm",
+            shm_after.size() - shm_before.size());
 }
 
 }  // namespace
 
+TEST(rally) { in_case(case_rally); }
+TEST(desync) { in_case(case_desync); }
+TEST(pause) { in_case(case_pause); }
+TEST(flood) { in_case(case_flood); }
+TEST(late_join) { in_case(case_late_join); }
+TEST(lossy) { in_case(case_lossy); }
+TEST(server_cli) { in_case(case_server_cli); }
+TEST(busy) { in_case(case_busy); }
+TEST(snapshots) { in_case(case_snapshots); }
+
 int main(int argc, char **argv) {
-  CLI::App cli{"ball_itest: the ball server's integration tests"};
+  CLI::App cli{"ball_itest: the ball server's integration tests, one case a run"};
   std::string name;
-  Env env;
   double watchdog = 80.0;
-  cli.add_option("case", name, "rally, desync, pause, flood, late_join, lossy, server_cli, busy")->required();
-  cli.add_option("--bin", env.bin, "directory of ball-server, ball-bot, ball-watch, ball_flood")->required();
-  cli.add_option("--domain", env.domain, "DDS domain id of this case")->required();
-  cli.add_option("--work", env.work, "directory for logs and records")->required();
+  std::vector<std::string> names;
+  for (const auto &c : check::cases()) names.push_back(c.name);
+  cli.add_option("case", name, "the case")->required()->check(CLI::IsMember(names));
+  cli.add_option("--bin", g_env.bin, "directory of ball-server, ball-bot, ball-watch, ball_flood")->required();
+  cli.add_option("--domain", g_env.domain, "DDS domain id of this case (cmake/dds_domains.cmake)")->required();
+  cli.add_option("--work", g_env.work, "directory for logs and records")->required();
   cli.add_option("--watchdog", watchdog, "s before everything is killed and the case fails");
   CLI11_PARSE(cli, argc, argv);
-  std::map<std::string, std::function<void(const Env &)>> cases = {
-      {"rally", case_rally},         {"desync", case_desync}, {"pause", case_pause},
-      {"flood", case_flood},         {"late_join", case_late_join}, {"lossy", case_lossy},
-      {"server_cli", case_server_cli}, {"busy", case_busy},         {"snapshots", case_snapshots}};
-  auto it = cases.find(name);
-  if (it == cases.end()) return fail("ball_itest", "unknown case " + name);
   // Under AddressSanitizer (./run asan): Debian's Fast DDS 2.9 deletes its
   // statistics readers through the wrong type (new-delete-type-mismatch
   // inside libfastrtps); everything else ASan checks stays on.
   std::string asan = std::getenv("ASAN_OPTIONS") ? std::getenv("ASAN_OPTIONS") : "";
   setenv("ASAN_OPTIONS", (asan + (asan.empty() ? "" : ":") + "new_delete_type_mismatch=0").c_str(), 1);
-  mkdir(env.work.c_str(), 0755);
-  if (DIR *d = opendir(env.work.c_str())) {  // nothing from an earlier run
+  mkdir(g_env.work.c_str(), 0755);
+  if (DIR *d = opendir(g_env.work.c_str())) {  // nothing from an earlier run
     while (dirent *e = readdir(d))
-      if (e->d_name[0] != '.') unlink((env.work + "/" + e->d_name).c_str());
+      if (e->d_name[0] != '.') unlink((g_env.work + "/" + e->d_name).c_str());
     closedir(d);
   }
-  std::vector<std::string> shm_before = dds_shm_files();
   // the watchdog: a hung case kills its whole process group (and with it,
   // through PR_SET_PDEATHSIG, every child) and fails
   std::thread([watchdog] {
@@ -596,10 +635,6 @@ int main(int argc, char **argv) {
     Process::kill_all();
     _exit(2);
   }).detach();
-  std::printf("%s on domain %d\n", name.c_str(), env.domain);
-  it->second(env);  // every Process of the case is stopped when it returns
-  std::vector<std::string> shm_after = dds_shm_files();
-  EXPECT(shm_after.size() <= shm_before.size(), "%zu Fast DDS files left in /dev/shm", shm_after.size() - shm_before.size());
-  std::printf("%s: %s\n", name.c_str(), failures ? "FAILED" : "passed");
-  return failures ? 1 : 0;
+  std::printf("%s on domain %d\n", name.c_str(), g_env.domain);
+  return check::run({name});
 }

@@ -1,7 +1,7 @@
 // Bots against a Match without a network: rallies at every game level,
 // over a poor network, with a skill setting; the stroke line itself.
 #include "ball/vec3.h"
-#include "check.h"
+#include "check.hpp"
 #include "rally.h"
 
 using namespace test;

@@ -1,11 +1,14 @@
 // A client's side without a network: the sim clock estimate (docs/protocol.md,
-// "Time"), the link that delays and loses samples, and a BotPlayer joining a
-// match from what MatchInfo says.
+// "Time"), the link that delays and loses samples, a BotPlayer joining a
+// match from what MatchInfo says, and a PlayerGroup routing the server's
+// samples to its bots and counting refused writes.
 #include <cmath>
 
-#include "check.h"
+#include <deque>
+
+#include "check.hpp"
 #include "game.h"
-#include "player.h"
+#include "player_group.h"
 
 using namespace test;
 
@@ -91,6 +94,95 @@ TEST(player_joins_then_sends) {
   ControlIn bye;
   CHECK(bot.leave(&bye));
   CHECK(bye.kind == ControlKind::leave && bye.player == 1);
+}
+
+namespace {
+
+// what a group reads and writes, without a network
+struct FakeClientPort : ClientPort {
+  std::deque<MatchInfoOut> infos;
+  std::deque<SegmentOut> segments;
+  std::vector<RacketSampleIn> samples;
+  std::vector<ControlIn> controls;
+  bool refuse = false;
+  template <class T>
+  static bool pop(std::deque<T> &q, T *out) {
+    if (q.empty()) return false;
+    *out = q.front();
+    q.pop_front();
+    return true;
+  }
+  bool take(MatchInfoOut *i) override { return pop(infos, i); }
+  bool take(SegmentOut *s) override { return pop(segments, s); }
+  bool take(StateOut *) override { return false; }
+  bool take(EventOut *) override { return false; }
+  bool take(StatusOut *) override { return false; }
+  bool write(const RacketSampleIn &s) override {
+    if (!refuse) samples.push_back(s);
+    return !refuse;
+  }
+  bool write(const ControlIn &c) override {
+    if (!refuse) controls.push_back(c);
+    return !refuse;
+  }
+  bool hears_server() const override { return true; }
+};
+
+}  // namespace
+
+TEST(a_group_routes_by_match_and_counts_refused_writes) {
+  Game g;  // match 7
+  ball_scene scene;
+  ball_scene_default(&scene);
+  const ParticipantId me = participant(4);
+  std::vector<BotPlayer> bots;
+  for (int slot = 0; slot < 2; ++slot) {
+    PlayerParams p;
+    p.match = 7;
+    p.player = slot;
+    bots.emplace_back(scene, me, p);
+  }
+  PlayerParams other;
+  other.match = 8;
+  bots.emplace_back(scene, me, other);
+  PlayerGroup group(std::move(bots));
+  FakeClientPort port;
+  port.refuse = true;
+  CHECK(group.tick(port, 0.0, 0.0));  // three JOINs, every one refused
+  CHECK_EQ(group.write_failures(), 3u);
+  CHECK(port.controls.empty());
+  port.refuse = false;
+  // both slots of match 7 taken by the group's participant; match 8 is not there
+  g.control(ControlKind::join, me, 0);
+  g.control(ControlKind::join, me, 1);
+  port.infos.push_back(g.match.info());
+  int segments_seen = 0;
+  CHECK(group.tick(port, 0.6, 0.6, [&](const SegmentOut &, double) { segments_seen++; }));
+  CHECK(group.bots()[0].joined() && group.bots()[1].joined());
+  CHECK(!group.bots()[2].joined());
+  CHECK(!group.all_joined());
+  CHECK_EQ(port.controls.size(), 1u);  // only match 8's bot asks again
+  CHECK_EQ(port.controls[0].match_id, 8u);
+  // a segment of match 7 reaches its bots and the meter; one of match 9 neither
+  g.run(0.2);  // the serve
+  CHECK(!g.segments.empty());
+  SegmentOut seg = g.segments.front(), stray = seg;
+  stray.match_id = 9;
+  port.segments = {seg, stray};
+  CHECK(group.tick(port, 0.7, 0.7, [&](const SegmentOut &, double) { segments_seen++; }));
+  CHECK_EQ(segments_seen, 1);
+  CHECK_EQ(group.bots()[0].counters().segments, 1u);
+  CHECK_EQ(group.bots()[2].counters().segments, 0u);
+  // samples at 30 Hz from both joined bots over 1 s, all written
+  for (int k = 1; k <= 100; ++k) group.tick(port, 0.7 + k * 0.01, 0.7 + k * 0.01);
+  CHECK(port.samples.size() >= 58 && port.samples.size() <= 62);
+  CHECK_EQ(group.samples_written(), port.samples.size());
+  CHECK_EQ(group.leave(port), 2);  // the two joined bots say LEAVE
+  BotReport r = group.report(0, me);
+  CHECK_EQ(r.match, 7u);
+  CHECK_EQ(r.slot, 0);
+  CHECK_EQ(r.write_failures, 3u);
+  CHECK_EQ(r.participant, hex(me));
 }
 
 CHECK_MAIN

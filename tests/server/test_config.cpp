@@ -1,6 +1,12 @@
 // ball-server's configuration file: defaults, matches, catalogue, and errors
 // that name the file, the line and the JSON pointer.
-#include "check.h"
+#include <CLI/CLI.hpp>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <unistd.h>
+
+#include "check.hpp"
 #include "config.h"
 
 using namespace ballsrv;
@@ -55,16 +61,14 @@ TEST(errors_name_file_line_and_pointer) {
       {"[1, 2]", "t.json:1: /: expected a JSON object"},
       {"{\n \"defaults\": {\"time_base\": 100}\n}", "t.json:2: /defaults/time_base: time_base: must be in [0.05, 20]"},
       {"{\n \"matches\": [ {\"frame_rate\": 0} ]\n}", "t.json:2: /matches/0/frame_rate: frame_rate: must be in (0, 1000] Hz"},
-      {"{\n \"status_interval\": 0\n}", "t.json:2: /status_interval: must be > 0 s"},
+      {"{\n \"status_interval\": 0\n}", "t.json:2: /status_interval: status_interval: must be in (0, 3600] s"},
       {"{\n  \"server_id\": 1,\n  \"domain\": 2,,\n}", "t.json:3:15: not valid JSON"},
   };
   for (const auto &k : cases) {
     ServerConfig c;
     std::string err;
     CHECK(!parse_config(k.text, "t.json", "", &c, &err));
-    bool ok = err.find(k.expect) == 0;
-    if (!ok) std::printf("  got: %s\n  expected: %s\n", err.c_str(), k.expect);
-    CHECK(ok);
+    CHECK_MSG(err.find(k.expect) == 0, "got \"%s\", expected \"%s\"", err.c_str(), k.expect);
   }
   ServerConfig c;
   std::string err;
@@ -89,6 +93,162 @@ TEST(pointer_lines) {
   CHECK_EQ(json_pointer_line(compact, "/y/1/z"), 5);
   CHECK_EQ(json_pointer_line(compact, "/y/7"), 4);  // past the end: the list
   CHECK_EQ(json_pointer_line("not [ json", "/a"), 1);
+}
+
+// The field table's ranges as the check, the JSON reader and the command
+// line apply them: at each end of every numeric range, one value inside and
+// one outside, all three agree.
+TEST(the_three_readers_agree_on_every_range) {
+  int ends = 0;
+  for (const auto &f : match_fields()) {
+    if (!f.in_file || !std::holds_alternative<double MatchConfig::*>(f.member)) continue;
+    const Bounds &b = f.bounds;
+    double step = 1e-3;
+    std::vector<std::pair<double, bool>> probes = {{b.lo, !b.lo_open}, {b.lo - step, false}};
+    if (!b.hi_field) probes.push_back({b.hi, !b.hi_open}), probes.push_back({b.hi + step, false});
+    for (auto [v, inside] : probes) {
+      char value[64];
+      std::snprintf(value, sizeof value, "%.17g", v);
+      // the check
+      MatchConfig c;
+      c.state_rate = 0.0;  // below every frame rate
+      c.*std::get<double MatchConfig::*>(f.member) = v;
+      std::string err;
+      bool by_check = check_match_config(c, &err);
+      // the JSON reader (a state rate not given follows the frame rate down)
+      ServerConfig sc;
+      bool by_json = parse_config(std::string("{\"defaults\": {\"") + f.key + "\": " + value + "}}", "t.json", "",
+                                  &sc, &err);
+      // the command line's own check, as it parses
+      CLI::App app;
+      ServerOptions opt;
+      opt.add(app);
+      bool by_cli = true;
+      try {
+        std::string option = f.option;
+        app.parse(option.substr(0, option.find(',')) + " " + value, false);
+      } catch (const CLI::ParseError &) {
+        by_cli = false;
+      }
+      CHECK_MSG(by_check == inside && by_json == inside && by_cli == inside,
+                "%s = %s: inside %d, check %d, JSON %d, command line %d", f.key, value, inside, by_check, by_json,
+                by_cli);
+      ends++;
+    }
+  }
+  CHECK_EQ(ends, 42);  // 11 numeric settings: 10 with two ends, state_rate with its lower end only
+}
+
+TEST(integer_ranges_and_names_agree) {
+  // players, from the table: 4 is in, 5 is out, for the check, the file and the command line
+  const Bounds &p = find_field(match_fields(), "players")->bounds;
+  CHECK_EQ(p.ilo, 1);
+  CHECK_EQ(p.ihi, kMaxPlayers);
+  MatchConfig c;
+  std::string err;
+  c.players = kMaxPlayers + 1;
+  CHECK(!check_match_config(c, &err));
+  CHECK_EQ(err, std::string("players: must be in [1, 4]"));
+  ServerConfig sc;
+  CHECK(!parse_config("{\"defaults\": {\"players\": 5}}", "t.json", "", &sc, &err));
+  CHECK_EQ(err, std::string("t.json:1: /defaults/players: expected an integer in [1, 4], got 5"));
+  CHECK(parse_config("{\"defaults\": {\"players\": 4}}", "t.json", "", &sc, &err));
+  CLI::App app;
+  ServerOptions opt;
+  opt.add(app);
+  bool threw = false;
+  try {
+    app.parse("--players 5", false);
+  } catch (const CLI::ParseError &) {
+    threw = true;
+  }
+  CHECK(threw);
+  // the old name of an option still works; a level by name
+  CLI::App app2;
+  ServerOptions opt2;
+  opt2.add(app2);
+  app2.parse("--extrapolation -1 --level mid --matches 3 --seed 5", false);
+  ServerConfig cc;
+  CHECK(opt2.apply(&cc, &err));
+  CHECK_EQ(cc.matches.size(), 3u);
+  CHECK_NEAR(cc.matches[2].config.extrapolation_time, -1.0, 0.0);
+  CHECK_EQ(cc.matches[2].config.level, BALL_LEVEL_MID);
+  CHECK_EQ(cc.matches[2].config.seed, 7u);  // the seed plus the index
+  CHECK_EQ(cc.max_matches, 3u + kCreateRoom);
+}
+
+TEST(command_line_over_the_file) {
+  ServerConfig c;
+  std::string err;
+  CHECK(parse_config(R"({"defaults": {"frame_rate": 30, "state_rate": 30},
+                          "matches": [{"id": 5, "state_rate": 10}, {"id": 6}]})",
+                     "t.json", "", &c, &err));
+  CLI::App app;
+  ServerOptions opt;
+  opt.add(app);
+  app.parse("--frame-rate 20 --serve-delay 2 --no-create --server-id 9", false);
+  CHECK(opt.apply(&c, &err));
+  CHECK_EQ(c.matches.size(), 2u);  // the file's matches, with the command line over them
+  CHECK_NEAR(c.matches[0].config.frame_rate, 20.0, 0.0);
+  CHECK_NEAR(c.matches[0].config.state_rate, 10.0, 0.0);   // its own, below the frame rate
+  CHECK_NEAR(c.matches[1].config.state_rate, 20.0, 0.0);   // 30 follows the frame rate down
+  CHECK_NEAR(c.matches[1].config.serve_delay, 2.0, 0.0);
+  CHECK(!c.allow_create);
+  CHECK_EQ(c.server_id, 9u);
+  CHECK_EQ(c.max_matches, 2u);  // no CREATE: no room beyond the configured matches
+}
+
+// server/config/example.json uses every key of both tables, and reads
+TEST(the_example_uses_every_key) {
+  std::ifstream f(BALL_EXAMPLE_CONFIG);
+  CHECK(f.good());
+  nlohmann::json j = nlohmann::json::parse(f, nullptr, false);
+  CHECK(j.is_object());
+  std::set<std::string> used;
+  for (auto &kv : j.items()) used.insert(kv.key());
+  for (auto &kv : j["defaults"].items()) used.insert(kv.key());
+  for (const auto &m : j["matches"])
+    for (auto &kv : m.items()) used.insert(kv.key());
+  int keys = 0;
+  for (const auto &k : server_fields()) {
+    CHECK_MSG(used.count(k.key), "server key %s is not in %s", k.key, BALL_EXAMPLE_CONFIG);
+    keys++;
+  }
+  for (const auto &k : match_fields()) {
+    if (!k.in_file) continue;
+    CHECK_MSG(used.count(k.key), "match key %s is not in %s", k.key, BALL_EXAMPLE_CONFIG);
+    keys++;
+  }
+  CHECK_EQ(keys, 11 + 16);
+  ServerConfig c;
+  std::string err;
+  CHECK_MSG(load_config_file(BALL_EXAMPLE_CONFIG, &c, &err), "%s", err.c_str());
+  CHECK_EQ(c.matches.size(), 4u);
+  CHECK_NEAR(c.matches[3].config.time_base, 0.5, 0.0);
+  CHECK_NEAR(c.defaults.state_rate, 30.0, 0.0);
+}
+
+// Output files say which file failed and why, at open, at a write or a flush.
+TEST(output_files_say_what_failed) {
+  std::string err;
+  CHECK(!write_file("/nonexistent/dir/stats.json", "{}", &err));
+  CHECK_EQ(err, std::string("cannot write /nonexistent/dir/stats.json: No such file or directory"));
+  OutputFile full;  // a device that takes nothing: the buffered line fails at its flush
+  CHECK(full.open("/dev/full"));
+  CHECK(full.write_line("{\"type\": \"start\"}"));
+  CHECK(!full.flush());
+  CHECK_EQ(full.error(), std::string("cannot write /dev/full: No space left on device"));
+  CHECK(!write_file("/dev/full", "{}", &err));
+  CHECK_EQ(err, std::string("cannot write /dev/full: No space left on device"));
+  char dir[] = "/tmp/test_config-XXXXXX";
+  CHECK(mkdtemp(dir) != nullptr);
+  std::string path = std::string(dir) + "/ok.json";
+  CHECK(write_file(path, "{\"a\": 1}", &err));
+  std::ifstream f(path);
+  std::string text((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  CHECK_EQ(text, std::string("{\"a\": 1}\n"));
+  std::remove(path.c_str());
+  rmdir(dir);
 }
 
 CHECK_MAIN

@@ -4,7 +4,7 @@
 #include <set>
 
 #include "ball/vec3.h"
-#include "check.h"
+#include "check.hpp"
 #include "game.h"
 #include "host.h"
 
@@ -202,9 +202,21 @@ TEST(samples_dropped_by_reason_leave_the_ball_alone) {
   // a new seq but not newer than the newest kept: libball says stale
   CHECK(with([&](RacketSampleIn &s) { s.capture_time = good.capture_time; s.center.x += 1.0; }) ==
         SampleResult::stale);
-  // a new seq, identical pose and time: a duplicate
+  // a new seq, identical pose and time: libball's duplicate (its normal is
+  // compared after normalising, so twice the normal is the same pose)
   CHECK(with([&](RacketSampleIn &s) { s.capture_time = good.capture_time; s.center = good.center; }) ==
         SampleResult::duplicate);
+  CHECK(with([&](RacketSampleIn &s) {
+          s.capture_time = good.capture_time;
+          s.center = good.center;
+          s.normal = ball_v3_scale(good.normal, 2.0);
+        }) == SampleResult::duplicate);
+  // the same time and centre with another normal is not the same pose: not newer, so stale
+  CHECK(with([&](RacketSampleIn &s) {
+          s.capture_time = good.capture_time;
+          s.center = good.center;
+          s.normal = ball_v3(0, 0, 1);
+        }) == SampleResult::stale);
   CHECK_EQ(ball_sim_hash(&g.match.sim()), hash);
   // a slot nobody holds
   Game h;
@@ -360,6 +372,7 @@ TEST(state_rate) {
   Game g = two_players(c);
   g.run(3.0);
   int playing_frames = static_cast<int>(g.match.counters().frames);
+  CHECK_EQ(playing_frames, 180);  // both slots held from the start: 3 s at 60 Hz
   CHECK(std::abs(static_cast<int>(g.states.size()) - playing_frames / 3) <= 1);
   c.state_rate = 0.0;
   Game off = two_players(c);

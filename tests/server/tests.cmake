@@ -1,37 +1,54 @@
 # The ball server's tests: the match, the bots and the config offline (label
 # server), then the networked apps on loopback (label dds), each with a DDS
-# domain id of its own so that parallel runs never meet.
+# domain id of its own (cmake/dds_domains.cmake) so that parallel runs never meet.
 if(NOT TARGET ball_match)
   return()
 endif()
+include(${PROJECT_SOURCE_DIR}/cmake/dds_domains.cmake)
 
-foreach(name test_match test_bot test_client)
+foreach(name test_match test_bot test_client test_records test_server_loop test_watcher)
   add_executable(${name} ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp)
-  target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_LIST_DIR})
-  target_link_libraries(${name} PRIVATE ball_match)
+  target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
+  target_link_libraries(${name} PRIVATE ball_client)
   target_compile_options(${name} PRIVATE ${BALL_CXX_WARNINGS})
   add_test(NAME ${name} COMMAND ${name})
   set_tests_properties(${name} PROPERTIES LABELS server TIMEOUT 120)
 endforeach()
 
 # ---- the networked cases: ball_itest drives the real programs ----------------
-if(NOT TARGET ball-server)
-  return()
-endif()
 add_executable(test_config ${CMAKE_CURRENT_LIST_DIR}/test_config.cpp)
-target_include_directories(test_config PRIVATE ${CMAKE_CURRENT_LIST_DIR})
+target_include_directories(test_config PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
 target_link_libraries(test_config PRIVATE ball_app)
+target_compile_definitions(test_config PRIVATE BALL_EXAMPLE_CONFIG="${PROJECT_SOURCE_DIR}/server/config/example.json")
 target_compile_options(test_config PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_config COMMAND test_config)
 set_tests_properties(test_config PROPERTIES LABELS server TIMEOUT 60)
 
-# the teardown guard (server/dds/domain.h); one participant on domain 141
+# docs/server.md's key tables are the field tables (ball-server --keys)
+foreach(table server match)
+  add_test(NAME docs_server_${table}_keys_current
+    COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:ball-server> "-DARGS=--keys;${table}" "-DMARK=${table} keys"
+      "-DBY=ball-server --keys ${table}" -DDOC=${PROJECT_SOURCE_DIR}/docs/server.md
+      -P ${PROJECT_SOURCE_DIR}/tests/cli/keys_doc.cmake)
+  set_tests_properties(docs_server_${table}_keys_current PROPERTIES LABELS server)
+endforeach()
+
+# the teardown guard (server/dds/domain.h): one participant on a domain of its own
+ball_dds_domain(test_teardown teardown_domain)
 add_executable(test_teardown ${CMAKE_CURRENT_LIST_DIR}/test_teardown.cpp)
-target_include_directories(test_teardown PRIVATE ${CMAKE_CURRENT_LIST_DIR})
+target_include_directories(test_teardown PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
 target_link_libraries(test_teardown PRIVATE ball_app ball_dds)
+target_compile_definitions(test_teardown PRIVATE BALL_TEST_DOMAIN=${teardown_domain})
 target_compile_options(test_teardown PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_teardown COMMAND test_teardown)
 set_tests_properties(test_teardown PROPERTIES LABELS dds TIMEOUT 60)
+
+# docs/server.md's table of DDS domains is cmake/dds_domains.cmake's list
+add_test(NAME docs_server_dds_domains_current
+  COMMAND ${CMAKE_COMMAND} -DTABLE=${PROJECT_BINARY_DIR}/dds_domains.md "-DMARK=dds domains"
+    -DBY=cmake/dds_domains.cmake -DDOC=${PROJECT_SOURCE_DIR}/docs/server.md
+    -P ${PROJECT_SOURCE_DIR}/tests/cli/keys_doc.cmake)
+set_tests_properties(docs_server_dds_domains_current PROPERTIES LABELS server)
 
 add_executable(ball_flood ${CMAKE_CURRENT_LIST_DIR}/flood.cpp)
 target_link_libraries(ball_flood PRIVATE ball_app ball_dds)
@@ -40,16 +57,14 @@ set_target_properties(ball_flood PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_B
 
 add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp)
 target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static ball_render)
-target_include_directories(ball_itest PRIVATE ${PROJECT_SOURCE_DIR}/tests/render)
+target_include_directories(ball_itest PRIVATE ${PROJECT_SOURCE_DIR}/tests/render ${PROJECT_SOURCE_DIR}/tests/support)
 target_compile_options(ball_itest PRIVATE ${BALL_CXX_WARNINGS})
 add_dependencies(ball_itest ball-server ball-bot ball-watch ball_flood)
 
-# each case on a DDS domain of its own (100 + its index): parallel runs never meet
+# each case on the DDS domain cmake/dds_domains.cmake gives it: parallel runs never meet
 set(BALL_ITEST_CASES rally desync pause flood late_join lossy server_cli busy snapshots)
-set(index 0)
 foreach(case ${BALL_ITEST_CASES})
-  math(EXPR domain "100 + ${index}")
-  math(EXPR index "${index} + 1")
+  ball_dds_domain(dds_${case} domain)
   add_test(NAME dds_${case}
     COMMAND ball_itest ${case} --bin ${PROJECT_BINARY_DIR}/server --domain ${domain}
             --work ${CMAKE_CURRENT_BINARY_DIR}/dds_${case})

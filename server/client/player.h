@@ -11,26 +11,30 @@
 
 #include "ball/scene.h"
 #include "bot.h"
+#include "fields.h"
 #include "link.h"
 #include "sim_clock.h"
 #include "types.h"
 
 namespace ballsrv {
 
+// A bot's settings; their ranges and meanings are player_fields() (the
+// options of ball-bot, and those ball-demo and ball-load pass on).
 struct PlayerParams {
-  uint32_t match = 0;
+  uint32_t match = 0;         // the match
   int player = -1;            // slot wanted, -1: any free one
   double rate = 30.0;         // samples per s
   double delay = 0.0;         // s added to each sample's trip
-  double jitter = 0.0;        // s, uniform
+  double jitter = 0.0;        // s: up to this much later again, uniform
   double loss = 0.0;          // probability a sample is lost
-  double noise = 0.0;         // m, Gaussian on the centre
+  double noise = 0.0;         // m: Gaussian tracker noise on the centre
   double miss = 0.0;          // skill: probability of missing a ball
-  double aim_error = 0.0;     // skill: m
-  double move_speed = 12.0;   // m/s
-  double lead = -1.0;         // s; < 0: bot_lead(rate, delay, jitter, loss)
-  uint64_t seed = 1;
+  double aim_error = 0.0;     // skill: m of Gaussian error on the planned contact
+  double move_speed = 12.0;   // m/s the racket travels between strokes
+  double lead = -1.0;         // s on the stroke line before contact; < 0: bot_lead(rate, delay, jitter, loss)
+  uint64_t seed = 1;          // of every random draw
 };
+const std::vector<Field<PlayerParams>> &player_fields();
 
 struct PlayerCounters {
   uint64_t taken = 0;     // samples taken
@@ -58,6 +62,7 @@ class BotPlayer {
   // The LEAVE to send on a clean exit; false when not joined.
   bool leave(ControlIn *out);
 
+  uint32_t match() const { return p_.match; }
   bool joined() const { return joined_; }
   int slot() const { return slot_; }
   const std::string &error() const { return error_; }

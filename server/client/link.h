@@ -12,9 +12,9 @@
 namespace ballsrv {
 
 struct LinkParams {
-  double delay = 0.0;   // s, [0, 60]
-  double jitter = 0.0;  // s, [0, 1]
-  double loss = 0.0;    // probability an item is lost, [0, 1)
+  double delay = 0.0;   // s added to every item's trip
+  double jitter = 0.0;  // s: up to this much later again (uniform)
+  double loss = 0.0;    // probability an item is lost
 };
 
 template <class T>

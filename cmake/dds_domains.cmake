@@ -1,0 +1,53 @@
+# The DDS domain ids of the demo, the load benchmark and every networked
+# test, stated here only: ball-demo's and ball-load's default --domain are
+# compiled from this list, the tests take theirs from it
+# (tests/server/tests.cmake), and the table of docs/server.md ("DDS
+# domains") is made from it and held to it by a test. Each user has an id
+# of its own, so that runs at the same time never meet.
+#   "user|id|what"
+set(BALL_DDS_DOMAINS
+  "ball-demo|42|`./run demo` (ball-demo's default `--domain`)"
+  "ball-load|90|`./run bench-server` (ball-load's default `--domain`)"
+  "dds_rally|100|test: two bots rally"
+  "dds_desync|101|test: the watcher's ball against the server's states"
+  "dds_pause|102|test: a killed bot pauses its match"
+  "dds_flood|103|test: 10,000 malformed samples"
+  "dds_late_join|104|test: a watcher started mid-rally"
+  "dds_lossy|105|test: a rally over a poor network"
+  "dds_server_cli|106|test: ball-server's command line and config errors"
+  "dds_busy|107|test: a second server for the same match"
+  "dds_snapshots|108|test: ball-watch --snapshots"
+  "test_teardown|141|test: one participant deleted within the teardown limit")
+
+# ball_dds_domain(USER OUT): the id of USER, a fatal error if it has none.
+function(ball_dds_domain user out)
+  foreach(entry ${BALL_DDS_DOMAINS})
+    string(REPLACE "|" ";" fields "${entry}")
+    list(GET fields 0 name)
+    list(GET fields 1 id)
+    if(name STREQUAL user)
+      set(${out} ${id} PARENT_SCOPE)
+      return()
+    endif()
+  endforeach()
+  message(FATAL_ERROR "cmake/dds_domains.cmake: no DDS domain for ${user}")
+endfunction()
+
+# ball_dds_domain_table(FILE): the table of docs/server.md, written to FILE;
+# a fatal error if two users share an id.
+function(ball_dds_domain_table file)
+  set(text "| id | used by |\n|---|---|\n")
+  set(seen "")
+  foreach(entry ${BALL_DDS_DOMAINS})
+    string(REPLACE "|" ";" fields "${entry}")
+    list(GET fields 0 name)
+    list(GET fields 1 id)
+    list(GET fields 2 what)
+    if(id IN_LIST seen)
+      message(FATAL_ERROR "cmake/dds_domains.cmake: domain ${id} is used twice")
+    endif()
+    list(APPEND seen ${id})
+    string(APPEND text "| ${id} | `${name}`: ${what} |\n")
+  endforeach()
+  file(WRITE ${file} "${text}")
+endfunction()

@@ -1,0 +1,27 @@
+// What a client takes from and gives to the network, free of DDS: the bots
+// (PlayerGroup), the load generator and the watcher are fed through it.
+// server/dds implements it over DDS (dds::ClientEndpoints); the tests feed
+// the same cores from a Match.
+#pragma once
+
+#include "types.h"
+
+namespace ballsrv {
+
+class ClientPort {
+ public:
+  virtual ~ClientPort() = default;
+  // the server's samples, one at a time; false: none left (or not read by this client)
+  virtual bool take(MatchInfoOut *info) = 0;
+  virtual bool take(SegmentOut *segment) = 0;
+  virtual bool take(StateOut *state) = 0;
+  virtual bool take(EventOut *event) = 0;
+  virtual bool take(StatusOut *status) = 0;
+  // false: the write was refused (the caller counts it)
+  [[nodiscard]] virtual bool write(const RacketSampleIn &sample) = 0;
+  [[nodiscard]] virtual bool write(const ControlIn &control) = 0;
+  // a server's segments, events and match info reach this client from now on
+  virtual bool hears_server() const = 0;
+};
+
+}  // namespace ballsrv

@@ -1,0 +1,296 @@
+#include "watcher.h"
+
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+
+#include "ball/vec3.h"
+
+namespace ballsrv {
+
+namespace {
+
+constexpr size_t kKeepSegments = 256;  // per match, for states that arrive late
+constexpr size_t kMaxPending = 4096;   // states waiting for a segment that never comes: counted and forgotten
+constexpr double kTrailSeconds = 1.0;  // sim s of trail and of event markers
+constexpr size_t kTrailPoints = 2048;
+constexpr size_t kMarkers = 64;
+
+std::string point_text(ball_vec3 p) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "(%.2f, %.2f, %.2f)", p.x, p.y, p.z);
+  return buf;
+}
+
+// a collision as libball's event, for the snapshot's markers
+bool event_marker(const EventOut &e, ball_event *out) {
+  ball_event ev{};
+  switch (e.kind) {
+    case EventKind::floor: ev.kind = BALL_EVENT_FLOOR; break;
+    case EventKind::net: ev.kind = BALL_EVENT_NET; break;
+    case EventKind::wall: ev.kind = BALL_EVENT_WALL; break;
+    case EventKind::racket: ev.kind = BALL_EVENT_RACKET; break;
+    default: return false;
+  }
+  ev.index = e.index;
+  ev.time = e.time;
+  ev.point = e.point;
+  ev.velocity_in = e.velocity_in;
+  ev.velocity_out = e.velocity_out;
+  *out = ev;
+  return true;
+}
+
+}  // namespace
+
+std::string rally_line(const EventOut &e) {
+  char buf[256];
+  const char *side = e.side == 0 ? "near" : "far";
+  switch (e.kind) {
+    case EventKind::serve:
+      std::snprintf(buf, sizeof buf, "serve by player %d (%s side), score %d-%d", e.index, side, e.score[0],
+                    e.score[1]);
+      break;
+    case EventKind::floor:
+      std::snprintf(buf, sizeof buf, "  bounce on the %s side at %s%s%s", side, point_text(e.point).c_str(),
+                    e.sound ? ", sound" : "", e.in_play ? "" : " (dead ball)");
+      break;
+    case EventKind::net: std::snprintf(buf, sizeof buf, "  net at %s", point_text(e.point).c_str()); break;
+    case EventKind::wall: std::snprintf(buf, sizeof buf, "  wall %d at %s", e.index, point_text(e.point).c_str()); break;
+    case EventKind::racket:
+      std::snprintf(buf, sizeof buf, "  hit by player %d at %s, %.1f m/s%s", e.index, point_text(e.point).c_str(),
+                    ball_v3_norm(e.velocity_out), e.in_play ? "" : " (dead ball)");
+      break;
+    case EventKind::point:
+      if (e.side < 0) std::snprintf(buf, sizeof buf, "let (%s): replayed", name_of(e.reason));
+      else
+        std::snprintf(buf, sizeof buf, "point to the %s side (%s), score %d-%d", side, name_of(e.reason), e.score[0],
+                      e.score[1]);
+      break;
+    case EventKind::pause: std::snprintf(buf, sizeof buf, "pause: player %d %s", e.index, name_of(e.reason)); break;
+    case EventKind::resume: std::snprintf(buf, sizeof buf, "resume"); break;
+    case EventKind::join: std::snprintf(buf, sizeof buf, "player %d joined", e.index); break;
+    case EventKind::leave: std::snprintf(buf, sizeof buf, "player %d left", e.index); break;
+    case EventKind::level:
+      std::snprintf(buf, sizeof buf, "level %s", ball_level_name(static_cast<ball_level>(static_cast<int>(e.value))));
+      break;
+    case EventKind::time_base: std::snprintf(buf, sizeof buf, "time base %.2f", e.value); break;
+    default: return "";
+  }
+  return buf;
+}
+
+Watcher::Watched &Watcher::watched(uint32_t id) { return matches_[id]; }
+
+void Watcher::say(uint32_t match, double sim_time, const std::string &text) {
+  if (settings_.log && !text.empty()) out_.log.push_back(LogLine{match, sim_time, text});
+}
+
+void Watcher::on_start(double real) {
+  start_real_ = real;
+  out_.records.push_back({{"type", "start"}, {"real", real}, {"fps", settings_.fps}});
+}
+
+void Watcher::on_ready(double real) {
+  if (ready_) return;
+  ready_ = true;
+  out_.records.push_back({{"type", "ready"}, {"recv", real}});
+}
+
+void Watcher::on_info(const MatchInfoOut &info, double real) {
+  if (!wanted(info.match_id)) return;
+  Watched &w = watched(info.match_id);
+  bool first = !w.has_info;
+  MatchState before = w.info.state;
+  w.info = info;
+  w.has_info = true;
+  w.clock.observe(info.sim_time, info.server_time, info.time_base, info.state == MatchState::playing, real);
+  if (first || before != info.state)
+    say(info.match_id, info.sim_time,
+        std::string("match ") + name_of(info.state) + " (" + info.scene + ", level " +
+            ball_level_name(static_cast<ball_level>(info.level)) + ", " + std::to_string(info.players) +
+            " players, server " + std::to_string(info.server_id) + ")");
+  out_.records.push_back(record_line(info, real));
+}
+
+void Watcher::on_segment(const SegmentOut &seg, double real) {
+  if (!wanted(seg.match_id)) return;
+  Watched &w = watched(seg.match_id);
+  if (first_segment_after_ < 0.0) first_segment_after_ = real - start_real_;
+  w.segments[seg.seq] = seg;
+  while (w.segments.size() > kKeepSegments) w.segments.erase(w.segments.begin());
+  if (seg.cause == Cause::racket && seg.sample.valid) {
+    latency_.add(real - seg.sample.source_time);
+    latency_server_.add(seg.server_time - seg.sample.source_time);
+  }
+  out_.records.push_back(record_line(seg, real));
+}
+
+void Watcher::on_event(const EventOut &e, double real) {
+  if (!wanted(e.match_id)) return;
+  Watched &w = watched(e.match_id);
+  WatchedMatchSummary &t = w.tally;
+  if (w.last_event_seq && e.seq > w.last_event_seq + 1) t.events_missed += e.seq - w.last_event_seq - 1;
+  if (e.seq > w.last_event_seq) w.last_event_seq = e.seq;
+  switch (e.kind) {
+    case EventKind::racket:
+      (e.in_play ? t.hits : t.dead_hits)++;
+      hits_ += e.in_play;
+      break;
+    case EventKind::floor: t.bounces += e.in_play; break;
+    case EventKind::net: t.nets++; break;
+    case EventKind::wall: t.walls++; break;
+    case EventKind::sound: t.sounds++; break;
+    case EventKind::serve: t.serves++; break;
+    case EventKind::point:
+      (e.side < 0 ? t.lets : t.points)++;
+      t.score = e.score;
+      break;
+    case EventKind::pause: t.pauses++; break;
+    case EventKind::resume: t.resumes++; break;
+    case EventKind::refused: t.refused++; break;
+    default: break;
+  }
+  ball_event marker;
+  if (settings_.snapshot_every > 0.0 && event_marker(e, &marker)) w.recent.push_back(marker);
+  say(e.match_id, e.time, rally_line(e));
+  out_.records.push_back(record_line(e, real));
+}
+
+void Watcher::on_state(const StateOut &s, double real) {
+  if (!wanted(s.match_id)) return;
+  Watched &w = watched(s.match_id);
+  w.tally.states++;
+  w.clock.observe(s.sim_time, s.server_time, w.info.time_base, s.state == MatchState::playing, real);
+  w.pending.push_back(s);
+  out_.records.push_back(record_line(s, real));
+}
+
+void Watcher::on_status(const StatusOut &s) { servers_[s.server_id] = s; }
+
+// each server state against the ball evaluated here from the segment it
+// names (eq 3 and 4 with MatchInfo's flight model)
+void Watcher::check_states() {
+  for (auto &kv : matches_) {
+    Watched &w = kv.second;
+    if (!w.has_info) continue;
+    size_t keep = 0;
+    for (size_t i = 0; i < w.pending.size(); ++i) {
+      const StateOut &st = w.pending[i];
+      auto it = w.segments.find(st.segment_seq);
+      if (it == w.segments.end()) {
+        if (!w.segments.empty() && st.segment_seq < w.segments.begin()->first) w.tally.states_unmatched++;  // too old
+        else w.pending[keep++] = st;  // its segment is on the way
+        continue;
+      }
+      ball_state b;
+      if (ball_segment_eval(&w.info.model, &it->second.segment, st.sim_time, &b) != BALL_OK) {
+        w.tally.states_unmatched++;
+        continue;
+      }
+      w.tally.max_error = std::fmax(w.tally.max_error, ball_v3_max_diff(b.position, st.ball.position));
+      w.tally.states_checked++;
+    }
+    w.pending.resize(keep);
+    if (w.pending.size() > kMaxPending) {  // segments that never come
+      w.tally.states_unmatched += w.pending.size();
+      w.pending.clear();
+    }
+  }
+}
+
+// The segment in effect at sim time t: the newest with t0 <= t.
+const SegmentOut *Watcher::segment_at(const Watched &w, double t) const {
+  for (auto it = w.segments.rbegin(); it != w.segments.rend(); ++it)
+    if (it->second.segment.t0 <= t) return &it->second;
+  return nullptr;
+}
+
+void Watcher::frame(double real) {
+  const double every = settings_.snapshot_every;
+  for (auto &kv : matches_) {
+    Watched &w = kv.second;
+    if (!w.has_info || !w.clock.valid()) continue;
+    double t = w.clock.sim_now(real);
+    const SegmentOut *sg = segment_at(w, t);
+    if (!sg) continue;
+    ball_state b;
+    if (ball_segment_eval(&w.info.model, &sg->segment, t, &b) != BALL_OK) continue;
+    w.tally.frames++;
+    if (settings_.record_frames) out_.records.push_back(OwnFrame{real, kv.first, t, sg->seq, b.position});
+    if (every <= 0.0) continue;
+    // the last second of the ball and of its collisions, then a frame
+    // every `every` sim seconds, on multiples of it
+    if (!w.trail.empty() && t < w.trail.back().first) w.trail.clear();  // the clock went back
+    w.trail.emplace_back(t, b.position);
+    while (w.trail.size() > kTrailPoints || (!w.trail.empty() && w.trail.front().first < t - kTrailSeconds))
+      w.trail.pop_front();
+    while (!w.recent.empty() && (w.recent.front().time < t - kTrailSeconds || w.recent.size() > kMarkers))
+      w.recent.pop_front();
+    if (w.next_snapshot < 0.0) w.next_snapshot = std::ceil(t / every) * every;
+    if (t < w.next_snapshot) continue;
+    SnapshotDue due;
+    due.match = kv.first;
+    due.info = w.info;
+    due.sim_time = t;
+    due.ball = b.position;
+    for (const auto &p : w.trail) due.trail.push_back(p.second);
+    due.events.assign(w.recent.begin(), w.recent.end());
+    out_.snapshots.push_back(std::move(due));
+    w.next_snapshot = (std::floor(t / every) + 1.0) * every;
+  }
+}
+
+void Watcher::snapshot_written(const SnapshotDue &due, const std::string &file, const std::string &camera,
+                               int width, int height, double real) {
+  watched(due.match).tally.snapshots++;
+  out_.records.push_back(SnapshotRecord{real, due.match, due.sim_time, file, due.ball, camera, {width, height}});
+}
+
+WatchSummary Watcher::summary(double seconds) const {
+  WatchSummary s;
+  s.seconds = seconds;
+  s.first_segment_after = first_segment_after_;
+  for (const auto &kv : matches_) {
+    WatchedMatchSummary m = kv.second.tally;
+    m.match = kv.first;
+    m.segments = kv.second.segments.empty() ? 0 : kv.second.segments.rbegin()->first;
+    s.matches.push_back(m);
+  }
+  for (const auto &kv : servers_) s.servers.push_back(kv.second);
+  s.latency_p50 = latency_.quantile(0.5);
+  s.latency_p99 = latency_.quantile(0.99);
+  s.latency_server_p50 = latency_server_.quantile(0.5);
+  s.latency_server_p99 = latency_server_.quantile(0.99);
+  s.latency_count = latency_.size();
+  return s;
+}
+
+std::vector<std::string> summary_lines(const WatchSummary &s) {
+  std::vector<std::string> out;
+  char buf[512];
+  for (const auto &m : s.matches) {
+    std::snprintf(buf, sizeof buf,
+                  "summary: match %u: %" PRIu64 " hits, %" PRIu64 " bounces, %" PRIu64 " serves, %" PRIu64
+                  " points (score %d-%d), %" PRIu64 " pauses; desync: %" PRIu64 " of %" PRIu64
+                  " ball states checked, max |error| %.3g m",
+                  m.match, m.hits, m.bounces, m.serves, m.points, m.score[0], m.score[1], m.pauses, m.states_checked,
+                  m.states, m.max_error);
+    out.push_back(buf);
+  }
+  for (const auto &o : s.servers) {
+    std::snprintf(buf, sizeof buf,
+                  "summary: server %u: %" PRIu64 " racket samples in, %" PRIu64 " accepted, dropped %s, %" PRIu64
+                  " frame overruns",
+                  o.server_id, o.samples_in, o.samples_ok, drops_text(o.drops).c_str(), o.overruns);
+    out.push_back(buf);
+  }
+  std::snprintf(buf, sizeof buf,
+                "summary: sample-to-segment latency (a hit's newest racket sample written -> its segment received): "
+                "p50 %.1f ms, p99 %.1f ms over %" PRIu64 " hits",
+                s.latency_p50 * 1e3, s.latency_p99 * 1e3, s.latency_count);
+  out.push_back(buf);
+  return out;
+}
+
+}  // namespace ballsrv

@@ -1,0 +1,123 @@
+// A watcher's mind, free of DDS and of drawing (docs/server.md,
+// "Watchers"): fed with what the server says (on_info, on_segment,
+// on_event, on_state, on_status) and ticked at its own frame rate
+// (frame), it keeps the tally of every watched match, checks each server
+// ball state against the ball evaluated here from the segment it names
+// (the desync check), evaluates its own ball from the newest segment at its
+// estimate of the sim clock, says when a snapshot frame is due, and writes
+// everything as record lines (records.h). ball-watch prints, records and
+// draws what it produces; the tests feed it from a Match.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "frame_clock.h"
+#include "records.h"
+#include "sim_clock.h"
+
+namespace ballsrv {
+
+struct WatcherSettings {
+  long match = -1;             // watch this match only; -1: every match
+  double fps = 60.0;           // own frames per real s (the record's "start" line says it)
+  bool log = true;             // the rally log
+  bool record_frames = false;  // the own ball in the record, every frame
+  double snapshot_every = 0.0; // sim s between snapshot frames, on multiples of it; 0: none
+};
+
+// One line of the rally log.
+struct LogLine {
+  uint32_t match;
+  double sim_time;  // sim s of what it tells
+  std::string text; // "serve by player 0 (near side), score 0-0"
+};
+
+// A snapshot frame due: what to draw (the caller draws it and then calls
+// Watcher::snapshot_written).
+struct SnapshotDue {
+  uint32_t match = 0;
+  MatchInfoOut info;               // the match: its scene's name and flight model, for the court
+  double sim_time = 0.0;           // sim s
+  ball_vec3 ball{0, 0, 0};         // m, the own ball
+  std::vector<ball_vec3> trail;    // m, the last second of the own ball, oldest first
+  std::vector<ball_event> events;  // the last second's collisions, as libball's events (markers)
+};
+
+// What the calls produced since the caller last took it.
+struct WatchOutput {
+  std::vector<json> records;  // record lines, in order
+  std::vector<LogLine> log;
+  std::vector<SnapshotDue> snapshots;
+  void clear() {
+    records.clear();
+    log.clear();
+    snapshots.clear();
+  }
+};
+
+class Watcher {
+ public:
+  explicit Watcher(const WatcherSettings &settings) : settings_(settings) {}
+
+  void on_start(double real);  // the record's "start" line
+  void on_ready(double real);  // a server's writers reach us: the "ready" line (once)
+  // `real`: the local realtime clock at reception, s
+  void on_info(const MatchInfoOut &info, double real);
+  void on_segment(const SegmentOut &segment, double real);
+  void on_event(const EventOut &event, double real);
+  void on_state(const StateOut &state, double real);
+  void on_status(const StatusOut &status);
+  // The desync check of every state received whose segment is known now.
+  void check_states();
+  // An own frame at local realtime `real`: every match's ball from its
+  // newest segment at the estimated sim time; snapshots as they fall due.
+  void frame(double real);
+  // A snapshot the caller drew to `file`: its record line, and the count.
+  void snapshot_written(const SnapshotDue &due, const std::string &file, const std::string &camera, int width,
+                        int height, double real);
+
+  WatchOutput &output() { return out_; }
+  WatchSummary summary(double seconds) const;
+  uint64_t hits() const { return hits_; }  // racket hits in play, every match
+  bool ready() const { return ready_; }
+
+ private:
+  struct Watched {
+    MatchInfoOut info;
+    bool has_info = false;
+    SimClock clock;
+    std::map<uint32_t, SegmentOut> segments;  // by seq, the newest kKeepSegments
+    std::vector<StateOut> pending;            // states whose segment has not arrived yet
+    WatchedMatchSummary tally;
+    uint32_t last_event_seq = 0;
+    // the last second of the own ball and of the collisions, the next snapshot's sim time
+    std::deque<std::pair<double, ball_vec3>> trail;
+    std::deque<ball_event> recent;
+    double next_snapshot = -1.0;
+  };
+  bool wanted(uint32_t id) const { return settings_.match < 0 || id == static_cast<uint32_t>(settings_.match); }
+  Watched &watched(uint32_t id);
+  const SegmentOut *segment_at(const Watched &w, double t) const;
+  void say(uint32_t match, double sim_time, const std::string &text);
+
+  WatcherSettings settings_;
+  std::map<uint32_t, Watched> matches_;
+  std::map<uint32_t, StatusOut> servers_;
+  Percentiles latency_, latency_server_;  // a hit's newest sample written -> its segment received / written
+  double start_real_ = 0.0, first_segment_after_ = -1.0;
+  uint64_t hits_ = 0;
+  bool ready_ = false;
+  WatchOutput out_;
+};
+
+// The rally log's line for an event, or "" for events not worth a line.
+std::string rally_line(const EventOut &e);
+// The summary as ball-watch prints it at the end, one line a match, a
+// server and the latency.
+std::vector<std::string> summary_lines(const WatchSummary &s);
+
+}  // namespace ballsrv

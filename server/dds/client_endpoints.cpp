@@ -1,0 +1,29 @@
+#include "client_endpoints.h"
+
+namespace ballsrv {
+namespace dds {
+
+std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNeeds &n, std::string *err) {
+  std::unique_ptr<ClientEndpoints> p(new ClientEndpoints());
+  if (n.players > 0) {
+    p->samples_ = d.writer<RacketSampleIn>(kRacketTopic, kRacketProfile, {n.players}, err);
+    p->controls_ = d.writer<ControlIn>(kControlTopic, kControlProfile, {n.controls}, err);
+    if (!p->samples_.valid() || !p->controls_.valid()) return nullptr;
+  }
+  p->segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {n.matches}, err);
+  p->infos_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {n.matches}, err);
+  p->states_ = d.reader<StateOut>(kStateTopic, kStateProfile, {n.matches}, err);
+  if (!p->segments_.valid() || !p->infos_.valid() || !p->states_.valid()) return nullptr;
+  if (n.events) {
+    p->events_ = d.reader<EventOut>(kEventTopic, kEventProfile, {n.matches}, err);
+    if (!p->events_.valid()) return nullptr;
+  }
+  if (n.status) {
+    p->status_ = d.reader<StatusOut>(kStatusTopic, kStatusProfile, {16}, err);
+    if (!p->status_.valid()) return nullptr;
+  }
+  return p;
+}
+
+}  // namespace dds
+}  // namespace ballsrv

@@ -1,0 +1,45 @@
+// The server loop's port over DDS (server_loop.h): the server's readers and
+// writers on a Domain, sized for its matches and players.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "domain.h"
+#include "server_loop.h"
+
+namespace ballsrv {
+namespace dds {
+
+class ServerEndpoints : public ServerPort {
+ public:
+  // Endpoints sized for `matches` x `players` (Fast DDS allows 10
+  // instances per topic by default); nullptr with err when one cannot be made.
+  static std::unique_ptr<ServerEndpoints> open(Domain &domain, int matches, int players, std::string *err);
+
+  void take_notes(std::vector<PortNote> *out) override;
+  bool take_sample(RacketSampleIn *sample) override;
+  bool take_control(ControlIn *control) override;
+  bool take_other_info(MatchInfoOut *info, ParticipantId *from) override;
+  bool write(const SegmentOut &s) override { return segments_.write(s); }
+  bool write(const EventOut &e) override { return events_.write(e); }
+  bool write(const StateOut &s) override { return states_.write(s); }
+  bool write(const MatchInfoOut &i) override { return infos_.write(i); }
+  bool write(const StatusOut &s) override { return status_.write(s); }
+
+ private:
+  explicit ServerEndpoints(Domain &domain) : domain_(domain) {}
+  Domain &domain_;
+  Writer<SegmentOut> segments_;
+  Writer<EventOut> events_;
+  Writer<StateOut> states_;
+  Writer<MatchInfoOut> infos_;
+  Writer<StatusOut> status_;
+  Reader<RacketSampleIn> samples_;
+  Reader<ControlIn> controls_;
+  Reader<MatchInfoOut> others_;
+  std::vector<StatusNote> notes_;
+};
+
+}  // namespace dds
+}  // namespace ballsrv

@@ -1,0 +1,66 @@
+#include "match_config.h"
+
+#include <cstdint>
+
+#include "types.h"
+
+namespace ballsrv {
+
+const std::vector<Field<MatchConfig>> &match_fields() {
+  using F = Field<MatchConfig>;
+  using M = MatchConfig;
+  static const std::vector<F> table = {
+      {"scene", std::monostate{}, {}, "",
+       "`default` (libball's tennis court), a libball scene name (`rally_mid`), or a YAML file relative to the "
+       "config file",
+       "--scene", "`default`"},
+      {"id", std::monostate{}, whole(0, UINT32_MAX), "", "the match's id (a match's key, not a default's)", nullptr,
+       "its index"},
+      {"level", &M::level, {}, "",
+       "`easy`, `mid`, `advanced` (docs/game-levels.md), or `custom`: the scene's own racket fields", "--level"},
+      {"players", &M::players, whole(1, kMaxPlayers), "",
+       "player slots; slot i plays on side i % 2; the scene's rackets, and defaults for the slots it lacks",
+       "--players"},
+      {"frame_rate", &M::frame_rate, open_closed(0.0, 1000.0), "Hz",
+       "frames per real s; every match's deadlines count from the server's start, so matches of one rate step "
+       "together",
+       "--frame-rate"},
+      {"time_base", &M::time_base, closed(0.05, 20.0), "", "sim s per real s (slow motion, fast forward)",
+       "--time-base"},
+      {"state_rate", &M::state_rate, up_to_field(0.0, "frame_rate"), "Hz",
+       "`BallState` samples per real s; 0: off (clients evaluate segments)", "--state-rate", "the frame rate"},
+      {"serve_delay", &M::serve_delay, closed(0.0, 60.0), "s", "sim s between a point and the next serve",
+       "--serve-delay"},
+      {"max_rally_time", &M::max_rally_time, open_closed(0.0, 3600.0), "s", "sim s: a longer rally is a let",
+       "--max-rally-time"},
+      {"extrapolation_time", &M::extrapolation_time, closed(-1.0, 10.0), "s",
+       "eq 15's cap on racket extrapolation (about a 6 Hz sample period plus 100 ms of delay); negative: the "
+       "scene's",
+       "--extrapolation-time,--extrapolation"},
+      {"stale_time", &M::stale_time, closed(-1.0, 60.0), "s",
+       "a racket silent this long does not collide; negative: the scene's", "--stale-time", "-1 (the scene's)"},
+      {"player_timeout", &M::player_timeout, open_closed(0.0, 60.0), "s",
+       "real s without a sample before a player has vanished: the racket_samples reader's deadline", nullptr,
+       nullptr, false},
+      {"max_sample_age", &M::max_sample_age, open_closed(0.0, 60.0), "s", "older samples are dropped as stale",
+       "--max-sample-age"},
+      {"max_sample_lead", &M::max_sample_lead, closed(0.0, 10.0), "s",
+       "capture times further ahead of the sim clock are out of range", "--max-sample-lead"},
+      {"serve_v_up", &M::serve_v_up, open_closed(0.0, 30.0), "m/s", "the serve's vertical launch speed",
+       "--serve-v-up"},
+      {"court_x_lo", &M::court_x_lo, closed(-BALL_MAX_COORD, BALL_MAX_COORD), "m",
+       "where the court starts; it spans x in [court_x_lo, 2 net_x - court_x_lo], z over the net", "--court-x-lo"},
+      {"seed", &M::seed, whole(0, INT64_MAX), "", "the serves' placement", "--seed", "1 (+ index with `--matches`)"},
+      {"scene_name", &M::scene_name, whole(1, kNameLen - 1), "", "what MatchInfo calls the scene", nullptr, nullptr,
+       false},
+  };
+  return table;
+}
+
+bool check_match_config(const MatchConfig &c, std::string *err) { return check_fields(match_fields(), c, err); }
+
+void follow_frame_rate(MatchConfig *c) {
+  if (c->state_rate > c->frame_rate) c->state_rate = c->frame_rate;
+}
+
+}  // namespace ballsrv

@@ -1,0 +1,48 @@
+// A match's settings, with defaults like ball_model_default, and their
+// field table (fields.h): JSON key, member, range, unit and meaning of each,
+// stated here only (docs/server.md, "Configuration", is printed from it).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "ball/ball.h"
+#include "fields.h"
+
+namespace ballsrv {
+
+struct MatchConfig {
+  uint32_t id = 0;
+  std::string scene_name = "tennis";  // what MatchInfo calls it
+  int players = 2;                    // slots
+  ball_level level = BALL_LEVEL_EASY; // custom: the scene's own racket fields
+  double frame_rate = 60.0;           // frames per real s
+  double time_base = 1.0;             // sim s per real s
+  double state_rate = 60.0;           // ball states per real s; 0: off
+  double serve_delay = 1.5;           // sim s between a point and the next serve
+  double max_rally_time = 60.0;       // sim s: a longer rally is a let
+  double extrapolation_time = 0.25;   // s, eq 15's cap; < 0: the scene's
+  double stale_time = -1.0;           // s; < 0: the scene's
+  double player_timeout = 1.0;        // real s without a sample before a player has vanished
+  double max_sample_age = 2.0;        // sim s: older samples are stale
+  double max_sample_lead = 0.5;       // sim s: capture times further ahead are out of range
+  double serve_v_up = 4.0;            // m/s: vertical launch speed of a serve
+  double court_x_lo = 0.0;            // m: where the court starts (Court)
+  uint64_t seed = 1;                  // serve placement
+};
+
+// Every setting of a match, in the order of docs/server.md; `scene` and
+// `id` are keys of a match in the config file that live beside its
+// MatchConfig (their member is the reader's to fill).
+const std::vector<Field<MatchConfig>> &match_fields();
+
+// Checks a config against its field table; false with
+// "field: must be in RANGE" in err.
+bool check_match_config(const MatchConfig &config, std::string *err);
+
+// A match's state rate follows its frame rate unless it was set: called
+// when it was not, it lowers the state rate to the frame rate.
+void follow_frame_rate(MatchConfig *config);
+
+}  // namespace ballsrv

@@ -1,0 +1,185 @@
+// The JSON forms of the server's data, written and read here only (with
+// nlohmann-json's to_json/from_json): the lines of `ball-watch --record`
+// (JSON Lines, one sample a line with its "type" and "recv"), the watcher's
+// summary, `ball-server --stats-json`, `ball-bot --stats-json`,
+// `ball-load --json`; the integration tests read them back with the same
+// functions. Enums are written by name (types.h), participant ids as hex,
+// vectors as [x, y, z].
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "types.h"
+
+void to_json(nlohmann::json &j, const ball_vec3 &v);
+void from_json(const nlohmann::json &j, ball_vec3 &v);
+
+namespace ballsrv {
+
+using json = nlohmann::json;
+
+// the enums written by name
+#define BALL_JSON_ENUMS(X) X(MatchState) X(Cause) X(EventKind) X(Reason) X(ControlKind)
+#define BALL_JSON_ENUM(E)            \
+  void to_json(json &j, const E &v); \
+  void from_json(const json &j, E &v);
+BALL_JSON_ENUMS(BALL_JSON_ENUM)
+#undef BALL_JSON_ENUM
+
+void to_json(json &j, const SegmentOut &s);
+void from_json(const json &j, SegmentOut &s);
+void to_json(json &j, const EventOut &e);
+void from_json(const json &j, EventOut &e);
+void to_json(json &j, const StateOut &s);
+void from_json(const json &j, StateOut &s);
+void to_json(json &j, const SlotInfo &s);
+void from_json(const json &j, SlotInfo &s);
+void to_json(json &j, const MatchInfoOut &i);
+void from_json(const json &j, MatchInfoOut &i);
+// drop counters by reason name, every reason ({"unknown_match": 0, ...})
+json drops_json(const std::array<uint64_t, kDropSlots> &drops);
+void drops_from_json(const json &j, std::array<uint64_t, kDropSlots> *drops);
+
+// ---- ball-watch --record: one line per sample, with its type -------------
+
+inline const char *record_type(const SegmentOut &) { return "segment"; }
+inline const char *record_type(const EventOut &) { return "event"; }
+inline const char *record_type(const StateOut &) { return "state"; }
+inline const char *record_type(const MatchInfoOut &) { return "match_info"; }
+
+// A sample as a record line: its fields, "type", and "recv" (the
+// watcher's realtime clock at reception, s).
+template <class T>
+json record_line(const T &sample, double recv) {
+  json j = sample;
+  j["type"] = record_type(sample);
+  j["recv"] = recv;
+  return j;
+}
+// The type of a record line ("" if it has none).
+std::string record_type(const json &line);
+
+// The watcher's own ball at one of its frames ("frame" lines, with --record-frames).
+struct OwnFrame {
+  double real = 0.0;           // watcher's realtime s
+  uint32_t match = 0;
+  double sim_time = 0.0;       // sim s, the watcher's estimate
+  uint32_t segment_seq = 0;    // the segment evaluated
+  ball_vec3 position{0, 0, 0}; // m
+};
+void to_json(json &j, const OwnFrame &f);
+void from_json(const json &j, OwnFrame &f);
+
+// A PNG frame written ("snapshot" lines).
+struct SnapshotRecord {
+  double real = 0.0;           // watcher's realtime s
+  uint32_t match = 0;
+  double sim_time = 0.0;       // sim s drawn
+  std::string file;
+  ball_vec3 position{0, 0, 0}; // m, the ball drawn
+  std::string camera;
+  std::array<int, 2> size{0, 0};  // pixels, width and height
+};
+void to_json(json &j, const SnapshotRecord &s);
+void from_json(const json &j, SnapshotRecord &s);
+
+// ---- the watcher's summary (the last record line, --summary-json) --------
+
+struct WatchedMatchSummary {
+  uint32_t match = 0;
+  uint64_t hits = 0, dead_hits = 0, bounces = 0, nets = 0, walls = 0, sounds = 0, serves = 0, points = 0, lets = 0;
+  std::array<int, 2> score{0, 0};
+  uint64_t pauses = 0, resumes = 0, refused = 0;
+  uint64_t events_missed = 0;     // gaps in the events' seq
+  uint64_t states = 0;            // server ball states received
+  uint64_t states_checked = 0;    // of those, evaluated from their segment
+  uint64_t states_unmatched = 0;  // whose segment never came (or was too old)
+  double max_error = 0.0;         // m: the desync, the largest |own - server| position component
+  uint64_t frames = 0;            // own frames evaluated
+  uint64_t snapshots = 0;
+  uint32_t segments = 0;          // seq of the newest segment
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WatchedMatchSummary, match, hits, dead_hits, bounces, nets, walls, sounds, serves,
+                                   points, lets, score, pauses, resumes, refused, events_missed, states,
+                                   states_checked, states_unmatched, max_error, frames, snapshots, segments)
+
+// A server's status line (ServerStatus): every field, drops by name.
+void to_json(json &j, const StatusOut &s);
+void from_json(const json &j, StatusOut &s);
+
+struct WatchSummary {
+  double seconds = 0.0;              // real s watched
+  double first_segment_after = -1.0; // real s after the start; -1: none
+  std::vector<WatchedMatchSummary> matches;
+  std::vector<StatusOut> servers;  // each server's newest status
+  // sample-to-segment latency (s): a hit's newest racket sample written ->
+  // its segment received here / written by the server
+  double latency_p50 = 0.0, latency_p99 = 0.0, latency_server_p50 = 0.0, latency_server_p99 = 0.0;
+  uint64_t latency_count = 0;
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WatchSummary, seconds, first_segment_after, matches, servers, latency_p50,
+                                   latency_p99, latency_server_p50, latency_server_p99, latency_count)
+
+// ---- ball-server --stats-json ----------------------------------------------
+
+struct MatchReport {  // written flat: id, state, each counter, score, sim_time, sim_hash
+  uint32_t id = 0;
+  MatchState state = MatchState::waiting;
+  MatchCounters counters;
+  std::array<int, 2> score{0, 0};  // points of side 0 and side 1
+  double sim_time = 0.0;           // sim s
+  uint64_t sim_hash = 0;           // ball_sim_hash
+};
+void to_json(json &j, const MatchReport &m);
+void from_json(const json &j, MatchReport &m);
+
+// The totals (its last status line) and what only the file has. Written
+// flat: the status's fields (its match count and playing count are the
+// list's), then the rest, then "matches", the list.
+struct ServerReport {
+  StatusOut status;
+  uint64_t samples_idle = 0, infos_out = 0;
+  uint64_t write_failures = 0;  // writes DDS refused
+  uint64_t skipped_frames = 0;  // frames skipped after a stall (more than 5 behind)
+  double late_p99_median = 0.0, late_p99_max = 0.0, late_max = 0.0;  // s: frames' start after their deadline
+  uint64_t deadline_missed = 0, writers_lost = 0, conflicts = 0;
+  double latency_p50 = 0.0, latency_p99 = 0.0;  // s: a hit's newest sample written -> its segment written
+  uint64_t latency_count = 0;
+  std::vector<MatchReport> matches;
+};
+void to_json(json &j, const ServerReport &r);
+void from_json(const json &j, ServerReport &r);
+
+// ---- ball-bot --stats-json, ball-load --json -------------------------------
+
+struct BotReport {
+  uint32_t match = 0;
+  int slot = -1;
+  uint64_t samples = 0, lost = 0, written = 0, write_failures = 0, segments = 0;
+  uint64_t plans = 0, late = 0, missed_on_purpose = 0;
+  std::string participant;  // hex GUID prefix
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BotReport, match, slot, samples, lost, written, write_failures, segments, plans,
+                                   late, missed_on_purpose, participant)
+
+struct LoadRow {  // one match count of the load benchmark
+  int matches = 0, bots = 0;
+  double rate = 0.0;          // Hz, each bot's
+  bool ready = false;         // every slot joined within the warm-up
+  double seconds = 0.0;       // measured
+  double samples_per_s = 0.0;
+  uint64_t hits = 0, write_failures = 0;
+  double latency_p50_ms = 0.0, latency_p99_ms = 0.0;
+  uint64_t server_frames = 0, server_overruns = 0;
+  double frame_p50_ms = 0.0, frame_p99_ms_median = 0.0, frame_p99_ms_max = 0.0;
+  uint32_t playing = 0;
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LoadRow, matches, bots, rate, ready, seconds, samples_per_s, hits, write_failures,
+                                   latency_p50_ms, latency_p99_ms, server_frames, server_overruns, frame_p50_ms,
+                                   frame_p99_ms_median, frame_p99_ms_max, playing)
+
+}  // namespace ballsrv

@@ -1,0 +1,350 @@
+// The server loop without a network or a clock (server_loop.h): a fake
+// clock that sleeps exactly (and stalls on request), a fake port that
+// takes queued input, records every write and makes each wake-up's work
+// take a chosen time. Due frames, the frame clock's lateness, overruns,
+// skips after a stall, the percentiles of the status line, the books of
+// the samples, refused writes, CREATE, a busy domain and conflicts, all
+// checked with numbers worked out by hand.
+#include <deque>
+#include <map>
+
+#include "check.hpp"
+#include "game.h"
+#include "server_loop.h"
+
+using namespace test;
+
+namespace {
+
+constexpr double kStart = 100.0;       // mono s when the loop starts
+constexpr double kRealOffset = 1.7e9;  // realtime = mono + this
+
+struct FakeClock : Clock {
+  double now = kStart;
+  int sleeps = 0;
+  std::map<int, double> oversleep;  // by sleep index: s the machine stalls past the wake-up
+  double mono() override { return now; }
+  double realtime() override { return now + kRealOffset; }
+  void sleep_until(double t) override {
+    if (t > now) now = t;
+    auto it = oversleep.find(sleeps++);
+    if (it != oversleep.end()) now += it->second;
+  }
+};
+
+struct FakePort : ServerPort {
+  FakeClock *clock = nullptr;
+  std::map<int, double> work;  // by wake-up index: s its phases take (0 unless said)
+  int wakes = 0;
+  bool refuse = false;
+  std::deque<RacketSampleIn> samples;
+  std::deque<ControlIn> controls;
+  std::vector<PortNote> notes;
+  std::deque<std::pair<MatchInfoOut, ParticipantId>> others;
+  std::vector<SegmentOut> segments;
+  std::vector<EventOut> events;
+  std::vector<StateOut> states;
+  std::vector<MatchInfoOut> infos;
+  std::vector<StatusOut> statuses;
+
+  void take_notes(std::vector<PortNote> *out) override {  // the first phase of every wake-up
+    auto it = work.find(wakes++);
+    if (it != work.end()) clock->now += it->second;
+    out->insert(out->end(), notes.begin(), notes.end());
+    notes.clear();
+  }
+  bool take_sample(RacketSampleIn *s) override { return pop(samples, s); }
+  bool take_control(ControlIn *c) override { return pop(controls, c); }
+  bool take_other_info(MatchInfoOut *info, ParticipantId *from) override {
+    if (others.empty()) return false;
+    *info = others.front().first;
+    *from = others.front().second;
+    others.pop_front();
+    return true;
+  }
+  bool write(const SegmentOut &s) override { return keep(segments, s); }
+  bool write(const EventOut &e) override { return keep(events, e); }
+  bool write(const StateOut &s) override { return keep(states, s); }
+  bool write(const MatchInfoOut &i) override { return keep(infos, i); }
+  bool write(const StatusOut &s) override { return keep(statuses, s); }
+
+  template <class T>
+  static bool pop(std::deque<T> &q, T *out) {
+    if (q.empty()) return false;
+    *out = q.front();
+    q.pop_front();
+    return true;
+  }
+  template <class T>
+  bool keep(std::vector<T> &v, const T &x) {
+    if (refuse) return false;
+    v.push_back(x);
+    return true;
+  }
+};
+
+// A host of matches at the given frame rates (ids 0, 1, ...), a fake clock
+// and port, a loop started at kStart.
+struct Rig {
+  Host host{16, true, default_config()};
+  FakeClock clock;
+  FakePort port;
+  LoopSettings settings;
+  std::unique_ptr<ServerLoop> loop;
+  explicit Rig(std::vector<double> rates, double status_interval = 1.0) {
+    ball_scene scene;
+    ball_scene_default(&scene);
+    std::string err;
+    host.add_scene("tennis", scene, &err);
+    for (size_t i = 0; i < rates.size(); ++i) {
+      MatchConfig c = default_config();
+      c.id = static_cast<uint32_t>(i);
+      c.frame_rate = rates[i];
+      c.state_rate = rates[i];
+      host.add_match(c, scene, &err);
+    }
+    port.clock = &clock;
+    settings.server_id = 5;
+    settings.status_interval = status_interval;
+    loop = std::make_unique<ServerLoop>(host, port, clock, settings);
+    loop->start();
+  }
+  // wake-ups until the next one would be at or after mono t
+  int run_until(double t) {
+    int n = 0;
+    while (loop->next_wake() < t - 1e-9) {
+      loop->step();
+      n++;
+    }
+    return n;
+  }
+};
+
+ControlIn join(uint32_t match, int slot, ParticipantId who) {
+  ControlIn c;
+  c.match_id = match;
+  c.kind = ControlKind::join;
+  c.player = slot;
+  c.from = who;
+  return c;
+}
+
+}  // namespace
+
+TEST(frames_come_at_their_deadlines) {
+  Rig r({60.0, 30.0});
+  CHECK_EQ(r.port.infos.size(), 2u);  // every match announced at the start
+  int wakes = r.run_until(kStart + 1.0);
+  // deadlines kStart + k/60 and kStart + k/30 in [kStart, kStart + 1): the
+  // 30 Hz ones fall on 60 Hz wake-ups
+  CHECK_EQ(wakes, 60);
+  CHECK_EQ(r.loop->stats().totals.frames, 90u);
+  CHECK_EQ(r.loop->stats().totals.overruns, 0u);
+  CHECK_EQ(r.loop->stats().skipped, 0u);
+  CHECK_EQ(r.loop->stats().late_max, 0.0);  // the fake clock wakes exactly on time
+  CHECK_NEAR(r.clock.now, kStart + 59.0 / 60.0, 1e-9);
+  // and MatchInfo once more at each match's first frame, then once a second
+  CHECK_EQ(r.port.infos.size(), 4u);
+  CHECK_EQ(r.port.infos[2].revision, 2u);
+  CHECK_EQ(r.port.infos[0].server_id, 5u);
+  CHECK_EQ(r.port.statuses.size(), 0u);
+}
+
+TEST(the_status_comes_once_an_interval) {
+  Rig r({60.0, 30.0});
+  r.run_until(kStart + 1.0);
+  CHECK(r.loop->step());  // the wake-up at kStart + 1: two frames, then the status
+  CHECK_EQ(r.port.statuses.size(), 1u);
+  const StatusOut &s = r.port.statuses[0];
+  CHECK_EQ(s.frames, 92u);
+  CHECK_EQ(s.matches, 2u);
+  CHECK_EQ(s.playing, 0u);
+  CHECK_EQ(s.server_id, 5u);
+  CHECK_NEAR(s.uptime, 1.0, 1e-9);
+  CHECK_NEAR(s.server_time, kStart + 1.0 + kRealOffset, 1e-6);
+  CHECK_EQ(r.port.infos.size(), 6u);  // and each match's periodic MatchInfo
+  r.run_until(kStart + 2.0);
+  CHECK(r.loop->step());
+  CHECK_EQ(r.port.statuses.size(), 2u);
+  CHECK_EQ(r.port.statuses[1].frames, 182u);
+  std::string line = status_line(r.loop->status(), r.loop->stats());
+  CHECK_MSG(line.find("ball-server 5: 2 s, matches 2 (0 playing)") == 0, "%s", line.c_str());
+  CHECK_MSG(line.find("failed writes 0, overruns 0") != std::string::npos, "%s", line.c_str());
+}
+
+TEST(percentiles_of_the_work_per_wake_up) {
+  Rig r({10.0});
+  // wake-ups at 0, 0.1, ..., 1.0 s (the last one closes the period):
+  // 1, 2, ..., 11 ms of work
+  for (int i = 0; i <= 10; ++i) r.port.work[i] = (i + 1) * 1e-3;
+  r.run_until(kStart + 1.0);
+  CHECK(r.loop->step());
+  const StatusOut &s = r.port.statuses.at(0);
+  // 11 values: p50 is the one of rank round(0.5 * 10) = 5 (6 ms), p99 of rank round(9.9) = 10 (11 ms)
+  CHECK_NEAR(s.frame_p50, 6e-3, 1e-9);
+  CHECK_NEAR(s.frame_p99, 11e-3, 1e-9);
+  CHECK_EQ(s.overruns, 0u);
+  CHECK_EQ(r.loop->stats().late_max, 0.0);
+  // the next period starts afresh
+  r.run_until(kStart + 2.0);
+  CHECK(r.loop->step());
+  CHECK_NEAR(r.port.statuses.at(1).frame_p99, 0.0, 1e-9);
+}
+
+TEST(a_frame_done_after_the_next_deadline_is_an_overrun) {
+  Rig r({10.0});
+  r.port.work[3] = 0.15;  // the frame at 0.3 s ends at 0.45 s, after the deadline at 0.4 s
+  r.run_until(kStart + 1.0);
+  const LoopStats &st = r.loop->stats();
+  CHECK_EQ(st.totals.overruns, 1u);
+  CHECK_NEAR(st.late_max, 0.05, 1e-9);  // the frame of 0.4 s starts at 0.45 s
+  CHECK_EQ(st.skipped, 0u);
+  CHECK_EQ(st.totals.frames, 10u);  // no frame lost: 0, 0.1, ..., 0.9 s
+}
+
+TEST(a_stall_of_more_than_five_frames_skips_to_the_present) {
+  Rig r({10.0});
+  r.clock.oversleep[3] = 0.63;  // the wake-up for 0.3 s comes at 0.93 s: 6.3 frames behind
+  r.run_until(kStart + 1.0);
+  const LoopStats &st = r.loop->stats();
+  CHECK_EQ(st.skipped, 6u);         // frames 3 to 8
+  CHECK_EQ(st.totals.frames, 4u);          // 0, 0.1, 0.2, then 0.9 s at 0.93 s
+  CHECK_NEAR(st.late_max, 0.03, 1e-9);
+  CHECK_EQ(st.totals.overruns, 0u);
+  // a stall of 4.3 frames is caught up, one frame a wake-up
+  Rig q({10.0});
+  q.clock.oversleep[3] = 0.43;
+  q.run_until(kStart + 1.0);
+  CHECK_EQ(q.loop->stats().skipped, 0u);
+  CHECK_EQ(q.loop->stats().totals.frames, 10u);
+  CHECK_NEAR(q.loop->stats().late_max, 0.43, 1e-9);
+  CHECK_EQ(q.loop->stats().totals.overruns, 4u);  // the frames of 0.3 to 0.6 s end after their next deadline
+}
+
+TEST(samples_and_notes_balance_the_books) {
+  Rig r({60.0});
+  const ParticipantId A = participant(1), B = participant(2), C = participant(3);
+  r.port.controls = {join(0, 0, A), join(0, 1, B)};
+  r.loop->step();  // the controls, then the frame: both present, the match serves
+  CHECK_EQ(r.loop->stats().totals.controls_in, 2u);
+  CHECK_EQ(r.port.events.size(), 3u);
+  CHECK(r.port.events[0].kind == EventKind::join && r.port.events[1].kind == EventKind::join);
+  CHECK(r.port.events[2].kind == EventKind::serve);
+  CHECK_EQ(r.port.events[0].server_id, 5u);
+  r.run_until(kStart + 0.5);
+  CHECK(r.host.find(0)->state() == MatchState::playing);
+  CHECK(!r.port.segments.empty());  // the serve
+  CHECK_EQ(r.port.segments[0].cause, Cause::serve);
+  CHECK_EQ(r.port.segments[0].server_id, 5u);
+  // a state's server time is its frame's deadline on the realtime clock
+  const StateOut &st = r.port.states.at(3);
+  CHECK_EQ(st.frame, 4u);  // the fourth frame stepped, at the deadline of frame index 3
+  CHECK_NEAR(st.server_time - kRealOffset - kStart, 3.0 / 60.0, 1e-6);
+  Game shape;  // a parked sample, as the tests' players send them
+  RacketSampleIn good = shape.parked_sample(0);
+  good.match_id = 0;
+  good.capture_time = r.host.find(0)->sim().time;
+  good.from = A;
+  RacketSampleIn stranger = good, nowhere = good, second = good;
+  stranger.from = C;
+  nowhere.match_id = 99;
+  second.seq = good.seq + 1;
+  second.capture_time += 0.001;
+  r.port.samples = {good, stranger, nowhere, good, second};
+  r.port.notes = {{PortNote::rejected, {}, 3}, {PortNote::lost, {}, 2}, {PortNote::deadline_missed, {}, 1}};
+  r.loop->step();
+  const LoopStats &s = r.loop->stats();
+  CHECK_EQ(s.totals.samples_in, 5u + 3u + 2u);
+  CHECK_EQ(s.totals.samples_ok, 2u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::not_owner)], 1u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::unknown_match)], 1u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::duplicate)], 1u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::rejected)], 3u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::lost)], 2u);
+  CHECK_EQ(s.deadline_missed, 1u);
+  uint64_t dropped = 0;
+  for (int i = 0; i < kDropReasons; ++i) dropped += s.totals.drops[i];
+  CHECK_EQ(s.totals.samples_in, s.totals.samples_ok + s.samples_idle + dropped);
+  // a writer lost: its slot vanishes, the match pauses at the next frame
+  r.port.notes = {{PortNote::writer_lost, B, 1}};
+  r.loop->step();
+  r.loop->step();
+  CHECK_EQ(r.loop->stats().writers_lost, 1u);
+  CHECK(r.host.find(0)->state() == MatchState::paused);
+}
+
+TEST(refused_writes_are_counted) {
+  FakeClock clock;
+  FakePort port;
+  port.clock = &clock;
+  port.refuse = true;
+  Host host(4, false, default_config());
+  ball_scene scene;
+  ball_scene_default(&scene);
+  std::string err;
+  CHECK(host.add_match(default_config(), scene, &err));
+  ServerLoop loop(host, port, clock, LoopSettings{});
+  loop.start();  // one MatchInfo
+  while (!loop.step()) {
+  }  // its first frame's MatchInfo; at 1 s its periodic one, then the status
+  CHECK_EQ(loop.stats().write_failures, 4u);
+  CHECK_EQ(loop.stats().infos_out, 0u);
+  CHECK_EQ(port.infos.size(), 0u);
+  port.refuse = false;
+  loop.finish();
+  CHECK_EQ(port.statuses.size(), 1u);
+  CHECK_EQ(loop.report().write_failures, 4u);
+}
+
+TEST(a_create_schedules_the_new_match) {
+  Rig r({60.0});
+  ControlIn c;
+  c.kind = ControlKind::create;
+  c.match_id = 8;
+  c.scene = "tennis";
+  c.players = 2;
+  c.level = 1;
+  r.port.controls = {c};
+  r.run_until(kStart + 0.5);  // 30 wake-ups at 60 Hz
+  CHECK_EQ(r.host.matches().size(), 2u);
+  // created in the first wake-up's controls, before its frames: its first frame is due at once
+  CHECK_EQ(r.loop->stats().totals.frames, 30u + 30u);
+  CHECK_EQ(r.loop->stats().totals.controls_refused, 0u);
+  c.match_id = 9;
+  c.scene = "nowhere";
+  r.port.controls = {c};
+  r.loop->step();
+  CHECK_EQ(r.loop->stats().totals.controls_refused, 1u);
+  CHECK_EQ(r.host.matches().size(), 2u);
+}
+
+TEST(another_server_for_our_match) {
+  Rig r({60.0});
+  MatchInfoOut theirs;
+  theirs.match_id = 99;  // not ours: no conflict
+  theirs.server_id = 2;
+  r.port.others.push_back({theirs, participant(9)});
+  MatchInfoOut other;
+  double t0 = r.clock.now;
+  CHECK(!r.loop->find_owner(0.5, [] { return false; }, &other));
+  CHECK(r.clock.now >= t0 + 0.5);  // it listened the whole wait
+  theirs.match_id = 0;
+  r.port.others.push_back({theirs, participant(9)});
+  CHECK(r.loop->find_owner(0.5, [] { return false; }, &other));
+  CHECK_EQ(other.server_id, 2u);
+  // while running: reported at the status, with the participant
+  r.port.others.push_back({theirs, participant(9)});
+  int seen = 0;
+  ParticipantId who{};
+  double end = r.clock.now + 1.5;
+  r.loop->run(0.0, [&] { return r.clock.now > end; }, nullptr,
+              [&](const MatchInfoOut &i, const ParticipantId &from) {
+                seen += i.match_id == 0;
+                who = from;
+              });
+  CHECK_EQ(seen, 1);
+  CHECK(who == participant(9));
+  CHECK_EQ(r.loop->stats().conflicts, 1u);
+}
+
+CHECK_MAIN

@@ -1,0 +1,243 @@
+// The watcher without a network (watcher.h), fed from a Match: the tally,
+// the desync check (and states whose segment comes later or never), missed
+// events, its own ball at its estimate of the sim clock, the snapshot
+// schedule, the record lines and the summary, with numbers.
+#include <cmath>
+
+#include "check.hpp"
+#include "game.h"
+#include "watcher.h"
+
+using namespace test;
+
+namespace {
+
+// a game with both slots joined and parked: nothing hits, serves and double bounces
+Game played(double seconds) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  g.run(seconds);
+  return g;
+}
+
+// the match's info as the server writes it: its sim time holds from `server_time` on
+MatchInfoOut info_at(const Game &g, double sim_time, double server_time, MatchState state) {
+  MatchInfoOut i = g.match.info();
+  i.sim_time = sim_time;
+  i.server_time = server_time;
+  i.state = state;
+  return i;
+}
+
+size_t count_type(const WatchOutput &out, const std::string &type) {
+  size_t n = 0;
+  for (const auto &r : out.records) n += record_type(r) == type;
+  return n;
+}
+
+}  // namespace
+
+TEST(tally_and_desync_from_a_match) {
+  Game g = played(12.0);
+  Watcher w(WatcherSettings{});
+  w.on_start(1000.0);
+  w.on_info(g.match.info(), 1000.0);
+  for (const auto &s : g.segments) w.on_segment(s, 1000.1);
+  for (const auto &e : g.events) w.on_event(e, 1000.1);
+  for (const auto &s : g.states) w.on_state(s, 1000.1);
+  w.check_states();
+  WatchSummary sum = w.summary(12.0);
+  CHECK_EQ(sum.matches.size(), 1u);
+  const WatchedMatchSummary &m = sum.matches[0];
+  CHECK_EQ(m.match, g.match.id());
+  CHECK_EQ(m.serves, static_cast<uint64_t>(g.count(EventKind::serve)));
+  CHECK_EQ(m.points, static_cast<uint64_t>(g.count(EventKind::point)));
+  CHECK(m.points >= 2);  // nobody returns: a point a serve, 1.5 s apart
+  uint64_t in_play_bounces = 0;
+  for (const auto &e : g.events) in_play_bounces += e.kind == EventKind::floor && e.in_play;
+  CHECK_EQ(m.bounces, in_play_bounces);
+  CHECK_EQ(m.hits, 0u);
+  CHECK_EQ(m.sounds, static_cast<uint64_t>(g.count(EventKind::sound)));
+  CHECK(m.score == g.match.score());
+  CHECK_EQ(m.events_missed, 0u);
+  // every state checked against its segment: the same closed form on the same numbers
+  CHECK_EQ(m.states, g.states.size());
+  CHECK_EQ(m.states_checked, g.states.size());
+  CHECK_EQ(m.states_unmatched, 0u);
+  CHECK(m.max_error <= 1e-12);
+  CHECK_EQ(m.segments, g.segments.back().seq);
+  // one record line per sample, after the start line
+  WatchOutput &out = w.output();
+  CHECK_EQ(record_type(out.records.front()), std::string("start"));
+  CHECK_EQ(count_type(out, "segment"), g.segments.size());
+  CHECK_EQ(count_type(out, "event"), g.events.size());
+  CHECK_EQ(count_type(out, "state"), g.states.size());
+  CHECK_EQ(count_type(out, "match_info"), 1u);
+  CHECK_EQ(out.records.size(), 2 + g.segments.size() + g.events.size() + g.states.size());
+  // the rally log: the state once, then a line per event worth one
+  CHECK_EQ(out.log.front().text.find("match playing (tennis, level easy, 2 players"), 0u);
+  size_t lines = 1;
+  for (const auto &e : g.events) lines += !rally_line(e).empty();
+  CHECK_EQ(out.log.size(), lines);
+}
+
+TEST(a_state_waits_for_its_segment_or_is_counted_unmatched) {
+  Game g = played(3.0);
+  CHECK(g.segments.size() >= 3);
+  Watcher w(WatcherSettings{});
+  w.on_info(g.match.info(), 0.0);
+  // a state on segment 2 before segment 2 arrives: it waits
+  const StateOut *on2 = nullptr;
+  for (const auto &s : g.states)
+    if (s.segment_seq == 2) on2 = &s;
+  CHECK(on2 != nullptr);
+  if (!on2) return;
+  w.on_segment(g.segments[0], 0.0);
+  w.on_state(*on2, 0.0);
+  w.check_states();
+  CHECK_EQ(w.summary(0).matches[0].states_checked, 0u);
+  CHECK_EQ(w.summary(0).matches[0].states_unmatched, 0u);
+  w.on_segment(g.segments[1], 0.0);
+  w.check_states();
+  CHECK_EQ(w.summary(0).matches[0].states_checked, 1u);
+  // a state on segment 1 when the watcher only holds newer ones: too old, unmatched
+  Watcher late(WatcherSettings{});
+  late.on_info(g.match.info(), 0.0);
+  late.on_segment(g.segments[1], 0.0);
+  late.on_segment(g.segments[2], 0.0);
+  StateOut on1 = g.states.front();
+  CHECK_EQ(on1.segment_seq, 1u);
+  late.on_state(on1, 0.0);
+  late.check_states();
+  CHECK_EQ(late.summary(0).matches[0].states_unmatched, 1u);
+  CHECK_EQ(late.summary(0).matches[0].states_checked, 0u);
+}
+
+TEST(gaps_in_the_event_sequence_are_missed_events) {
+  Watcher w(WatcherSettings{});
+  EventOut e;
+  e.match_id = 3;
+  e.kind = EventKind::join;
+  for (uint32_t seq : {1u, 2u, 5u, 6u, 10u}) {
+    e.seq = seq;
+    w.on_event(e, 0.0);
+  }
+  CHECK_EQ(w.summary(0).matches[0].events_missed, 2u + 3u);
+}
+
+TEST(own_ball_at_the_estimated_sim_clock) {
+  Game g = played(2.0);
+  WatcherSettings s;
+  s.record_frames = true;
+  Watcher w(s);
+  const double server = 5000.0, latency = 0.01;
+  const SegmentOut &seg = g.segments.back();
+  double t0 = seg.segment.t0;
+  w.on_segment(seg, server + latency);
+  // sim time t0 holds from server time 5000 (playing); received 10 ms later
+  w.on_info(info_at(g, t0, server, MatchState::playing), server + latency);
+  w.output().clear();
+  w.frame(server + latency + 0.25);  // a quarter of a second later here: the sim clock 0.25 s on
+  CHECK_EQ(w.output().records.size(), 1u);
+  if (w.output().records.empty()) return;
+  OwnFrame f = w.output().records[0].get<OwnFrame>();
+  CHECK_NEAR(f.sim_time, t0 + 0.25, 1e-9);
+  CHECK_EQ(f.segment_seq, seg.seq);
+  ball_state b;
+  CHECK_EQ(ball_segment_eval(&g.match.model(), &seg.segment, f.sim_time, &b), BALL_OK);
+  CHECK_NEAR(f.position.y, b.position.y, 0.0);
+  CHECK_EQ(w.summary(0).matches[0].frames, 1u);
+  // before the segment starts there is nothing to draw
+  Watcher early(s);
+  early.on_segment(seg, server);
+  early.on_info(info_at(g, t0 - 1.0, server, MatchState::paused), server);
+  early.frame(server + 1.0);
+  CHECK_EQ(count_type(early.output(), "frame"), 0u);
+}
+
+TEST(snapshots_fall_due_on_multiples_of_their_period) {
+  Game g = played(2.0);
+  WatcherSettings s;
+  s.snapshot_every = 0.5;
+  Watcher w(s);
+  double t0 = g.segments[0].segment.t0;  // the serve, at sim time 0
+  CHECK_EQ(t0, 0.0);
+  w.on_segment(g.segments[0], 0.0);
+  EventOut bounce;
+  bounce.match_id = g.match.id();
+  bounce.kind = EventKind::floor;
+  bounce.time = 0.4;
+  bounce.seq = 1;
+  w.on_event(bounce, 0.0);
+  // the watcher's clock put at each sim time (a paused match: sim_now is sim_time)
+  std::vector<double> due;
+  double server = 1.0;
+  for (double t : {0.1, 0.3, 0.55, 0.7, 1.02, 1.2, 1.49, 1.5}) {
+    w.on_info(info_at(g, t, server, MatchState::paused), server);
+    server += 1.0;
+    w.frame(server);
+    for (const auto &d : w.output().snapshots) due.push_back(d.sim_time);
+    if (!w.output().snapshots.empty() && due.size() == 1) {
+      const SnapshotDue &d = w.output().snapshots[0];
+      CHECK_EQ(d.trail.size(), 3u);          // own frames at 0.1, 0.3 and 0.55: the last second
+      CHECK_EQ(d.events.size(), 1u);         // the bounce at 0.4 s
+      CHECK_EQ(d.events[0].kind, BALL_EVENT_FLOOR);
+      w.snapshot_written(d, "m7_t0000.550.png", "top", 320, 240, server);
+    }
+    w.output().snapshots.clear();
+  }
+  // the first own frame at or after 0.5, 1.0, 1.5
+  CHECK_EQ(due.size(), 3u);
+  if (due.size() == 3) {
+    CHECK_NEAR(due[0], 0.55, 0.0);
+    CHECK_NEAR(due[1], 1.02, 0.0);
+    CHECK_NEAR(due[2], 1.5, 0.0);
+  }
+  CHECK_EQ(w.summary(0).matches[0].snapshots, 1u);
+  CHECK_EQ(count_type(w.output(), "snapshot"), 1u);
+}
+
+TEST(one_match_only_and_ready_once) {
+  Game g = played(1.0);
+  WatcherSettings s;
+  s.match = 3;  // not g's (7)
+  Watcher w(s);
+  w.on_ready(1.0);
+  w.on_ready(2.0);
+  w.on_info(g.match.info(), 1.0);
+  for (const auto &x : g.segments) w.on_segment(x, 1.0);
+  for (const auto &e : g.events) w.on_event(e, 1.0);
+  CHECK_EQ(w.output().records.size(), 1u);  // the one ready line
+  CHECK_EQ(record_type(w.output().records[0]), std::string("ready"));
+  CHECK(w.summary(0).matches.empty());
+  CHECK(w.output().log.empty());
+}
+
+TEST(summary_lines_say_the_numbers) {
+  WatchSummary s;
+  WatchedMatchSummary m;
+  m.match = 2;
+  m.hits = 10;
+  m.states = 602;
+  m.states_checked = 600;
+  m.score = {3, 1};
+  s.matches = {m};
+  StatusOut o;
+  o.server_id = 1;
+  o.samples_in = 371;
+  o.samples_ok = 365;
+  o.drops[static_cast<int>(SampleResult::stale)] = 4;
+  s.servers = {o};
+  s.latency_p50 = 0.0121;
+  s.latency_count = 10;
+  std::vector<std::string> lines = summary_lines(s);
+  CHECK_EQ(lines.size(), 3u);
+  CHECK_MSG(lines[0].find("match 2: 10 hits") != std::string::npos, "%s", lines[0].c_str());
+  CHECK_MSG(lines[0].find("600 of 602 ball states checked") != std::string::npos, "%s", lines[0].c_str());
+  CHECK_MSG(lines[1].find("371 racket samples in, 365 accepted, dropped 4 (stale 4)") != std::string::npos, "%s",
+            lines[1].c_str());
+  CHECK_MSG(lines[2].find("p50 12.1 ms") != std::string::npos, "%s", lines[2].c_str());
+}
+
+CHECK_MAIN
