@@ -10,8 +10,7 @@ set(ball_docs_check ${BALL_DOCS_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/check_docs.py)
 set(ball_docs_dirs --source ${PROJECT_SOURCE_DIR} --build ${PROJECT_BINARY_DIR})
 
 # links, anchors, paths, names, every listed option in its program's --help
-add_test(NAME docs_pages COMMAND ${ball_docs_check} pages ${ball_docs_dirs}
-  --pending ${CMAKE_CURRENT_LIST_DIR}/pending.txt)
+add_test(NAME docs_pages COMMAND ${ball_docs_check} pages ${ball_docs_dirs})
 # the runnable code blocks, their outputs and example errors
 add_test(NAME docs_commands COMMAND ${ball_docs_check} commands ${ball_docs_dirs})
 # (under ./run asan the runnable blocks' ballrender needs the render tests'
