@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "ball/ball.h"
+#include "common.h"
 
 namespace acc {
 
@@ -30,10 +31,8 @@ struct Options {
   std::string scenes;         // libball/scenes (the rally scene of the whole frame)
 };
 
-struct Stat {
-  double min = 0.0, median = 0.0;
-};
-Stat stat_of(std::vector<double> v);
+using bv::Stat;  // min and median of the rounds (common.h)
+using bv::stat_of;
 
 // A sanity condition on the numbers, and whether it held.
 struct Check {

@@ -89,22 +89,10 @@ ball_vec3 reference(const ball_segment &seg, double b, double g, double t) {
                  (double)((long double)seg.p0.z + (long double)seg.v0.z * d));
 }
 
-// Seconds per call of f, over enough calls to last min_time (in batches
-// that double, so that reading the clock costs nothing measurable); min and
-// median of the rounds.
+// Seconds per call of f (bv::per_call), min and median of the rounds.
 Stat time_per_call(const Options &opt, const std::function<void()> &f) {
   std::vector<double> v;
-  for (int r = 0; r < opt.rounds; r++) {
-    long reps = 0, batch = 1;
-    double t0 = bv::now_s(), el;
-    do {
-      for (long i = 0; i < batch; i++) f();
-      reps += batch;
-      el = bv::now_s() - t0;
-      if (el < opt.min_time / 16) batch *= 2;
-    } while (el < opt.min_time);
-    v.push_back(el / static_cast<double>(reps));
-  }
+  for (int r = 0; r < opt.rounds; r++) v.push_back(bv::per_call(f, opt.min_time));
   return stat_of(v);
 }
 

@@ -21,13 +21,6 @@ namespace {
 std::string g_data_dir;
 }
 
-Stat stat_of(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  size_t n = v.size();
-  if (n == 0) return Stat{};
-  return Stat{v[0], n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2])};
-}
-
 void check(Report &rep, const std::string &what, bool pass, const std::string &detail) {
   rep.checks.push_back(Check{what, pass, detail});
   std::printf("  check %s: %s (%s)\n", pass ? "ok  " : "FAIL", what.c_str(), detail.c_str());

@@ -1,10 +1,18 @@
 // Shared pieces of the validation programs.
+#include <algorithm>
 #include <cstdarg>
 #include <cstdio>
 
 #include "common.h"
 
 namespace bv {
+
+Stat stat_of(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  size_t n = v.size();
+  if (n == 0) return Stat{};
+  return Stat{v[0], n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2])};
+}
 
 std::string fmt(const char *format, ...) {
   va_list ap, ap2;

@@ -73,6 +73,27 @@ inline double now_s() {
   return std::chrono::duration<double>(clock::now().time_since_epoch()).count();
 }
 
+// The min and the median of several rounds' figures.
+struct Stat {
+  double min = 0.0, median = 0.0;
+};
+Stat stat_of(std::vector<double> v);
+
+// Seconds per call of f, over calls that last at least min_time s, made in
+// batches that double (so that reading the clock costs nothing measurable).
+template <class F>
+double per_call(F &&f, double min_time) {
+  long reps = 0, batch = 1;
+  double t0 = now_s(), el;
+  do {
+    for (long i = 0; i < batch; i++) f();
+    reps += batch;
+    el = now_s() - t0;
+    if (el < min_time / 16) batch *= 2;
+  } while (el < min_time);
+  return el / static_cast<double>(reps);
+}
+
 // The checks (mujoco_check.cpp, fcl_check.cpp).
 Outcome check_flight(const Options &opt);
 Outcome check_contacts(const Options &opt);

@@ -339,21 +339,14 @@ Outcome check_sweep(const Options &opt) {
   volatile double sink = 0;
   // libball's cost for one closed-form evaluation, far from any step: the
   // same for every row, measured once (a jump straight to T).
-  double jump_cost;
-  {
-    long reps = 0;
-    double t0 = now_s(), el;
-    do {
-      for (int k = 0; k < 1000; k++) {
+  int jumps = 0;
+  const double jump_cost = bv::per_call(
+      [&] {
         ball_state s;
-        ball_segment_eval(&m, &seg, T * (0.5 + 0.5 * (k & 1)), &s);
+        ball_segment_eval(&m, &seg, T * (0.5 + 0.5 * (jumps++ & 1)), &s);
         sink = sink + s.position.x;
-      }
-      reps += 1000;
-      el = now_s() - t0;
-    } while (el < opt.sweep_min_time);
-    jump_cost = el / static_cast<double>(reps);
-  }
+      },
+      opt.sweep_min_time);
   for (int integ : {mjINT_EULER, mjINT_RK4}) {
     MjBall mj;
     std::string err;
@@ -378,29 +371,25 @@ Outcome check_sweep(const Options &opt) {
       r.pos_err = dist(mj.position(), exact.position);
       r.vel_err = dist(mj.velocity(), exact.velocity);
       // wall clock per simulated second: MuJoCo stepping at h ...
-      long reps = 0;
-      double t0 = now_s(), el;
-      do {
-        mj.reset(seg.p0, seg.v0, h);
-        mj.step(n);
-        sink = sink + mj.position().x;
-        reps++;
-        el = now_s() - t0;
-      } while (el < opt.sweep_min_time);
-      r.mj_cost = el / (static_cast<double>(reps) * T);
+      r.mj_cost = bv::per_call(
+                      [&] {
+                        mj.reset(seg.p0, seg.v0, h);
+                        mj.step(n);
+                        sink = sink + mj.position().x;
+                      },
+                      opt.sweep_min_time) /
+                  T;
       // ... and libball evaluating the closed form at the same instants
-      reps = 0;
-      t0 = now_s();
-      do {
-        for (long k = 1; k <= n; k++) {
-          ball_state s;
-          ball_segment_eval(&m, &seg, static_cast<double>(k) * h, &s);
-          sink = sink + s.position.x;
-        }
-        reps++;
-        el = now_s() - t0;
-      } while (el < opt.sweep_min_time);
-      r.lib_cost = el / (static_cast<double>(reps) * T);
+      r.lib_cost = bv::per_call(
+                       [&] {
+                         for (long k = 1; k <= n; k++) {
+                           ball_state s;
+                           ball_segment_eval(&m, &seg, static_cast<double>(k) * h, &s);
+                           sink = sink + s.position.x;
+                         }
+                       },
+                       opt.sweep_min_time) /
+                   T;
       r.jump_cost = jump_cost;
       rows.push_back(r);
     }
