@@ -27,8 +27,8 @@ checks, without running anything but the programs' --help:
                              which must be what it prints (stdout + stderr)
   <!-- runnable: errors -->  the same, but every command must fail (an
                              example error message and the input making it)
-  <!-- runnable: long -->    runs only with --long (ctest's docs_commands_long,
-                             BALL_DOCS_LONG=1), else is reported as skipped
+  <!-- runnable: long -->    runs only with --long (`./run docs-long`), else
+                             is reported as left to it
 Commands run in a scratch folder that links every top-level entry of the
 source tree and `build` to the build tree, so that `build/libball/ballsim
 libball/scenes/x.yaml --out x.csv` works as written and writes nowhere in
@@ -38,8 +38,9 @@ with the tree it lives in), so it must write outside it (--out /tmp/x.csv).
 A ctest command is listed (--show-only), not run, and must find tests. A
 command that starts ball-server, ball-bot, ball-watch or ball-load must carry
 --domain N (the DDS tests use fixed domains of their own), and a DDS command
-(those, ./run demo, ./run bench-server) belongs in a long block: only
-docs_commands_long is labelled dds, so only it runs under the DDS lock.
+(those, ./run demo, ./run bench-server) belongs in a long block, which runs
+only under `./run docs-long` (on the demo's and the benchmark's own domains,
+never in the test suite beside the DDS tests).
 
 Either mode fails when it checks nothing: no page, no code block, no link,
 no runnable command. A failure listed in --pending (one line each, as this
@@ -534,7 +535,7 @@ def scratch_root(source, build):
 def check_commands(args):
     report = Report(None)
     source, build = args.source, args.build
-    env = dict(os.environ, BALL_BUILD_DIR=build, BALL_SOURCE_DIR=source, BALL_DOCS_NESTED="1")
+    env = dict(os.environ, BALL_BUILD_DIR=build, BALL_SOURCE_DIR=source)
     root = scratch_root(source, build)
     try:
         for page in pages_of(source, args.pages):
@@ -544,8 +545,7 @@ def check_commands(args):
                 if (kind == "long") != args.long:
                     if kind == "long":
                         report.notes.append(
-                            "skipped %s:%d: a long block (the demo, a benchmark); "
-                            "BALL_DOCS_LONG=1 ctest --test-dir build -R docs_commands_long runs it"
+                            "left to ./run docs-long, %s:%d: a long block (the demo, a benchmark)"
                             % (page, line))
                     continue
                 for cmd, expected in steps_of(content):
@@ -565,8 +565,7 @@ def run_one(report, page, line, kind, cmd, expected, root, env):
         return
     dds = prog in DDS_PROGRAMS or (prog == "./run" and words[1:2] in (["demo"], ["bench-server"]))
     if dds and kind != "long":
-        report.fail(page, line, "`%s`: a DDS command runs only in a long block (docs_commands_long, "
-                    "label dds)" % cmd)
+        report.fail(page, line, "`%s`: a DDS command runs only in a long block (./run docs-long)" % cmd)
         return
     if words and os.path.basename(words[0]) == "ctest":
         report.notes.append("listed, not run, %s:%d: `%s`: the tests it names run in this ctest "
@@ -608,15 +607,6 @@ def main():
     args.source, args.build = os.path.abspath(args.source), os.path.abspath(args.build)
     if args.mode == "pages":
         return check_pages(args)
-    if args.long and os.environ.get("BALL_DOCS_NESTED") == "1":
-        print("skipped: this is the test suite run by the README's `./run test` inside "
-              "docs_commands_long")
-        return 77
-    if args.long and os.environ.get("BALL_DOCS_LONG") != "1":
-        print("skipped: the long runnable blocks (the demo, the benchmarks) run only with "
-              "BALL_DOCS_LONG=1 (BALL_DOCS_LONG=1 ctest --test-dir build -R docs_commands_long; "
-              "it is labelled dds: it runs the demo)")
-        return 77
     return check_commands(args)
 
 
