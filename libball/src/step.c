@@ -386,6 +386,33 @@ ball_status ball_sim_set_state(ball_sim *sim, const ball_state *state) {
   return BALL_OK;
 }
 
+ball_status ball_sim_set_segment(ball_sim *sim, const ball_segment *seg, double time) {
+  const ball_model *m;
+  ball_state start, now;
+  ball_status st;
+  if (!sim || !seg) return BALL_EINVAL;
+  m = &sim->model;
+  if (!isfinite(time) || !segment_finite(seg)) return BALL_ENONFINITE;
+  if (seg->grounded != 0 && seg->grounded != 1) return BALL_EINVAL;
+  if (time < seg->t0 || ball_v3_max_abs(seg->p0) > BALL_MAX_COORD) return BALL_ERANGE;
+  start.position = seg->p0;
+  start.velocity = seg->v0;
+  start.spin = seg->s0;
+  if ((st = check_state(m, &start)) != BALL_OK) return st;
+  /* a grounded ball slides on the floor: there, with no vertical speed */
+  if (seg->grounded && (!ball__has(m, BALL_EFFECT_FLOOR) || seg->p0.y != ball__floor_y(m) || seg->v0.y != 0.0))
+    return BALL_ERANGE;
+  ball__eval(m, seg, time, &now);
+  if ((st = check_state(m, &now)) != BALL_OK) return st;
+  sim->time = time;
+  sim->seg = *seg;
+  if (!ball__has(m, BALL_EFFECT_SPIN)) sim->seg.s0 = ball_v3(0.0, 0.0, 0.0);
+  sim->next.valid = 0;
+  sim->prev_position = now.position;
+  sim->sleep = 0;
+  return BALL_OK;
+}
+
 ball_status ball_sim_state(const ball_sim *sim, ball_state *out) {
   if (!sim || !out) return BALL_EINVAL;
   if (!isfinite(sim->time) || !segment_finite(&sim->seg)) return BALL_ENONFINITE;

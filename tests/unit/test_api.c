@@ -420,6 +420,91 @@ static void predict_gives_what_exact_steps_give(void **state) {
   assert_true(total_events > 1000); /* the scenes do bounce */
 }
 
+/* A second sim put on the first one's segment at its time (what a standby
+ * server does with the newest segment it read) goes on as the first does,
+ * to the bit, in both schemes over random scenes: the same events, the same
+ * states. */
+static void set_segment_goes_on_where_the_other_sim_is(void **state) {
+  core_rng r = {2026120201ULL};
+  int scene, f, k, went_on = 0;
+  (void)state;
+  for (scene = 0; scene < 300; scene++) {
+    ball_model m;
+    ball_sim a, b;
+    ball_event ea[BALL_MAX_CONTACTS + 2], eb[BALL_MAX_CONTACTS + 2];
+    int na, nb, frames = 1 + (int)core_uniform(&r, 0.0, 300.0);
+    double dt = 1.0 / (2.0 + core_uniform(&r, 0.0, 118.0));
+    random_scene(&r, &m);
+    assert_ok(ball_sim_init(&a, &m));
+    for (f = 0; f < frames; f++) assert_ok(ball_step(&a, dt, NULL, 0, NULL));
+    /* b: another sim of the model, elsewhere in time, then set on a's segment */
+    assert_ok(ball_sim_init(&b, &m));
+    assert_ok(ball_step(&b, 0.37, NULL, 0, NULL));
+    assert_ok(ball_sim_set_segment(&b, &a.seg, a.time));
+    assert_true(b.time == a.time && memcmp(&b.seg, &a.seg, sizeof b.seg) == 0);
+    assert_memory_equal(&b.prev_position, &a.prev_position, sizeof b.prev_position);
+    for (f = 0; f < 240; f++) {
+      ball_state sa, sb;
+      assert_ok(ball_step(&a, dt, ea, BALL_MAX_CONTACTS + 2, &na));
+      assert_ok(ball_step(&b, dt, eb, BALL_MAX_CONTACTS + 2, &nb));
+      assert_int_equal(na, nb);
+      for (k = 0; k < na; k++) assert_true(event_same(&ea[k], &eb[k]));
+      went_on += na;
+      assert_ok(ball_sim_state(&a, &sa));
+      assert_ok(ball_sim_state(&b, &sb));
+      assert_memory_equal(&sa, &sb, sizeof sa);
+    }
+  }
+  assert_true(went_on > 300); /* the runs went on through contacts */
+}
+
+/* Bad segments and times are refused with their status, the sim unchanged. */
+static void set_segment_refuses_bad_input_unchanged(void **state) {
+  ball_model m;
+  ball_sim sim, before;
+  ball_segment good, bad;
+  (void)state;
+  core_court_scene(&m);
+  assert_ok(ball_sim_init(&sim, &m));
+  assert_ok(ball_step(&sim, 0.25, NULL, 0, NULL));
+  good = core_segment(1.0, ball_v3(5.0, 1.2, 3.0), ball_v3(10.0, 2.0, 0.0), ball_v3(0.0, 0.0, 0.0));
+  before = sim;
+#define REFUSED(seg_expr, t, want)                                      \
+  do {                                                                  \
+    bad = good;                                                         \
+    seg_expr;                                                           \
+    assert_int_equal(ball_sim_set_segment(&sim, &bad, (t)), (want));    \
+    assert_memory_equal(&sim, &before, sizeof sim);                     \
+  } while (0)
+  REFUSED((void)0, 0.999, BALL_ERANGE);                  /* before t0 */
+  REFUSED((void)0, NAN, BALL_ENONFINITE);
+  REFUSED(bad.t0 = INFINITY, 2.0, BALL_ENONFINITE);
+  REFUSED(bad.v0.z = NAN, 1.5, BALL_ENONFINITE);
+  REFUSED(bad.p0.x = 2e9, 1.5, BALL_ERANGE);             /* beyond BALL_MAX_COORD */
+  REFUSED(bad.v0.x = 2e7, 1.5, BALL_ERANGE);             /* beyond BALL_MAX_SPEED */
+  REFUSED(bad.p0.y = -0.5, 1.5, BALL_ERANGE);            /* starts under the floor */
+  REFUSED((void)0, 3.0, BALL_ERANGE);                    /* under the floor by then: 1.2 + 4 - 19.6 < 0 */
+  REFUSED(bad.grounded = 2, 1.5, BALL_EINVAL);
+  REFUSED(bad.grounded = 1, 1.5, BALL_ERANGE);           /* not on the floor at rest vertically */
+  REFUSED((bad.grounded = 1, bad.p0.y = 0.03), 1.5, BALL_ERANGE); /* on the floor, but v0.y = 2 */
+#undef REFUSED
+  assert_int_equal(ball_sim_set_segment(NULL, &good, 1.5), BALL_EINVAL);
+  assert_int_equal(ball_sim_set_segment(&sim, NULL, 1.5), BALL_EINVAL);
+  assert_memory_equal(&sim, &before, sizeof sim);
+  /* a grounded ball on the floor (radius 0.03) slides on */
+  bad = good;
+  bad.grounded = 1;
+  bad.p0.y = 0.03;
+  bad.v0.y = 0.0;
+  assert_ok(ball_sim_set_segment(&sim, &bad, 1.5));
+  assert_near(sim.prev_position.y, 0.03, 0.0);
+  /* the good one, its ball where eq 3 puts it at 1.5 s (b = 5 s) */
+  assert_ok(ball_sim_set_segment(&sim, &good, 1.5));
+  assert_near(sim.time, 1.5, 0.0);
+  assert_near(sim.prev_position.x, 5.0 + 10.0 * 5.0 * -expm1(-0.5 / 5.0), 1e-12);
+  assert_near(sim.prev_position.y, 1.2 + 2.0 * 0.5 - 0.5 * 9.81 * 0.25, 1e-12);
+}
+
 static void predict_ignores_the_scheme_and_the_rackets(void **state) {
   ball_model m, exact;
   ball_segment seg;
@@ -576,6 +661,8 @@ int main(void) {
       cmocka_unit_test(one_expm1_gives_the_two_textbook_terms),
       cmocka_unit_test(flight_rejects_bad_input),
       cmocka_unit_test(predict_gives_what_exact_steps_give),
+      cmocka_unit_test(set_segment_goes_on_where_the_other_sim_is),
+      cmocka_unit_test(set_segment_refuses_bad_input_unchanged),
       cmocka_unit_test(predict_ignores_the_scheme_and_the_rackets),
       cmocka_unit_test(predict_caps_and_bad_input),
       cmocka_unit_test(the_field_table_makes_the_defaults_and_names),

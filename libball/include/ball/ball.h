@@ -455,6 +455,19 @@ BALL_API ball_status ball_sim_set_model(ball_sim *sim, const ball_model *model);
  * component beyond BALL_MAX_SPEED, or a ball below the floor. */
 BALL_API ball_status ball_sim_set_state(ball_sim *sim, const ball_state *state);
 
+/* Puts the sim on a given flight segment at sim time `time` (>= seg->t0):
+ * what a second server needs to go on from the newest segment another one
+ * published. The clock becomes `time`, the ball is where seg puts it then
+ * (also the sampled scheme's previous position), the racket tests are awake;
+ * the racket tracks, the frame count and the warnings stay. Spin is dropped
+ * when the model has no spin effect, as ball_sim_set_state does.
+ * BALL_ENONFINITE for a NaN or infinite number; BALL_ERANGE for a time
+ * before t0, a segment or a ball at `time` outside the ranges of
+ * ball_sim_set_state (below the floor included), or a grounded segment
+ * that is not on the floor at rest vertically; BALL_EINVAL for grounded not
+ * 0 or 1. Refused, the sim is unchanged. */
+BALL_API ball_status ball_sim_set_segment(ball_sim *sim, const ball_segment *seg, double time);
+
 /* The ball's state at the sim's current time. */
 BALL_API ball_status ball_sim_state(const ball_sim *sim, ball_state *out);
 
