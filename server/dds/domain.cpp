@@ -243,10 +243,10 @@ Domain::~Domain() {
 
 ParticipantId Domain::id() const { return prefix_of(impl_->participant->guid()); }
 
-double Domain::reader_deadline(const char *profile) const {
+double Domain::reader_lease(const char *profile) const {
   fdds::DataReaderQos qos;
   if (impl_->subscriber->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) return 0.0;
-  const auto &p = qos.deadline().period;
+  const auto &p = qos.liveliness().lease_duration;
   if (p == eprosima::fastrtps::c_TimeInfinite) return 0.0;
   return p.seconds + p.nanosec * 1e-9;
 }

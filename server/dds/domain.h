@@ -146,8 +146,8 @@ class Domain {
   template <class T>
   Reader<T> reader(const char *topic, const char *profile, Sizing sizing, std::string *err);
 
-  // The deadline period a data_reader profile requests (s; 0: none).
-  double reader_deadline(const char *profile) const;
+  // The liveliness lease a data_reader profile requests (s; 0: none).
+  double reader_lease(const char *profile) const;
 
  private:
   struct Impl;

@@ -260,7 +260,7 @@ void case_desync(const Env &env) {
   CHECK_MSG(checked >= 400 && worst <= 1e-9, "%d states, max error %.3g m", checked, worst);
 }
 
-// a killed bot pauses its match within 2 deadline periods; a new bot resumes it
+// a killed bot pauses its match within 2 player timeouts; a new bot resumes it
 void case_pause(const Env &env) {
   Case c{env};
   Play p = play(c, {"--rate", "20"}, path(env, "watch.jsonl"));
@@ -282,9 +282,9 @@ void case_pause(const Env &env) {
   if (pause.is_null()) return;
   double after = recv(pause) - killed;
   EventOut pe = pause.get<EventOut>();
-  note("bot 1 killed; pause (%s, player %d) %.3f s later; deadline period %.2f s", name_of(pe.reason), pe.index,
+  note("bot 1 killed; pause (%s, player %d) %.3f s later; player timeout %.2f s", name_of(pe.reason), pe.index,
        after, timeout);
-  CHECK_MSG(after <= 2.0 * timeout, "pause %.3f s after the kill, more than 2 deadline periods (%.2f s)", after, 2 * timeout);
+  CHECK_MSG(after <= 2.0 * timeout, "pause %.3f s after the kill, more than 2 player timeouts (%.2f s)", after, 2 * timeout);
   CHECK_MSG(pe.reason == Reason::pause_vanished && pe.index == 1, "reason %s index %d", name_of(pe.reason), pe.index);
   // the match stands still while paused
   usleep(1500000);
