@@ -389,7 +389,15 @@ void Reader<T>::drain_status(std::vector<StatusNote> *out) {
   notes_->notes.clear();
 }
 
+template <class T>
+uint64_t serialized_size() {
+  typename Wire<T>::Idl wire;
+  typename Wire<T>::Support support;
+  return support.getSerializedSizeProvider(&wire)();
+}
+
 #define BALL_ENDPOINTS(T)                                                                      \
+  template uint64_t serialized_size<T>();                                                      \
   template class Writer<T>;                                                                    \
   template class Reader<T>;                                                                    \
   template Writer<T> Domain::writer<T>(const char *, const char *, Sizing, std::string *);     \

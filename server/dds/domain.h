@@ -79,6 +79,11 @@ struct StatusNote {
   int count = 1;
 };
 
+// Bytes of one sample of T as written: its CDR encoding with the 4-byte
+// encapsulation header, the same for every sample (fixed-size types).
+template <class T>
+uint64_t serialized_size();
+
 class Domain;
 
 template <class T>
