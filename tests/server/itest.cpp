@@ -698,6 +698,17 @@ void case_discovery(const Env &env) {
        realtime_now() - killed);
   CHECK_MSG(hits >= 5, "%d hits after the discovery server was killed, want 5", hits);
   CHECK_MSG(server.p.running() && b0.running() && b1.running(), "a program ended with the discovery server");
+  // a bot that dies now is still noticed: its samples stop, its match pauses
+  double bot_killed = realtime_now();
+  b1.signal(SIGKILL);
+  b1.wait(2.0);
+  json pause = wait_for(t, 10.0, [](const json &j) { return is_event(j, EventKind::pause); }, &from);
+  CHECK_MSG(!pause.is_null(), "no pause within 10 s of killing bot 1 without the discovery server");
+  if (!pause.is_null()) {
+    EventOut pe = pause.get<EventOut>();
+    note("bot 1 killed: pause (%s, player %d) %.2f s later", name_of(pe.reason), pe.index, recv(pause) - bot_killed);
+    CHECK_MSG(pe.reason == Reason::pause_vanished && pe.index == 1, "reason %s index %d", name_of(pe.reason), pe.index);
+  }
   // but a newcomer finds nobody until it is back
   std::string late = path(env, "late.jsonl");
   Process w2 = c.watcher(late, dds);
