@@ -41,7 +41,8 @@ struct Options {
 bool drive(const Options &o, const std::function<void(const LoadRow &)> &done, std::string *err) {
   ball_scene scene;
   ball_scene_default(&scene);
-  auto domain = dds::Domain::open(o.dds.domain, find_profile(o.dds.profile), o.dds.participant, "ball-load", err);
+  auto domain = dds::Domain::open(o.dds.domain, find_profile(o.dds.profile), o.dds.participant,
+                                  o.dds.discovery_server, "ball-load", err);
   if (!domain) return false;
   int room = std::max(o.matches, dds::kClientRoom);
   auto port = dds::ClientEndpoints::open(*domain, {room * 2, room, room, false, true}, err);
@@ -181,11 +182,11 @@ int main(int argc, char **argv) {
     for (size_t i = 0; i < sweep.size() && !stop_requested(); ++i) {
       Options run = o;
       run.matches = sweep[i];
-      Process server = Process::start({program_dir() + "/ball-server", "--domain", std::to_string(o.dds.domain),
-                                       "--matches", std::to_string(run.matches), "--frame-rate",
-                                       std::to_string(frame_rate), "--state-rate", std::to_string(state_rate),
-                                       "--startup-wait", "0", "--quiet"},
-                                      dir + "/server.out", dir + "/server.err");
+      std::vector<std::string> args = {program_dir() + "/ball-server", "--matches", std::to_string(run.matches),
+                                       "--frame-rate", std::to_string(frame_rate), "--state-rate",
+                                       std::to_string(state_rate), "--startup-wait", "0", "--quiet"};
+      for (const std::string &a : dds_arguments(o.dds)) args.push_back(a);  // the server on our participant profile
+      Process server = Process::start(args, dir + "/server.out", dir + "/server.err");
       bool ok = drive(run, [&](const LoadRow &r) { record(r, i + 1 == sweep.size()); }, &err);
       server.stop(5.0);
       if (!ok) return fail(kProgram, err);
