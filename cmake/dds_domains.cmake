@@ -17,6 +17,7 @@ set(BALL_DDS_DOMAINS
   "dds_server_cli|106|test: ball-server's command line and config errors"
   "dds_busy|107|test: a second server for the same match"
   "dds_snapshots|108|test: ball-watch --snapshots"
+  "dds_discovery|120|test: server, bots and watcher found through a Discovery Server only"
   "test_teardown|141|test: one participant deleted within the teardown limit")
 
 # ball_dds_domain(USER OUT): the id of USER, a fatal error if it has none.

@@ -43,7 +43,7 @@ int main(int argc, char **argv) {
   if (!load_scene(scene, &sc, &err)) return fail(kProgram, err);
   install_stop_signals();
   auto domain = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
-                                  "ball-bot", &err);
+                                  dds_opt.discovery_server, "ball-bot", &err);
   if (!domain) return fail(kProgram, err);
   auto port = dds::ClientEndpoints::open(*domain, {kMaxPlayers, 1, dds::kClientRoom, false, false}, &err);
   if (!port) return fail(kProgram, err);

@@ -41,7 +41,7 @@ int main(int argc, char **argv) {
 
   install_stop_signals();
   std::string profile = find_profile(config.profile);
-  auto domain = dds::Domain::open(config.domain, profile, config.participant,
+  auto domain = dds::Domain::open(config.domain, profile, config.participant, config.discovery_server,
                                   "ball-server " + std::to_string(config.server_id), &err);
   if (!domain) return fail(kProgram, err);
   // the player timeout is the liveliness lease the racket samples reader requests

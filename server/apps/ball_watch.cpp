@@ -135,7 +135,8 @@ int main(int argc, char **argv) {
     return fail(kProgram, "--snapshots: " + snap.dir + " is not a folder");
 
   install_stop_signals();
-  auto domain = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant, "ball-watch", &err);
+  auto domain = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
+                                  dds_opt.discovery_server, "ball-watch", &err);
   if (!domain) return fail(kProgram, err);
   auto port = dds::ClientEndpoints::open(*domain, {0, 0, dds::kClientRoom, true, true}, &err);
   if (!port) return fail(kProgram, err);

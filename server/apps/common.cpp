@@ -91,7 +91,17 @@ void add_dds_options(CLI::App &app, DdsOptions *o) {
   app.add_option("--profile", o->profile,
                  "QoS profile file (default: $BALL_QOS_PROFILE, the installed one, the source tree's)");
   app.add_option("--participant-profile", o->participant,
-                 "participant profile of that file: loopback (default), lan, secure_lan");
+                 "participant profile of that file: loopback (default), lan, secure_lan, discovery_client");
+  app.add_option("--discovery-server", o->discovery_server,
+                 "with discovery_client: the Discovery Server(s), HOST:PORT[;HOST:PORT...] as in ROS_DISCOVERY_SERVER "
+                 "(default: the profile's, 127.0.0.1:11811)");
+}
+
+std::vector<std::string> dds_arguments(const DdsOptions &o) {
+  std::vector<std::string> a = {"--domain", std::to_string(o.domain), "--participant-profile", o.participant};
+  if (!o.profile.empty()) a.insert(a.end(), {"--profile", o.profile});
+  if (!o.discovery_server.empty()) a.insert(a.end(), {"--discovery-server", o.discovery_server});
+  return a;
 }
 
 bool parse_level(const std::string &text, ball_level *out) {

@@ -47,13 +47,17 @@ std::string scenes_dir();
 // The directory of the running program (ball-demo finds ball-server beside it).
 std::string program_dir();
 
-// The DDS options every program has: domain, profile file, participant profile.
+// The DDS options every program has: domain, profile file, participant
+// profile, and the Discovery Servers of a client profile ("": the profile's).
 struct DdsOptions {
   int domain = 0;
   std::string profile;
   std::string participant = "loopback";
+  std::string discovery_server;
 };
 void add_dds_options(CLI::App &app, DdsOptions *o);
+// The same options as arguments, for a program this one starts ("--domain", "7", ...).
+std::vector<std::string> dds_arguments(const DdsOptions &o);
 
 bool parse_level(const std::string &text, ball_level *out);  // a name of ball_level_name
 std::string level_names();  // "easy, mid, advanced or custom": the game levels, then the scene's own

@@ -177,7 +177,10 @@ const std::vector<Field<ServerConfig>> &server_fields() {
       {"domain", &C::domain, whole(0, kMaxDomain), "", "DDS domain id (docs/server.md, \"DDS domains\")"},
       {"profile", std::monostate{}, {}, "", "the QoS profile file, relative to the config file", nullptr,
        "found as above"},
-      {"participant_profile", &C::participant, {}, "", "`loopback`, `lan`, `secure_lan`"},
+      {"participant_profile", &C::participant, {}, "", "`loopback`, `lan`, `secure_lan`, `discovery_client`"},
+      {"discovery_server", &C::discovery_server, {}, "",
+       "with `discovery_client`: `HOST:PORT[;HOST:PORT...]` (docs/server.md, \"Without multicast: a Discovery "
+       "Server\")", nullptr, "the profile's"},
       {"max_matches", &C::max_matches, whole(1, 100000), "", "room for matches; sizes every DDS resource limit",
        "--max-matches", create_room.c_str()},
       {"allow_create", &C::allow_create, {}, "", "clients may CREATE matches from the catalogue (`--no-create`)"},
@@ -249,12 +252,14 @@ void ServerOptions::add(CLI::App &app) {
   domain_ = app.get_option("--domain");
   profile_ = app.get_option("--profile");
   participant_ = app.get_option("--participant-profile");
+  discovery_server_ = app.get_option("--discovery-server");
 }
 
 bool ServerOptions::apply(ServerConfig *config, std::string *err) const {
   if (domain_->count()) config->domain = dds_.domain;
   if (profile_->count()) config->profile = dds_.profile;
   if (participant_->count()) config->participant = dds_.participant;
+  if (discovery_server_->count()) config->discovery_server = dds_.discovery_server;
   server_.apply(config);
   if (no_create_) config->allow_create = false;
   auto settle = [&](MatchConfig *c) {

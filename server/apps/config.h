@@ -32,6 +32,7 @@ struct ServerConfig {
   int domain = 0;
   std::string profile;                       // QoS profile file ("": find_profile)
   std::string participant = "loopback";      // its participant profile
+  std::string discovery_server;              // a client profile's Discovery Servers ("": the profile's)
   uint32_t max_matches = 0;                  // 0: the configured matches, plus kCreateRoom when CREATE is allowed
   bool allow_create = true;                  // clients may CREATE matches from the catalogue
   double status_interval = 1.0;              // s between status lines
@@ -72,7 +73,7 @@ class ServerOptions {
   FieldOptions<ServerConfig> server_;
   FieldOptions<MatchConfig> match_;
   DdsOptions dds_;
-  CLI::Option *domain_ = nullptr, *profile_ = nullptr, *participant_ = nullptr;
+  CLI::Option *domain_ = nullptr, *profile_ = nullptr, *participant_ = nullptr, *discovery_server_ = nullptr;
   int matches_ = 0;
   bool no_create_ = false;
 };

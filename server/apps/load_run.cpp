@@ -77,7 +77,8 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
            const std::function<void(const LoadPart &)> &done, std::string *err) {
   ball_scene scene;
   ball_scene_default(&scene);
-  auto domain = dds::Domain::open(o.dds.domain, find_profile(o.dds.profile), o.dds.participant, "ball-load", err);
+  auto domain = dds::Domain::open(o.dds.domain, find_profile(o.dds.profile), o.dds.participant,
+                                  o.dds.discovery_server, "ball-load", err);
   if (!domain) return false;
   int room = std::max(o.first_match + o.matches, dds::kClientRoom);
   auto dds_port = dds::ClientEndpoints::open(*domain, {o.matches * 2, o.matches, room, false, true}, err);
@@ -160,10 +161,11 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
   mkdir(dir.c_str(), 0700);
   Process server;
   if (state_rate >= 0.0) {
-    server = Process::start({program_dir() + "/ball-server", "--domain", std::to_string(o.dds.domain), "--matches",
-                             std::to_string(matches), "--frame-rate", std::to_string(o.frame_rate), "--state-rate",
-                             std::to_string(state_rate), "--startup-wait", "0", "--quiet"},
-                            dir + "/server.out", dir + "/server.err");
+    std::vector<std::string> args = {program_dir() + "/ball-server", "--matches", std::to_string(matches),
+                                     "--frame-rate", std::to_string(o.frame_rate), "--state-rate",
+                                     std::to_string(state_rate), "--startup-wait", "0", "--quiet"};
+    for (const std::string &a : dds_arguments(o.dds)) args.push_back(a);  // the server on our participant profile
+    server = Process::start(args, dir + "/server.out", dir + "/server.err");
   }
   std::vector<LoadPart> parts;
   Snapshot at[2];
@@ -189,9 +191,8 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
                                        "--first-match", std::to_string(ranges[i].first), "--window-start", start,
                                        "--warmup", std::to_string(o.warmup), "--duration", std::to_string(o.duration),
                                        "--rate", std::to_string(o.bot.rate), "--seed", std::to_string(o.bot.seed),
-                                       "--domain", std::to_string(o.dds.domain), "--participant-profile",
-                                       o.dds.participant, "--part-json", file};
-      if (!o.dds.profile.empty()) argv.insert(argv.end(), {"--profile", o.dds.profile});
+                                       "--part-json", file};
+      for (const std::string &a : dds_arguments(o.dds)) argv.push_back(a);
       procs.push_back(Process::start(argv, dir + "/bots" + std::to_string(i) + ".out",
                                      dir + "/bots" + std::to_string(i) + ".err"));
       pids.push_back(procs.back().pid());

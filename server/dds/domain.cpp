@@ -12,6 +12,7 @@
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
+#include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/common/InstanceHandle.h>
 
 #include <unistd.h>
@@ -83,6 +84,26 @@ void size_limits(Qos *qos, Sizing sizing) {
   rl.max_samples_per_instance = depth;
   rl.max_samples = instances * depth;
   rl.allocated_samples = std::min(rl.max_samples, 256);
+}
+
+// The Discovery Servers of a client profile replaced by `list`, read by
+// Fast DDS's own reader of ROS_DISCOVERY_SERVER (which Fast DDS itself
+// applies only to SIMPLE participants, never to a profile that says CLIENT).
+bool use_discovery_servers(const std::string &list, fdds::DomainParticipantQos *qos, std::string *err) {
+  namespace rtps = eprosima::fastrtps::rtps;
+  auto &discovery = qos->wire_protocol().builtin.discovery_config;
+  if (discovery.discoveryProtocol != rtps::DiscoveryProtocol::CLIENT &&
+      discovery.discoveryProtocol != rtps::DiscoveryProtocol::SUPER_CLIENT) {
+    *err = "discovery servers \"" + list + "\" given, but the profile is not a Discovery Server client";
+    return false;
+  }
+  rtps::RemoteServerList_t servers;
+  if (!eprosima::fastdds::rtps::load_environment_server_info(list, servers) || servers.empty()) {
+    *err = "discovery servers \"" + list + "\": not a list of HOST:PORT separated by ';'";
+    return false;
+  }
+  discovery.m_DiscoveryServers = servers;
+  return true;
 }
 
 }  // namespace
@@ -196,8 +217,8 @@ struct Domain::Impl {
 };
 
 std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_file,
-                                     const std::string &participant_profile, const std::string &name,
-                                     std::string *err) {
+                                     const std::string &participant_profile, const std::string &discovery_servers,
+                                     const std::string &name, std::string *err) {
   if (domain_id < 0 || domain_id > kMaxDomain) {
     *err = "domain " + std::to_string(domain_id) + " is unusable: RTPS maps domains 0 to " +
            std::to_string(kMaxDomain) + " onto UDP ports";
@@ -226,6 +247,10 @@ std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_f
   fdds::DomainParticipantQos qos;
   if (factory->get_participant_qos_from_profile(participant_profile, qos) != ReturnCode_t::RETCODE_OK) {
     *err = "QoS profile file " + profile_file + ": no participant profile \"" + participant_profile + "\"";
+    return nullptr;
+  }
+  if (!discovery_servers.empty() && !use_discovery_servers(discovery_servers, &qos, err)) {
+    *err = "participant profile \"" + participant_profile + "\": " + *err;
     return nullptr;
   }
   qos.name(name);

@@ -139,12 +139,16 @@ class Domain {
  public:
   explicit Domain(Key);
   // Loads `profile_file` (once per process), then creates the participant
-  // with `participant_profile` on `domain_id`. Returns nullptr with a
-  // sentence in err: a missing or invalid profile file, a domain id outside
-  // [0, 232], a participant that cannot be created.
+  // with `participant_profile` on `domain_id`. A non-empty
+  // `discovery_servers` (HOST:PORT[;HOST:PORT...], ROS_DISCOVERY_SERVER's
+  // syntax: the n-th entry is server id n) replaces the Discovery Servers of
+  // a client profile. Returns nullptr with a sentence in err: a missing or
+  // invalid profile file, a domain id outside [0, 232], discovery servers
+  // for a profile that is not a Discovery Server client or a list Fast DDS
+  // cannot read, a participant that cannot be created.
   static std::unique_ptr<Domain> open(int domain_id, const std::string &profile_file,
-                                      const std::string &participant_profile, const std::string &name,
-                                      std::string *err);
+                                      const std::string &participant_profile, const std::string &discovery_servers,
+                                      const std::string &name, std::string *err);
   ~Domain();
   Domain(const Domain &) = delete;
   Domain &operator=(const Domain &) = delete;

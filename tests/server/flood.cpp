@@ -47,8 +47,11 @@ int main(int argc, char **argv) {
   std::string err;
   install_stop_signals();
   std::string profile = find_profile(dds_opt.profile);
-  auto a = dds::Domain::open(dds_opt.domain, profile, dds_opt.participant, "flood A", &err);
-  auto b = a ? dds::Domain::open(dds_opt.domain, profile, dds_opt.participant, "flood B", &err) : nullptr;
+  auto participant = [&](const char *name) {
+    return dds::Domain::open(dds_opt.domain, profile, dds_opt.participant, dds_opt.discovery_server, name, &err);
+  };
+  auto a = participant("flood A");
+  auto b = a ? participant("flood B") : nullptr;
   if (!a || !b) return fail(kProgram, err);
   auto a_samples = a->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {16}, &err);
   auto a_controls = a->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {1}, &err);

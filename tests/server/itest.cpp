@@ -5,7 +5,7 @@
 // hangs (a watchdog kills every group and exits). A case fails as well if
 // Fast DDS files are left in /dev/shm.
 //
-//   ball_itest CASE --bin DIR --domain N --work DIR
+//   ball_itest CASE --bin DIR --domain N --work DIR [--fastdds PATH]
 #include <dirent.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -37,7 +37,7 @@ using check::note;
 namespace {
 
 struct Env {
-  std::string bin, work;
+  std::string bin, work, fastdds;
   int domain = 0;
   std::string dom() const { return std::to_string(domain); }
 };
@@ -109,6 +109,21 @@ struct Case {
 };
 
 std::string path(const Env &e, const std::string &name) { return e.work + "/" + name; }
+
+// a file's text ("" if it cannot be read)
+std::string file_text(const std::string &file) {
+  std::ifstream f(file);
+  return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+}
+
+// Runs a program that should end by itself (logs NAME.out and NAME.err in
+// the work folder): its exit status (-1: stopped after 20 s), its stderr in *err.
+int run_to_end(const Env &env, const std::vector<std::string> &argv, const std::string &name, std::string *err) {
+  Process p = Process::start(argv, path(env, name + ".out"), path(env, name + ".err"));
+  int rc = p.wait(20.0);
+  *err = file_text(path(env, name + ".err"));
+  return rc;
+}
 
 // Polls a record until pred holds for one of its new lines or timeout s pass;
 // the line, or null.
@@ -498,13 +513,7 @@ void case_snapshots(const Env &env) {
 void case_server_cli(const Env &env) {
   auto run = [&](std::vector<std::string> args, const std::string &name, std::string *err) {
     args.insert(args.begin(), env.bin + "/ball-server");
-    std::string out = path(env, name + ".out"), e = path(env, name + ".err");
-    Process p = Process::start(args, out, e);
-    int rc = p.wait(20.0);
-    std::ifstream f(e);
-    err->assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
-    if (rc < 0) p.stop();
-    return rc;
+    return run_to_end(env, args, name, err);
   };
   auto write = [&](const std::string &name, const std::string &text) {
     std::ofstream(path(env, name)) << text;
@@ -549,12 +558,8 @@ void case_server_cli(const Env &env) {
             "status %d: %s", rc, err.c_str());
   // and a record that cannot be written stops the watcher with its reason
   {
-    Process w = Process::start({env.bin + "/ball-watch", "--domain", env.dom(), "--duration", "5", "--record",
-                                "/dev/full"},
-                               path(env, "full.out"), path(env, "full.err"));
-    rc = w.wait(20.0);
-    std::ifstream f(path(env, "full.err"));
-    err.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+    rc = run_to_end(env, {env.bin + "/ball-watch", "--domain", env.dom(), "--duration", "5", "--record", "/dev/full"},
+                    "full", &err);
     note("ball-watch --record /dev/full: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
     CHECK_MSG(rc == 1 && err.find("cannot write /dev/full: No space left on device") != std::string::npos,
               "status %d: %s", rc, err.c_str());
@@ -570,15 +575,154 @@ void case_busy(const Env &env) {
                                   "--duration", "60", "--quiet"},
                                  path(env, "first.out"), path(env, "first.err"));
   usleep(500000);
-  Process second = Process::start({env.bin + "/ball-server", "--domain", env.dom(), "--server-id", "2",
-                                   "--startup-wait", "3", "--duration", "60"},
-                                  path(env, "second.out"), path(env, "second.err"));
-  int rc = second.wait(20.0);
-  std::ifstream f(path(env, "second.err"));
-  std::string err((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  std::string err;
+  int rc = run_to_end(env, {env.bin + "/ball-server", "--domain", env.dom(), "--server-id", "2", "--startup-wait", "3",
+                            "--duration", "60"},
+                      "second", &err);
   note("second server: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
   CHECK_MSG(rc == 1 && err.find("busy") != std::string::npos, "status %d: %s", rc, err.c_str());
   CHECK_MSG(first.running(), "the first server stopped");
+}
+
+// `fastdds discovery` is a Python launcher that runs fast-discovery-server
+// as its child and ends with it. Signals go to that child (SIGINT: a clean
+// stop, as by Ctrl-C; SIGKILL: a crash) so that the launcher reaps it: a
+// signal to the whole group would leave the server to init as an orphan.
+// Declared after its clients, it is stopped first, and Process stops the
+// group if that did not end it.
+struct DiscoveryServer {
+  Process p;
+  DiscoveryServer() = default;
+  DiscoveryServer(DiscoveryServer &&) = default;
+  DiscoveryServer &operator=(DiscoveryServer &&) = default;
+  ~DiscoveryServer() { end(SIGINT); }
+  void end(int sig) {
+    if (!p.running()) return;
+    std::ifstream children("/proc/" + std::to_string(p.pid()) + "/task/" + std::to_string(p.pid()) + "/children");
+    pid_t child = -1;
+    if (children >> child) kill(child, sig);
+    else p.signal(sig);
+    p.wait(5.0);
+  }
+};
+
+// Hosts without multicast: a server, two bots and a watcher with the
+// participant profile discovery_client (no multicast locator, no initial
+// peers) find each other only through a Fast DDS Discovery Server,
+// `fastdds discovery` with the profile discovery_server. It listens on
+// 127.0.0.1 at a port of this case's own domain's block of RTPS ports (the
+// one participant 95 would take; no test has that many), so that parallel
+// cases never meet through it: Fast DDS 2.9's server does not keep domains
+// apart.
+void case_discovery(const Env &env) {
+  const int port = 7400 + 250 * env.domain + 10 + 2 * 95;
+  const std::string at = "127.0.0.1:" + std::to_string(port);
+  const std::vector<std::string> dds = {"--participant-profile", "discovery_client", "--discovery-server", at};
+  auto with = [&](std::vector<std::string> a) {
+    a.insert(a.end(), dds.begin(), dds.end());
+    return a;
+  };
+  // --discovery-server is refused for a profile that is not a client, and a list Fast DDS cannot read
+  struct Refused {
+    const char *profile, *servers, *expect;
+  } refused[] = {{"loopback", "127.0.0.1:11811", "not a Discovery Server client"},
+                 {"discovery_client", "127.0.0.1:port", "not a list of HOST:PORT"}};
+  for (const Refused &r : refused) {
+    std::string err;
+    int rc = run_to_end(env, {env.bin + "/ball-watch", "--domain", env.dom(), "--participant-profile", r.profile,
+                              "--discovery-server", r.servers, "--duration", "5"},
+                        std::string("refused-") + r.profile, &err);
+    note("--participant-profile %s --discovery-server %s: status %d: %s", r.profile, r.servers, rc,
+         err.substr(0, err.find('\n')).c_str());
+    CHECK_MSG(rc == 1 && err.find(r.expect) != std::string::npos, "status %d: %s", rc, err.c_str());
+  }
+  // the discovery server: started, it says where it listens
+  int servers = 0;
+  auto discovery_server = [&]() {
+    DiscoveryServer ds;
+    std::string log = path(env, "discovery" + std::to_string(++servers));
+    ds.p = Process::start({env.fastdds, "discovery", "-x", "discovery_server@" + find_profile(""), "-l", "127.0.0.1",
+                           "-p", std::to_string(port)},
+                          log + ".out", log + ".err");
+    std::string listening = "UDPv4:[127.0.0.1]:" + std::to_string(port);
+    double end = mono_now() + 10.0;
+    while (file_text(log + ".out").find(listening) == std::string::npos && ds.p.running() && mono_now() < end)
+      usleep(50000);
+    CHECK_MSG(file_text(log + ".out").find(listening) != std::string::npos,
+              "%s discovery did not start on %s (fastdds-tools, ./run setup): %s%s", env.fastdds.c_str(),
+              at.c_str(), file_text(log + ".out").c_str(), file_text(log + ".err").c_str());
+    return ds;
+  };
+  auto hits_after = [](Tail &t, size_t *from, int want, double timeout) {
+    int hits = 0;
+    double end = mono_now() + timeout;
+    while (hits < want && !wait_for(t, end - mono_now(), is_hit, from).is_null()) hits++;
+    return hits;
+  };
+  Case c{env};
+  std::string record = path(env, "watch.jsonl");
+  Server server = c.server(dds);
+  Process w = c.watcher(record, dds);
+  Process b0 = c.bot(0, with({"--rate", "15"})), b1 = c.bot(1, with({"--rate", "15"}));
+  Tail t(record);
+  // The control: without the discovery server nobody finds anybody, where
+  // the loopback cases find each other in well under a second.
+  usleep(5 * 1000000);
+  t.poll();
+  size_t heard = count(t.lines, [](const json &j) { return !is_type(j, "start"); });
+  bool held = file_text(path(env, "bot0.1.out")).find("holds") != std::string::npos ||
+              file_text(path(env, "bot1.2.out")).find("holds") != std::string::npos;
+  note("without the discovery server: the watcher heard %zu records in 5 s, %s", heard,
+       held ? "a bot holds a slot" : "no bot holds a slot");
+  CHECK_MSG(heard == 0 && !held, "found without the discovery server: %zu records, a slot held: %d", heard, held);
+  // with it, the same processes find each other and the bots rally
+  double started = realtime_now();
+  DiscoveryServer ds = discovery_server();
+  size_t from = 0;
+  json ready = wait_for(t, 15.0, [](const json &j) { return is_type(j, "ready"); }, &from);
+  CHECK_MSG(!ready.is_null(), "the watcher did not hear the server within 15 s of the discovery server");
+  if (ready.is_null()) return;
+  int hits = hits_after(t, &from, 10, 30.0);
+  note("discovery server started: the watcher hears the server %.2f s later, then %d racket hits",
+       recv(ready) - started, hits);
+  CHECK_MSG(hits >= 10, "%d hits within 30 s, want 10", hits);
+  // Killed, it takes nothing away: the clients keep the peers they found
+  // (Fast DDS tracks only the server's lease, 5 s, not theirs) and play on.
+  ds.end(SIGKILL);
+  double killed = realtime_now();
+  usleep(6 * 1000000);
+  t.poll();
+  from = t.lines.size();
+  hits = hits_after(t, &from, 5, 20.0);
+  note("discovery server killed: %d racket hits between 6 s and %.1f s after, the rally goes on", hits,
+       realtime_now() - killed);
+  CHECK_MSG(hits >= 5, "%d hits after the discovery server was killed, want 5", hits);
+  CHECK_MSG(server.p.running() && b0.running() && b1.running(), "a program ended with the discovery server");
+  // a bot that dies now is still noticed: its samples stop, its match pauses
+  double bot_killed = realtime_now();
+  b1.signal(SIGKILL);
+  b1.wait(2.0);
+  json pause = wait_for(t, 10.0, [](const json &j) { return is_event(j, EventKind::pause); }, &from);
+  CHECK_MSG(!pause.is_null(), "no pause within 10 s of killing bot 1 without the discovery server");
+  if (!pause.is_null()) {
+    EventOut pe = pause.get<EventOut>();
+    note("bot 1 killed: pause (%s, player %d) %.2f s later", name_of(pe.reason), pe.index, recv(pause) - bot_killed);
+    CHECK_MSG(pe.reason == Reason::pause_vanished && pe.index == 1, "reason %s index %d", name_of(pe.reason), pe.index);
+  }
+  // but a newcomer finds nobody until it is back
+  std::string late = path(env, "late.jsonl");
+  Process w2 = c.watcher(late, dds);
+  Tail tl(late);
+  usleep(3 * 1000000);
+  tl.poll();
+  heard = count(tl.lines, [](const json &j) { return !is_type(j, "start"); });
+  double restarted = realtime_now();
+  DiscoveryServer ds2 = discovery_server();
+  json found = wait_for(tl, 15.0, [](const json &j) { return is_type(j, "ready"); });
+  note("a watcher started without it heard %zu records in 3 s; with it restarted, it hears the server %.2f s later",
+       heard, found.is_null() ? -1.0 : recv(found) - restarted);
+  CHECK_MSG(heard == 0, "the new watcher heard %zu records without the discovery server", heard);
+  CHECK_MSG(!found.is_null(), "the new watcher did not hear the server within 15 s of the restart");
 }
 
 // A case, then no Fast DDS file left behind; every Process of the case is
@@ -602,6 +746,7 @@ TEST(lossy) { in_case(case_lossy); }
 TEST(server_cli) { in_case(case_server_cli); }
 TEST(busy) { in_case(case_busy); }
 TEST(snapshots) { in_case(case_snapshots); }
+TEST(discovery) { in_case(case_discovery); }
 
 int main(int argc, char **argv) {
   CLI::App cli{"ball_itest: the ball server's integration tests, one case a run"};
@@ -613,6 +758,7 @@ int main(int argc, char **argv) {
   cli.add_option("--bin", g_env.bin, "directory of ball-server, ball-bot, ball-watch, ball_flood")->required();
   cli.add_option("--domain", g_env.domain, "DDS domain id of this case (cmake/dds_domains.cmake)")->required();
   cli.add_option("--work", g_env.work, "directory for logs and records")->required();
+  cli.add_option("--fastdds", g_env.fastdds, "the fastdds command (fastdds-tools), for the discovery case");
   cli.add_option("--watchdog", watchdog, "s before everything is killed and the case fails");
   CLI11_PARSE(cli, argc, argv);
   // Under AddressSanitizer (./run asan): Debian's Fast DDS 2.9 deletes its

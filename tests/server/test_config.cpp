@@ -198,6 +198,33 @@ TEST(command_line_over_the_file) {
   CHECK_EQ(c.max_matches, 2u);  // no CREATE: no room beyond the configured matches
 }
 
+// the DDS options a program hands to a ball-server it starts (ball-load
+// --sweep) come back the same; the file has the Discovery Server key too
+TEST(dds_options_pass_to_a_started_server) {
+  DdsOptions o;
+  o.domain = 7;
+  o.profile = "q.xml";
+  o.participant = "discovery_client";
+  o.discovery_server = "10.0.0.5:11811;10.0.0.6:11811";
+  std::vector<std::string> args = dds_arguments(o);
+  CHECK_EQ(args.size(), 8u);
+  CLI::App app;
+  ServerOptions opt;
+  opt.add(app);
+  app.parse(std::vector<std::string>(args.rbegin(), args.rend()));  // CLI11 takes them last first
+  ServerConfig c;
+  std::string err;
+  CHECK(opt.apply(&c, &err));
+  CHECK_EQ(c.domain, 7);
+  CHECK(c.profile == "q.xml" && c.participant == "discovery_client");
+  CHECK(c.discovery_server == "10.0.0.5:11811;10.0.0.6:11811");
+  CHECK_EQ(dds_arguments(DdsOptions{}).size(), 4u);  // no profile file, no servers: the programs' own defaults
+  ServerConfig f;
+  CHECK(parse_config(R"({"participant_profile": "discovery_client", "discovery_server": "ds:11811"})", "t.json", "",
+                     &f, &err));
+  CHECK(f.participant == "discovery_client" && f.discovery_server == "ds:11811");
+}
+
 // server/config/example.json uses every key of both tables, and reads
 TEST(the_example_uses_every_key) {
   std::ifstream f(BALL_EXAMPLE_CONFIG);
@@ -219,7 +246,7 @@ TEST(the_example_uses_every_key) {
     CHECK_MSG(used.count(k.key), "match key %s is not in %s", k.key, BALL_EXAMPLE_CONFIG);
     keys++;
   }
-  CHECK_EQ(keys, 11 + 16);
+  CHECK_EQ(keys, 12 + 16);
   ServerConfig c;
   std::string err;
   CHECK_MSG(load_config_file(BALL_EXAMPLE_CONFIG, &c, &err), "%s", err.c_str());

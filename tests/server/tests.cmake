@@ -61,12 +61,14 @@ target_include_directories(ball_itest PRIVATE ${PROJECT_SOURCE_DIR}/tests/render
 target_compile_options(ball_itest PRIVATE ${BALL_CXX_WARNINGS})
 add_dependencies(ball_itest ball-server ball-bot ball-watch ball_flood)
 
-# each case on the DDS domain cmake/dds_domains.cmake gives it: parallel runs never meet
-set(BALL_ITEST_CASES rally desync pause flood late_join lossy server_cli busy snapshots)
+# each case on the DDS domain cmake/dds_domains.cmake gives it: parallel runs
+# never meet; the discovery case runs Debian's fastdds-tools (./run setup)
+find_program(BALL_FASTDDS fastdds)
+set(BALL_ITEST_CASES rally desync pause flood late_join lossy server_cli busy snapshots discovery)
 foreach(case ${BALL_ITEST_CASES})
   ball_dds_domain(dds_${case} domain)
   add_test(NAME dds_${case}
     COMMAND ball_itest ${case} --bin ${PROJECT_BINARY_DIR}/server --domain ${domain}
-            --work ${CMAKE_CURRENT_BINARY_DIR}/dds_${case})
+            --work ${CMAKE_CURRENT_BINARY_DIR}/dds_${case} --fastdds ${BALL_FASTDDS})
   set_tests_properties(dds_${case} PROPERTIES LABELS dds TIMEOUT 100)
 endforeach()
