@@ -44,8 +44,8 @@ int main(int argc, char **argv) {
   auto domain = dds::Domain::open(config.domain, profile, config.participant, config.discovery_server,
                                   "ball-server " + std::to_string(config.server_id), &err);
   if (!domain) return fail(kProgram, err);
-  // the player timeout is the deadline the racket samples reader requests
-  auto host = make_host(&config, scenes, domain->reader_deadline(dds::kRacketProfile), &err);
+  // the player timeout is the liveliness lease the racket samples reader requests
+  auto host = make_host(&config, scenes, domain->reader_lease(dds::kRacketProfile), &err);
   if (!host) return fail(kProgram, err);
   auto port = dds::ServerEndpoints::open(*domain, static_cast<int>(config.max_matches), host->max_players(), &err);
   if (!port) return fail(kProgram, err);

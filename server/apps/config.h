@@ -86,7 +86,7 @@ struct ServerScenes {
 bool load_scenes(const ServerConfig &config, ServerScenes *scenes, std::string *err);
 
 // The host of the configured matches and catalogue. A player_timeout > 0
-// (the deadline the racket samples reader requests) replaces the
+// (the liveliness lease the racket samples reader requests) replaces the
 // configured one, in *config too. nullptr with err ("match 3 (x.yaml): ...").
 std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes, double player_timeout,
                                 std::string *err);

@@ -25,5 +25,17 @@ std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNe
   return p;
 }
 
+WireSizes wire_sizes() {
+  WireSizes s;
+  s.sample = serialized_size<RacketSampleIn>();
+  s.control = serialized_size<ControlIn>();
+  s.segment = serialized_size<SegmentOut>();
+  s.event = serialized_size<EventOut>();
+  s.state = serialized_size<StateOut>();
+  s.info = serialized_size<MatchInfoOut>();
+  s.status = serialized_size<StatusOut>();
+  return s;
+}
+
 }  // namespace dds
 }  // namespace ballsrv

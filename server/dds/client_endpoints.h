@@ -6,6 +6,7 @@
 #include <string>
 
 #include "domain.h"
+#include "load.h"
 #include "port.h"
 
 namespace ballsrv {
@@ -18,6 +19,9 @@ struct ClientNeeds {
   bool events = false;    // reads ball/events
   bool status = false;    // reads ball/server_status
 };
+
+// The size of one sample of every topic (load.h).
+WireSizes wire_sizes();
 
 class ClientEndpoints : public ClientPort {
  public:

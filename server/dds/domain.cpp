@@ -65,6 +65,14 @@ ParticipantId prefix_of(const eprosima::fastrtps::rtps::GUID_t &guid) {
 
 double seconds(const eprosima::fastrtps::rtps::Time_t &t) { return static_cast<double>(t.to_ns()) * 1e-9; }
 
+SampleMeta meta_of(const fdds::SampleInfo &info) {
+  SampleMeta m;
+  m.from = prefix_of(info.sample_identity.writer_guid());
+  m.source_time = seconds(info.source_timestamp);
+  m.reception_time = seconds(info.reception_timestamp);
+  return m;
+}
+
 // keep-last depth per instance from the profile, instances from the caller
 template <class Qos>
 void size_limits(Qos *qos, Sizing sizing) {
@@ -100,11 +108,49 @@ bool use_discovery_servers(const std::string &list, fdds::DomainParticipantQos *
 
 }  // namespace
 
-// What the DDS threads tell the loop about a reader's writers.
+// What the DDS threads tell the loop about a reader's writers, and the
+// reader's inbox (Sizing) when it has one.
 template <class T>
 struct Reader<T>::Notes : public fdds::DataReaderListener {
   std::mutex mutex;
   std::vector<StatusNote> notes;
+  struct Item {
+    T sample;
+    SampleMeta meta;
+  };
+  size_t inbox_cap = 0;
+  std::vector<Item> inbox;       // filled by the DDS thread, under mutex
+  std::vector<Item> taken;       // the loop's: swapped with inbox when read through
+  size_t next = 0;               // of taken, the next to hand out
+
+  // Every sample that arrived, into the inbox (the DDS thread).
+  void on_data_available(fdds::DataReader *r) override {
+    if (inbox_cap == 0) return;
+    typename Wire<T>::Idl wire;
+    fdds::SampleInfo info;
+    while (r->take_next_sample(&wire, &info) == ReturnCode_t::RETCODE_OK) {
+      if (!info.valid_data) continue;
+      Item it{T{}, meta_of(info)};
+      from_idl(wire, &it.sample);
+      std::lock_guard<std::mutex> lock(mutex);
+      if (inbox.size() < inbox_cap) inbox.push_back(std::move(it));
+      else if (!notes.empty() && notes.back().kind == StatusNote::rejected) notes.back().count++;
+      else notes.push_back(StatusNote{StatusNote::rejected, ParticipantId{}, 1});
+    }
+  }
+  bool pop(T *sample, SampleMeta *meta) {
+    if (next == taken.size()) {
+      taken.clear();
+      next = 0;
+      std::lock_guard<std::mutex> lock(mutex);
+      taken.swap(inbox);
+    }
+    if (next == taken.size()) return false;
+    *sample = std::move(taken[next].sample);
+    if (meta) *meta = taken[next].meta;
+    next++;
+    return true;
+  }
 
   void add(StatusNote::Kind kind, ParticipantId who, int count) {
     std::lock_guard<std::mutex> lock(mutex);
@@ -268,10 +314,10 @@ Domain::~Domain() {
 
 ParticipantId Domain::id() const { return prefix_of(impl_->participant->guid()); }
 
-double Domain::reader_deadline(const char *profile) const {
+double Domain::reader_lease(const char *profile) const {
   fdds::DataReaderQos qos;
   if (impl_->subscriber->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) return 0.0;
-  const auto &p = qos.deadline().period;
+  const auto &p = qos.liveliness().lease_duration;
   if (p == eprosima::fastrtps::c_TimeInfinite) return 0.0;
   return p.seconds + p.nanosec * 1e-9;
 }
@@ -308,9 +354,11 @@ Reader<T> Domain::reader(const char *topic_name, const char *profile, Sizing siz
   }
   size_limits(&qos, sizing);
   auto notes = std::make_shared<typename Reader<T>::Notes>();
+  notes->inbox_cap = static_cast<size_t>(std::max(0, sizing.inbox));
   fdds::StatusMask mask = fdds::StatusMask::liveliness_changed() << fdds::StatusMask::subscription_matched()
                           << fdds::StatusMask::requested_deadline_missed() << fdds::StatusMask::sample_rejected()
                           << fdds::StatusMask::sample_lost();
+  if (sizing.inbox > 0) mask << fdds::StatusMask::data_available();
   r.r_ = impl_->subscriber->create_datareader(t, qos, notes.get(), mask);
   if (!r.r_) {
     *err = std::string("cannot create a reader on ") + topic_name + " with profile " + profile;
@@ -338,17 +386,14 @@ int Writer<T>::matched() const {
 template <class T>
 bool Reader<T>::take(T *sample, SampleMeta *meta) {
   if (!r_) return false;
+  if (notes_ && notes_->inbox_cap > 0) return notes_->pop(sample, meta);
   typename Wire<T>::Idl wire;
   fdds::SampleInfo info;
   while (r_->take_next_sample(&wire, &info) == ReturnCode_t::RETCODE_OK) {
     if (!info.valid_data) continue;
     *sample = T{};
     from_idl(wire, sample);
-    if (meta) {
-      meta->from = prefix_of(info.sample_identity.writer_guid());
-      meta->source_time = seconds(info.source_timestamp);
-      meta->reception_time = seconds(info.reception_timestamp);
-    }
+    if (meta) *meta = meta_of(info);
     return true;
   }
   return false;
@@ -369,7 +414,15 @@ void Reader<T>::drain_status(std::vector<StatusNote> *out) {
   notes_->notes.clear();
 }
 
+template <class T>
+uint64_t serialized_size() {
+  typename Wire<T>::Idl wire;
+  typename Wire<T>::Support support;
+  return support.getSerializedSizeProvider(&wire)();
+}
+
 #define BALL_ENDPOINTS(T)                                                                      \
+  template uint64_t serialized_size<T>();                                                      \
   template class Writer<T>;                                                                    \
   template class Reader<T>;                                                                    \
   template Writer<T> Domain::writer<T>(const char *, const char *, Sizing, std::string *);     \

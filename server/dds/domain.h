@@ -52,8 +52,16 @@ constexpr int kClientRoom = 4096;
 
 // How many instances (keys) an endpoint must hold: the profile says keep
 // last N per instance; this says how many instances, and so max_samples.
+// A reader with an inbox takes every sample as it arrives (in the DDS
+// thread) into a queue of at most `inbox` samples, refusing (and counting
+// as rejected) what does not fit; take() then reads that queue. Fast DDS
+// 2.9 looks a new sample up through the reader's whole history, and
+// removes a taken one likewise, so a history that holds a frame's samples
+// costs O(samples^2) a frame; with an inbox it holds one or two
+// (docs/server.md, "Load").
 struct Sizing {
   int instances = 1;
+  int inbox = 0;  // samples; 0: samples wait in the DDS reader until taken
 };
 
 // What DDS says about a sample besides its data.
@@ -70,6 +78,11 @@ struct StatusNote {
   ParticipantId who{};  // writer_lost/writer_matched: the participant; zeros otherwise
   int count = 1;
 };
+
+// Bytes of one sample of T as written: its CDR encoding with the 4-byte
+// encapsulation header, the same for every sample (fixed-size types).
+template <class T>
+uint64_t serialized_size();
 
 class Domain;
 
@@ -150,8 +163,8 @@ class Domain {
   template <class T>
   Reader<T> reader(const char *topic, const char *profile, Sizing sizing, std::string *err);
 
-  // The deadline period a data_reader profile requests (s; 0: none).
-  double reader_deadline(const char *profile) const;
+  // The liveliness lease a data_reader profile requests (s; 0: none).
+  double reader_lease(const char *profile) const;
 
  private:
   struct Impl;

@@ -7,13 +7,14 @@ std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, i
   std::unique_ptr<ServerEndpoints> p(new ServerEndpoints(d));
   int match_room = matches;
   int sample_room = match_room * std::max(1, players) + 64;  // + room for junk keys
+  constexpr int kInboxPerSlot = 64;  // samples a slot may have waiting between two frames, on average
   p->segments_ = d.writer<SegmentOut>(kSegmentTopic, kSegmentProfile, {match_room}, err);
   if (p->segments_.valid()) p->events_ = d.writer<EventOut>(kEventTopic, kEventProfile, {match_room}, err);
   if (p->events_.valid()) p->states_ = d.writer<StateOut>(kStateTopic, kStateProfile, {match_room}, err);
   if (p->states_.valid()) p->infos_ = d.writer<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room}, err);
   if (p->infos_.valid()) p->status_ = d.writer<StatusOut>(kStatusTopic, kStatusProfile, {1}, err);
   if (!p->status_.valid()) return nullptr;
-  p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, {sample_room}, err);
+  p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, {sample_room, sample_room * kInboxPerSlot}, err);
   p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile, {match_room + 64}, err);
   p->others_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room + 64}, err);
   if (!p->samples_.valid() || !p->controls_.valid() || !p->others_.valid()) return nullptr;

@@ -40,7 +40,7 @@ const std::vector<Field<MatchConfig>> &match_fields() {
       {"stale_time", &M::stale_time, closed(-1.0, 60.0), "s",
        "a racket silent this long does not collide; negative: the scene's", "--stale-time", "-1 (the scene's)"},
       {"player_timeout", &M::player_timeout, open_closed(0.0, 60.0), "s",
-       "real s without a sample before a player has vanished: the racket_samples reader's deadline", nullptr,
+       "real s without a sample before a player has vanished: the racket_samples reader's liveliness lease", nullptr,
        nullptr, false},
       {"max_sample_age", &M::max_sample_age, open_closed(0.0, 60.0), "s", "older samples are dropped as stale",
        "--max-sample-age"},

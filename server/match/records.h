@@ -166,20 +166,51 @@ struct BotReport {
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BotReport, match, slot, samples, lost, written, write_failures, segments, plans,
                                    late, missed_on_purpose, participant)
 
-struct LoadRow {  // one match count of the load benchmark
+struct LoadRow {  // one point (match count, state rate) of one round of the load benchmark
   int matches = 0, bots = 0;
   double rate = 0.0;          // Hz, each bot's
+  double state_rate = -1.0;   // Hz, the server's ball states (0: off); -1: not started by ball-load
+  int bot_processes = 1;
   bool ready = false;         // every slot joined within the warm-up
   double seconds = 0.0;       // measured
   double samples_per_s = 0.0;
   uint64_t hits = 0, write_failures = 0;
-  double latency_p50_ms = 0.0, latency_p99_ms = 0.0;
+  double latency_p50_ms = 0.0, latency_p99_ms = 0.0;          // a hit's newest sample written -> its segment received
+  double hit_to_wire_p50_ms = 0.0, hit_to_wire_p99_ms = 0.0;  // the hit's sim time (as real) -> its segment received
   uint64_t server_frames = 0, server_overruns = 0;
+  double overrun_pct = 0.0;   // of the server's frames
   double frame_p50_ms = 0.0, frame_p99_ms_median = 0.0, frame_p99_ms_max = 0.0;
   uint32_t playing = 0;
+  // per match (-1: not measured): CPU in % of one core, resident memory in
+  // KiB, bytes per s: the payload of the server's samples and of the bots'
+  // samples, and everything the loopback device carried (every process)
+  double server_cpu_pct = -1.0, server_rss_kib = -1.0, bots_cpu_pct = -1.0, bots_rss_kib = -1.0;
+  double server_bytes = -1.0, bots_bytes = -1.0, lo_bytes = -1.0, lo_packets = -1.0;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LoadRow, matches, bots, rate, ready, seconds, samples_per_s, hits, write_failures,
-                                   latency_p50_ms, latency_p99_ms, server_frames, server_overruns, frame_p50_ms,
-                                   frame_p99_ms_median, frame_p99_ms_max, playing)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LoadRow, matches, bots, rate, state_rate, bot_processes, ready, seconds,
+                                   samples_per_s, hits, write_failures, latency_p50_ms, latency_p99_ms,
+                                   hit_to_wire_p50_ms, hit_to_wire_p99_ms, server_frames, server_overruns,
+                                   overrun_pct, frame_p50_ms, frame_p99_ms_median, frame_p99_ms_max, playing,
+                                   server_cpu_pct, server_rss_kib, bots_cpu_pct, bots_rss_kib, server_bytes,
+                                   bots_bytes, lo_bytes, lo_packets)
+
+// What a client port passed (load.h's CountingPort): samples taken, by type, and written.
+struct PortCounts {
+  uint64_t infos = 0, segments = 0, states = 0, events = 0, statuses = 0;
+  uint64_t samples_written = 0, controls_written = 0;  // writes accepted
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(PortCounts, infos, segments, states, events, statuses, samples_written,
+                                   controls_written)
+
+// What one bot process of ball-load measured over the window (--part-json).
+struct LoadPart {
+  LoadRow row;                         // its bots: matches, bots, ready, seconds, samples_per_s, write_failures
+  std::vector<double> latency;         // s, each hit's: newest sample written -> segment received
+  std::vector<double> hit_to_wire;     // s, each hit's: the hit's sim time (as real) -> segment received
+  std::vector<double> frame_p50, frame_p99;  // s, the server's, each status period's
+  StatusOut first, last;               // the server's first and last status of the window
+  PortCounts counts;                   // over the window
+};
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LoadPart, row, latency, hit_to_wire, frame_p50, frame_p99, first, last, counts)
 
 }  // namespace ballsrv

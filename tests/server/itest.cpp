@@ -275,7 +275,7 @@ void case_desync(const Env &env) {
   CHECK_MSG(checked >= 400 && worst <= 1e-9, "%d states, max error %.3g m", checked, worst);
 }
 
-// a killed bot pauses its match within 2 deadline periods; a new bot resumes it
+// a killed bot pauses its match within 2 player timeouts; a new bot resumes it
 void case_pause(const Env &env) {
   Case c{env};
   Play p = play(c, {"--rate", "20"}, path(env, "watch.jsonl"));
@@ -297,9 +297,9 @@ void case_pause(const Env &env) {
   if (pause.is_null()) return;
   double after = recv(pause) - killed;
   EventOut pe = pause.get<EventOut>();
-  note("bot 1 killed; pause (%s, player %d) %.3f s later; deadline period %.2f s", name_of(pe.reason), pe.index,
+  note("bot 1 killed; pause (%s, player %d) %.3f s later; player timeout %.2f s", name_of(pe.reason), pe.index,
        after, timeout);
-  CHECK_MSG(after <= 2.0 * timeout, "pause %.3f s after the kill, more than 2 deadline periods (%.2f s)", after, 2 * timeout);
+  CHECK_MSG(after <= 2.0 * timeout, "pause %.3f s after the kill, more than 2 player timeouts (%.2f s)", after, 2 * timeout);
   CHECK_MSG(pe.reason == Reason::pause_vanished && pe.index == 1, "reason %s index %d", name_of(pe.reason), pe.index);
   // the match stands still while paused
   usleep(1500000);
@@ -362,7 +362,10 @@ void case_flood(const Env &env) {
   ServerReport clean_stats, dirty_stats;
   json clean_sent, dirty_sent;
   std::map<uint64_t, Ball> clean, dirty;
-  const long burst = 300;  // at once: more than the server's reader keeps for a slot (64)
+  // at once: more than a slot's share of the server's racket inbox (64); the
+  // DDS thread takes it in as it arrives and the loop empties the inbox every
+  // frame, so it may all fit: what does not is counted as rejected
+  const long burst = 300;
   if (!run("clean", 0, 0, &clean_stats, &clean_sent, &clean) ||
       !run("flood", 1000, burst, &dirty_stats, &dirty_sent, &dirty))
     return;
@@ -374,8 +377,8 @@ void case_flood(const Env &env) {
   };
   // Every sample is accounted for: dropped for its reason, or counted by DDS
   // as refused by the server's reader (rejected) or not delivered (lost: a
-  // gap in a writer's sequence, or no room in the reader's history, which
-  // the burst overflows); none of them accepted. Best effort on a loaded
+  // gap in a writer's sequence, or no room in the reader's inbox, which
+  // a burst may overflow); none of them accepted. Best effort on a loaded
   // machine may also lose a few of the flood.
   long total = 0, missing = 0, kinds = 0;
   for (auto &kv : dirty_sent.at("sent").items()) {
@@ -397,7 +400,6 @@ void case_flood(const Env &env) {
             dds_counted);
   CHECK_MSG(dds_counted <= missing + valid, "DDS counted %ld, %ld malformed and %ld valid were sent", dds_counted,
             missing, valid);
-  CHECK_MSG(missing > 0, "the burst of %ld all fit in the server's reader", burst);
   CHECK_MSG(missing - burst <= (total - burst) / 20, "%ld of the flood not seen by the server (more than 5 %%)",
             missing - burst);
   // the server's own books: every sample in is accepted, idle or dropped

@@ -1,0 +1,108 @@
+// The load benchmark's core, free of DDS (docs/server.md, "Load"): how
+// ball-load splits the matches over its bot processes, what each process
+// measures (a LoadPart, records.h) and how the parts of one run and the
+// rounds of one point become the report; the counting port that measures
+// the samples a client takes and writes, the payload bytes of those counts,
+// the real instant of a sim time (hit-to-wire), and the few /proc figures
+// (CPU, resident memory, loopback bytes) the report reads.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "port.h"
+#include "records.h"
+
+namespace ballsrv {
+
+// Matches [first, first + count) played by one bot process.
+struct MatchRange {
+  int first = 0, count = 0;
+};
+// `count` matches from `first`, in k consecutive ranges whose sizes differ by
+// at most one (the larger first); k is clamped to [1, count] (no empty range).
+std::vector<MatchRange> split_matches(int first, int count, int k);
+
+// The server instant (server s) at which sim time `sim` fell, by the
+// (sim_time, server_time) pair and time base of a match's MatchInfo
+// (docs/protocol.md, "Time"); valid while the match plays on from that pair.
+double server_time_of(const MatchInfoOut &info, double sim);
+
+// A ClientPort over another that counts what goes through it and keeps
+// each match's newest MatchInfo (for server_time_of).
+class CountingPort : public ClientPort {
+ public:
+  explicit CountingPort(ClientPort &inner) : inner_(inner) {}
+  bool take(MatchInfoOut *info) override;
+  bool take(SegmentOut *segment) override { return count(inner_.take(segment), &counts_.segments); }
+  bool take(StateOut *state) override { return count(inner_.take(state), &counts_.states); }
+  bool take(EventOut *event) override { return count(inner_.take(event), &counts_.events); }
+  bool take(StatusOut *status) override { return count(inner_.take(status), &counts_.statuses); }
+  bool write(const RacketSampleIn &sample) override { return count(inner_.write(sample), &counts_.samples_written); }
+  bool write(const ControlIn &control) override { return count(inner_.write(control), &counts_.controls_written); }
+  bool hears_server() const override { return inner_.hears_server(); }
+
+  const PortCounts &counts() const { return counts_; }
+  const MatchInfoOut *info(uint32_t match) const;  // nullptr: none taken yet
+
+ private:
+  static bool count(bool ok, uint64_t *n) {
+    *n += ok;
+    return ok;
+  }
+  ClientPort &inner_;
+  PortCounts counts_;
+  std::map<uint32_t, MatchInfoOut> infos_;
+};
+
+// Bytes of one sample of each topic's type as written: its CDR encoding
+// with the 4-byte encapsulation header (the types are fixed-size, so every
+// sample of a type has the same size; dds::wire_sizes() gives them).
+struct WireSizes {
+  uint64_t sample = 0, control = 0, segment = 0, event = 0, state = 0, info = 0, status = 0;
+};
+// Payload bytes of the server's samples among `c` (taken), and of the
+// client's own (written). RTPS, UDP and IP headers, heartbeats,
+// acknowledgements, resends and discovery are not in them.
+uint64_t server_payload(const PortCounts &c, const WireSizes &s);
+uint64_t client_payload(const PortCounts &c, const WireSizes &s);
+PortCounts operator-(const PortCounts &a, const PortCounts &b);
+
+// /proc figures of one process and of the loopback device.
+struct ProcUsage {
+  double cpu = 0.0;  // s of CPU, user + system, since it started
+  double rss = 0.0;  // bytes resident now
+};
+// From the texts of /proc/PID/stat and /proc/PID/status (ticks: the
+// clock ticks per second); false when a text lacks its field.
+bool parse_proc_stat(const std::string &stat, double ticks, double *cpu);
+bool parse_proc_rss(const std::string &status, double *rss);
+// The transmitted bytes and packets of `device` in a /proc/net/dev text.
+bool parse_net_dev(const std::string &text, const std::string &device, uint64_t *bytes, uint64_t *packets);
+
+// The figures of one run (one point, one round) from its parts: counts
+// summed over the bot processes, hits and latencies pooled, the server's
+// figures (its status, the payload of its samples) from the part that
+// heard the most status periods. `seconds` is the window measured.
+LoadRow combine(const std::vector<LoadPart> &parts, const WireSizes &sizes);
+
+// Several rounds of one point as one row each: every number of the
+// rounds' rows, its minimum and its median (of an even count, the lower
+// middle value); the rows must be of one point.
+struct LoadPoint {
+  LoadRow min, median;
+  int rounds = 0;
+};
+LoadPoint summarize(const std::vector<LoadRow> &rounds);
+// The rows grouped by point (matches, state rate), in first-seen order.
+std::vector<LoadPoint> summarize_points(const std::vector<LoadRow> &rows);
+
+// The report: a table (a line a point; of several rounds two, the median
+// and the min), with its two header lines or without, and gnuplot's data
+// (one line a point, the medians, then the minimum overrun rate).
+std::string load_table(const std::vector<LoadPoint> &points, bool header = true);
+std::string load_plot_data(const std::vector<LoadPoint> &points);
+
+}  // namespace ballsrv
