@@ -413,6 +413,13 @@ ball_status ball_sim_set_segment(ball_sim *sim, const ball_segment *seg, double 
   return BALL_OK;
 }
 
+ball_status ball_sim_set_sleep(ball_sim *sim, int frames) {
+  if (!sim) return BALL_EINVAL;
+  if (frames < 0 || frames > sim->model.sleep_frames) return BALL_ERANGE;
+  sim->sleep = frames; /* section 3.1: no racket tests for these frames */
+  return BALL_OK;
+}
+
 ball_status ball_sim_state(const ball_sim *sim, ball_state *out) {
   if (!sim || !out) return BALL_EINVAL;
   if (!isfinite(sim->time) || !segment_finite(&sim->seg)) return BALL_ENONFINITE;

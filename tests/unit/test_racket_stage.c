@@ -1,6 +1,7 @@
 /* The racket stage inside ball_step: sleep frames (section 3.1), the event a
  * hit emits, eq 7's restart point, and the swept test's time of impact inside
  * a frame at 6 Hz where the frame-based tests see the hit late or not at all. */
+#include <limits.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -65,6 +66,36 @@ static void sleep_frames_prevent_double_hit_of_one_stroke(void **state) {
   still_racket_model(&m, 0);
   n = hit_frames(&m, 0.01, 12, which, NULL);
   assert_int_equal(n, 12);
+}
+
+/* ball_sim_set_sleep leaves the racket tests asleep for exactly the frames
+ * it is given, as a hit does (a second server restoring a sim just after a
+ * hit); a count outside [0, sleep_frames] is refused, the sim unchanged. */
+static void set_sleep_skips_exactly_the_frames_given(void **state) {
+  ball_model m;
+  ball_sim sim, before;
+  int k, f, n;
+  (void)state;
+  still_racket_model(&m, 3);
+  for (k = 0; k <= 3; k++) {
+    assert_ok(ball_sim_init(&sim, &m));
+    assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
+    assert_ok(ball_sim_set_sleep(&sim, k));
+    assert_int_equal(sim.sleep, k);
+    /* every frame would hit (see above): the first hit is frame k + 1 */
+    for (f = 1; f <= k + 1; f++) {
+      ball_event ev[4];
+      assert_ok(ball_step(&sim, 0.01, ev, 4, &n));
+      assert_int_equal(n, f == k + 1 ? 1 : 0);
+    }
+  }
+  assert_ok(ball_sim_init(&sim, &m));
+  before = sim;
+  assert_int_equal(ball_sim_set_sleep(&sim, -1), BALL_ERANGE);
+  assert_int_equal(ball_sim_set_sleep(&sim, 4), BALL_ERANGE); /* more than sleep_frames */
+  assert_int_equal(ball_sim_set_sleep(&sim, INT_MAX), BALL_ERANGE);
+  assert_memory_equal(&sim, &before, sizeof sim);
+  assert_int_equal(ball_sim_set_sleep(NULL, 1), BALL_EINVAL);
 }
 
 static void eq7_hit_event_fields_and_restart_at_q_plus_v0_dt(void **state) {
@@ -155,6 +186,7 @@ static void swept_finds_overtaking_racket_inside_6hz_frame(void **state) {
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(sleep_frames_prevent_double_hit_of_one_stroke),
+      cmocka_unit_test(set_sleep_skips_exactly_the_frames_given),
       cmocka_unit_test(eq7_hit_event_fields_and_restart_at_q_plus_v0_dt),
       cmocka_unit_test(swept_finds_overtaking_racket_inside_6hz_frame),
   };

@@ -468,6 +468,14 @@ BALL_API ball_status ball_sim_set_state(ball_sim *sim, const ball_state *state);
  * 0 or 1. Refused, the sim is unchanged. */
 BALL_API ball_status ball_sim_set_segment(ball_sim *sim, const ball_segment *seg, double time);
 
+/* Sets how many of the next frames skip the racket tests (the pause after a
+ * racket hit, section 3.1: sleep_frames of the model), as a hit leaves it:
+ * what a second server restores with ball_sim_set_segment when the segment
+ * it goes on from began with a racket hit a few frames ago.
+ * BALL_ERANGE for frames outside [0, the model's sleep_frames]; refused, the
+ * sim is unchanged. */
+BALL_API ball_status ball_sim_set_sleep(ball_sim *sim, int frames);
+
 /* The ball's state at the sim's current time. */
 BALL_API ball_status ball_sim_state(const ball_sim *sim, ball_state *out);
 
