@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <type_traits>
 
 namespace ballsrv {
 namespace dds {
@@ -63,6 +64,41 @@ template <size_t N>
 void put_pid(const ParticipantId &id, std::array<uint8_t, N> *out) {
   static_assert(N == sizeof(ParticipantId), "GUID prefix size");
   std::copy(id.begin(), id.end(), out->begin());
+}
+
+// A field between a server type and its IDL twin: a number cast, an array
+// element by element.
+template <class To>
+struct Cast {
+  template <class From>
+  static To of(const From &v) {
+    return static_cast<To>(v);
+  }
+};
+template <class T, size_t N>
+struct Cast<std::array<T, N>> {
+  template <class F>
+  static std::array<T, N> of(const std::array<F, N> &v) {
+    std::array<T, N> o;
+    for (size_t i = 0; i < N; ++i) o[i] = static_cast<T>(v[i]);
+    return o;
+  }
+};
+
+balldds::Play play_to_idl(const PlayState &p) {
+  balldds::Play o;
+#define BALL_PUT_PLAY(f) o.f(Cast<std::decay_t<decltype(o.f())>>::of(p.f));
+  BALL_PLAY_FIELDS(BALL_PUT_PLAY)
+#undef BALL_PUT_PLAY
+  return o;
+}
+
+PlayState play_from_idl(const balldds::Play &in) {
+  PlayState p;
+#define BALL_GET_PLAY(f) p.f = Cast<std::decay_t<decltype(p.f)>>::of(in.f());
+  BALL_PLAY_FIELDS(BALL_GET_PLAY)
+#undef BALL_GET_PLAY
+  return p;
 }
 
 }  // namespace
@@ -129,6 +165,7 @@ balldds::Segment to_idl(const SegmentOut &in) {
   o.sample_seq(in.sample.seq);
   o.sample_source_time(in.sample.valid ? in.sample.source_time : 0.0);
   o.sample_capture_time(in.sample.capture_time);
+  o.play(play_to_idl(in.play));
   return o;
 }
 
@@ -149,6 +186,7 @@ void from_idl(const balldds::Segment &in, SegmentOut *o) {
   o->sample.source_time = in.sample_source_time();
   o->sample.capture_time = in.sample_capture_time();
   o->sample.valid = in.sample_source_time() != 0.0;
+  o->play = play_from_idl(in.play());
 }
 
 balldds::Event to_idl(const EventOut &in) {
@@ -242,9 +280,9 @@ balldds::MatchInfo to_idl(const MatchInfoOut &in) {
     w.last_seq(s.last_seq);
     w.last_capture_time(s.last_capture_time);
   }
-  o.score({static_cast<uint16_t>(in.score[0]), static_cast<uint16_t>(in.score[1])});
-  o.serving_side(static_cast<int16_t>(in.serving_side));
-  o.rally(in.rally);
+  o.play(play_to_idl(in.play));
+  o.pause_reason(static_cast<balldds::Reason>(in.pause_reason));
+  o.pause_slot(static_cast<int16_t>(in.pause_slot));
   o.segment_seq(in.segment_seq);
   o.frame_time(in.frame_time);
   o.time_base(in.time_base);
@@ -261,6 +299,10 @@ balldds::MatchInfo to_idl(const MatchInfoOut &in) {
   o.net_x(in.net_x);
   o.court_x({in.court_x[0], in.court_x[1]});
   o.court_z({in.court_z[0], in.court_z[1]});
+  o.serve_delay(in.serve_delay);
+  o.max_rally_time(in.max_rally_time);
+  o.serve_v_up(in.serve_v_up);
+  o.seed(in.seed);
   return o;
 }
 
@@ -282,9 +324,10 @@ void from_idl(const balldds::MatchInfo &in, MatchInfoOut *o) {
     s.last_seq = w.last_seq();
     s.last_capture_time = w.last_capture_time();
   }
-  o->score = {in.score()[0], in.score()[1]};
-  o->serving_side = in.serving_side();
-  o->rally = in.rally();
+  o->play = play_from_idl(in.play());
+  uint32_t reason = static_cast<uint32_t>(in.pause_reason());
+  o->pause_reason = reason < static_cast<uint32_t>(kEnumCount<Reason>) ? static_cast<Reason>(reason) : Reason::none;
+  o->pause_slot = in.pause_slot();
   o->segment_seq = in.segment_seq();
   o->frame_time = in.frame_time();
   o->time_base = in.time_base();
@@ -304,6 +347,10 @@ void from_idl(const balldds::MatchInfo &in, MatchInfoOut *o) {
   o->court_x[1] = in.court_x()[1];
   o->court_z[0] = in.court_z()[0];
   o->court_z[1] = in.court_z()[1];
+  o->serve_delay = in.serve_delay();
+  o->max_rally_time = in.max_rally_time();
+  o->serve_v_up = in.serve_v_up();
+  o->seed = in.seed();
 }
 
 balldds::ServerStatus to_idl(const StatusOut &in) {
@@ -327,6 +374,11 @@ balldds::ServerStatus to_idl(const StatusOut &in) {
   o.overruns(in.overruns);
   o.frame_p50(in.frame_p50);
   o.frame_p99(in.frame_p99);
+  o.max_matches(in.max_matches);
+  o.following(in.following);
+  o.claim_room(in.claim_room);
+  o.standby(in.standby);
+  o.strength(in.strength);
   return o;
 }
 
@@ -348,6 +400,11 @@ void from_idl(const balldds::ServerStatus &in, StatusOut *o) {
   o->overruns = in.overruns();
   o->frame_p50 = in.frame_p50();
   o->frame_p99 = in.frame_p99();
+  o->max_matches = in.max_matches();
+  o->following = in.following();
+  o->claim_room = in.claim_room();
+  o->standby = in.standby();
+  o->strength = in.strength();
 }
 
 }  // namespace dds

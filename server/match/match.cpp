@@ -138,9 +138,11 @@ void Match::update_presence(double now, MatchOutput *out) {
 void Match::frame(double now, MatchOutput *out) {
   update_presence(now, out);
   if (state_ != MatchState::playing) return;
-  if (need_serve_ && sim_.time >= serve_at_) serve(out);
+  advance(frame_time() * config_.time_base, true, out);
+}
 
-  double dt = frame_time() * config_.time_base;
+void Match::advance(double dt, bool with_state, MatchOutput *out) {
+  if (need_serve_ && sim_.time >= serve_at_) serve(out);
   int n = 0;
   ball_status st = ball_step(&sim_, dt, step_events_.data(), static_cast<int>(step_events_.size()), &n);
   if (st != BALL_OK) {
@@ -148,7 +150,12 @@ void Match::frame(double now, MatchOutput *out) {
     return;
   }
   counters_.frames++;
-  for (int i = 0; i < n; ++i) handle_event(step_events_[i], out);
+  for (int i = 0; i < n; ++i) {
+    size_t first = out->segments.size();
+    handle_event(step_events_[i], out);
+    // each segment carries the rules' state once its collision is judged
+    for (size_t k = first; k < out->segments.size(); ++k) out->segments[k].play = play();
+  }
 
   if (rally_.live()) {
     ball_state b;
@@ -159,6 +166,7 @@ void Match::frame(double now, MatchOutput *out) {
     apply(rally_.on_frame(far || still, sim_.time, config_.max_rally_time), out);
   }
 
+  if (!with_state) return;
   state_accum_ += config_.state_rate / config_.frame_rate;
   if (state_accum_ >= 1.0 - 1e-9) {
     state_accum_ -= 1.0;
@@ -282,6 +290,7 @@ void Match::serve(MatchOutput *out) {
   e.in_play = true;
   e.point = from;
   e.velocity_out = b.velocity;
+  out->segments.back().play = play();
   out->info_changed = true;
 }
 
@@ -301,7 +310,7 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now) {
       !in_range(s.center.z, court_.z_lo - kBoxMargin, court_.z_hi + kBoxMargin) ||
       !in_range(s.center.y, court_.floor - 1.0, court_.floor + kBoxHeight))
     return SampleResult::out_of_range;
-  if (s.capture_time > sim_.time + config_.max_sample_lead) return SampleResult::out_of_range;
+  if (s.capture_time > clock_now() + config_.max_sample_lead) return SampleResult::out_of_range;
   // well formed and from the holder: the player is there
   slot.last_seen = now;
   slot.alive = true;
@@ -309,7 +318,7 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now) {
     if (s.seq == slot.last_seq) return SampleResult::duplicate;
     if (s.seq < slot.last_seq) return SampleResult::out_of_order;
   }
-  if (s.capture_time < sim_.time - config_.max_sample_age) return SampleResult::stale;
+  if (s.capture_time < clock_now() - config_.max_sample_age) return SampleResult::stale;
   if (state_ != MatchState::playing) return SampleResult::idle;
   // a sample identical to a kept one (BALL_EDUPLICATE) or not newer than the
   // newest kept (BALL_ESTALE) is libball's to tell; the sim stays as it was
@@ -403,12 +412,9 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       return Reason::none;
     case ControlKind::level: {
       if (c.level < BALL_LEVEL_EASY || c.level > BALL_LEVEL_ADVANCED) return refuse(c, Reason::refused_bad_value, out);
-      ball_model m = model();
-      if (ball_model_set_level(&m, static_cast<ball_level>(c.level)) != BALL_OK ||
-          ball_sim_set_model(&sim_, &m) != BALL_OK)
-        return refuse(c, Reason::refused_bad_value, out);
-      model_hash_ = ball_model_hash(ball_sim_model(&sim_));
-      config_.level = static_cast<ball_level>(c.level);
+      std::string err;
+      set_level(static_cast<ball_level>(c.level), &err);
+      if (!err.empty()) return refuse(c, Reason::refused_bad_value, out);
       emit(out, EventKind::level, -1, sim_.time, Reason::none, c.level);
       out->info_changed = true;
       return Reason::none;
@@ -457,9 +463,9 @@ MatchInfoOut Match::info() const {
     i.slots[k].last_seq = s.last_seq;
     i.slots[k].last_capture_time = s.ref.capture_time;
   }
-  i.score = score_;
-  i.serving_side = serving_side_;
-  i.rally = points_played_;
+  i.play = play();
+  i.pause_reason = state_ == MatchState::paused ? pause_reason_ : Reason::none;
+  i.pause_slot = state_ == MatchState::paused ? pause_slot_ : -1;
   i.segment_seq = segment_seq_;
   i.frame_time = frame_time();
   i.time_base = config_.time_base;
@@ -475,7 +481,149 @@ MatchInfoOut Match::info() const {
   i.court_x[1] = court_.x_hi;
   i.court_z[0] = court_.z_lo;
   i.court_z[1] = court_.z_hi;
+  i.serve_delay = config_.serve_delay;
+  i.max_rally_time = config_.max_rally_time;
+  i.serve_v_up = config_.serve_v_up;
+  i.seed = config_.seed;
   return i;
+}
+
+PlayState Match::play() const {
+  PlayState p;
+  p.score = score_;
+  p.serving_side = serving_side_;
+  p.rally = points_played_;
+  p.live = rally_.live();
+  p.striker = rally_.striker();
+  p.bounces = rally_.bounces();
+  p.bounce_side = rally_.bounce_side();
+  p.net = rally_.net();
+  p.rally_start = rally_.started();
+  p.serve_due = need_serve_;
+  p.serve_at = serve_at_;
+  p.event_seq = event_seq_;
+  return p;
+}
+
+// ---- another server's match -------------------------------------------------
+
+void Match::set_level(ball_level level, std::string *err) {
+  if (level == config_.level) return;
+  ball_model m = model();
+  if (ball_model_set_level(&m, level) != BALL_OK || ball_sim_set_model(&sim_, &m) != BALL_OK) {
+    *err = "level " + std::to_string(static_cast<int>(level)) + " does not fit the match's model";
+    return;
+  }
+  model_hash_ = ball_model_hash(ball_sim_model(&sim_));
+  config_.level = level;
+}
+
+bool Match::follow(const MatchInfoOut &info, std::string *err) {
+  if (info.match_id != config_.id || info.players != config_.players) {
+    *err = "match " + std::to_string(info.match_id) + " with " + std::to_string(info.players) +
+           " slots is not match " + std::to_string(config_.id) + " with " + std::to_string(config_.players);
+    return false;
+  }
+  // the owner's model, checked before anything changes
+  ball_model m = model();
+  if (info.level != config_.level) {
+    if (info.level < BALL_LEVEL_EASY || info.level > BALL_LEVEL_ADVANCED ||
+        ball_model_set_level(&m, static_cast<ball_level>(info.level)) != BALL_OK) {
+      *err = "level " + std::to_string(info.level) + " is not a game level";
+      return false;
+    }
+  }
+  if (info.model_hash != ball_model_hash(&m)) {
+    *err = "its model (hash " + std::to_string(info.model_hash) + ") is not this server's for scene \"" +
+           config_.scene_name + "\" (hash " + std::to_string(ball_model_hash(&m)) + ")";
+    return false;
+  }
+  if (info.level != config_.level) {
+    set_level(static_cast<ball_level>(info.level), err);
+    if (!err->empty()) return false;
+  }
+  following_ = true;
+  state_ = info.state;
+  pause_reason_ = info.pause_reason;
+  pause_slot_ = info.pause_slot;
+  if (in_bounds(find_field(match_fields(), "time_base")->bounds, info.time_base)) config_.time_base = info.time_base;
+  for (int k = 0; k < config_.players; ++k) {
+    const SlotInfo &in = info.slots[k];
+    Slot &sl = slots_[k];
+    if (!in.held) {
+      sl = Slot{};
+      continue;
+    }
+    if (!sl.held || sl.owner != in.owner) {  // a new holder: its own history
+      double seen = sl.owner == in.owner ? sl.last_seen : -1e300;
+      sl = Slot{};
+      sl.last_seen = seen;
+      ball_racket_clear(&sim_, k);
+    }
+    sl.held = true;
+    sl.owner = in.owner;
+    sl.samples = std::max(sl.samples, in.samples);
+    if (!sl.has_seq || in.last_seq > sl.last_seq) {
+      sl.has_seq = in.samples > 0;
+      sl.last_seq = in.last_seq;
+    }
+  }
+  return true;
+}
+
+bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, double target, MatchOutput *out,
+                    std::string *err) {
+  if (!follow(info, err)) return false;
+  bool seg_newer = seg && seg->seq > info.segment_seq;
+  const PlayState &p = seg_newer ? seg->play : info.play;
+  double dt = frame_time() * config_.time_base;
+  bool hit_at_t0 = false;  // restored at the instant of a racket hit
+  if (seg && !(seg->segment.t0 <= target + 1e-9)) {
+    *err = "segment " + std::to_string(seg->seq) + " starts at sim time " + std::to_string(seg->segment.t0) +
+           ", after the present " + std::to_string(target);
+    return false;
+  }
+  if (seg) {
+    // the info's sim time is a frame end on that segment when it came after it
+    double t = !seg_newer && seg->seq == info.segment_seq && info.sim_time >= seg->segment.t0 ? info.sim_time
+                                                                                                : seg->segment.t0;
+    ball_sim trial = sim_;
+    ball_status st = ball_sim_set_segment(&trial, &seg->segment, t);
+    if (st == BALL_OK && seg->cause == Cause::racket) {
+      // the racket tests sleep after a hit (section 3.1): as many frames as
+      // the owner had left at t (its frame ends since the hit's frame)
+      hit_at_t0 = t == seg->segment.t0;
+      int ends = dt > 0.0 ? static_cast<int>(std::ceil((t - seg->segment.t0) / dt - 1e-9)) : 0;
+      st = ball_sim_set_sleep(&trial, std::max(0, model().sleep_frames - std::max(0, ends - 1)));
+    }
+    if (st != BALL_OK) {
+      *err = "segment " + std::to_string(seg->seq) + " at sim time " + std::to_string(t) + ": " + ball_strerror(st);
+      return false;
+    }
+    sim_ = trial;
+  }
+  score_ = p.score;
+  serving_side_ = p.serving_side;
+  points_played_ = p.rally;
+  rally_.restore(p.live, p.striker, p.bounces, p.bounce_side, p.net, p.rally_start);
+  need_serve_ = p.serve_due;
+  serve_at_ = p.serve_at;
+  event_seq_ = p.event_seq;
+  segment_seq_ = std::max(seg ? seg->seq : 0u, info.segment_seq);
+  // only a playing match makes segments: one newer than the info says it plays
+  if (seg_newer) state_ = MatchState::playing;
+  following_ = false;
+  if (state_ != MatchState::playing || !(dt > 0.0)) return true;
+  // on to the present as the owner went: first to the end of the owner's
+  // frame (its frames end at info.sim_time + k dt while it plays on), the
+  // rest of the hit's frame when that is where it starts, then frame by frame
+  double end = info.sim_time + std::ceil((sim_.time - info.sim_time) / dt - 1e-9) * dt;
+  if (end > sim_.time + 1e-12 && end <= target) {
+    advance(end - sim_.time, false, out);
+    if (hit_at_t0) ball_sim_set_sleep(&sim_, std::min(sim_.sleep + 1, model().sleep_frames));
+  }
+  while (sim_.time < target - 1e-9) advance(std::min(dt, target - sim_.time), false, out);
+  return true;
 }
 
 }  // namespace ballsrv

@@ -56,6 +56,29 @@ class Match {
   // count as vanished at the next frame.
   void on_participant_lost(const ParticipantId &who);
 
+  // ---- another server's match (docs/protocol.md, "Several servers") ------
+  // A standby follows a match another server steps: it takes the owner's
+  // MatchInfo (slots, state, level, time base; never the ball) and the
+  // racket samples, checked against the owner's sim clock as a client maps
+  // it, so that its racket tracks and the slots' presence are warm. It is
+  // never stepped while it follows. false with err when the info does not
+  // fit this match (another id, slot count or model).
+  bool follow(const MatchInfoOut &info, std::string *err);
+  void follow_clock(double sim_now) { follow_time_ = sim_now; }
+  bool following() const { return following_; }
+
+  // Goes on from the owner's newest segment (nullptr: none yet) and
+  // MatchInfo: the ball on the segment (at the info's sim time when the info
+  // came after it, else at its t0, the racket tests asleep after a hit as
+  // they were), the rules' state and the segment and event numbers from
+  // the newer of the two, then steps on in frames to the sim time `target`
+  // (the bounces and hits of the gap go to out with their own times), and
+  // stops following. false with err (and the match still following) when
+  // the segment cannot be the sim's (ball_sim_set_segment refused it).
+  bool restore(const MatchInfoOut &info, const SegmentOut *segment, double target, MatchOutput *out,
+               std::string *err);
+  PlayState play() const;  // the rules' state now
+
   MatchInfoOut info() const;
   uint32_t id() const { return config_.id; }
   MatchState state() const { return state_; }
@@ -87,6 +110,9 @@ class Match {
   void apply(const Call &call, MatchOutput *out);
   void serve(MatchOutput *out);
   void update_presence(double now, MatchOutput *out);
+  void advance(double dt, bool with_state, MatchOutput *out);  // a frame's sim part: serve, step, rules
+  double clock_now() const { return following_ ? follow_time_ : sim_.time; }  // sim s the sample checks use
+  void set_level(ball_level level, std::string *err);
   bool all_present() const;
   bool holds_slot(const ParticipantId &who) const;
   void set_state(MatchState s, MatchOutput *out);
@@ -113,6 +139,8 @@ class Match {
   double state_accum_ = 0.0; // fraction of a ball state owed (state_rate / frame_rate per frame)
   MatchCounters counters_;
   std::vector<ball_event> step_events_;
+  bool following_ = false;   // another server steps it: never stepped here
+  double follow_time_ = 0.0; // sim s: the owner's sim clock while following
 };
 
 }  // namespace ballsrv

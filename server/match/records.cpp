@@ -51,7 +51,20 @@ std::string record_type(const json &line) {
   X("index", s.cause_index) X("t0", s.segment.t0) X("p0", s.segment.p0) X("v0", s.segment.v0)          \
   X("s0", s.segment.s0) X("server_time", s.server_time) X("model_hash", s.model_hash)                  \
   X("sample_seq", s.sample.seq) X("sample_source_time", s.sample.source_time)                          \
-  X("sample_capture_time", s.sample.capture_time)
+  X("sample_capture_time", s.sample.capture_time) X("play", s.play)
+
+void to_json(json &j, const PlayState &p) {
+  j = json::object();
+#define BALL_PUT_PLAY(f) j[#f] = p.f;
+  BALL_PLAY_FIELDS(BALL_PUT_PLAY)
+#undef BALL_PUT_PLAY
+}
+
+void from_json(const json &j, PlayState &p) {
+#define BALL_GET_PLAY(f) j.at(#f).get_to(p.f);
+  BALL_PLAY_FIELDS(BALL_GET_PLAY)
+#undef BALL_GET_PLAY
+}
 
 void to_json(json &j, const SegmentOut &s) {
   j = json::object();
@@ -97,11 +110,13 @@ void from_json(const json &j, StateOut &s) { BALL_STATE_KEYS(BALL_GET, s) }
 #define BALL_INFO_KEYS(X, i)                                                                            \
   X("match", i.match_id) X("server", i.server_id) X("server_time", i.server_time)                       \
   X("revision", i.revision) X("state", i.state) X("scene", i.scene) X("level", i.level)                 \
-  X("players", i.players) X("score", i.score) X("serving_side", i.serving_side) X("rally", i.rally)     \
+  X("players", i.players) X("play", i.play) X("pause_reason", i.pause_reason) X("pause_slot", i.pause_slot) \
   X("segment_seq", i.segment_seq) X("frame_time", i.frame_time) X("time_base", i.time_base)             \
   X("sim_time", i.sim_time) X("state_rate", i.state_rate) X("player_timeout", i.player_timeout)         \
   X("max_sample_age", i.max_sample_age) X("max_sample_lead", i.max_sample_lead)                         \
-  X("model_hash", i.model_hash) X("net_x", i.net_x) X("court_x", i.court_x) X("court_z", i.court_z)
+  X("model_hash", i.model_hash) X("net_x", i.net_x) X("court_x", i.court_x) X("court_z", i.court_z)     \
+  X("serve_delay", i.serve_delay) X("max_rally_time", i.max_rally_time) X("serve_v_up", i.serve_v_up)   \
+  X("seed", i.seed)
 
 void to_json(json &j, const SlotInfo &s) {
   j = json::object();
@@ -142,7 +157,8 @@ void from_json(const json &j, MatchInfoOut &i) {
   X("frames", s.frames) X("overruns", s.overruns)
 #define BALL_STATUS_KEYS(X, s)                                                                          \
   X("server_time", s.server_time) X("matches", s.matches) X("playing", s.playing)                       \
-  X("frame_p50", s.frame_p50) X("frame_p99", s.frame_p99)
+  X("frame_p50", s.frame_p50) X("frame_p99", s.frame_p99) X("max_matches", s.max_matches)               \
+  X("following", s.following) X("claim_room", s.claim_room) X("standby", s.standby) X("strength", s.strength)
 
 void to_json(json &j, const StatusOut &s) {
   j = json::object();

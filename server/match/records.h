@@ -36,6 +36,8 @@ void to_json(json &j, const EventOut &e);
 void from_json(const json &j, EventOut &e);
 void to_json(json &j, const StateOut &s);
 void from_json(const json &j, StateOut &s);
+void to_json(json &j, const PlayState &p);
+void from_json(const json &j, PlayState &p);
 void to_json(json &j, const SlotInfo &s);
 void from_json(const json &j, SlotInfo &s);
 void to_json(json &j, const MatchInfoOut &i);

@@ -39,6 +39,18 @@ class Rally {
   bool live() const { return live_; }
   int striker() const { return striker_; }
   int bounces() const { return bounces_; }
+  int bounce_side() const { return bounce_side_; }
+  bool net() const { return net_; }
+  double started() const { return started_; }
+  // Puts the rally where another server's left it (PlayState's fields).
+  void restore(bool live, int striker, int bounces, int bounce_side, bool net, double started) {
+    live_ = live;
+    striker_ = striker;
+    bounces_ = bounces;
+    bounce_side_ = bounce_side;
+    net_ = net;
+    started_ = started;
+  }
 
   Call on_racket(int side) {
     striker_ = side;

@@ -192,6 +192,28 @@ struct SampleRef {
   double capture_time = 0.0;  // sim s: its capture time
 };
 
+// The rules' state of a match (Play on the wire: docs/protocol.md,
+// "Segments") once a segment's collision is judged, or at a MatchInfo's sim
+// time: what another server goes on from. Its fields are listed once, for
+// the DDS layer and the records.
+#define BALL_PLAY_FIELDS(X) \
+  X(score) X(serving_side) X(rally) X(live) X(striker) X(bounces) X(bounce_side) X(net) X(rally_start) \
+  X(serve_due) X(serve_at) X(event_seq)
+struct PlayState {
+  std::array<int, 2> score{0, 0};  // points of side 0 and side 1
+  int serving_side = 0;            // the side that serves next
+  uint32_t rally = 0;              // points played so far, lets included
+  bool live = false;               // a rally is on: its point is not decided yet
+  int striker = 0;                 // the side of the last stroke (the serve counts)
+  int bounces = 0;                 // bounces since that stroke
+  int bounce_side = 0;             // the side of the first of them
+  bool net = false;                // the ball touched the net since that stroke
+  double rally_start = 0.0;        // sim s: when the rally began
+  bool serve_due = true;           // a serve is due at serve_at
+  double serve_at = 0.0;           // sim s
+  uint32_t event_seq = 0;          // seq of the match's newest event
+};
+
 // server -> clients: a flight segment (Segment). Every server sample carries
 // the server's id and the server s of its publication; the loop fills them in.
 struct SegmentOut {
@@ -204,6 +226,7 @@ struct SegmentOut {
   ball_segment segment{};     // t0 sim s, p0 m, v0 m/s, s0 m/s, grounded (libball's ball_segment)
   uint64_t model_hash = 0;    // ball_model_hash of the model that made it
   SampleRef sample;           // RACKET: the hitting racket's newest sample
+  PlayState play;             // the rules' state once its collision is judged
 };
 
 // server -> clients: a collision or a match event (Event).
@@ -266,9 +289,9 @@ struct MatchInfoOut {
   int level = 0;                   // 0 the scene's own, 1 easy, 2 mid, 3 advanced
   int players = 0;                 // slots in use
   std::array<SlotInfo, kMaxPlayers> slots{};
-  std::array<int, 2> score{0, 0};  // points of side 0 and side 1
-  int serving_side = 0;            // the side that serves next
-  uint32_t rally = 0;              // points played so far
+  PlayState play;                  // the rules' state at sim_time: score, serving side, points played, rally
+  Reason pause_reason = Reason::none;  // paused: pause_vanished or pause_requested
+  int pause_slot = -1;             // pause_vanished: the slot that vanished
   uint32_t segment_seq = 0;        // the current segment
   double frame_time = 0.0;         // real s per frame
   double time_base = 1.0;          // sim s per real s
@@ -284,6 +307,11 @@ struct MatchInfoOut {
   double net_x = 0.0;              // m: the net plane x = net_x
   double court_x[2] = {0, 0};      // m: the court's extent in x
   double court_z[2] = {0, 0};      // m: and in z
+  // the rules' settings (MatchConfig's)
+  double serve_delay = 0.0;        // sim s between a point and the next serve
+  double max_rally_time = 0.0;     // sim s: a longer rally is a let
+  double serve_v_up = 0.0;         // m/s: the serve's vertical launch speed
+  uint64_t seed = 0;               // the serves' placement
 };
 
 // What a match counts (the server's --stats-json has them per match),
@@ -324,6 +352,12 @@ struct StatusOut {
   uint64_t overruns = 0;                     // frames that ended after the next deadline
   double frame_p50 = 0.0;                    // real s of work per wake-up, median of the last status period
   double frame_p99 = 0.0;                    // real s, its 99th percentile
+  // its place among the servers of a domain (docs/protocol.md, "Several servers")
+  uint32_t max_matches = 0;                  // room for matches
+  uint32_t following = 0;                    // matches it follows as a standby
+  uint32_t claim_room = 0;                   // matches it may still claim; 0: it claims none
+  bool standby = false;                      // it follows other servers' matches and takes them over
+  uint32_t strength = 0;                     // its match writers' ownership strength
 };
 
 }  // namespace ballsrv

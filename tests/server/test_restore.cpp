@@ -1,0 +1,306 @@
+// Match::restore: a standby's match that follows another's and takes it
+// over goes on as the owner does (docs/protocol.md, "Several servers on one
+// domain"). Offline: the owner is a Match with two bots, the standby a
+// second Match that gets the owner's MatchInfo and segments as a server
+// publishes them (an info on every change and once a second, the segments
+// as they come) and the same racket samples. At a random frame the owner
+// "dies"; some frames later (the time DDS takes to notice) the standby
+// restores from what it had and both step on: the standby's segments and
+// events, the catch-up's included, must be the owner's.
+#include <array>
+#include <cmath>
+#include <cstdio>
+
+#include "check.hpp"
+#include "rally.h"
+
+using namespace ballsrv;
+using namespace test;
+using check::note;
+
+namespace {
+
+struct Trial {
+  ball_level level = BALL_LEVEL_EASY;
+  double time_base = 1.0;
+  uint64_t seed = 1;
+  int death = 0;  // frame of the owner's last publication
+  int gap = 0;    // frames until the standby takes over
+  int after = 0;  // frames compared after that
+};
+
+struct Outcome {
+  bool restored = false;
+  std::string err;
+  size_t compared_segments = 0, compared_events = 0, catch_up_segments = 0;
+  int mismatches = 0;         // segments or events that differ
+  double worst_p0 = 0.0;      // m, the largest p0 difference of a segment
+  double worst_t0 = 0.0;      // s
+  double worst_handover = 0.0;  // m: the first standby segment's distance from the ball, beyond eq 6's shift
+  std::string first_mismatch; // what differed first
+};
+
+bool same_play(const PlayState &a, const PlayState &b) {
+  return a.score == b.score && a.serving_side == b.serving_side && a.rally == b.rally && a.live == b.live &&
+         a.striker == b.striker && a.bounces == b.bounces && a.net == b.net && a.serve_due == b.serve_due &&
+         a.event_seq == b.event_seq && std::fabs(a.serve_at - b.serve_at) < 1e-9;
+}
+
+Outcome run(const Trial &tr) {
+  Outcome o;
+  MatchConfig c = default_config();
+  c.level = tr.level;
+  c.time_base = tr.time_base;
+  c.seed = tr.seed;
+  Game a(c);  // the owner
+  Game b(c);  // the standby
+  if (!a.ok || !b.ok) {
+    o.err = "init: " + a.err + b.err;
+    return o;
+  }
+  BotBrain brain[2];
+  double next_capture[2] = {0, 0};
+  const double rate = 15.0;
+  for (int i = 0; i < 2; ++i) {
+    a.join(i, participant(static_cast<uint8_t>(i + 1)));
+    a.park[i] = false;
+    BotParams p;
+    p.slot = i;
+    p.lead = bot_lead(rate, 0.0, 0.0, 0.0);
+    p.seed = tr.seed * 11 + i;
+    brain[i].init(a.match.model(), a.match.court(), p);
+  }
+  // what the standby holds: the newest info and segment the owner published
+  MatchInfoOut info = a.match.info();
+  SegmentOut seg;
+  bool have_seg = false;
+  std::string err;
+  CHECK_MSG(b.match.follow(info, &err), "follow: %s", err.c_str());
+  int next_info = 0;
+  size_t a_seg_seen = 0;
+  std::vector<SegmentOut> b_segs;
+  std::vector<EventOut> b_events;
+  const int frames = tr.death + tr.gap + tr.after;
+  for (int k = 0; k < frames; ++k) {
+    double sim = a.match.sim().time;
+    // the bots' samples, to both servers as they arrive (no delay)
+    for (int i = 0; i < 2; ++i)
+      while (next_capture[i] <= sim + 1e-12) {
+        RacketSampleIn s;
+        s.match_id = a.match.id();
+        s.player = i;
+        s.seq = ++a.seq[i];
+        s.capture_time = next_capture[i];
+        brain[i].pose(next_capture[i], &s.center, &s.normal);
+        s.from = a.owner[i];
+        s.source_time = a.now;
+        a.match.on_sample(s, a.now);
+        if (b.match.following()) b.match.follow_clock(a.match.sim().time);
+        b.match.on_sample(s, a.now);
+        next_capture[i] += 1.0 / rate;
+      }
+    if (k == tr.death + tr.gap) {
+      // the take-over: from what the owner published up to its death, on to
+      // the owner's sim time now (the end of its previous frame)
+      MatchOutput out;
+      o.restored = b.match.restore(info, have_seg ? &seg : nullptr, a.match.sim().time, &out, &o.err);
+      if (!o.restored) return o;
+      o.catch_up_segments = out.segments.size();
+      b_segs.insert(b_segs.end(), out.segments.begin(), out.segments.end());
+      b_events.insert(b_events.end(), out.events.begin(), out.events.end());
+    }
+    a.out.clear();
+    a.match.frame(a.now, &a.out);
+    a.keep();
+    if (!b.match.following()) {
+      MatchOutput out;
+      b.match.frame(a.now, &out);
+      b_segs.insert(b_segs.end(), out.segments.begin(), out.segments.end());
+      b_events.insert(b_events.end(), out.events.begin(), out.events.end());
+    }
+    if (!a.out.segments.empty()) {
+      const SegmentOut &s = a.out.segments.back();
+      for (int i = 0; i < 2; ++i)
+        brain[i].on_segment(s.segment, s.cause == Cause::serve, s.cause_index, a.match.sim().time);
+    }
+    // the owner publishes until it dies: segments, then an info on a change or once a second
+    if (k <= tr.death) {
+      for (; a_seg_seen < a.segments.size(); ++a_seg_seen) {
+        seg = a.segments[a_seg_seen];
+        have_seg = true;
+      }
+      if (a.out.info_changed || k >= next_info) {
+        info = a.match.info();
+        info.server_time = a.now;
+        next_info = k + 60;
+        if (b.match.following()) CHECK_MSG(b.match.follow(info, &err), "follow: %s", err.c_str());
+      }
+    }
+    a.now += a.match.frame_time();
+  }
+  // The standby knows every racket sample of the gap at once when it takes
+  // over, where the owner knew each as it came: where a racket hit (its
+  // estimate of a racket) is involved they may differ, as they would on the
+  // wire. Up to the first racket segment of either, the streams are the same.
+  uint32_t last_known = have_seg ? seg.seq : 0;
+  uint32_t last_event = std::max(have_seg ? seg.play.event_seq : 0u, info.play.event_seq);
+  for (size_t n = 0; n < b_segs.size(); ++n) {
+    const SegmentOut &s = b_segs[n];
+    if (s.seq != last_known + 1 + n) {
+      o.first_mismatch = "standby segment " + std::to_string(s.seq) + " after " + std::to_string(last_known) +
+                         " and " + std::to_string(n) + " more";
+      o.mismatches++;
+      break;
+    }
+    size_t i = a_seg_seen;
+    while (i < a.segments.size() && a.segments[i].seq != s.seq) ++i;
+    if (i == a.segments.size() || a.segments[i].cause == Cause::racket || s.cause == Cause::racket) break;
+    const SegmentOut &r = a.segments[i];
+    double dp = std::fmax(ball_v3_max_diff(r.segment.p0, s.segment.p0), ball_v3_max_diff(r.segment.v0, s.segment.v0));
+    o.worst_p0 = std::fmax(o.worst_p0, dp);
+    o.worst_t0 = std::fmax(o.worst_t0, std::fabs(r.segment.t0 - s.segment.t0));
+    o.compared_segments++;
+    if (r.cause != s.cause || r.cause_index != s.cause_index || dp > 1e-9 || !same_play(r.play, s.play)) {
+      if (o.first_mismatch.empty())
+        o.first_mismatch = "segment " + std::to_string(s.seq) + ": " + name_of(r.cause) + " / " + name_of(s.cause) +
+                           ", p0/v0 off by " + std::to_string(dp);
+      o.mismatches++;
+    }
+  }
+  // The handover itself: the standby's first segment goes on from the
+  // ball of the newest one it had: a floor or wall bounce where that ball
+  // is then, a net hit one eq 6 shift (a tenth of a frame's flight) away.
+  // (A racket hit restarts at the disc test's point, a serve elsewhere.)
+  if (!b_segs.empty() && have_seg && b_segs.front().cause != Cause::racket && b_segs.front().cause != Cause::serve) {
+    const SegmentOut &f = b_segs.front();
+    ball_state there;
+    ball_segment_eval(&b.match.model(), &seg.segment, f.segment.t0, &there);
+    double shift = f.cause == Cause::net ? ball_v3_norm(f.segment.v0) * b.match.frame_time() * tr.time_base / 10.0
+                                         : 0.0;
+    double d = ball_v3_norm(ball_v3_sub(there.position, f.segment.p0));
+    o.worst_handover = std::fmax(o.worst_handover, d - shift);
+    if (d > shift + 1e-9) {
+      if (o.first_mismatch.empty())
+        o.first_mismatch = "first standby segment " + std::to_string(f.seq) + " (" + name_of(f.cause) + ") " +
+                           std::to_string(d) + " m from the ball";
+      o.mismatches++;
+    }
+  }
+  // events go on from the newest the standby knew of, one by one; a serve
+  // only after a point (no second serve), scores never go back
+  int points_since_serve = 0;
+  std::array<int, 2> score = have_seg && seg.seq > info.segment_seq ? seg.play.score : info.play.score;
+  bool live = have_seg && seg.seq > info.segment_seq ? seg.play.live : info.play.live;
+  points_since_serve = live ? 0 : 1;
+  for (size_t n = 0; n < b_events.size(); ++n) {
+    const EventOut &e = b_events[n];
+    o.compared_events++;
+    bool ok = e.seq == last_event + 1 + n && e.score[0] >= score[0] && e.score[1] >= score[1];
+    if (e.kind == EventKind::point) points_since_serve++;
+    if (e.kind == EventKind::serve) ok = ok && points_since_serve > 0, points_since_serve = 0;
+    score = e.score;
+    if (!ok) {
+      if (o.first_mismatch.empty())
+        o.first_mismatch = "standby event " + std::to_string(e.seq) + " (" + name_of(e.kind) + ") after " +
+                           std::to_string(last_event);
+      o.mismatches++;
+      break;
+    }
+  }
+  return o;
+}
+
+}  // namespace
+
+// 300 take-overs at random frames, levels, time bases and detection gaps:
+// the standby's stream is the owner's, segment for segment and event for event.
+TEST(a_restored_match_goes_on_as_its_owner) {
+  Rng r(20261202);
+  int restored = 0, differing = 0;
+  size_t segments = 0, events = 0, catch_up = 0;
+  double worst_p0 = 0.0, worst_t0 = 0.0, worst_handover = 0.0;
+  for (int n = 0; n < 300; ++n) {
+    Trial t;
+    t.level = static_cast<ball_level>(BALL_LEVEL_EASY + static_cast<int>(r.uniform(0.0, 3.0)));
+    t.time_base = r.uniform(0.0, 1.0) < 0.25 ? r.uniform(0.5, 2.0) : 1.0;
+    t.seed = 1 + static_cast<uint64_t>(n);
+    t.death = 30 + static_cast<int>(r.uniform(0.0, 900.0));
+    t.gap = static_cast<int>(r.uniform(0.0, 120.0));
+    t.after = 120;
+    Outcome o = run(t);
+    CHECK_MSG(o.restored, "trial %d: not restored: %s", n, o.err.c_str());
+    restored += o.restored;
+    segments += o.compared_segments;
+    events += o.compared_events;
+    catch_up += o.catch_up_segments;
+    worst_p0 = std::fmax(worst_p0, o.worst_p0);
+    worst_t0 = std::fmax(worst_t0, o.worst_t0);
+    worst_handover = std::fmax(worst_handover, o.worst_handover);
+    if (o.mismatches > 0) {
+      differing++;
+      note("trial %d (level %d, time base %.2f, death frame %d, gap %d): %s", n, static_cast<int>(t.level),
+           t.time_base, t.death, t.gap, o.first_mismatch.c_str());
+    }
+  }
+  note("%d of 300 restored; %zu standby segments came out of the catch-ups; %zu segments before the first racket "
+       "hit compared with the owner's (p0/v0 within %.3g, t0 within %.3g s), %zu events checked; the first bounce "
+       "within %.3g m of the ball; %d trials differ",
+       restored, catch_up, segments, worst_p0, worst_t0, events, worst_handover, differing);
+  CHECK_EQ(restored, 300);
+  CHECK(segments > 100);
+  CHECK(catch_up > 100);
+  CHECK_EQ(differing, 0);
+  CHECK(worst_p0 <= 1e-9);
+  CHECK(worst_handover <= 1e-9);
+}
+
+// What does not fit is refused with a reason, and the standby's match stays
+// as it was: another match's info, another slot count or model, a segment
+// libball refuses (ball_sim_set_segment: under the floor, NaN, before t0).
+TEST(what_does_not_fit_is_refused_and_changes_nothing) {
+  Game a, b;
+  CHECK(a.ok && b.ok);
+  a.join(0, participant(1));
+  a.join(1, participant(2));
+  a.run(3.0);
+  MatchInfoOut info = a.match.info();
+  std::string err;
+  CHECK(b.match.follow(info, &err));
+  uint64_t before = ball_sim_hash(&b.match.sim());
+  MatchInfoOut other = info;
+  other.match_id = info.match_id + 1;
+  CHECK(!b.match.follow(other, &err) && err.find("is not match") != std::string::npos);
+  other = info;
+  other.players = 3;
+  CHECK(!b.match.follow(other, &err) && err.find("slots") != std::string::npos);
+  other = info;
+  other.model_hash ^= 1;
+  err.clear();
+  CHECK(!b.match.follow(other, &err) && err.find("model") != std::string::npos);
+  other = info;
+  other.level = 9;
+  err.clear();
+  CHECK(!b.match.follow(other, &err) && err.find("not a game level") != std::string::npos);
+  CHECK(!a.segments.empty());
+  SegmentOut bad = a.segments.back();
+  MatchOutput out;
+  for (int k = 0; k < 3; ++k) {
+    SegmentOut s = bad;
+    if (k == 0) s.segment.p0.y = -1.0;            // under the floor
+    if (k == 1) s.segment.v0.x = std::nan("");     // not a number
+    if (k == 2) s.segment.t0 = info.sim_time + 5;  // after the time it is restored at
+    s.seq = info.segment_seq + 1;
+    err.clear();
+    CHECK_MSG(!b.match.restore(info, &s, info.sim_time, &out, &err), "bad segment %d restored", k);
+    CHECK_MSG(err.find("segment") != std::string::npos, "%s", err.c_str());
+    CHECK(b.match.following());
+    CHECK(out.segments.empty() && out.events.empty());
+  }
+  CHECK_EQ(ball_sim_hash(&b.match.sim()), before);
+  // the newest one is restored, and the match is the owner's
+  CHECK(b.match.restore(info, &a.segments.back(), a.match.sim().time, &out, &err));
+  CHECK(!b.match.following());
+  CHECK(b.match.play().score == a.match.play().score);
+}
+
+int main(int argc, char **argv) { return check::run(argc, argv); }
