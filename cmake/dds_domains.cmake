@@ -17,6 +17,10 @@ set(BALL_DDS_DOMAINS
   "dds_server_cli|106|test: ball-server's command line and config errors"
   "dds_busy|107|test: a second server for the same match"
   "dds_snapshots|108|test: ball-watch --snapshots"
+  "dds_failover|109|test: a standby takes 10 matches over from a primary killed mid-rally"
+  "dds_standby_killed|110|test: a standby killed: nothing a client sees changes"
+  "dds_primary_back|111|test: the old primary restarted takes nothing back"
+  "dds_claim|112|test: two claimants started together split the matches"
   "dds_discovery|120|test: server, bots and watcher found through a Discovery Server only"
   "test_teardown|141|test: one participant deleted within the teardown limit")
 

@@ -47,18 +47,26 @@ int main(int argc, char **argv) {
   // the player timeout is the liveliness lease the racket samples reader requests
   auto host = make_host(&config, scenes, domain->reader_lease(dds::kRacketProfile), &err);
   if (!host) return fail(kProgram, err);
-  auto port = dds::ServerEndpoints::open(*domain, static_cast<int>(config.max_matches), host->max_players(), &err);
+  // a primary's writers outrank a standby's (docs/protocol.md, "Several servers on one domain")
+  const char *role = config.standby ? dds::kStandbyProfile : dds::kPrimaryProfile;
+  auto port = dds::ServerEndpoints::open(*domain, static_cast<int>(config.max_matches), host->max_players(), role,
+                                         config.standby, &err);
   if (!port) return fail(kProgram, err);
 
   SystemClock clock;
-  LoopSettings settings;
-  settings.server_id = config.server_id;
-  settings.status_interval = config.status_interval;
-  ServerLoop loop(*host, *port, clock, settings);
+  ServerLoop loop(*host, *port, clock, loop_settings(config, domain->writer_strength(role)));
+  loop.on_note([&](const std::string &line) {
+    std::printf("%s %u: %s\n", kProgram, config.server_id, line.c_str());
+    std::fflush(stdout);
+  });
   MatchInfoOut other;
-  if (config.startup_wait > 0.0 && loop.find_owner(config.startup_wait, stop_requested, &other))
+  if (config.standby || config.claim > 0) {
+    loop.listen(config.startup_wait, stop_requested);  // knows the others before it follows or claims
+  } else if (config.startup_wait > 0.0 && loop.find_owner(config.startup_wait, stop_requested, &other)) {
     return fail(kProgram, "domain " + std::to_string(config.domain) + " is busy: match " +
-                              std::to_string(other.match_id) + " is served by server " + std::to_string(other.server_id));
+                              std::to_string(other.match_id) + " is served by server " +
+                              std::to_string(other.server_id) + " (start this one with --standby to follow it)");
+  }
   loop.start();
   if (!quiet)
     std::printf("%s %u: %zu matches on domain %d (profile %s, participant %s), player timeout %.2f s, room for %u "

@@ -171,7 +171,8 @@ void parse_into(const json &root, const std::string &base_dir, ServerConfig *c) 
 const std::vector<Field<ServerConfig>> &server_fields() {
   using F = Field<ServerConfig>;
   using C = ServerConfig;
-  static const std::string create_room = "configured + " + std::to_string(kCreateRoom) + " when CREATE is allowed";
+  static const std::string create_room = "configured + " + std::to_string(kCreateRoom) +
+                                         " when CREATE is allowed, + " + std::to_string(kFollowRoom) + " for a standby";
   static const std::vector<F> table = {
       {"server_id", &C::server_id, whole(0, UINT32_MAX), "", "in every sample the server writes", "--server-id"},
       {"domain", &C::domain, whole(0, kMaxDomain), "", "DDS domain id (docs/server.md, \"DDS domains\")"},
@@ -184,6 +185,12 @@ const std::vector<Field<ServerConfig>> &server_fields() {
       {"max_matches", &C::max_matches, whole(1, 100000), "", "room for matches; sizes every DDS resource limit",
        "--max-matches", create_room.c_str()},
       {"allow_create", &C::allow_create, {}, "", "clients may CREATE matches from the catalogue (`--no-create`)"},
+      {"standby", &C::standby, {}, "",
+       "follow the other servers' matches and take one over when its server dies (`--standby`; docs/server.md, "
+       "\"Several servers and failover\")"},
+      {"claim", &C::claim, whole(0, 100000), "",
+       "claim up to N of the configured or created matches that no server owns, by the claim rule; 0: serve the "
+       "configured matches", "--claim"},
       {"status_interval", &C::status_interval, open_closed(0.0, 3600.0), "s", "between status lines",
        "--status-interval"},
       {"startup_wait", &C::startup_wait, closed(0.0, 60.0), "s",
@@ -215,6 +222,13 @@ std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes
   auto host = std::make_unique<Host>(config->max_matches, config->allow_create, config->defaults);
   for (const auto &c : scenes.catalogue)
     if (!host->add_scene(c.first, c.second, err)) return nullptr;
+  // another server's match may name a scene by libball's name (a standby
+  // follows it); a name from the wire is never a path
+  host->set_scene_source([](const std::string &name, ball_scene *scene, std::string *e) {
+    bool plain = !name.empty() && name.find_first_not_of("abcdefghijklmnopqrstuvwxyz"
+                                                         "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") == std::string::npos;
+    return plain && load_scene(name, scene, e);
+  });
   for (size_t i = 0; i < config->matches.size(); ++i) {
     MatchEntry &e = config->matches[i];
     const ball_scene &sc = scenes.matches[i];
@@ -228,6 +242,17 @@ std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes
     }
   }
   return host;
+}
+
+LoopSettings loop_settings(const ServerConfig &config, uint32_t strength) {
+  LoopSettings s;
+  s.server_id = config.server_id;
+  s.status_interval = config.status_interval;
+  s.standby = config.standby;
+  s.claim = config.claim;
+  s.strength = strength;
+  s.settle = config.startup_wait;  // a claim settles as long as the servers listen to each other at start
+  return s;
 }
 
 std::string keys_table(const std::string &which) {
@@ -246,6 +271,7 @@ void ServerOptions::add(CLI::App &app) {
   app.add_option("--matches", matches_, "host N matches, ids 0..N-1, replacing the config's list")
       ->check(CLI::Range(1, 100000));
   app.add_flag("--no-create", no_create_, "refuse CREATE requests (allow_create false)");
+  app.add_flag("--standby", standby_, "a hot standby: follow the other servers' matches (standby true)");
   server_.add(app, server_fields(), ServerConfig{});
   match_.add(app, match_fields(), MatchConfig{});
   add_dds_options(app, &dds_);
@@ -262,6 +288,7 @@ bool ServerOptions::apply(ServerConfig *config, std::string *err) const {
   if (discovery_server_->count()) config->discovery_server = dds_.discovery_server;
   server_.apply(config);
   if (no_create_) config->allow_create = false;
+  if (standby_) config->standby = true;
   auto settle = [&](MatchConfig *c) {
     match_.apply(c);
     if (!match_.given("state_rate")) follow_frame_rate(c);
@@ -285,7 +312,8 @@ bool ServerOptions::apply(ServerConfig *config, std::string *err) const {
     }
   }
   if (config->max_matches == 0)
-    config->max_matches = static_cast<uint32_t>(config->matches.size()) + (config->allow_create ? kCreateRoom : 0);
+    config->max_matches = static_cast<uint32_t>(config->matches.size()) + (config->allow_create ? kCreateRoom : 0) +
+                          (config->standby ? kFollowRoom : 0);
   if (config->max_matches < config->matches.size()) {
     *err = "max_matches " + std::to_string(config->max_matches) + " is less than the " +
            std::to_string(config->matches.size()) + " matches configured";

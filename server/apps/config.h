@@ -14,6 +14,7 @@
 #include "common.h"
 #include "options.h"
 #include "host.h"
+#include "server_loop.h"
 #include "match_config.h"
 
 namespace ballsrv {
@@ -24,8 +25,10 @@ struct MatchEntry {
   std::string scene;  // a catalogue name, a libball scene name, a file, or "default"
 };
 
-// Matches a server makes room for beyond its configured ones when CREATE is allowed.
+// Matches a server makes room for beyond its configured ones when CREATE is
+// allowed, and a standby for the other servers' matches it follows.
 constexpr uint32_t kCreateRoom = 8;
+constexpr uint32_t kFollowRoom = 64;
 
 struct ServerConfig {
   uint32_t server_id = 1;
@@ -33,8 +36,11 @@ struct ServerConfig {
   std::string profile;                       // QoS profile file ("": find_profile)
   std::string participant = "loopback";      // its participant profile
   std::string discovery_server;              // a client profile's Discovery Servers ("": the profile's)
-  uint32_t max_matches = 0;                  // 0: the configured matches, plus kCreateRoom when CREATE is allowed
+  uint32_t max_matches = 0;                  // 0: the configured matches, plus kCreateRoom when CREATE is allowed,
+                                             // plus kFollowRoom for a standby
   bool allow_create = true;                  // clients may CREATE matches from the catalogue
+  bool standby = false;                      // follows other servers' matches, takes them over (--standby)
+  uint32_t claim = 0;                        // claims up to this many unplaced or created matches; 0: none
   double status_interval = 1.0;              // s between status lines
   double startup_wait = 1.0;                 // s to listen for another server owning our matches
   std::map<std::string, std::string> catalogue = {{"tennis", "default"}};  // name -> scene
@@ -76,6 +82,7 @@ class ServerOptions {
   CLI::Option *domain_ = nullptr, *profile_ = nullptr, *participant_ = nullptr, *discovery_server_ = nullptr;
   int matches_ = 0;
   bool no_create_ = false;
+  bool standby_ = false;
 };
 
 // Every scene the config names, read before DDS is touched (a bad config fails fast).
@@ -90,6 +97,10 @@ bool load_scenes(const ServerConfig &config, ServerScenes *scenes, std::string *
 // configured one, in *config too. nullptr with err ("match 3 (x.yaml): ...").
 std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes, double player_timeout,
                                 std::string *err);
+
+// The server loop's settings from the config; `strength` is the ownership
+// strength of its writers (the QoS file's, for its role).
+LoopSettings loop_settings(const ServerConfig &config, uint32_t strength);
 
 // The markdown table docs/server.md shows for "server" or "match" keys ("" for another name).
 std::string keys_table(const std::string &which);

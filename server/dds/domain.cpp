@@ -322,8 +322,15 @@ double Domain::reader_lease(const char *profile) const {
   return p.seconds + p.nanosec * 1e-9;
 }
 
+uint32_t Domain::writer_strength(const char *profile) const {
+  fdds::DataWriterQos qos;
+  if (impl_->publisher->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) return 0;
+  return qos.ownership_strength().value;
+}
+
 template <class T>
-Writer<T> Domain::writer(const char *topic_name, const char *profile, Sizing sizing, std::string *err) {
+Writer<T> Domain::writer(const char *topic_name, const char *profile, Sizing sizing, std::string *err,
+                         const char *strength) {
   Writer<T> w;
   fdds::Topic *t = impl_->topic<T>(topic_name, err);
   if (!t) return w;
@@ -331,6 +338,14 @@ Writer<T> Domain::writer(const char *topic_name, const char *profile, Sizing siz
   if (impl_->publisher->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
     *err = std::string("no data_writer profile \"") + profile + "\" in the QoS profile file";
     return w;
+  }
+  if (strength && qos.ownership().kind == fdds::EXCLUSIVE_OWNERSHIP_QOS) {
+    fdds::DataWriterQos role;
+    if (impl_->publisher->get_datawriter_qos_from_profile(strength, role) != ReturnCode_t::RETCODE_OK) {
+      *err = std::string("no data_writer profile \"") + strength + "\" in the QoS profile file";
+      return w;
+    }
+    qos.ownership_strength() = role.ownership_strength();
   }
   size_limits(&qos, sizing);
   w.w_ = impl_->publisher->create_datawriter(t, qos);
@@ -374,6 +389,11 @@ template <class T>
 bool Writer<T>::write(const T &sample) {
   typename Wire<T>::Idl wire = to_idl(sample);
   return w_ && w_->write(&wire);
+}
+
+template <class T>
+bool Writer<T>::assert_liveliness() {
+  return w_ && w_->assert_liveliness() == ReturnCode_t::RETCODE_OK;
 }
 
 template <class T>
@@ -425,7 +445,7 @@ uint64_t serialized_size() {
   template uint64_t serialized_size<T>();                                                      \
   template class Writer<T>;                                                                    \
   template class Reader<T>;                                                                    \
-  template Writer<T> Domain::writer<T>(const char *, const char *, Sizing, std::string *);     \
+  template Writer<T> Domain::writer<T>(const char *, const char *, Sizing, std::string *, const char *); \
   template Reader<T> Domain::reader<T>(const char *, const char *, Sizing, std::string *);
 BALL_ENDPOINTS(RacketSampleIn)
 BALL_ENDPOINTS(ControlIn)

@@ -37,6 +37,8 @@ constexpr const char *kInfoTopic = "ball/match_info";
 constexpr const char *kStatusTopic = "ball/server_status";
 
 // Endpoint profiles of the XML file, by purpose.
+constexpr const char *kPrimaryProfile = "primary";  // a primary server's writers' ownership strength
+constexpr const char *kStandbyProfile = "standby";  // a standby's, below it
 constexpr const char *kRacketProfile = "racket_samples";
 constexpr const char *kStateProfile = "ball_state";
 constexpr const char *kSegmentProfile = "segments";
@@ -91,6 +93,9 @@ class Writer {
  public:
   Writer() = default;
   [[nodiscard]] bool write(const T &sample);  // false: DDS refused it (count it)
+  // Asserts the writer's liveliness (a writer of manual-by-topic liveliness
+  // must, within its lease, or its readers count it gone); false: refused.
+  bool assert_liveliness();
   int matched() const;  // readers matched now
   bool valid() const { return w_ != nullptr; }
 
@@ -157,9 +162,14 @@ class Domain {
   int domain_id() const { return domain_id_; }
 
   // Endpoints on `topic` with the data_writer/data_reader profile `profile`;
-  // an invalid handle with err on failure.
+  // an invalid handle with err on failure. A writer with exclusive
+  // ownership takes its strength from the data_writer profile `strength`
+  // when one is named (kPrimaryProfile, kStandbyProfile).
   template <class T>
-  Writer<T> writer(const char *topic, const char *profile, Sizing sizing, std::string *err);
+  Writer<T> writer(const char *topic, const char *profile, Sizing sizing, std::string *err,
+                   const char *strength = nullptr);
+  // The ownership strength of a data_writer profile (0: none or no such profile).
+  uint32_t writer_strength(const char *profile) const;
   template <class T>
   Reader<T> reader(const char *topic, const char *profile, Sizing sizing, std::string *err);
 

@@ -3,25 +3,50 @@
 namespace ballsrv {
 namespace dds {
 
-std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, int players, std::string *err) {
+std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, int players, const char *role,
+                                                       bool follows, std::string *err) {
   std::unique_ptr<ServerEndpoints> p(new ServerEndpoints(d));
   int match_room = matches;
   int sample_room = match_room * std::max(1, players) + 64;  // + room for junk keys
   constexpr int kInboxPerSlot = 64;  // samples a slot may have waiting between two frames, on average
-  p->segments_ = d.writer<SegmentOut>(kSegmentTopic, kSegmentProfile, {match_room}, err);
-  if (p->segments_.valid()) p->events_ = d.writer<EventOut>(kEventTopic, kEventProfile, {match_room}, err);
-  if (p->events_.valid()) p->states_ = d.writer<StateOut>(kStateTopic, kStateProfile, {match_room}, err);
-  if (p->states_.valid()) p->infos_ = d.writer<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room}, err);
+  constexpr int kServerRoom = 64;    // other servers' status instances
+  p->segments_ = d.writer<SegmentOut>(kSegmentTopic, kSegmentProfile, {match_room}, err, role);
+  if (p->segments_.valid()) p->events_ = d.writer<EventOut>(kEventTopic, kEventProfile, {match_room}, err, role);
+  if (p->events_.valid()) p->states_ = d.writer<StateOut>(kStateTopic, kStateProfile, {match_room}, err, role);
+  if (p->states_.valid()) p->infos_ = d.writer<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room}, err, role);
   if (p->infos_.valid()) p->status_ = d.writer<StatusOut>(kStatusTopic, kStatusProfile, {1}, err);
   if (!p->status_.valid()) return nullptr;
   p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, {sample_room, sample_room * kInboxPerSlot}, err);
   p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile, {match_room + 64}, err);
   p->others_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room + 64}, err);
-  if (!p->samples_.valid() || !p->controls_.valid() || !p->others_.valid()) return nullptr;
+  // (only a standby reads segments: every other server would take its own back)
+  if (follows) p->other_segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {match_room + 64}, err);
+  p->other_status_ = d.reader<StatusOut>(kStatusTopic, kStatusProfile, {kServerRoom}, err);
+  if (!p->samples_.valid() || !p->controls_.valid() || !p->others_.valid() ||
+      (follows && !p->other_segments_.valid()) || !p->other_status_.valid())
+    return nullptr;
   return p;
 }
 
+bool ServerEndpoints::assert_liveliness() {
+  // the best-effort ball states assert theirs by being written (Fast DDS sends
+  // no heartbeat for them); a standby's writers that never wrote harm nobody
+  bool ok = segments_.assert_liveliness();
+  ok = events_.assert_liveliness() && ok;
+  ok = infos_.assert_liveliness() && ok;
+  ok = status_.assert_liveliness() && ok;
+  states_.assert_liveliness();
+  return ok;
+}
+
 void ServerEndpoints::take_notes(std::vector<PortNote> *out) {
+  // another server's writers gone (liveliness lost, or unmatched with its participant)
+  notes_.clear();
+  others_.drain_status(&notes_);
+  other_segments_.drain_status(&notes_);
+  other_status_.drain_status(&notes_);
+  for (const auto &n : notes_)
+    if (n.kind == StatusNote::writer_lost && n.who != domain_.id()) out->push_back({PortNote::server_lost, n.who, 1});
   notes_.clear();
   samples_.drain_status(&notes_);
   for (const auto &n : notes_) {
@@ -52,14 +77,28 @@ bool ServerEndpoints::take_control(ControlIn *control) {
   return true;
 }
 
-bool ServerEndpoints::take_other_info(MatchInfoOut *info, ParticipantId *from) {
+namespace {
+// the next sample another participant wrote (our own writers' are skipped)
+template <class T>
+bool take_others(Reader<T> &reader, const ParticipantId &self, T *sample, ParticipantId *from) {
   SampleMeta meta;
-  while (others_.take(info, &meta))
-    if (meta.from != domain_.id()) {
+  while (reader.take(sample, &meta))
+    if (meta.from != self) {
       *from = meta.from;
       return true;
     }
   return false;
+}
+}  // namespace
+
+bool ServerEndpoints::take_other_info(MatchInfoOut *info, ParticipantId *from) {
+  return take_others(others_, domain_.id(), info, from);
+}
+bool ServerEndpoints::take_other_segment(SegmentOut *segment, ParticipantId *from) {
+  return take_others(other_segments_, domain_.id(), segment, from);
+}
+bool ServerEndpoints::take_other_status(StatusOut *status, ParticipantId *from) {
+  return take_others(other_status_, domain_.id(), status, from);
 }
 
 }  // namespace dds

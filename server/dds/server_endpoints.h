@@ -14,18 +14,25 @@ namespace dds {
 class ServerEndpoints : public ServerPort {
  public:
   // Endpoints sized for `matches` x `players` (Fast DDS allows 10
-  // instances per topic by default); nullptr with err when one cannot be made.
-  static std::unique_ptr<ServerEndpoints> open(Domain &domain, int matches, int players, std::string *err);
+  // instances per topic by default), the match writers with the ownership
+  // strength of `role` (kPrimaryProfile, kStandbyProfile), and a reader of
+  // the other servers' segments when it follows their matches (a standby);
+  // nullptr with err when one cannot be made.
+  static std::unique_ptr<ServerEndpoints> open(Domain &domain, int matches, int players, const char *role,
+                                               bool follows, std::string *err);
 
   void take_notes(std::vector<PortNote> *out) override;
   bool take_sample(RacketSampleIn *sample) override;
   bool take_control(ControlIn *control) override;
   bool take_other_info(MatchInfoOut *info, ParticipantId *from) override;
+  bool take_other_segment(SegmentOut *segment, ParticipantId *from) override;
+  bool take_other_status(StatusOut *status, ParticipantId *from) override;
   bool write(const SegmentOut &s) override { return segments_.write(s); }
   bool write(const EventOut &e) override { return events_.write(e); }
   bool write(const StateOut &s) override { return states_.write(s); }
   bool write(const MatchInfoOut &i) override { return infos_.write(i); }
   bool write(const StatusOut &s) override { return status_.write(s); }
+  bool assert_liveliness() override;
 
  private:
   explicit ServerEndpoints(Domain &domain) : domain_(domain) {}
@@ -38,6 +45,8 @@ class ServerEndpoints : public ServerPort {
   Reader<RacketSampleIn> samples_;
   Reader<ControlIn> controls_;
   Reader<MatchInfoOut> others_;
+  Reader<SegmentOut> other_segments_;
+  Reader<StatusOut> other_status_;
   std::vector<StatusNote> notes_;
 };
 

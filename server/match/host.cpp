@@ -1,5 +1,7 @@
 #include "host.h"
 
+#include <algorithm>
+
 namespace ballsrv {
 
 Host::Host(size_t max_matches, bool allow_create, MatchConfig create_template)
@@ -14,6 +16,62 @@ bool Host::add_scene(const std::string &name, const ball_scene &scene, std::stri
   return true;
 }
 
+const ball_scene *Host::scene(const std::string &name, std::string *err) {
+  auto it = scenes_.find(name);
+  if (it != scenes_.end()) return &it->second;
+  ball_scene sc;
+  if (!source_ || name.empty() || name.size() >= static_cast<size_t>(kNameLen) || !source_(name, &sc, err)) {
+    if (err->empty()) *err = "no scene \"" + name + "\" on this server";
+    return nullptr;
+  }
+  return &(scenes_[name] = sc);
+}
+
+Match *Host::follow(const MatchInfoOut &info, std::string *err) {
+  if (find(info.match_id)) {
+    *err = "match " + std::to_string(info.match_id) + " is here already";
+    return nullptr;
+  }
+  const ball_scene *sc = scene(info.scene, err);
+  if (!sc) return nullptr;
+  MatchConfig c = template_;
+  c.id = info.match_id;
+  c.scene_name = info.scene;
+  c.players = info.players;
+  c.level = static_cast<ball_level>(info.level);
+  c.frame_rate = info.frame_time > 0.0 ? 1.0 / info.frame_time : 0.0;
+  c.time_base = info.time_base;
+  c.state_rate = info.state_rate;
+  c.serve_delay = info.serve_delay;
+  c.max_rally_time = info.max_rally_time;
+  c.extrapolation_time = info.model.extrapolation_time;
+  c.stale_time = info.model.stale_time;
+  c.player_timeout = info.player_timeout;
+  c.max_sample_age = info.max_sample_age;
+  c.max_sample_lead = info.max_sample_lead;
+  c.serve_v_up = info.serve_v_up;
+  c.court_x_lo = info.court_x[0];
+  c.seed = info.seed;
+  if (info.level < BALL_LEVEL_CUSTOM || info.level > BALL_LEVEL_ADVANCED) {
+    *err = "level " + std::to_string(info.level) + " is not a game level";
+    return nullptr;
+  }
+  if (!add_match(c, *sc, err)) return nullptr;
+  Match *m = find(c.id);
+  if (!m->follow(info, err)) {
+    remove(c.id);
+    return nullptr;
+  }
+  return m;
+}
+
+void Host::remove(uint32_t id) {
+  by_id_.erase(id);
+  matches_.erase(std::remove_if(matches_.begin(), matches_.end(),
+                                [id](const std::unique_ptr<Match> &m) { return m->id() == id; }),
+                 matches_.end());
+}
+
 bool Host::add_match(const MatchConfig &config, const ball_scene &scene, std::string *err) {
   if (by_id_.count(config.id)) {
     *err = "match id " + std::to_string(config.id) + " is used twice";
@@ -25,6 +83,7 @@ bool Host::add_match(const MatchConfig &config, const ball_scene &scene, std::st
   }
   auto m = std::make_unique<Match>();
   if (!m->init(config, scene, err)) return false;
+  scenes_.emplace(config.scene_name, scene);  // a standby may follow it by that name
   by_id_[config.id] = m.get();
   matches_.push_back(std::move(m));
   return true;
@@ -50,6 +109,10 @@ SampleResult Host::on_sample(const RacketSampleIn &sample, double now) {
 
 Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match **match) {
   *match = find(c.match_id);
+  if (*match && (*match)->following()) {  // its owner's to answer
+    *match = nullptr;
+    return Reason::none;
+  }
   if (c.kind != ControlKind::create) {
     if (!*match) return Reason::refused_bad_value;
     return (*match)->on_control(c, now, out);

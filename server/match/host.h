@@ -3,6 +3,7 @@
 // matches on request. The server app owns one and drives it from its loop.
 #pragma once
 
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -22,9 +23,26 @@ class Host {
   bool add_scene(const std::string &name, const ball_scene &scene, std::string *err);
   bool add_match(const MatchConfig &config, const ball_scene &scene, std::string *err);
 
+  // Where scenes come from that neither the catalogue nor a configured match
+  // names (MatchInfo of another server may name any): false with err.
+  using SceneSource = std::function<bool(const std::string &name, ball_scene *scene, std::string *err)>;
+  void set_scene_source(SceneSource source) { source_ = std::move(source); }
+  // A scene by the name MatchInfo gives it: the catalogue's, then the
+  // configured matches', then the scene source's (kept for the next time).
+  const ball_scene *scene(const std::string &name, std::string *err);
+
+  // Another server's match, followed (Match::follow) from its MatchInfo:
+  // its settings and scene; nullptr with err when there is no room, no such
+  // scene, or it does not fit.
+  Match *follow(const MatchInfoOut &info, std::string *err);
+  // A match this server neither steps nor follows any more.
+  void remove(uint32_t id);
+
+  // Routes a racket sample (followed matches take them too, to stay warm).
   SampleResult on_sample(const RacketSampleIn &sample, double now);
   // Routes one control message; *match gets the match it concerned (nullptr
-  // when none: an unknown match, or a CREATE refused; those are only counted).
+  // when none: an unknown match, or a CREATE refused; those are only counted;
+  // a followed match's controls are its owner's: nullptr, Reason::none).
   Reason on_control(const ControlIn &control, double now, MatchOutput *out, Match **match);
   void on_participant_lost(const ParticipantId &who);
 
@@ -38,6 +56,7 @@ class Host {
   bool allow_create_;
   MatchConfig template_;
   std::map<std::string, ball_scene> scenes_;
+  SceneSource source_;
   std::vector<std::unique_ptr<Match>> matches_;
   std::map<uint32_t, Match *> by_id_;
 };

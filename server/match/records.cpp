@@ -198,7 +198,8 @@ void from_json(const json &j, SnapshotRecord &s) { BALL_SNAPSHOT_KEYS(BALL_GET, 
 // ---- the server's report -------------------------------------------------------
 
 #define BALL_MATCH_REPORT_KEYS(X, m)                                                                    \
-  X("id", m.id) X("state", m.state) X("score", m.score) X("sim_time", m.sim_time) X("sim_hash", m.sim_hash)
+  X("id", m.id) X("state", m.state) X("score", m.score) X("sim_time", m.sim_time) X("sim_hash", m.sim_hash) \
+  X("since", m.since) X("taken_over", m.taken_over)
 
 void to_json(json &j, const MatchReport &m) {
   j = json::object();
@@ -221,7 +222,9 @@ void from_json(const json &j, MatchReport &m) {
   X("skipped_frames", r.skipped_frames) X("late_p99_median", r.late_p99_median)                         \
   X("late_p99_max", r.late_p99_max) X("late_max", r.late_max) X("deadline_missed", r.deadline_missed)   \
   X("writers_lost", r.writers_lost) X("conflicts", r.conflicts) X("latency_p50", r.latency_p50)         \
-  X("latency_p99", r.latency_p99) X("latency_count", r.latency_count) X("matches", r.matches)
+  X("latency_p99", r.latency_p99) X("latency_count", r.latency_count) X("matches", r.matches)           \
+  X("takeovers", r.takeovers) X("yields", r.yields) X("claims", r.claims)                               \
+  X("follow_failures", r.follow_failures) X("following", r.following)
 
 void to_json(json &j, const ServerReport &r) {
   j = json::object();

@@ -128,13 +128,15 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WatchSummary, seconds, first_segment_after, m
 
 // ---- ball-server --stats-json ----------------------------------------------
 
-struct MatchReport {  // written flat: id, state, each counter, score, sim_time, sim_hash
+struct MatchReport {  // written flat: id, state, each counter, score, sim_time, sim_hash, since, taken_over
   uint32_t id = 0;
   MatchState state = MatchState::waiting;
   MatchCounters counters;
   std::array<int, 2> score{0, 0};  // points of side 0 and side 1
   double sim_time = 0.0;           // sim s
   uint64_t sim_hash = 0;           // ball_sim_hash
+  double since = 0.0;              // server s: when this server began to step it
+  bool taken_over = false;         // from another server (a standby's take-over)
 };
 void to_json(json &j, const MatchReport &m);
 void from_json(const json &j, MatchReport &m);
@@ -149,6 +151,8 @@ struct ServerReport {
   uint64_t skipped_frames = 0;  // frames skipped after a stall (more than 5 behind)
   double late_p99_median = 0.0, late_p99_max = 0.0, late_max = 0.0;  // s: frames' start after their deadline
   uint64_t deadline_missed = 0, writers_lost = 0, conflicts = 0;
+  uint64_t takeovers = 0, yields = 0, claims = 0, follow_failures = 0;  // among the servers of a domain
+  uint32_t following = 0;       // matches followed at the end
   double latency_p50 = 0.0, latency_p99 = 0.0;  // s: a hit's newest sample written -> its segment written
   uint64_t latency_count = 0;
   std::vector<MatchReport> matches;

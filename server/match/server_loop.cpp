@@ -1,6 +1,7 @@
 #include "server_loop.h"
 
 #include <cinttypes>
+#include <algorithm>
 #include <cstdio>
 
 namespace ballsrv {
@@ -19,6 +20,35 @@ bool ServerLoop::find_owner(double seconds, const std::function<bool()> &stop, M
   return false;
 }
 
+void ServerLoop::drop_own_if_standby() {
+  if (!settings_.standby || settings_.claim > 0) return;
+  // a standby alone steps nothing of its own: its configured matches only name scenes
+  std::vector<uint32_t> own;
+  for (const auto &m : host_.matches())
+    if (!m->following()) own.push_back(m->id());
+  for (uint32_t id : own) host_.remove(id);
+}
+
+void ServerLoop::keep_alive(double t0) {
+  if (t0 < next_assert_) return;
+  if (!port_.assert_liveliness()) stats_.liveliness_failures++;
+  next_assert_ = t0 + kLivelinessPeriod;
+}
+
+void ServerLoop::listen(double seconds, const std::function<bool()> &stop) {
+  if (start_ == 0.0) start_ = clock_.mono();
+  drop_own_if_standby();
+  write(status_now(), &stats_.statuses_out);  // so that the others know this one
+  double until = clock_.mono() + seconds;
+  while (clock_.mono() < until && !stop()) {
+    double t0 = clock_.mono();
+    keep_alive(t0);
+    take_notes(t0);
+    take_others(t0);
+    clock_.sleep_until(clock_.mono() + 0.05);
+  }
+}
+
 // Every match's frames count from the server's start, so matches of the
 // same frame rate are stepped on the same wake-ups.
 ServerLoop::Scheduled ServerLoop::schedule(Match *m) {
@@ -26,18 +56,236 @@ ServerLoop::Scheduled ServerLoop::schedule(Match *m) {
   double now = clock_.mono();
   s.k = s.clock.first_at(now);
   s.last_frame_real = s.clock.realtime_at(now);
+  s.since = clock_.realtime();
   return s;
+}
+
+ServerLoop::Scheduled *ServerLoop::scheduled(uint32_t id) {
+  for (auto &s : sched_)
+    if (s.match->id() == id) return &s;
+  return nullptr;
+}
+
+void ServerLoop::say(const std::string &line) {
+  if (on_note_) on_note_(line);
 }
 
 void ServerLoop::start() {
   origin_ = FrameClock(1.0, clock_.mono(), clock_.realtime());
+  drop_own_if_standby();
+  if (settings_.claim > 0) {
+    // a claimant's configured matches are candidates: it steps those the claim rule gives it
+    for (const auto &m : host_.matches())
+      if (!m->following()) candidates_.push_back(m->config());
+    for (const auto &c : candidates_) host_.remove(c.id);
+    claim_unplaced(clock_.mono());
+  }
   for (const auto &m : host_.matches()) {
+    if (m->following() || scheduled(m->id())) continue;
     sched_.push_back(schedule(m.get()));
     publish_info(sched_.back());
   }
   start_ = clock_.mono();
   next_status_ = start_ + settings_.status_interval;
   status_ = status_now();
+}
+
+// ---- the other servers of the domain ------------------------------------------
+
+ServerView ServerLoop::own_view() const {
+  ServerView v;
+  v.server_id = settings_.server_id;
+  v.strength = settings_.strength;
+  v.standby = settings_.standby;
+  v.claim_room = settings_.claim > claimed_ ? settings_.claim - claimed_ : 0;
+  return v;
+}
+
+std::vector<ServerView> ServerLoop::views() const {
+  std::vector<ServerView> out{own_view()};
+  for (const auto &p : peers_) {
+    if (!p.second.alive || p.second.status.server_id == settings_.server_id) continue;
+    ServerView v;
+    v.server_id = p.second.status.server_id;
+    v.strength = p.second.status.strength;
+    v.standby = p.second.status.standby;
+    v.claim_room = p.second.status.claim_room;
+    out.push_back(v);
+  }
+  return out;
+}
+
+void ServerLoop::take_others(double t0) {
+  ParticipantId from;
+  StatusOut st;
+  while (port_.take_other_status(&st, &from)) {
+    Peer &p = peers_[from];
+    p.status = st;
+    p.alive = true;
+  }
+  MatchInfoOut info;
+  while (port_.take_other_info(&info, &from)) other_info(info, from, t0);
+  SegmentOut seg;
+  while (port_.take_other_segment(&seg, &from)) {
+    if (scheduled(seg.match_id)) {
+      // another server steps one of ours, and DDS gave us its sample: its
+      // MatchInfo will say who it is (the next one, within a second)
+      continue;
+    }
+    auto it = followed_.find(seg.match_id);
+    if (it == followed_.end() || !(it->second.owner == from)) continue;
+    if (!it->second.has_segment || seg.seq > it->second.segment.seq) {
+      it->second.segment = seg;
+      it->second.has_segment = true;
+    }
+  }
+}
+
+void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from, double t0) {
+  owners_[info.match_id] = {from, -1.0};
+  if (scheduled(info.match_id)) {
+    // our own reader took another server's sample for a match we step: DDS
+    // ranks that server above us for every reader (the weaker of two owners yields)
+    stats_.conflicts++;
+    if (on_conflict_) on_conflict_(info, from);
+    yield(info.match_id, info, from);
+    if (!settings_.standby) return;
+  }
+  auto it = followed_.find(info.match_id);
+  if (it == followed_.end()) {
+    if (!settings_.standby) return;
+    std::string err;
+    if (!host_.follow(info, &err)) {
+      if (stats_.follow_failures++ == 0 || stats_.follow_failures % 1000 == 0)
+        say("cannot follow match " + std::to_string(info.match_id) + " of server " + std::to_string(info.server_id) +
+            ": " + err);
+      return;
+    }
+    it = followed_.emplace(info.match_id, Followed{}).first;
+  } else {
+    Match *m = host_.find(info.match_id);
+    std::string err;
+    if (m && !m->follow(info, &err)) stats_.follow_failures++;
+  }
+  Followed &f = it->second;
+  if (f.owner != from || info.revision >= f.info.revision) f.info = info;
+  if (f.owner != from) f.has_segment = false;  // a new owner: its segments from now
+  f.owner = from;
+  f.lost_at = -1.0;
+  (void)t0;
+}
+
+void ServerLoop::yield(uint32_t id, const MatchInfoOut &to, const ParticipantId &from) {
+  sched_.erase(std::remove_if(sched_.begin(), sched_.end(), [id](const Scheduled &s) { return s.match->id() == id; }),
+               sched_.end());
+  stats_.yields++;
+  Match *m = host_.find(id);
+  std::string err;
+  if (settings_.standby && m && m->follow(to, &err)) {
+    Followed f;
+    f.info = to;
+    f.owner = from;
+    followed_[id] = f;
+  } else {
+    host_.remove(id);
+  }
+  say("yielded match " + std::to_string(id) + " to server " + std::to_string(to.server_id) + " (participant " +
+      hex(from) + ")" + (settings_.standby ? ", following it" : ""));
+}
+
+// ---- claims ----------------------------------------------------------------
+
+bool ServerLoop::claim(const MatchConfig &config, double t0, std::string *err) {
+  const ball_scene *sc = host_.scene(config.scene_name, err);
+  if (!sc || !host_.add_match(config, *sc, err)) return false;
+  Scheduled s = schedule(host_.find(config.id));
+  s.firm_at = t0 + settings_.settle;
+  sched_.push_back(s);
+  publish_info(sched_.back());
+  claimed_++;
+  stats_.claims++;
+  return true;
+}
+
+void ServerLoop::claim_unplaced(double t0) {
+  std::vector<uint32_t> unplaced;
+  for (const auto &c : candidates_) {
+    if (scheduled(c.id) || host_.find(c.id)) continue;
+    auto o = owners_.find(c.id);
+    // placed while its owner lives, and for orphan_wait after it was lost (a standby's to take over)
+    if (o != owners_.end() && (o->second.second < 0.0 || t0 - o->second.second < settings_.orphan_wait)) continue;
+    unplaced.push_back(c.id);
+  }
+  if (unplaced.empty()) return;
+  std::map<uint32_t, uint32_t> to = assign_claims(unplaced, views());
+  for (const auto &c : candidates_) {
+    auto w = to.find(c.id);
+    if (w == to.end() || w->second != settings_.server_id) continue;
+    std::string err;
+    if (claim(c, t0, &err)) say("claimed match " + std::to_string(c.id));
+    else say("cannot claim match " + std::to_string(c.id) + ": " + err);
+  }
+}
+
+// A CREATE for a new match: a claimant creates it when the claim rule gives
+// it the match, a server that claims nothing but steps its configured
+// matches as before; a standby alone never.
+bool ServerLoop::may_create(const ControlIn &c) {
+  if (c.kind != ControlKind::create || host_.find(c.match_id)) return true;
+  if (settings_.claim == 0) return !settings_.standby;
+  if (claimed_ >= settings_.claim) return false;
+  std::map<uint32_t, uint32_t> to = assign_claims({c.match_id}, views());
+  auto w = to.find(c.match_id);
+  return w != to.end() && w->second == settings_.server_id;
+}
+
+// ---- take-overs --------------------------------------------------------------
+
+void ServerLoop::take_over(double t0, double now) {
+  for (auto it = followed_.begin(); it != followed_.end();) {
+    Followed &f = it->second;
+    uint32_t next = 0;
+    if (f.lost_at < 0.0 || t0 < f.lost_at + settings_.takeover_grace ||
+        !successor(views(), f.info.server_id, &next) || next != settings_.server_id) {
+      ++it;
+      continue;
+    }
+    Match *m = host_.find(it->first);
+    Scheduled s = schedule(m);
+    // on the owner's sim clock, as its clients map it (protocol.md, "Time"),
+    // to the frame before this server's first: that frame lands on the mapping
+    const MatchInfoOut &info = f.info;
+    bool plays = info.state == MatchState::playing || (f.has_segment && f.segment.seq > info.segment_seq);
+    double first_real = s.clock.realtime_at(s.clock.deadline(s.k));
+    double target = info.sim_time;
+    if (plays) target += (first_real - m->frame_time() - info.server_time) * info.time_base;
+    if (f.has_segment) target = std::max(target, f.segment.segment.t0);
+    out_.clear();
+    std::string err;
+    if (!m->restore(info, f.has_segment ? &f.segment : nullptr, target, &out_, &err)) {
+      stats_.follow_failures++;
+      say("cannot take match " + std::to_string(it->first) + " over: " + err);
+      host_.remove(it->first);
+      it = followed_.erase(it);
+      continue;
+    }
+    s.revision = info.revision;
+    s.last_frame_real = first_real - m->frame_time();  // the instant the sim time `target` holds for
+    s.taken_over = true;
+    s.since = now;
+    sched_.push_back(s);
+    publish(out_, sched_.back(), now);
+    publish_info(sched_.back());
+    stats_.takeovers++;
+    char line[256];
+    std::snprintf(line, sizeof line,
+                  "took match %u over from server %u at sim time %.3f (segment %u, %zu segments caught up, owner lost "
+                  "%.2f s ago)",
+                  it->first, info.server_id, m->sim().time, info.segment_seq > f.segment.seq ? info.segment_seq : f.segment.seq,
+                  out_.segments.size(), t0 - f.lost_at);
+    say(line);
+    it = followed_.erase(it);
+  }
 }
 
 template <class T>
@@ -80,11 +328,25 @@ void ServerLoop::publish_info(Scheduled &s) {
 
 // ---- the phases ----------------------------------------------------------------
 
-void ServerLoop::take_notes() {
+void ServerLoop::take_notes(double t0) {
   notes_.clear();
   port_.take_notes(&notes_);
   for (const auto &n : notes_) {
     switch (n.kind) {
+      case PortNote::server_lost: {
+        auto p = peers_.find(n.who);
+        if (p != peers_.end()) {
+          if (p->second.alive)
+            say("server " + std::to_string(p->second.status.server_id) + " (participant " + hex(n.who) +
+                ") is gone: its writers lost their liveliness");
+          p->second.alive = false;
+        }
+        for (auto &f : followed_)
+          if (f.second.owner == n.who && f.second.lost_at < 0.0) f.second.lost_at = t0;
+        for (auto &o : owners_)
+          if (o.second.first == n.who && o.second.second < 0.0) o.second.second = t0;
+        break;
+      }
       case PortNote::writer_lost:
         host_.on_participant_lost(n.who);
         stats_.writers_lost++;
@@ -124,12 +386,20 @@ void ServerLoop::take_controls(double now) {
       stats_.totals.controls_refused++;
       continue;
     }
+    if (!may_create(control)) continue;  // another server's to create (the claim rule)
     out_.clear();
     Match *m = nullptr;
     size_t before = host_.matches().size();
     Reason r = host_.on_control(control, now, &out_, &m);
     if (r != Reason::none) stats_.totals.controls_refused++;
-    if (host_.matches().size() > before) sched_.push_back(schedule(host_.matches().back().get()));  // CREATE
+    if (host_.matches().size() > before) {  // CREATE
+      sched_.push_back(schedule(host_.matches().back().get()));
+      if (settings_.claim > 0) {
+        sched_.back().firm_at = clock_.mono() + settings_.settle;
+        claimed_++;
+        stats_.claims++;
+      }
+    }
     if (!m) continue;
     for (auto &s : sched_)
       if (s.match == m) {
@@ -143,6 +413,10 @@ void ServerLoop::run_due_frames(double t0, double now) {
   for (auto &s : sched_) {
     double d = s.clock.deadline(s.k);
     if (d > t0 + 1e-6) continue;
+    if (t0 < s.firm_at) {  // a claim settling: nothing moves yet
+      s.k = s.clock.first_at(t0 + 1e-6);
+      continue;
+    }
     // far behind (the machine stalled): skip to now rather than race
     double behind = (t0 - d) / s.clock.period();
     if (behind > settings_.max_behind) {
@@ -168,19 +442,20 @@ void ServerLoop::run_due_frames(double t0, double now) {
   }
 }
 
-void ServerLoop::check_conflicts(const std::function<void(const MatchInfoOut &, const ParticipantId &)> &on_conflict) {
-  MatchInfoOut info;
-  ParticipantId from;
-  while (port_.take_other_info(&info, &from))
-    if (host_.find(info.match_id)) {
-      stats_.conflicts++;
-      if (on_conflict) on_conflict(info, from);
-    }
-}
 
 double ServerLoop::next_wake() const {
   double wake = next_status_;
-  for (const auto &s : sched_) wake = std::min(wake, s.clock.deadline(s.k));
+  bool often = false;  // frames come often enough to assert the liveliness on time
+  for (const auto &s : sched_) {
+    wake = std::min(wake, s.clock.deadline(s.k));
+    often = often || s.clock.period() <= kLivelinessPeriod;
+  }
+  if (!often) wake = std::min(wake, next_assert_);
+  // a standby takes its followed matches' samples, notes and data at least
+  // every kFollowWake, and wakes for a take-over when its grace ends
+  if (!followed_.empty()) wake = std::min(wake, clock_.mono() + kFollowWake);
+  for (const auto &f : followed_)
+    if (f.second.lost_at >= 0.0) wake = std::min(wake, f.second.lost_at + settings_.takeover_grace);
   return wake;
 }
 
@@ -192,15 +467,23 @@ bool ServerLoop::step() {
 bool ServerLoop::wake() {
   double t0 = clock_.mono();
   double now = clock_.realtime();
-  take_notes();
+  keep_alive(t0);
+  take_notes(t0);
+  take_others(t0);
+  for (auto &f : followed_) {  // the owner's sim clock, for the samples' checks
+    const MatchInfoOut &i = f.second.info;
+    Match *m = host_.find(f.first);
+    if (m) m->follow_clock(i.sim_time + (i.state == MatchState::playing ? (now - i.server_time) * i.time_base : 0.0));
+  }
   take_samples(now);
   take_controls(now);
+  take_over(t0, now);
   run_due_frames(t0, now);
   double t1 = clock_.mono();
   stats_.frame_time.add(t1 - t0);
   if (t1 < next_status_) return false;
   // the status phase
-  check_conflicts(on_conflict_);
+  if (settings_.claim > 0) claim_unplaced(t1);
   close_period();
   stats_.late_p99.add(stats_.late.quantile(0.99));
   stats_.late.clear();
@@ -242,10 +525,16 @@ StatusOut ServerLoop::status_now() const {
   o.server_id = settings_.server_id;
   o.server_time = clock_.realtime();
   o.uptime = uptime();
-  o.matches = static_cast<uint32_t>(host_.matches().size());
-  for (const auto &m : host_.matches()) o.playing += m->state() == MatchState::playing;
   o.frame_p50 = stats_.frame_time.quantile(0.5);
   o.frame_p99 = stats_.frame_time.quantile(0.99);
+  o.matches = static_cast<uint32_t>(sched_.size());
+  o.playing = 0;
+  for (const auto &s : sched_) o.playing += s.match->state() == MatchState::playing;
+  o.max_matches = static_cast<uint32_t>(host_.max_matches());
+  o.following = static_cast<uint32_t>(followed_.size());
+  o.claim_room = own_view().claim_room;
+  o.standby = settings_.standby;
+  o.strength = settings_.strength;
   return o;
 }
 
@@ -262,11 +551,19 @@ ServerReport ServerLoop::report() const {
   r.deadline_missed = stats_.deadline_missed;
   r.writers_lost = stats_.writers_lost;
   r.conflicts = stats_.conflicts;
+  r.takeovers = stats_.takeovers;
+  r.yields = stats_.yields;
+  r.claims = stats_.claims;
+  r.follow_failures = stats_.follow_failures;
+  r.following = static_cast<uint32_t>(followed_.size());
   r.latency_p50 = stats_.latency_all.quantile(0.5);
   r.latency_p99 = stats_.latency_all.quantile(0.99);
   r.latency_count = stats_.latency_all.size();
-  for (const auto &m : host_.matches()) {
+  for (const auto &sc : sched_) {
+    const Match *m = sc.match;
     MatchReport mr;
+    mr.since = sc.since;
+    mr.taken_over = sc.taken_over;
     mr.id = m->id();
     mr.state = m->state();
     mr.counters = m->counters();

@@ -4,9 +4,17 @@
 //
 //   take notes     what the DDS threads noticed: writers lost, deadlines
 //                  missed, samples DDS rejected or lost (counted as drops)
+//   take others    what the other servers of the domain wrote: their
+//                  status (who is there, their role and room), MatchInfo
+//                  and segments; a standby follows their matches with it,
+//                  and a server that reads another's MatchInfo for a match
+//                  it steps yields it (docs/protocol.md, "Several servers")
 //   take samples   every racket sample that came in, to its match
 //   take controls  every control message, to its match; a CREATE schedules
 //                  the new match
+//   take over      a followed match whose owner's writers lost their
+//                  liveliness a grace ago, when this server is its
+//                  successor: restored (Match::restore) and scheduled
 //   run due frames each match whose deadline has come steps one frame and
 //                  publishes what it produced; a match more than
 //                  max_behind frames late (the machine stalled) skips to
@@ -21,19 +29,23 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
 #include "frame_clock.h"
 #include "host.h"
+#include "placement.h"
 #include "records.h"
 
 namespace ballsrv {
 
 // What the network side noticed about the racket samples' writers.
 struct PortNote {
-  enum Kind { writer_lost, deadline_missed, rejected, lost } kind;
-  ParticipantId who{};  // writer_lost: the participant; zeros otherwise
+  // writer_lost: a player's racket writer; server_lost: another server's
+  // writers of the server topics (its liveliness lost or unmatched)
+  enum Kind { writer_lost, deadline_missed, rejected, lost, server_lost } kind;
+  ParticipantId who{};  // writer_lost, server_lost: the participant; zeros otherwise
   uint64_t count = 1;   // samples or deadlines
 };
 
@@ -43,21 +55,40 @@ class ServerPort {
   virtual void take_notes(std::vector<PortNote> *out) = 0;  // appends what was noticed since the last call
   virtual bool take_sample(RacketSampleIn *sample) = 0;     // false: none left; from and source_time filled in
   virtual bool take_control(ControlIn *control) = 0;        // false: none left; from filled in
-  // MatchInfo written by other servers (our own is skipped); false: none left
+  // MatchInfo, segments and status written by other servers (our own are
+  // skipped); false: none left
   virtual bool take_other_info(MatchInfoOut *info, ParticipantId *from) = 0;
+  virtual bool take_other_segment(SegmentOut *segment, ParticipantId *from) = 0;
+  virtual bool take_other_status(StatusOut *status, ParticipantId *from) = 0;
   // false: the write was refused (counted as a write failure)
   [[nodiscard]] virtual bool write(const SegmentOut &s) = 0;
   [[nodiscard]] virtual bool write(const EventOut &e) = 0;
   [[nodiscard]] virtual bool write(const StateOut &s) = 0;
   [[nodiscard]] virtual bool write(const MatchInfoOut &i) = 0;
   [[nodiscard]] virtual bool write(const StatusOut &s) = 0;
+  // Asserts the liveliness of every writer (docs/protocol.md: manual by
+  // topic, lease 1 s); the loop calls it every kLivelinessPeriod. false: refused.
+  virtual bool assert_liveliness() = 0;
 };
+
+// s: how often a standby with nothing of its own to step wakes to take
+// its followed matches' samples and notes
+constexpr double kFollowWake = 1.0 / 60.0;
+// s between two assertions of the writers' liveliness: 4 per 1 s lease
+constexpr double kLivelinessPeriod = 0.25;
 
 struct LoopSettings {
   uint32_t server_id = 1;        // in every sample written
   double status_interval = 1.0;  // real s between status writes
   double info_interval = 1.0;    // real s between a match's periodic MatchInfo
   double max_behind = 5.0;       // frames: a match further behind its deadline skips to the present
+  // its place among the servers of a domain (docs/protocol.md, "Several servers")
+  bool standby = false;          // follows other servers' matches, takes one over when its owner dies
+  uint32_t claim = 0;            // configured or created matches it may claim; 0: it serves its configured ones
+  uint32_t strength = 20;        // its match writers' ownership strength (the QoS file's, for ServerStatus)
+  double settle = 1.0;           // real s a claimed match waits before its first frame (startup_wait)
+  double takeover_grace = 0.2;   // real s from the owner's writers lost to the take-over
+  double orphan_wait = 5.0;      // real s an owner is gone before a claimant may start its match anew
 };
 
 // The loop's counters: the status line, ServerStatus, the stats file.
@@ -69,6 +100,11 @@ struct LoopStats {
   uint64_t skipped = 0;         // frames skipped after a stall
   uint64_t deadline_missed = 0, writers_lost = 0;
   uint64_t conflicts = 0;       // MatchInfo of one of our matches from another server
+  uint64_t takeovers = 0;       // followed matches taken over
+  uint64_t yields = 0;          // matches given up to a server that outranks this one
+  uint64_t claims = 0;          // matches claimed (configured or created)
+  uint64_t follow_failures = 0; // another server's matches this one could not follow or restore
+  uint64_t liveliness_failures = 0;  // liveliness assertions the port refused
   Percentiles frame_time;       // real s of work per wake-up, this status period
   Percentiles late;             // real s a frame started after its deadline, this status period
   Percentiles late_p99;         // each period's p99 of that, over the run
@@ -85,9 +121,14 @@ class ServerLoop {
   // Listens up to `seconds` for another server announcing one of our
   // matches: true with its MatchInfo (the domain is busy).
   bool find_owner(double seconds, const std::function<bool()> &stop, MatchInfoOut *other);
+  // A standby's or claimant's start: announces this server (ServerStatus)
+  // and listens `seconds` to the others (take others), so that it knows
+  // them before it claims or follows.
+  void listen(double seconds, const std::function<bool()> &stop);
 
   // Schedules every match (their frames count from now: matches of one
-  // rate step together) and publishes their MatchInfo.
+  // rate step together) and publishes their MatchInfo; a claimant first
+  // keeps only the configured matches the claim rule gives it.
   void start();
 
   // Runs the phases now; true when a status period ended (status() has
@@ -103,11 +144,17 @@ class ServerLoop {
   // The last status, written once more at the end.
   StatusOut finish();
 
+  // Lines worth a line of the server's log: take-overs, yields, claims,
+  // matches it cannot follow.
+  void on_note(std::function<void(const std::string &)> fn) { on_note_ = std::move(fn); }
+
   // The phases, in the order step runs them (t0: mono s of the wake-up,
   // now: server s).
-  void take_notes();
+  void take_notes(double t0);
+  void take_others(double t0);
   void take_samples(double now);
   void take_controls(double now);
+  void take_over(double t0, double now);
   void run_due_frames(double t0, double now);
 
   double next_wake() const;  // mono s
@@ -125,11 +172,35 @@ class ServerLoop {
     double last_frame_real = 0.0;  // server s of the newest frame's deadline
     double next_info = 0.0;        // mono s of the next periodic MatchInfo
     uint32_t revision = 0;
+    double firm_at = 0.0;          // mono s: no frame before (a claim settling)
+    double since = 0.0;            // server s: when this server began to step it
+    bool taken_over = false;       // from another server
+  };
+  // Another server's match this one follows (a standby).
+  struct Followed {
+    MatchInfoOut info;             // the owner's newest
+    SegmentOut segment;            // its newest (highest seq)
+    bool has_segment = false;
+    ParticipantId owner{};         // the owner's participant
+    double lost_at = -1.0;         // mono s its writers lost their liveliness; -1: alive
+  };
+  struct Peer {
+    StatusOut status;              // its newest ServerStatus
+    bool alive = true;
   };
   Scheduled schedule(Match *m);
+  Scheduled *scheduled(uint32_t id);
+  ServerView own_view() const;
+  std::vector<ServerView> views() const;  // the live servers heard of, and this one
+  void other_info(const MatchInfoOut &info, const ParticipantId &from, double t0);
+  void yield(uint32_t id, const MatchInfoOut &to, const ParticipantId &from);
+  bool claim(const MatchConfig &config, double t0, std::string *err);
+  void claim_unplaced(double t0);
+  bool may_create(const ControlIn &control);
+  void say(const std::string &line);
+  void drop_own_if_standby();
   void publish(const MatchOutput &out, Scheduled &s, double now);
   void publish_info(Scheduled &s);
-  void check_conflicts(const std::function<void(const MatchInfoOut &, const ParticipantId &)> &on_conflict);
   void close_period();  // the status written, the period's latency kept for the line
   template <class T>
   void write(const T &sample, uint64_t *written);
@@ -146,6 +217,14 @@ class ServerLoop {
   MatchOutput out_;
   std::vector<PortNote> notes_;
   std::function<void(const MatchInfoOut &, const ParticipantId &)> on_conflict_;
+  std::function<void(const std::string &)> on_note_;
+  std::map<uint32_t, Followed> followed_;
+  std::map<ParticipantId, Peer> peers_;
+  std::map<uint32_t, std::pair<ParticipantId, double>> owners_;  // match -> owner heard of, mono s it was lost (-1: alive)
+  std::vector<MatchConfig> candidates_;  // a claimant's configured matches not (yet) its own
+  uint32_t claimed_ = 0;
+  double next_assert_ = 0.0;  // mono s of the next liveliness assertion
+  void keep_alive(double t0);
 };
 
 // The status line: "ball-server 1: 12 s, matches 1 (1 playing), samples in ...".
