@@ -41,6 +41,8 @@ struct FakePort : ServerPort {
   std::deque<ControlIn> controls;
   std::vector<PortNote> notes;
   std::deque<std::pair<MatchInfoOut, ParticipantId>> others;
+  std::deque<std::pair<SegmentOut, ParticipantId>> other_segments;
+  std::deque<std::pair<StatusOut, ParticipantId>> other_status;
   std::vector<SegmentOut> segments;
   std::vector<EventOut> events;
   std::vector<StateOut> states;
@@ -55,11 +57,15 @@ struct FakePort : ServerPort {
   }
   bool take_sample(RacketSampleIn *s) override { return pop(samples, s); }
   bool take_control(ControlIn *c) override { return pop(controls, c); }
-  bool take_other_info(MatchInfoOut *info, ParticipantId *from) override {
-    if (others.empty()) return false;
-    *info = others.front().first;
-    *from = others.front().second;
-    others.pop_front();
+  bool take_other_info(MatchInfoOut *info, ParticipantId *from) override { return pop_from(others, info, from); }
+  bool take_other_segment(SegmentOut *s, ParticipantId *from) override { return pop_from(other_segments, s, from); }
+  bool take_other_status(StatusOut *s, ParticipantId *from) override { return pop_from(other_status, s, from); }
+  template <class T>
+  static bool pop_from(std::deque<std::pair<T, ParticipantId>> &q, T *out, ParticipantId *from) {
+    if (q.empty()) return false;
+    *out = q.front().first;
+    *from = q.front().second;
+    q.pop_front();
     return true;
   }
   bool write(const SegmentOut &s) override { return keep(segments, s); }
@@ -67,6 +73,11 @@ struct FakePort : ServerPort {
   bool write(const StateOut &s) override { return keep(states, s); }
   bool write(const MatchInfoOut &i) override { return keep(infos, i); }
   bool write(const StatusOut &s) override { return keep(statuses, s); }
+  int asserted = 0;
+  bool assert_liveliness() override {
+    asserted++;
+    return !refuse;
+  }
 
   template <class T>
   static bool pop(std::deque<T> &q, T *out) {
@@ -345,6 +356,10 @@ TEST(another_server_for_our_match) {
   CHECK_EQ(seen, 1);
   CHECK(who == participant(9));
   CHECK_EQ(r.loop->stats().conflicts, 1u);
+  // our reader took the other's sample: DDS ranks it above us, so we yield
+  CHECK_EQ(r.loop->stats().yields, 1u);
+  CHECK(r.host.find(0) == nullptr);
+  CHECK_EQ(r.loop->status_now().matches, 0u);
 }
 
 CHECK_MAIN

@@ -55,16 +55,22 @@ target_link_libraries(ball_flood PRIVATE ball_app ball_dds)
 target_compile_options(ball_flood PRIVATE ${BALL_CXX_WARNINGS})
 set_target_properties(ball_flood PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/server)
 
-add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp)
+add_executable(ball_create ${CMAKE_CURRENT_LIST_DIR}/create.cpp)
+target_link_libraries(ball_create PRIVATE ball_app ball_dds)
+target_compile_options(ball_create PRIVATE ${BALL_CXX_WARNINGS})
+set_target_properties(ball_create PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/server)
+
+add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp ${CMAKE_CURRENT_LIST_DIR}/itest_failover.cpp)
 target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static ball_render)
 target_include_directories(ball_itest PRIVATE ${PROJECT_SOURCE_DIR}/tests/render ${PROJECT_SOURCE_DIR}/tests/support)
 target_compile_options(ball_itest PRIVATE ${BALL_CXX_WARNINGS})
-add_dependencies(ball_itest ball-server ball-bot ball-watch ball_flood)
+add_dependencies(ball_itest ball-server ball-bot ball-watch ball-load ball_flood ball_create)
 
 # each case on the DDS domain cmake/dds_domains.cmake gives it: parallel runs
 # never meet; the discovery case runs Debian's fastdds-tools (./run setup)
 find_program(BALL_FASTDDS fastdds)
-set(BALL_ITEST_CASES rally desync pause flood late_join lossy server_cli busy snapshots discovery)
+set(BALL_ITEST_CASES rally desync pause flood late_join lossy server_cli busy snapshots discovery
+  failover standby_killed primary_back claim)
 foreach(case ${BALL_ITEST_CASES})
   ball_dds_domain(dds_${case} domain)
   add_test(NAME dds_${case}

@@ -1,0 +1,387 @@
+// The networked cases of several servers on one domain (docs/server.md,
+// "Several servers and failover"): a hot standby takes over from a primary
+// killed mid-rally, a killed standby changes nothing, a restarted primary
+// takes nothing back, and two claimants started together split the
+// matches. Loopback only, each on a DDS domain of its own; a watcher
+// records what every client sees, and the servers' own reports say which
+// server stepped which match from when.
+#include <map>
+#include <set>
+
+#include "ball/vec3.h"
+#include "itest_kit.h"
+
+using check::note;
+
+namespace {
+
+using namespace itest;
+
+// A named program of a case, logging NAME.out and NAME.err in the work folder.
+Process program(const Env &env, const std::string &name, const std::string &exe, std::vector<std::string> args) {
+  args.insert(args.begin(), {env.bin + "/" + exe, "--domain", env.dom()});
+  return Process::start(args, path(env, name + ".out"), path(env, name + ".err"));
+}
+
+// A ball-server with id `id` and these options, its report in NAME.json.
+Process server(const Env &env, const std::string &name, int id, std::vector<std::string> extra) {
+  std::vector<std::string> a = {"--server-id", std::to_string(id), "--duration", "120", "--state-rate", "0",
+                                "--stats-json", path(env, name + ".json")};
+  a.insert(a.end(), extra.begin(), extra.end());
+  return program(env, name, "ball-server", a);
+}
+
+// Every slot of matches 0..n-1 played by bots (ball-load, one process).
+Process bots(const Env &env, int n) {
+  return program(env, "load", "ball-load",
+                 {"--matches", std::to_string(n), "--rate", "20", "--warmup", "1", "--duration", "100"});
+}
+
+ServerReport report(const Env &env, const std::string &name) {
+  ServerReport r;
+  try {
+    std::ifstream f(path(env, name + ".json"));
+    r = json::parse(f).get<ServerReport>();
+  } catch (const std::exception &e) {
+    CHECK_MSG(false, "%s.json: %s", name.c_str(), e.what());
+  }
+  return r;
+}
+
+// What a watcher's record says of one match.
+struct Seen {
+  std::vector<SegmentOut> segments;  // as received
+  std::vector<double> segment_recv;
+  std::vector<MatchInfoOut> infos;
+  std::vector<double> info_recv;
+  std::vector<EventOut> events;
+};
+
+std::map<uint32_t, Seen> by_match(const std::vector<json> &lines) {
+  std::map<uint32_t, Seen> m;
+  for (const auto &j : lines) {
+    std::string type = record_type(j);
+    if (type == "segment") {
+      SegmentOut s = j.get<SegmentOut>();
+      m[s.match_id].segments.push_back(s);
+      m[s.match_id].segment_recv.push_back(recv(j));
+    } else if (type == "match_info") {
+      MatchInfoOut i = j.get<MatchInfoOut>();
+      m[i.match_id].infos.push_back(i);
+      m[i.match_id].info_recv.push_back(recv(j));
+    } else if (type == "event") {
+      EventOut e = j.get<EventOut>();
+      m[e.match_id].events.push_back(e);
+    }
+  }
+  return m;
+}
+
+// racket hits in play of every match, from the record
+std::map<uint32_t, int> hits_by_match(const std::vector<json> &lines) {
+  std::map<uint32_t, int> h;
+  for (const auto &j : lines)
+    if (is_hit(j)) h[j.get<EventOut>().match_id]++;
+  return h;
+}
+
+// Waits until every match 0..n-1 has `want` hits in play (false after `timeout` s).
+bool rallies(Tail &t, int n, int want, double timeout) {
+  double end = mono_now() + timeout;
+  while (mono_now() < end) {
+    t.poll();
+    std::map<uint32_t, int> h = hits_by_match(t.lines);
+    int ok = 0;
+    for (int m = 0; m < n; ++m) ok += h[static_cast<uint32_t>(m)] >= want;
+    if (ok == n) return true;
+    usleep(100000);
+  }
+  return false;
+}
+
+// One match's stream as a client saw it: one server per segment seq, the
+// seqs and the events' seqs one by one without a gap or a repeat, a serve
+// only after a point, scores that never go back, and every floor or wall
+// bounce where the segment before it put the ball (1 mm): no bounce lost or
+// made twice. Returns the number of bounces checked.
+int check_stream(uint32_t id, const Seen &s) {
+  std::map<uint32_t, uint32_t> server_of;
+  for (const auto &g : s.segments) {
+    auto it = server_of.find(g.seq);
+    CHECK_MSG(it == server_of.end(), "match %u: segment %u received twice (servers %u and %u)", id, g.seq,
+              it == server_of.end() ? 0 : it->second, g.server_id);
+    server_of[g.seq] = g.server_id;
+  }
+  for (size_t k = 1; k < s.segments.size(); ++k)
+    CHECK_MSG(s.segments[k].seq == s.segments[k - 1].seq + 1, "match %u: segment %u after %u", id,
+              s.segments[k].seq, s.segments[k - 1].seq);
+  for (size_t k = 1; k < s.events.size(); ++k)
+    CHECK_MSG(s.events[k].seq == s.events[k - 1].seq + 1, "match %u: event %u after %u", id, s.events[k].seq,
+              s.events[k - 1].seq);
+  int points = 1;  // the first serve needs none
+  std::array<int, 2> score{0, 0};
+  for (const auto &e : s.events) {
+    if (e.kind == EventKind::point) points++;
+    if (e.kind == EventKind::serve) {
+      CHECK_MSG(points > 0, "match %u: a second serve (event %u) without a point", id, e.seq);
+      points = 0;
+    }
+    CHECK_MSG(e.score[0] >= score[0] && e.score[1] >= score[1], "match %u: score %d-%d after %d-%d", id, e.score[0],
+              e.score[1], score[0], score[1]);
+    score = e.score;
+  }
+  int bounces = 0;
+  if (s.infos.empty()) return 0;
+  const ball_model &model = s.infos.back().model;
+  for (size_t k = 1; k < s.segments.size(); ++k) {
+    const SegmentOut &a = s.segments[k - 1], &b = s.segments[k];
+    if (b.cause != Cause::floor && b.cause != Cause::wall) continue;
+    ball_state there;
+    ball_segment_eval(&model, &a.segment, b.segment.t0, &there);
+    double d = ball_v3_norm(ball_v3_sub(there.position, b.segment.p0));
+    CHECK_MSG(d <= 1e-3, "match %u: bounce %u is %.4f m from where segment %u put the ball", id, b.seq, d, a.seq);
+    bounces++;
+  }
+  return bounces;
+}
+
+// ---- the cases ---------------------------------------------------------------
+
+// Kill -9 the primary of 10 matches mid-rally: the standby owns every match
+// within 2 liveliness leases and goes on from where the primary left each.
+void case_failover(const Env &env) {
+  const int n = 10;
+  const double lease = 1.0;  // the QoS file's liveliness lease of the server topics
+  Case c{env};
+  Process primary = server(env, "primary", 1, {"--matches", std::to_string(n), "--startup-wait", "0"});
+  Server standby(server(env, "standby", 2, {"--standby", "--startup-wait", "0.5"}));
+  std::string rec = path(env, "watch.jsonl");
+  Process w = ready_watcher(c, rec, {});
+  Process load = bots(env, n);
+  Tail t(rec);
+  CHECK_MSG(rallies(t, n, 2, 40.0), "not every match had 2 hits within 40 s");
+  double killed = realtime_now();
+  primary.signal(SIGKILL);
+  primary.wait(2.0);
+  // within 2 leases every match's MatchInfo comes from the standby
+  std::map<uint32_t, double> owned;
+  double end = mono_now() + 10.0;
+  while (static_cast<int>(owned.size()) < n && mono_now() < end) {
+    t.poll();
+    for (const auto &j : t.lines)
+      if (is_type(j, "match_info") && j.get<MatchInfoOut>().server_id == 2 && recv(j) > killed)
+        owned.emplace(j.get<MatchInfoOut>().match_id, recv(j) - killed);
+    usleep(50000);
+  }
+  double slowest = 0.0;
+  for (const auto &o : owned) slowest = std::max(slowest, o.second);
+  note("primary killed; the standby's MatchInfo of %zu of %d matches came %.2f s after at most", owned.size(), n,
+       slowest);
+  CHECK_EQ(static_cast<int>(owned.size()), n);
+  CHECK_MSG(slowest <= 2 * lease, "the standby owned every match %.2f s after the kill, more than 2 leases", slowest);
+  usleep(6 * 1000000);
+  t.poll();
+  std::map<uint32_t, int> before = hits_by_match(t.lines);
+  load.stop();
+  w.stop();
+  t.poll();
+  int rc = standby.p.stop(5.0);
+  standby.p = Process();
+  CHECK_MSG(rc == 0, "the standby's exit status %d", rc);
+  // what every client saw, match by match
+  std::map<uint32_t, Seen> seen = by_match(t.lines);
+  int bounces = 0, handovers = 0, hits_after = 0;
+  double worst_clock = 0.0;
+  for (int m = 0; m < n; ++m) {
+    const Seen &s = seen[static_cast<uint32_t>(m)];
+    bounces += check_stream(static_cast<uint32_t>(m), s);
+    // from the first segment of the standby on, only the standby's
+    size_t first2 = s.segments.size();
+    for (size_t k = 0; k < s.segments.size(); ++k)
+      if (s.segments[k].server_id == 2 && first2 == s.segments.size()) first2 = k;
+    for (size_t k = first2; k < s.segments.size(); ++k)
+      CHECK_MSG(s.segments[k].server_id == 2, "match %d: segment %u from server %u after the handover", m,
+                s.segments[k].seq, s.segments[k].server_id);
+    for (size_t k = 0; k < first2; ++k)
+      CHECK_MSG(s.segment_recv[k] <= killed + 0.5, "match %d: segment %u of the primary after its death", m,
+                s.segments[k].seq);
+    handovers += first2 > 0 && first2 < s.segments.size();
+    for (const auto &e : s.events) hits_after += e.kind == EventKind::racket && e.in_play && e.server_id == 2;
+    // the sim clock goes on: the standby's first MatchInfo where the primary's last maps it
+    const MatchInfoOut *p = nullptr, *q = nullptr;
+    for (const auto &i : s.infos) {
+      if (i.server_id == 1) p = &i;
+      if (i.server_id == 2 && !q) q = &i;
+    }
+    CHECK_MSG(p && q, "match %d: no MatchInfo of one of the servers", m);
+    if (p && q) {
+      CHECK_MSG(q->play.score == p->play.score || q->play.rally > p->play.rally, "match %d: score %d-%d became %d-%d",
+                m, p->play.score[0], p->play.score[1], q->play.score[0], q->play.score[1]);
+      CHECK_MSG(q->revision > p->revision, "match %d: revision %u after %u", m, q->revision, p->revision);
+      if (p->state == MatchState::playing && q->state == MatchState::playing) {
+        double mapped = p->sim_time + (q->server_time - p->server_time) * p->time_base;
+        worst_clock = std::max(worst_clock, std::fabs(q->sim_time - mapped));
+      }
+    }
+  }
+  note("%d bounces where the segment before put the ball, %d matches handed over mid-stream, %d hits from the "
+       "standby, the sim clock within %.2g s of the primary's",
+       bounces, handovers, hits_after, worst_clock);
+  CHECK_EQ(handovers, n);
+  CHECK(bounces >= n);
+  CHECK_MSG(hits_after >= n, "%d hits after the handover", hits_after);
+  CHECK_MSG(worst_clock <= 0.002, "the standby's sim clock %.4f s off the primary's", worst_clock);
+  // the standby's own books: it took every match over, each only after the kill
+  ServerReport r = report(env, "standby");
+  CHECK_EQ(r.takeovers, static_cast<uint64_t>(n));
+  CHECK_EQ(r.matches.size(), static_cast<size_t>(n));
+  for (const auto &mr : r.matches)
+    CHECK_MSG(mr.taken_over && mr.since >= killed, "match %u: stepped by the standby from %.3f, the kill at %.3f",
+              mr.id, mr.since, killed);
+  (void)before;
+}
+
+// Kill -9 the standby instead: nothing a client sees changes.
+void case_standby_killed(const Env &env) {
+  const int n = 2;
+  Case c{env};
+  Server primary(server(env, "primary", 1, {"--matches", std::to_string(n), "--startup-wait", "0"}));
+  Process standby = server(env, "standby", 2, {"--standby", "--startup-wait", "0.5"});
+  std::string rec = path(env, "watch.jsonl");
+  Process w = ready_watcher(c, rec, {});
+  Process load = bots(env, n);
+  Tail t(rec);
+  CHECK_MSG(rallies(t, n, 2, 30.0), "not every match had 2 hits within 30 s");
+  usleep(1000000);  // the standby follows them
+  double killed = realtime_now();
+  standby.signal(SIGKILL);
+  standby.wait(2.0);
+  usleep(6 * 1000000);
+  double stopped = realtime_now();  // (the bots LEAVE when they stop: their matches pause then)
+  load.stop();
+  w.stop();
+  t.poll();
+  std::map<uint32_t, Seen> seen = by_match(t.lines);
+  int hits_after = 0, from_standby = 0, pauses = 0;
+  for (const auto &j : t.lines) {
+    if (!j.contains("server")) continue;
+    from_standby += j.at("server").get<uint32_t>() == 2;
+    bool after = recv(j) > killed && recv(j) < stopped;
+    if (after && is_hit(j)) hits_after++;
+    if (after && is_event(j, EventKind::pause)) pauses++;
+  }
+  for (int m = 0; m < n; ++m) check_stream(static_cast<uint32_t>(m), seen[static_cast<uint32_t>(m)]);
+  note("standby killed: %d hits after, %d pauses, %d samples from the standby", hits_after, pauses, from_standby);
+  CHECK_EQ(from_standby, 0);
+  CHECK_EQ(pauses, 0);
+  CHECK_MSG(hits_after >= 3, "%d hits in the 6 s after the kill", hits_after);
+  int rc = primary.p.stop(5.0);
+  primary.p = Process();
+  CHECK_MSG(rc == 0, "the primary's exit status %d", rc);
+  ServerReport r = report(env, "primary");
+  CHECK_EQ(r.yields, 0u);
+  CHECK_EQ(r.conflicts, 0u);
+  CHECK_EQ(r.matches.size(), static_cast<size_t>(n));
+}
+
+// The old primary restarted (as a standby) after the failover: it follows,
+// writes nothing and takes nothing back.
+void case_primary_back(const Env &env) {
+  const int n = 2;
+  Case c{env};
+  Process primary = server(env, "primary", 1, {"--matches", std::to_string(n), "--startup-wait", "0"});
+  Server standby(server(env, "standby", 2, {"--standby", "--startup-wait", "0.5"}));
+  std::string rec = path(env, "watch.jsonl");
+  Process w = ready_watcher(c, rec, {});
+  Process load = bots(env, n);
+  Tail t(rec);
+  CHECK_MSG(rallies(t, n, 2, 30.0), "not every match had 2 hits within 30 s");
+  primary.signal(SIGKILL);
+  primary.wait(2.0);
+  size_t from = 0;
+  json taken = wait_for(t, 10.0, [](const json &j) { return is_type(j, "match_info") && j.at("server") == 2; }, &from);
+  CHECK_MSG(!taken.is_null(), "the standby did not take over within 10 s");
+  double back = realtime_now();
+  Server again(server(env, "primary-again", 1, {"--standby", "--matches", std::to_string(n)}));
+  usleep(7 * 1000000);
+  load.stop();
+  w.stop();
+  t.poll();
+  int from_old = 0, hits_after = 0;
+  for (const auto &j : t.lines) {
+    if (!j.contains("server") || recv(j) <= back) continue;
+    from_old += j.at("server").get<uint32_t>() == 1;
+    hits_after += is_hit(j);
+  }
+  std::map<uint32_t, Seen> seen = by_match(t.lines);
+  for (int m = 0; m < n; ++m) check_stream(static_cast<uint32_t>(m), seen[static_cast<uint32_t>(m)]);
+  note("old primary back as a standby: %d samples from it, %d hits from the new owner since", from_old, hits_after);
+  CHECK_EQ(from_old, 0);
+  CHECK_MSG(hits_after >= 3, "%d hits after the old primary came back", hits_after);
+  int rc = again.p.stop(5.0);
+  again.p = Process();
+  CHECK_MSG(rc == 0, "the restarted server's exit status %d", rc);
+  ServerReport r = report(env, "primary-again");
+  note("the restarted server: following %u, took over %llu, stepped %zu", r.following,
+       static_cast<unsigned long long>(r.takeovers), r.matches.size());
+  CHECK_EQ(r.following, static_cast<uint32_t>(n));
+  CHECK_EQ(r.takeovers, 0u);
+  CHECK_EQ(r.matches.size(), 0u);
+}
+
+// Two claimants started together split 6 configured matches and one
+// created: every match stepped by exactly one of them, both with a share.
+void case_claim(const Env &env) {
+  const int n = 6;
+  Case c{env};
+  std::vector<std::string> claim = {"--claim", "10", "--matches", std::to_string(n)};
+  Server a(server(env, "claim1", 1, claim));
+  Server b(server(env, "claim2", 2, claim));
+  std::string rec = path(env, "watch.jsonl");
+  Process w = ready_watcher(c, rec, {});
+  Process load = bots(env, n);
+  Tail t(rec);
+  CHECK_MSG(rallies(t, n, 2, 40.0), "not every match had 2 hits within 40 s");
+  Process create = program(env, "create", "ball_create", {"--match", "40", "--duration", "4", "--out",
+                                                          path(env, "create.json")});
+  int crc = create.wait(15.0);
+  CHECK_MSG(crc == 0, "ball_create: status %d", crc);
+  usleep(1000000);
+  load.stop();
+  w.stop();
+  t.poll();
+  std::map<uint32_t, Seen> seen = by_match(t.lines);
+  std::map<uint32_t, int> share;
+  for (auto &kv : seen) {
+    std::set<uint32_t> servers;
+    for (const auto &i : kv.second.infos) servers.insert(i.server_id);
+    for (const auto &g : kv.second.segments) servers.insert(g.server_id);
+    CHECK_MSG(servers.size() == 1, "match %u: written by %zu servers", kv.first, servers.size());
+    if (!servers.empty()) share[*servers.begin()]++;
+    check_stream(kv.first, kv.second);
+  }
+  json created = json::parse(file_text(path(env, "create.json")), nullptr, false);
+  note("server 1 steps %d matches, server 2 %d; the created match announced by %zu server(s)", share[1], share[2],
+       created.is_object() ? created.at("servers").size() : 0);
+  CHECK_EQ(static_cast<int>(seen.size()), n + 1);
+  CHECK(share[1] >= 1 && share[2] >= 1);
+  CHECK(created.is_object() && created.at("servers").size() == 1u);
+  for (Server *s : {&a, &b}) {
+    int rc = s->p.stop(5.0);
+    s->p = Process();
+    CHECK_MSG(rc == 0, "a claimant's exit status %d", rc);
+  }
+  ServerReport r1 = report(env, "claim1"), r2 = report(env, "claim2");
+  note("claims %llu + %llu, yields %llu + %llu", static_cast<unsigned long long>(r1.claims),
+       static_cast<unsigned long long>(r2.claims), static_cast<unsigned long long>(r1.yields),
+       static_cast<unsigned long long>(r2.yields));
+  CHECK_EQ(r1.claims + r2.claims, static_cast<uint64_t>(n + 1));
+  CHECK_EQ(r1.yields + r2.yields, 0u);
+}
+
+}  // namespace
+
+TEST(failover) { itest::in_case(case_failover); }
+TEST(standby_killed) { itest::in_case(case_standby_killed); }
+TEST(primary_back) { itest::in_case(case_primary_back); }
+TEST(claim) { itest::in_case(case_claim); }
