@@ -1,0 +1,293 @@
+// Which server steps which match (placement.h, docs/protocol.md "Several
+// servers on one domain"): the claim rule and the successor rule over random
+// servers heard in random orders, then the server loop offline (a fake port
+// and clock) as a standby that takes a match over and as a claimant.
+#include <algorithm>
+#include <random>
+
+#include "check.hpp"
+#include "fake_port.h"
+#include "game.h"
+#include "placement.h"
+
+using namespace test;
+using check::note;
+
+namespace {
+
+std::vector<ServerView> random_servers(std::mt19937_64 &g, int n) {
+  std::vector<ServerView> v;
+  std::vector<uint32_t> ids;
+  while (static_cast<int>(ids.size()) < n) {
+    uint32_t id = static_cast<uint32_t>(g() % 50);
+    if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
+  }
+  for (uint32_t id : ids) {
+    ServerView s;
+    s.server_id = id;
+    s.strength = g() % 2 ? 20 : 10;
+    s.standby = g() % 2;
+    s.claim_room = static_cast<uint32_t>(g() % 4 == 0 ? 0 : g() % 40);
+    s.alive = g() % 6 != 0;
+    v.push_back(s);
+  }
+  return v;
+}
+
+}  // namespace
+
+// 2,000 random domains, each heard in 5 orders: the same claims every time,
+// each match once, to a live claimant with room, no claimant over its room,
+// and as many matches placed as there is room.
+TEST(the_claim_rule_does_not_depend_on_the_order_heard) {
+  std::mt19937_64 g(20261202);
+  int placed = 0;
+  for (int n = 0; n < 2000; ++n) {
+    std::vector<ServerView> servers = random_servers(g, 1 + static_cast<int>(g() % 6));
+    std::vector<uint32_t> matches;
+    for (int k = static_cast<int>(g() % 80); k > 0; --k) matches.push_back(static_cast<uint32_t>(g() % 500));
+    std::map<uint32_t, uint32_t> first = assign_claims(matches, servers);
+    for (int o = 0; o < 5; ++o) {
+      std::shuffle(servers.begin(), servers.end(), g);
+      std::shuffle(matches.begin(), matches.end(), g);
+      CHECK(assign_claims(matches, servers) == first);
+    }
+    std::map<uint32_t, uint32_t> got;
+    uint64_t room = 0;
+    for (const auto &kv : first) got[kv.second]++;
+    for (const auto &s : servers) {
+      if (s.alive) room += s.claim_room;
+      CHECK_MSG(got[s.server_id] <= (s.alive ? s.claim_room : 0), "server %u: %u claims, room %u", s.server_id,
+                got[s.server_id], s.claim_room);
+    }
+    std::vector<uint32_t> distinct = matches;
+    std::sort(distinct.begin(), distinct.end());
+    distinct.erase(std::unique(distinct.begin(), distinct.end()), distinct.end());
+    CHECK_EQ(first.size(), std::min<size_t>(distinct.size(), room));
+    placed += static_cast<int>(first.size());
+  }
+  note("%d matches placed over 2000 domains, each the same in 5 orders", placed);
+  CHECK(placed > 20000);
+}
+
+// With room enough, the matches spread evenly (rendezvous hashing), and a
+// newcomer takes only matches for itself: no match moves between the others.
+TEST(claims_spread_and_a_newcomer_moves_only_its_share) {
+  std::vector<ServerView> three;
+  for (uint32_t id : {1u, 2u, 3u}) {
+    ServerView s;
+    s.server_id = id;
+    s.claim_room = 100000;
+    three.push_back(s);
+  }
+  std::vector<uint32_t> matches(3000);
+  for (uint32_t k = 0; k < 3000; ++k) matches[k] = k;
+  std::map<uint32_t, uint32_t> a = assign_claims(matches, three);
+  std::map<uint32_t, int> share;
+  for (const auto &kv : a) share[kv.second]++;
+  note("3000 matches on 3 claimants: %d, %d, %d", share[1], share[2], share[3]);
+  for (uint32_t id : {1u, 2u, 3u}) CHECK(share[id] > 900 && share[id] < 1100);
+  std::vector<ServerView> four = three;
+  four.push_back(three[0]);
+  four.back().server_id = 4;
+  std::map<uint32_t, uint32_t> b = assign_claims(matches, four);
+  int moved = 0, to_new = 0;
+  for (uint32_t k = 0; k < 3000; ++k)
+    if (a[k] != b[k]) moved++, to_new += b[k] == 4;
+  note("a fourth claimant: %d matches move, all %d to it", moved, to_new);
+  CHECK_EQ(moved, to_new);
+  CHECK(to_new > 600 && to_new < 900);
+}
+
+// The successor of a lost owner: the strongest live standby, then the
+// lowest id, never the owner itself; against a brute force over random domains.
+TEST(the_successor_is_the_strongest_live_standby) {
+  std::mt19937_64 g(7);
+  int found = 0;
+  for (int n = 0; n < 5000; ++n) {
+    std::vector<ServerView> servers = random_servers(g, 1 + static_cast<int>(g() % 6));
+    uint32_t owner = servers[g() % servers.size()].server_id;
+    const ServerView *best = nullptr;
+    for (const auto &s : servers)
+      if (s.alive && s.standby && s.server_id != owner &&
+          (!best || std::make_pair(-static_cast<int>(s.strength), s.server_id) <
+                        std::make_pair(-static_cast<int>(best->strength), best->server_id)))
+        best = &s;
+    uint32_t who = 12345;
+    bool any = successor(servers, owner, &who);
+    CHECK_EQ(any, best != nullptr);
+    if (best) CHECK_EQ(who, best->server_id);
+    std::shuffle(servers.begin(), servers.end(), g);
+    uint32_t again = 12345;
+    successor(servers, owner, &again);
+    CHECK_EQ(again, who);
+    found += any;
+  }
+  CHECK(found > 2000);
+}
+
+// ---- the loop ----------------------------------------------------------------
+
+namespace {
+
+ParticipantId owner_participant() { return participant(77); }
+
+// A standby's loop over a fake port, and an owner's match playing offline
+// whose MatchInfo and segments the port hands it, as DDS would.
+struct StandbyRig {
+  Host host{16, true, default_config()};
+  FakeClock clock;
+  FakePort port;
+  std::unique_ptr<ServerLoop> loop;
+  Game owner;
+  size_t segments_given = 0;
+  StandbyRig() {
+    ball_scene scene;
+    ball_scene_default(&scene);
+    std::string err;
+    host.add_scene("tennis", scene, &err);
+    port.clock = &clock;
+    LoopSettings s;
+    s.server_id = 2;
+    s.standby = true;
+    s.strength = 10;
+    loop = std::make_unique<ServerLoop>(host, port, clock, s);
+    StatusOut st;
+    st.server_id = 1;
+    st.strength = 20;
+    port.other_status.push_back({st, owner_participant()});
+    owner.join(0, participant(1));
+    owner.join(1, participant(2));
+    loop->start();
+  }
+  // the players' parked rackets, to the standby's port as to the owner
+  void feed(double capture_time) {
+    for (int i = 0; i < 2; ++i) {
+      RacketSampleIn s = owner.parked_sample(i);
+      s.capture_time = capture_time;
+      port.samples.push_back(s);
+    }
+  }
+  // the owner plays on and publishes, the standby's loop wakes alongside
+  void play(double seconds) {
+    int n = static_cast<int>(seconds * 60.0);
+    for (int k = 0; k < n; ++k) {
+      if (k % 6 == 0) feed(owner.match.sim().time);
+      owner.run(1.0 / 60.0);
+      for (; segments_given < owner.segments.size(); ++segments_given) {
+        SegmentOut s = owner.segments[segments_given];
+        s.server_id = 1;
+        port.other_segments.push_back({s, owner_participant()});
+      }
+      MatchInfoOut i = owner.match.info();
+      i.server_id = 1;
+      i.server_time = clock.realtime();
+      i.revision = static_cast<uint32_t>(k + 1);
+      port.others.push_back({i, owner_participant()});
+      clock.now += 1.0 / 60.0;
+      loop->wake();
+    }
+  }
+};
+
+}  // namespace
+
+// A standby follows the owner's match, writes nothing, and takes it over
+// 0.2 s after the owner's writers are lost: its segments go on from the
+// owner's seq, its MatchInfo from the owner's revision, on the owner's clock.
+TEST(a_standby_takes_a_match_over_when_its_owner_is_lost) {
+  StandbyRig r;
+  r.play(4.0);
+  CHECK_EQ(r.loop->status_now().following, 1u);
+  CHECK_EQ(r.loop->status_now().matches, 0u);
+  CHECK(r.port.segments.empty() && r.port.events.empty() && r.port.infos.empty());
+  CHECK(r.host.find(7) && r.host.find(7)->following());
+  CHECK(!r.owner.segments.empty());
+  uint32_t last_seq = r.owner.segments.back().seq;
+  MatchInfoOut last = r.owner.match.info();
+  double lost = r.clock.now;
+  r.port.notes.push_back({PortNote::server_lost, owner_participant(), 1});
+  // the owner stops; the standby wakes on its own
+  while (r.loop->next_wake() < lost + 0.2 - 1e-9) r.loop->step();
+  CHECK_EQ(r.loop->stats().takeovers, 0u);
+  r.loop->step();  // the wake-up at the end of the grace
+  CHECK_EQ(r.loop->stats().takeovers, 1u);
+  CHECK_NEAR(r.clock.now, lost + 0.2, 1e-9);
+  CHECK_EQ(r.loop->status_now().following, 0u);
+  CHECK(!r.host.find(7)->following());
+  CHECK(!r.port.infos.empty());
+  const MatchInfoOut &first = r.port.infos.front();
+  note("taken over %.3f s after the owner was lost; first MatchInfo revision %u, segment %u (the owner's %u)",
+       r.clock.now - lost, first.revision, first.segment_seq, last_seq);
+  CHECK_EQ(first.server_id, 2u);
+  CHECK(first.revision > 240u);  // the owner's went up to 240
+  CHECK(first.segment_seq >= last_seq);
+  CHECK(first.play.score == last.play.score || first.play.rally > last.play.rally);
+  // on the owner's clock: sim time at the info's instant as the owner's info maps it
+  double mapped = last.sim_time + (first.server_time - (lost - 1.0 / 60.0 + kRealOffset)) * last.time_base;
+  CHECK_NEAR(first.sim_time, mapped, 1.0 / 60.0 + 1e-6);
+  // the players go on with the standby: its segments go on from the owner's seq
+  while (r.clock.now < lost + 4.0) {
+    r.loop->step();
+    if (r.loop->stats().totals.frames % 6 == 0) r.feed(r.host.find(7)->sim().time);
+  }
+  note("%zu segments from the standby in 4 s", r.port.segments.size());
+  CHECK(r.port.segments.size() >= 2u);
+  for (size_t k = 0; k < r.port.segments.size(); ++k)
+    CHECK_EQ(r.port.segments[k].seq, last_seq + 1 + static_cast<uint32_t>(k));
+  ServerReport rep = r.loop->report();
+  CHECK(rep.matches.size() == 1u && rep.matches[0].taken_over);
+}
+
+// Of 8 configured matches, a claimant that hears another claimant takes the
+// ones the claim rule gives it, and steps them only after it settled.
+TEST(a_claimant_takes_its_share_after_settling) {
+  Host host{16, true, default_config()};
+  FakeClock clock;
+  FakePort port;
+  port.clock = &clock;
+  ball_scene scene;
+  ball_scene_default(&scene);
+  std::string err;
+  host.add_scene("tennis", scene, &err);
+  std::vector<uint32_t> ids;
+  for (uint32_t k = 0; k < 8; ++k) {
+    MatchConfig c = default_config();
+    c.id = k;
+    CHECK(host.add_match(c, scene, &err));
+    ids.push_back(k);
+  }
+  LoopSettings s;
+  s.server_id = 3;
+  s.claim = 10;
+  s.settle = 1.0;
+  ServerLoop loop(host, port, clock, s);
+  StatusOut other;
+  other.server_id = 4;
+  other.claim_room = 10;
+  port.other_status.push_back({other, participant(40)});
+  loop.listen(0.2, [] { return false; });
+  loop.start();
+  ServerView me, them;
+  me.server_id = 3;
+  me.claim_room = 10;
+  them.server_id = 4;
+  them.claim_room = 10;
+  std::map<uint32_t, uint32_t> rule = assign_claims(ids, {me, them});
+  std::vector<uint32_t> mine;
+  for (const auto &kv : rule)
+    if (kv.second == 3) mine.push_back(kv.first);
+  note("the rule gives server 3 %zu of 8 matches", mine.size());
+  CHECK(!mine.empty() && mine.size() < 8);
+  CHECK_EQ(loop.status_now().matches, static_cast<uint32_t>(mine.size()));
+  CHECK_EQ(loop.stats().claims, mine.size());
+  CHECK_EQ(loop.status_now().claim_room, 10u - static_cast<uint32_t>(mine.size()));
+  for (uint32_t id : ids) CHECK_EQ(host.find(id) != nullptr, rule[id] == 3);
+  double start = clock.now;
+  while (clock.now < start + 0.9) loop.step();
+  CHECK_EQ(loop.stats().totals.frames, 0u);  // settling: nothing moves
+  while (clock.now < start + 1.5) loop.step();
+  CHECK(loop.stats().totals.frames > 0u);
+}
+
+CHECK_MAIN
