@@ -29,6 +29,10 @@ int main(int argc, char **argv) {
       ->check(CLI::Range(1, 64));
   cli.add_option("--sweep", o.sweep, "match counts: start a ball-server for each and measure")->delimiter(',');
   cli.add_option("--frame-rate", o.frame_rate, "with --sweep: the server's frame rate")->capture_default_str();
+  cli.add_option("--server-priority", o.server_priority,
+                 "with --sweep: the servers' --realtime-priority (SCHED_FIFO; root); 0: the normal scheduler")
+      ->check(CLI::Range(0, 99))
+      ->capture_default_str();
   cli.add_option("--state-rate", o.state_rates, "with --sweep: the server's ball state rates, each a point")
       ->delimiter(',')->capture_default_str();
   cli.add_option("--rounds", o.rounds, "with --sweep: times every point is measured (interleaved)")

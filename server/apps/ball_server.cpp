@@ -40,6 +40,8 @@ int main(int argc, char **argv) {
   if (!opt.apply(&config, &err) || !load_scenes(config, &scenes, &err)) return fail(kProgram, err);
 
   install_stop_signals();
+  // before DDS starts its threads: they inherit it
+  if (config.realtime_priority > 0 && !set_realtime_priority(config.realtime_priority, &err)) return fail(kProgram, err);
   std::string profile = find_profile(config.profile);
   auto domain = dds::Domain::open(config.domain, profile, config.participant, config.discovery_server,
                                   "ball-server " + std::to_string(config.server_id), &err);
@@ -69,20 +71,20 @@ int main(int argc, char **argv) {
   }
   loop.start();
   if (!quiet)
-    std::printf("%s %u: %zu matches on domain %d (profile %s, participant %s), player timeout %.2f s, room for %u "
-                "matches\n",
-                kProgram, config.server_id, host->matches().size(), config.domain, profile.c_str(),
-                hex(domain->id()).c_str(), config.defaults.player_timeout, config.max_matches);
+    std::printf("%s %u: %u matches, following %u, on domain %d (profile %s, participant %s), player timeout %.2f s, "
+                "room for %u matches\n",
+                kProgram, config.server_id, loop.status_now().matches, loop.status_now().following, config.domain,
+                profile.c_str(), hex(domain->id()).c_str(), config.defaults.player_timeout, config.max_matches);
   std::fflush(stdout);
   auto print = [&](const StatusOut &o) {
     if (quiet) return;
     std::printf("%s\n", status_line(o, loop.stats()).c_str());
     std::fflush(stdout);
   };
-  // another server that started without looking is reported once a second
+  // another server that outranks this one for one of its matches: it yields it (protocol.md)
   auto conflict = [&](const MatchInfoOut &info, const ParticipantId &from) {
-    std::fprintf(stderr, "%s %u: warning: match %u is also served by server %u (participant %s)\n", kProgram,
-                 config.server_id, info.match_id, info.server_id, hex(from).c_str());
+    std::fprintf(stderr, "%s %u: warning: match %u is also served by server %u (participant %s), which outranks this one\n",
+                 kProgram, config.server_id, info.match_id, info.server_id, hex(from).c_str());
   };
   loop.run(duration, stop_requested, print, conflict);
   print(loop.finish());

@@ -1,5 +1,9 @@
 #include "common.h"
 
+#include <pthread.h>
+#include <sched.h>
+#include <cstring>
+
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
@@ -120,6 +124,15 @@ std::string level_names() {
     s += l + 2 < BALL_LEVEL_COUNT + 1 ? ", " : l < BALL_LEVEL_COUNT ? " or " : "";
   }
   return s;
+}
+
+bool set_realtime_priority(int priority, std::string *err) {
+  sched_param p{};
+  p.sched_priority = priority;
+  int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &p);
+  if (rc == 0) return true;
+  *err = "realtime priority " + std::to_string(priority) + " (SCHED_FIFO): " + std::strerror(rc);
+  return false;
 }
 
 bool load_scene(const std::string &what, ball_scene *scene, std::string *err) {

@@ -122,7 +122,9 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       if (!measuring || seg.cause != Cause::racket || !seg.sample.valid) return;
       part.latency.push_back(recv - seg.sample.source_time);
       const MatchInfoOut *info = port.info(seg.match_id);
-      if (info && info->time_base > 0.0) part.hit_to_wire.push_back(recv - server_time_of(*info, seg.segment.t0));
+      // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one)
+      if (info && info->time_base > 0.0 && info->server_time > 0.0)
+        part.hit_to_wire.push_back(recv - server_time_of(*info, seg.segment.t0));
     });
     if (!ok) {
       *err = group.error();
@@ -165,6 +167,7 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
                                      "--frame-rate", std::to_string(o.frame_rate), "--state-rate",
                                      std::to_string(state_rate), "--startup-wait", "0", "--quiet"};
     for (const std::string &a : dds_arguments(o.dds)) args.push_back(a);  // the server on our participant profile
+    if (o.server_priority > 0) args.insert(args.end(), {"--realtime-priority", std::to_string(o.server_priority)});
     server = Process::start(args, dir + "/server.out", dir + "/server.err");
   }
   std::vector<LoadPart> parts;

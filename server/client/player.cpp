@@ -85,6 +85,9 @@ bool BotPlayer::on_info(const MatchInfoOut &in, double real) {
     brain_.init(model_, court_, b);
     brain_ready_ = true;
   }
+  // the segment in effect, for a bot that has not got it (one that joined
+  // after a failover, whose new server has written no segment yet)
+  if (in.segment_seq > newest_seq_) on_segment(current_segment(in), real);
   return true;
 }
 

@@ -105,6 +105,11 @@ void Watcher::on_info(const MatchInfoOut &info, double real) {
   w.info = info;
   w.has_info = true;
   w.clock.observe(info.sim_time, info.server_time, info.time_base, info.state == MatchState::playing, real);
+  // the segment in effect, when no Segment sample brought it (a watcher
+  // that joined after a failover, whose new server has written none yet)
+  if (info.segment_seq > 0 && !w.segments.count(info.segment_seq) &&
+      (w.segments.empty() || info.segment_seq > w.segments.rbegin()->first))
+    w.segments[info.segment_seq] = current_segment(info);
   if (first || before != info.state)
     say(info.match_id, info.sim_time,
         std::string("match ") + name_of(info.state) + " (" + info.scene + ", level " +

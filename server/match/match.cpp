@@ -63,8 +63,8 @@ void Match::emit_segment(MatchOutput *out, Cause cause, int index, const ball_se
   SegmentOut s;
   s.match_id = config_.id;
   s.seq = ++segment_seq_;
-  s.cause = cause;
-  s.cause_index = index;
+  s.cause = segment_cause_ = cause;
+  s.cause_index = segment_cause_index_ = index;
   s.segment = seg;
   s.model_hash = model_hash_;
   s.sample = ref;
@@ -467,6 +467,9 @@ MatchInfoOut Match::info() const {
   i.pause_reason = state_ == MatchState::paused ? pause_reason_ : Reason::none;
   i.pause_slot = state_ == MatchState::paused ? pause_slot_ : -1;
   i.segment_seq = segment_seq_;
+  i.segment_cause = segment_cause_;
+  i.segment_cause_index = segment_cause_index_;
+  i.segment = sim_.seg;
   i.frame_time = frame_time();
   i.time_base = config_.time_base;
   i.sim_time = sim_.time;
@@ -610,6 +613,10 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, double targ
   serve_at_ = p.serve_at;
   event_seq_ = p.event_seq;
   segment_seq_ = std::max(seg ? seg->seq : 0u, info.segment_seq);
+  if (seg) {
+    segment_cause_ = seg->cause;
+    segment_cause_index_ = seg->cause_index;
+  }
   // only a playing match makes segments: one newer than the info says it plays
   if (seg_newer) state_ = MatchState::playing;
   following_ = false;

@@ -135,6 +135,8 @@ class Match {
   int serving_side_ = 0;
   uint32_t points_played_ = 0;
   uint32_t segment_seq_ = 0;
+  Cause segment_cause_ = Cause::serve;  // what started the current segment
+  int segment_cause_index_ = -1;
   uint32_t event_seq_ = 0;
   double state_accum_ = 0.0; // fraction of a ball state owed (state_rate / frame_rate per frame)
   MatchCounters counters_;

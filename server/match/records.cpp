@@ -116,7 +116,9 @@ void from_json(const json &j, StateOut &s) { BALL_STATE_KEYS(BALL_GET, s) }
   X("max_sample_age", i.max_sample_age) X("max_sample_lead", i.max_sample_lead)                         \
   X("model_hash", i.model_hash) X("net_x", i.net_x) X("court_x", i.court_x) X("court_z", i.court_z)     \
   X("serve_delay", i.serve_delay) X("max_rally_time", i.max_rally_time) X("serve_v_up", i.serve_v_up)   \
-  X("seed", i.seed)
+  X("seed", i.seed) X("segment_cause", i.segment_cause) X("segment_index", i.segment_cause_index)             \
+  X("segment_t0", i.segment.t0) X("segment_p0", i.segment.p0) X("segment_v0", i.segment.v0)             \
+  X("segment_s0", i.segment.s0)
 
 void to_json(json &j, const SlotInfo &s) {
   j = json::object();
@@ -132,6 +134,7 @@ void from_json(const json &j, SlotInfo &s) {
 void to_json(json &j, const MatchInfoOut &i) {
   j = json::object();
   BALL_INFO_KEYS(BALL_PUT, i)
+  j["segment_grounded"] = i.segment.grounded != 0;
   j["slots"] = i.slots;
   json &model = j["model"] = json::object();
 #define BALL_PUT_MODEL(f) model[#f] = i.model.f;
@@ -141,6 +144,7 @@ void to_json(json &j, const MatchInfoOut &i) {
 
 void from_json(const json &j, MatchInfoOut &i) {
   BALL_INFO_KEYS(BALL_GET, i)
+  i.segment.grounded = j.at("segment_grounded").get<bool>() ? 1 : 0;
   j.at("slots").get_to(i.slots);
   ball_model_default(&i.model);  // as a receiver of MatchInfo has it: only the flight fields travel
   const json &model = j.at("model");

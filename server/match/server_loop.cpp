@@ -2,6 +2,7 @@
 
 #include <cinttypes>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 
 namespace ballsrv {
@@ -57,6 +58,10 @@ ServerLoop::Scheduled ServerLoop::schedule(Match *m) {
   s.k = s.clock.first_at(now);
   s.last_frame_real = s.clock.realtime_at(now);
   s.since = clock_.realtime();
+  // the periodic MatchInfo of many matches spread over the interval (by the
+  // golden ratio of their ids), not all in one wake-up: 1000 at once took
+  // 10-20 ms, and every frame of that wake-up overran, 1 in 60
+  s.next_info = now + settings_.info_interval * std::fmod(static_cast<double>(m->id()) * 0.6180339887498949, 1.0);
   return s;
 }
 
@@ -260,9 +265,15 @@ void ServerLoop::take_over(double t0, double now) {
     double target = info.sim_time;
     if (plays) target += (first_real - m->frame_time() - info.server_time) * info.time_base;
     if (f.has_segment) target = std::max(target, f.segment.segment.t0);
+    if (info.segment_seq > 0) target = std::max(target, info.segment.t0);
+    // the newest segment: a Segment sample, or the one the MatchInfo carries
+    SegmentOut from_info = current_segment(info);
+    const SegmentOut *seg = f.has_segment && f.segment.seq >= info.segment_seq ? &f.segment
+                            : info.segment_seq > 0                            ? &from_info
+                                                                              : nullptr;
     out_.clear();
     std::string err;
-    if (!m->restore(info, f.has_segment ? &f.segment : nullptr, target, &out_, &err)) {
+    if (!m->restore(info, seg, target, &out_, &err)) {
       stats_.follow_failures++;
       say("cannot take match " + std::to_string(it->first) + " over: " + err);
       host_.remove(it->first);
@@ -281,7 +292,7 @@ void ServerLoop::take_over(double t0, double now) {
     std::snprintf(line, sizeof line,
                   "took match %u over from server %u at sim time %.3f (segment %u, %zu segments caught up, owner lost "
                   "%.2f s ago)",
-                  it->first, info.server_id, m->sim().time, info.segment_seq > f.segment.seq ? info.segment_seq : f.segment.seq,
+                  it->first, info.server_id, m->sim().time, seg ? seg->seq : 0u,
                   out_.segments.size(), t0 - f.lost_at);
     say(line);
     it = followed_.erase(it);

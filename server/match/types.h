@@ -292,7 +292,10 @@ struct MatchInfoOut {
   PlayState play;                  // the rules' state at sim_time: score, serving side, points played, rally
   Reason pause_reason = Reason::none;  // paused: pause_vanished or pause_requested
   int pause_slot = -1;             // pause_vanished: the slot that vanished
-  uint32_t segment_seq = 0;        // the current segment
+  uint32_t segment_seq = 0;        // the current segment (0: none yet)
+  Cause segment_cause = Cause::serve;  // what started it
+  int segment_cause_index = -1;    // as SegmentOut's cause_index
+  ball_segment segment{};          // its flight: t0 sim s, p0 m, v0 m/s, s0 m/s, grounded
   double frame_time = 0.0;         // real s per frame
   double time_base = 1.0;          // sim s per real s
   double sim_time = 0.0;           // sim s at server_time
@@ -313,6 +316,22 @@ struct MatchInfoOut {
   double serve_v_up = 0.0;         // m/s: the serve's vertical launch speed
   uint64_t seed = 0;               // the serves' placement
 };
+
+// The current segment a MatchInfo carries, as a Segment (without its
+// racket sample and its rules' state), for a reader that has not got it.
+inline SegmentOut current_segment(const MatchInfoOut &i) {
+  SegmentOut s;
+  s.match_id = i.match_id;
+  s.server_id = i.server_id;
+  s.server_time = i.server_time;
+  s.seq = i.segment_seq;
+  s.cause = i.segment_cause;
+  s.cause_index = i.segment_cause_index;
+  s.segment = i.segment;
+  s.model_hash = i.model_hash;
+  s.play = i.play;
+  return s;
+}
 
 // What a match counts (the server's --stats-json has them per match),
 // listed once for the struct and its JSON form.
