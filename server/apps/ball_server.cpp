@@ -40,8 +40,6 @@ int main(int argc, char **argv) {
   if (!opt.apply(&config, &err) || !load_scenes(config, &scenes, &err)) return fail(kProgram, err);
 
   install_stop_signals();
-  // before DDS starts its threads: they inherit it
-  if (config.realtime_priority > 0 && !set_realtime_priority(config.realtime_priority, &err)) return fail(kProgram, err);
   std::string profile = find_profile(config.profile);
   auto domain = dds::Domain::open(config.domain, profile, config.participant, config.discovery_server,
                                   "ball-server " + std::to_string(config.server_id), &err);
@@ -69,6 +67,9 @@ int main(int argc, char **argv) {
                               std::to_string(other.match_id) + " is served by server " +
                               std::to_string(other.server_id) + " (start this one with --standby to follow it)");
   }
+  // the loop's thread alone, after DDS started its own: a server that cannot keep up must not
+  // starve the host's other programs (docs/server.md, "Load")
+  if (config.realtime_priority > 0 && !set_realtime_priority(config.realtime_priority, &err)) return fail(kProgram, err);
   loop.start();
   if (!quiet)
     std::printf("%s %u: %u matches, following %u, on domain %d (profile %s, participant %s), player timeout %.2f s, "

@@ -30,10 +30,10 @@ double mono_now();      // CLOCK_MONOTONIC, s
 // Sleeps until CLOCK_MONOTONIC reaches t (absolute: no drift); returns early on a signal.
 void sleep_until(double t);
 
-// Puts the calling thread, and the threads it starts from then on, under
+// Puts the calling thread (and threads it starts from then on) under
 // SCHED_FIFO at `priority` (1-99): a frame loop that wakes on its deadline
-// is not preempted by the other programs of the host. Needs root or
-// CAP_SYS_NICE; false with the system's reason in err.
+// is not preempted by the other threads and programs of the host. Needs
+// root or CAP_SYS_NICE; false with the system's reason in err.
 bool set_realtime_priority(int priority, std::string *err);
 
 // The system's clocks for the server loop (frame_clock.h).

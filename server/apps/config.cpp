@@ -192,7 +192,7 @@ const std::vector<Field<ServerConfig>> &server_fields() {
        "claim up to N of the configured or created matches that no server owns, by the claim rule; 0: serve the "
        "configured matches", "--claim"},
       {"realtime_priority", &C::realtime_priority, whole(0, 99), "",
-       "SCHED_FIFO priority of the server's threads (root or CAP_SYS_NICE); 0: the normal scheduler "
+       "SCHED_FIFO priority of the server's loop thread (root or CAP_SYS_NICE); 0: the normal scheduler "
        "(docs/server.md, \"Load\")", "--realtime-priority"},
       {"status_interval", &C::status_interval, open_closed(0.0, 3600.0), "s", "between status lines",
        "--status-interval"},

@@ -41,7 +41,7 @@ struct ServerConfig {
   bool allow_create = true;                  // clients may CREATE matches from the catalogue
   bool standby = false;                      // follows other servers' matches, takes them over (--standby)
   uint32_t claim = 0;                        // claims up to this many unplaced or created matches; 0: none
-  int realtime_priority = 0;                 // SCHED_FIFO priority of its threads, 1-99; 0: the normal scheduler
+  int realtime_priority = 0;                 // SCHED_FIFO priority of its loop thread, 1-99; 0: the normal scheduler
   double status_interval = 1.0;              // s between status lines
   double startup_wait = 1.0;                 // s to listen for another server owning our matches
   std::map<std::string, std::string> catalogue = {{"tennis", "default"}};  // name -> scene

@@ -275,6 +275,7 @@ int run_load(const LoadOptions &o) {
         if (stop_requested()) break;
         LoadRow row;
         if (!measure(o, n, rate, &row, &err)) return fail(kProgram, err);
+        row.server_priority = o.server_priority;
         rows.push_back(row);
         std::printf("%s", load_table({summarize({row})}, rows.size() == 1).c_str());
         std::fflush(stdout);

@@ -186,7 +186,7 @@ std::vector<LoadPoint> summarize_points(const std::vector<LoadRow> &rows) {
   std::vector<std::vector<LoadRow>> groups;
   for (const auto &r : rows) {
     auto g = std::find_if(groups.begin(), groups.end(), [&](const std::vector<LoadRow> &x) {
-      return x[0].matches == r.matches && x[0].state_rate == r.state_rate;
+      return x[0].matches == r.matches && x[0].state_rate == r.state_rate && x[0].server_priority == r.server_priority;
     });
     if (g == groups.end()) groups.push_back({r});
     else g->push_back(r);
@@ -211,21 +211,23 @@ std::string load_table(const std::vector<LoadPoint> &points, bool header) {
   std::string out;
   char line[512];
   const char *head =
-      "%7s %6s %4s %5s %6s %8s %8s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %8s %8s\n";
-  std::snprintf(line, sizeof line, head, "matches", "states", "proc", "round", "hits", "samp/s", "overrun", "work50",
-                "work99", "lat50", "lat99", "h2w50", "h2w99", "srvCPU", "srvRSS", "botCPU", "botRSS", "srv B/s",
-                "bot B/s", "lo B/s");
+      "%7s %6s %4s %4s %5s %6s %8s %8s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %8s %8s\n";
+  std::snprintf(line, sizeof line, head, "matches", "states", "prio", "proc", "round", "hits", "samp/s", "overrun",
+                "work50", "work99", "lat50", "lat99", "h2w50", "h2w99", "srvCPU", "srvRSS", "botCPU", "botRSS",
+                "srv B/s", "bot B/s", "lo B/s");
   if (header) out += line;
-  std::snprintf(line, sizeof line, head, "", "Hz", "", "", "", "", "%", "ms", "ms", "ms", "ms", "ms", "ms",
+  std::snprintf(line, sizeof line, head, "", "Hz", "", "", "", "", "", "%", "ms", "ms", "ms", "ms", "ms", "ms",
                 "%/match", "KiB/m", "%/match", "KiB/m", "/match", "/match", "/match");
   if (header) out += line;
   for (const auto &p : points)
     for (int which = 0; which < (p.rounds > 1 ? 2 : 1); ++which) {
       const LoadRow &r = which == 0 ? p.median : p.min;
       std::snprintf(line, sizeof line,
-                    "%7d %6s %4d %5s %6llu %8.0f %7.2f%% %7.3f %7.3f %7.1f %7.1f %7.1f %7.1f %7s %7s %7s %7s %7s "
-                    "%8s %8s%s\n",
-                    r.matches, fmt("%.0f", r.state_rate).c_str(), r.bot_processes, p.rounds == 1 ? "1" : which == 0 ? "med" : "min",
+                    "%7d %6s %4s %4d %5s %6llu %8.0f %7.2f%% %7.3f %7.3f %7.1f %7.1f %7.1f %7.1f %7s %7s %7s %7s "
+                    "%7s %8s %8s%s\n",
+                    r.matches, fmt("%.0f", r.state_rate).c_str(),
+                    r.server_priority > 0 ? ("F" + std::to_string(r.server_priority)).c_str() : "-", r.bot_processes,
+                    p.rounds == 1 ? "1" : which == 0 ? "med" : "min",
                     static_cast<unsigned long long>(r.hits), r.samples_per_s, r.overrun_pct, r.frame_p50_ms,
                     r.frame_p99_ms_median, r.latency_p50_ms, r.latency_p99_ms, r.hit_to_wire_p50_ms,
                     r.hit_to_wire_p99_ms, fmt("%.3f", r.server_cpu_pct).c_str(),

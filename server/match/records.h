@@ -177,6 +177,7 @@ struct LoadRow {  // one point (match count, state rate) of one round of the loa
   double rate = 0.0;          // Hz, each bot's
   double state_rate = -1.0;   // Hz, the server's ball states (0: off); -1: not started by ball-load
   int bot_processes = 1;
+  int server_priority = 0;    // the server's SCHED_FIFO priority (0: the normal scheduler)
   bool ready = false;         // every slot joined within the warm-up
   double seconds = 0.0;       // measured
   double samples_per_s = 0.0;
@@ -193,7 +194,7 @@ struct LoadRow {  // one point (match count, state rate) of one round of the loa
   double server_cpu_pct = -1.0, server_rss_kib = -1.0, bots_cpu_pct = -1.0, bots_rss_kib = -1.0;
   double server_bytes = -1.0, bots_bytes = -1.0, lo_bytes = -1.0, lo_packets = -1.0;
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LoadRow, matches, bots, rate, state_rate, bot_processes, ready, seconds,
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LoadRow, matches, bots, rate, state_rate, bot_processes, server_priority, ready, seconds,
                                    samples_per_s, hits, write_failures, latency_p50_ms, latency_p99_ms,
                                    hit_to_wire_p50_ms, hit_to_wire_p99_ms, server_frames, server_overruns,
                                    overrun_pct, frame_p50_ms, frame_p99_ms_median, frame_p99_ms_max, playing,

@@ -3,6 +3,9 @@
 # gnuplot -e "data='D'; out='O'; plots='P'" P/load.gp
 load plots.'/style.gp'
 f = data.'/load.dat'
+# states off with the server's loop thread under SCHED_FIFO (./run bench-server as root)
+g = data.'/fifo/load.dat'
+has_fifo = system("[ -f '".g."' ] && echo 1 || echo 0") + 0
 # columns: 1 matches, 2 state rate, 3 overrun %, 4 work p50 ms, 5 work p99 ms,
 # 6/7 sample-to-segment p50/p99 ms, 8/9 hit-to-wire p50/p99 ms, 10 server CPU %,
 # 11 server RSS KiB, 12 bots CPU %, 13 server bytes/s, 14 bots bytes/s, 15 loopback bytes/s
@@ -16,8 +19,14 @@ off(c) = ($2 == 0 ? column(c) : NaN)
 set multiplot layout 2,2 title "ball-server at 60 Hz frames, server and bots on one 2-core machine (medians of rounds)"
 set title "frames that overrun"
 set ylabel "%"
-plot f using 1:(on(3)) with linespoints ls 1 title "ball states on", \
-     f using 1:(off(3)) with linespoints ls 2 title "ball states off"
+if (has_fifo) {
+  plot f using 1:(on(3)) with linespoints ls 1 title "ball states on", \
+       f using 1:(off(3)) with linespoints ls 2 title "ball states off", \
+       g using 1:(off(3)) with linespoints ls 3 title "states off, loop thread SCHED\\_FIFO"
+} else {
+  plot f using 1:(on(3)) with linespoints ls 1 title "ball states on", \
+       f using 1:(off(3)) with linespoints ls 2 title "ball states off"
+}
 set title "server work per frame"
 set ylabel "ms"
 plot f using 1:(on(4)) with linespoints ls 1 title "p50, states on", \
