@@ -16,9 +16,11 @@ set xlabel "matches"
 set format y "%g"
 on(c) = ($2 > 0 ? column(c) : NaN)
 off(c) = ($2 == 0 ? column(c) : NaN)
+lat(c) = ($2 > 0 && column(c) > 0 ? column(c) : NaN)  # a point without a hit has no latency
 set multiplot layout 2,2 title "ball-server at 60 Hz frames, server and bots on one 2-core machine (medians of rounds)"
 set title "frames that overrun"
 set ylabel "%"
+set key top left
 if (has_fifo) {
   plot f using 1:(on(3)) with linespoints ls 1 title "ball states on", \
        f using 1:(off(3)) with linespoints ls 2 title "ball states off", \
@@ -27,6 +29,7 @@ if (has_fifo) {
   plot f using 1:(on(3)) with linespoints ls 1 title "ball states on", \
        f using 1:(off(3)) with linespoints ls 2 title "ball states off"
 }
+set key top right
 set title "server work per frame"
 set ylabel "ms"
 plot f using 1:(on(4)) with linespoints ls 1 title "p50, states on", \
@@ -45,8 +48,8 @@ unset logscale y
 set format y "%g"
 set title "latency (states on)"
 set ylabel "ms"
-plot f using 1:(on(6)) with linespoints ls 1 title "sample-to-segment p50", \
-     f using 1:(on(7)) with linespoints ls 4 title "sample-to-segment p99", \
-     f using 1:(on(8)) with linespoints ls 2 title "hit-to-wire p50", \
-     f using 1:(on(9)) with linespoints ls 3 title "hit-to-wire p99"
+plot f using 1:(lat(6)) with linespoints ls 1 title "sample-to-segment p50", \
+     f using 1:(lat(7)) with linespoints ls 4 title "sample-to-segment p99", \
+     f using 1:(lat(8)) with linespoints ls 2 title "hit-to-wire p50", \
+     f using 1:(lat(9)) with linespoints ls 3 title "hit-to-wire p99"
 unset multiplot
