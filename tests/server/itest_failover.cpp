@@ -99,6 +99,30 @@ bool rallies(Tail &t, int n, int want, double timeout) {
   return false;
 }
 
+// A primary of n matches (server 1), a standby (server 2), a watcher
+// recording to watch.jsonl and bots on every slot, started in that order;
+// `rallying` says whether every match had 2 hits within the timeout.
+struct Pair {
+  Process primary, standby, w, load;
+  Tail t;
+  bool rallying = false;
+};
+
+Pair pair(Case &c, const Env &env, int n, double timeout) {
+  Pair p{server(env, "primary", 1, {"--matches", std::to_string(n), "--startup-wait", "0"}),
+         server(env, "standby", 2, {"--standby", "--startup-wait", "0.5"}),
+         ready_watcher(c, path(env, "watch.jsonl"), {}), bots(env, n), Tail(path(env, "watch.jsonl"))};
+  p.rallying = rallies(p.t, n, 2, timeout);
+  CHECK_MSG(p.rallying, "not every match had 2 hits within %.0f s", timeout);
+  return p;
+}
+
+// Stops a server that must end cleanly; its exit status is checked.
+void stop_server(Process &p, const char *name) {
+  int rc = p.stop(5.0);
+  CHECK_MSG(rc == 0, "%s: exit status %d", name, rc);
+}
+
 // One match's stream as a client saw it: one server per segment seq, the
 // seqs and the events' seqs one by one without a gap or a repeat, a serve
 // only after a point, scores that never go back, and every floor or wall
@@ -153,16 +177,11 @@ void case_failover(const Env &env) {
   const int n = 10;
   const double lease = 1.0;  // the QoS file's liveliness lease of the server topics
   Case c{env};
-  Process primary = server(env, "primary", 1, {"--matches", std::to_string(n), "--startup-wait", "0"});
-  Server standby(server(env, "standby", 2, {"--standby", "--startup-wait", "0.5"}));
-  std::string rec = path(env, "watch.jsonl");
-  Process w = ready_watcher(c, rec, {});
-  Process load = bots(env, n);
-  Tail t(rec);
-  CHECK_MSG(rallies(t, n, 2, 40.0), "not every match had 2 hits within 40 s");
+  Pair p = pair(c, env, n, 40.0);
+  Tail &t = p.t;
   double killed = realtime_now();
-  primary.signal(SIGKILL);
-  primary.wait(2.0);
+  p.primary.signal(SIGKILL);
+  p.primary.wait(2.0);
   // within 2 leases every match's MatchInfo comes from the standby
   std::map<uint32_t, double> owned;
   double end = mono_now() + 10.0;
@@ -188,12 +207,10 @@ void case_failover(const Env &env) {
   Tail lt(late_rec);
   lt.poll();
   t.poll();
-  load.stop();
-  w.stop();
+  p.load.stop();
+  p.w.stop();
   t.poll();
-  int rc = standby.p.stop(5.0);
-  standby.p = Process();
-  CHECK_MSG(rc == 0, "the standby's exit status %d", rc);
+  stop_server(p.standby, "the standby");
   // what every client saw, match by match
   std::map<uint32_t, Seen> seen = by_match(t.lines);
   int bounces = 0, handovers = 0, hits_after = 0;
@@ -214,19 +231,21 @@ void case_failover(const Env &env) {
     handovers += first2 > 0 && first2 < s.segments.size();
     for (const auto &e : s.events) hits_after += e.kind == EventKind::racket && e.in_play && e.server_id == 2;
     // the sim clock goes on: the standby's first MatchInfo where the primary's last maps it
-    const MatchInfoOut *p = nullptr, *q = nullptr;
+    const MatchInfoOut *last1 = nullptr, *info2 = nullptr;
     for (const auto &i : s.infos) {
-      if (i.server_id == 1) p = &i;
-      if (i.server_id == 2 && !q) q = &i;
+      if (i.server_id == 1) last1 = &i;
+      if (i.server_id == 2 && !info2) info2 = &i;
     }
-    CHECK_MSG(p && q, "match %d: no MatchInfo of one of the servers", m);
-    if (p && q) {
-      CHECK_MSG(q->play.score == p->play.score || q->play.rally > p->play.rally, "match %d: score %d-%d became %d-%d",
-                m, p->play.score[0], p->play.score[1], q->play.score[0], q->play.score[1]);
-      CHECK_MSG(q->revision > p->revision, "match %d: revision %u after %u", m, q->revision, p->revision);
-      if (p->state == MatchState::playing && q->state == MatchState::playing) {
-        double mapped = p->sim_time + (q->server_time - p->server_time) * p->time_base;
-        worst_clock = std::max(worst_clock, std::fabs(q->sim_time - mapped));
+    CHECK_MSG(last1 && info2, "match %d: no MatchInfo of one of the servers", m);
+    if (last1 && info2) {
+      CHECK_MSG(info2->play.score == last1->play.score || info2->play.rally > last1->play.rally,
+                "match %d: score %d-%d became %d-%d", m, last1->play.score[0], last1->play.score[1],
+                info2->play.score[0], info2->play.score[1]);
+      CHECK_MSG(info2->revision > last1->revision, "match %d: revision %u after %u", m, info2->revision,
+                last1->revision);
+      if (last1->state == MatchState::playing && info2->state == MatchState::playing) {
+        double mapped = last1->sim_time + (info2->server_time - last1->server_time) * last1->time_base;
+        worst_clock = std::max(worst_clock, std::fabs(info2->sim_time - mapped));
       }
     }
   }
@@ -263,21 +282,16 @@ void case_failover(const Env &env) {
 void case_standby_killed(const Env &env) {
   const int n = 2;
   Case c{env};
-  Server primary(server(env, "primary", 1, {"--matches", std::to_string(n), "--startup-wait", "0"}));
-  Process standby = server(env, "standby", 2, {"--standby", "--startup-wait", "0.5"});
-  std::string rec = path(env, "watch.jsonl");
-  Process w = ready_watcher(c, rec, {});
-  Process load = bots(env, n);
-  Tail t(rec);
-  CHECK_MSG(rallies(t, n, 2, 30.0), "not every match had 2 hits within 30 s");
+  Pair p = pair(c, env, n, 30.0);
+  Tail &t = p.t;
   usleep(1000000);  // the standby follows them
   double killed = realtime_now();
-  standby.signal(SIGKILL);
-  standby.wait(2.0);
+  p.standby.signal(SIGKILL);
+  p.standby.wait(2.0);
   usleep(6 * 1000000);
   double stopped = realtime_now();  // (the bots LEAVE when they stop: their matches pause then)
-  load.stop();
-  w.stop();
+  p.load.stop();
+  p.w.stop();
   t.poll();
   std::map<uint32_t, Seen> seen = by_match(t.lines);
   int hits_after = 0, from_standby = 0, pauses = 0;
@@ -293,9 +307,7 @@ void case_standby_killed(const Env &env) {
   CHECK_EQ(from_standby, 0);
   CHECK_EQ(pauses, 0);
   CHECK_MSG(hits_after >= 3, "%d hits in the 6 s after the kill", hits_after);
-  int rc = primary.p.stop(5.0);
-  primary.p = Process();
-  CHECK_MSG(rc == 0, "the primary's exit status %d", rc);
+  stop_server(p.primary, "the primary");
   ServerReport r = report(env, "primary");
   CHECK_EQ(r.yields, 0u);
   CHECK_EQ(r.conflicts, 0u);
@@ -307,23 +319,18 @@ void case_standby_killed(const Env &env) {
 void case_primary_back(const Env &env) {
   const int n = 2;
   Case c{env};
-  Process primary = server(env, "primary", 1, {"--matches", std::to_string(n), "--startup-wait", "0"});
-  Server standby(server(env, "standby", 2, {"--standby", "--startup-wait", "0.5"}));
-  std::string rec = path(env, "watch.jsonl");
-  Process w = ready_watcher(c, rec, {});
-  Process load = bots(env, n);
-  Tail t(rec);
-  CHECK_MSG(rallies(t, n, 2, 30.0), "not every match had 2 hits within 30 s");
-  primary.signal(SIGKILL);
-  primary.wait(2.0);
+  Pair p = pair(c, env, n, 30.0);
+  Tail &t = p.t;
+  p.primary.signal(SIGKILL);
+  p.primary.wait(2.0);
   size_t from = 0;
   json taken = wait_for(t, 10.0, [](const json &j) { return is_type(j, "match_info") && j.at("server") == 2; }, &from);
   CHECK_MSG(!taken.is_null(), "the standby did not take over within 10 s");
   double back = realtime_now();
-  Server again(server(env, "primary-again", 1, {"--standby", "--matches", std::to_string(n)}));
+  Process again = server(env, "primary-again", 1, {"--standby", "--matches", std::to_string(n)});
   usleep(7 * 1000000);
-  load.stop();
-  w.stop();
+  p.load.stop();
+  p.w.stop();
   t.poll();
   int from_old = 0, hits_after = 0;
   for (const auto &j : t.lines) {
@@ -336,9 +343,8 @@ void case_primary_back(const Env &env) {
   note("old primary back as a standby: %d samples from it, %d hits from the new owner since", from_old, hits_after);
   CHECK_EQ(from_old, 0);
   CHECK_MSG(hits_after >= 3, "%d hits after the old primary came back", hits_after);
-  int rc = again.p.stop(5.0);
-  again.p = Process();
-  CHECK_MSG(rc == 0, "the restarted server's exit status %d", rc);
+  stop_server(again, "the restarted server");
+  stop_server(p.standby, "the standby");
   ServerReport r = report(env, "primary-again");
   note("the restarted server: following %u, took over %llu, stepped %zu", r.following,
        static_cast<unsigned long long>(r.takeovers), r.matches.size());
@@ -353,8 +359,8 @@ void case_claim(const Env &env) {
   const int n = 6;
   Case c{env};
   std::vector<std::string> claim = {"--claim", "10", "--matches", std::to_string(n)};
-  Server a(server(env, "claim1", 1, claim));
-  Server b(server(env, "claim2", 2, claim));
+  Process a = server(env, "claim1", 1, claim);
+  Process b = server(env, "claim2", 2, claim);
   std::string rec = path(env, "watch.jsonl");
   Process w = ready_watcher(c, rec, {});
   Process load = bots(env, n);
@@ -384,11 +390,8 @@ void case_claim(const Env &env) {
   CHECK_EQ(static_cast<int>(seen.size()), n + 1);
   CHECK(share[1] >= 1 && share[2] >= 1);
   CHECK(created.is_object() && created.at("servers").size() == 1u);
-  for (Server *s : {&a, &b}) {
-    int rc = s->p.stop(5.0);
-    s->p = Process();
-    CHECK_MSG(rc == 0, "a claimant's exit status %d", rc);
-  }
+  stop_server(a, "claimant 1");
+  stop_server(b, "claimant 2");
   ServerReport r1 = report(env, "claim1"), r2 = report(env, "claim2");
   note("claims %llu + %llu, yields %llu + %llu", static_cast<unsigned long long>(r1.claims),
        static_cast<unsigned long long>(r2.claims), static_cast<unsigned long long>(r1.yields),

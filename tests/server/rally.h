@@ -23,6 +23,20 @@ struct RallyResult {
   int racket_segments_with_sample = 0, racket_segments = 0;
 };
 
+// Slot `slot`'s racket as its bot has it at sim time t, the slot's next
+// sample from its holder.
+inline RacketSampleIn bot_sample(Game &g, BotBrain &brain, int slot, double t) {
+  RacketSampleIn s;
+  s.match_id = g.match.id();
+  s.player = slot;
+  s.seq = ++g.seq[slot];
+  s.capture_time = t;
+  brain.pose(t, &s.center, &s.normal);
+  s.from = g.owner[slot];
+  s.source_time = g.now;
+  return s;
+}
+
 inline RallyResult play(ball_level level, const Net &net, double seconds, uint64_t seed = 1,
                         double miss_rate = 0.0, double extrapolation = 0.25) {
   MatchConfig c = default_config();
@@ -51,17 +65,10 @@ inline RallyResult play(ball_level level, const Net &net, double seconds, uint64
     for (int i = 0; i < 2; ++i) {
       // samples taken on the sim clock at the bot's rate, sent through its link
       while (next_capture[i] <= sim + 1e-12) {
-        RacketSampleIn s;
-        s.match_id = g.match.id();
-        s.player = i;
-        s.seq = ++g.seq[i];
-        s.capture_time = next_capture[i];
-        brain[i].pose(next_capture[i], &s.center, &s.normal);
+        RacketSampleIn s = bot_sample(g, brain[i], i, next_capture[i]);
         s.center.x += noise.normal(net.noise);
         s.center.y += noise.normal(net.noise);
         s.center.z += noise.normal(net.noise);
-        s.from = g.owner[i];
-        s.source_time = g.now;
         link[i].send(s, g.now);
         next_capture[i] += 1.0 / net.rate;
       }

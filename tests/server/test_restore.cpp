@@ -86,14 +86,7 @@ Outcome run(const Trial &tr) {
     // the bots' samples, to both servers as they arrive (no delay)
     for (int i = 0; i < 2; ++i)
       while (next_capture[i] <= sim + 1e-12) {
-        RacketSampleIn s;
-        s.match_id = a.match.id();
-        s.player = i;
-        s.seq = ++a.seq[i];
-        s.capture_time = next_capture[i];
-        brain[i].pose(next_capture[i], &s.center, &s.normal);
-        s.from = a.owner[i];
-        s.source_time = a.now;
+        RacketSampleIn s = bot_sample(a, brain[i], i, next_capture[i]);
         a.match.on_sample(s, a.now);
         if (b.match.following()) b.match.follow_clock(a.match.sim().time);
         b.match.on_sample(s, a.now);
