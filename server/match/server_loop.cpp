@@ -45,7 +45,7 @@ void ServerLoop::listen(double seconds, const std::function<bool()> &stop) {
     double t0 = clock_.mono();
     keep_alive(t0);
     take_notes(t0);
-    take_others(t0);
+    take_others();
     clock_.sleep_until(clock_.mono() + 0.05);
   }
 }
@@ -120,7 +120,7 @@ std::vector<ServerView> ServerLoop::views() const {
   return out;
 }
 
-void ServerLoop::take_others(double t0) {
+void ServerLoop::take_others() {
   ParticipantId from;
   StatusOut st;
   while (port_.take_other_status(&st, &from)) {
@@ -129,7 +129,7 @@ void ServerLoop::take_others(double t0) {
     p.alive = true;
   }
   MatchInfoOut info;
-  while (port_.take_other_info(&info, &from)) other_info(info, from, t0);
+  while (port_.take_other_info(&info, &from)) other_info(info, from);
   SegmentOut seg;
   while (port_.take_other_segment(&seg, &from)) {
     if (scheduled(seg.match_id)) {
@@ -146,7 +146,7 @@ void ServerLoop::take_others(double t0) {
   }
 }
 
-void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from, double t0) {
+void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from) {
   owners_[info.match_id] = {from, -1.0};
   if (scheduled(info.match_id)) {
     // our own reader took another server's sample for a match we step: DDS
@@ -177,7 +177,6 @@ void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from,
   if (f.owner != from) f.has_segment = false;  // a new owner: its segments from now
   f.owner = from;
   f.lost_at = -1.0;
-  (void)t0;
 }
 
 void ServerLoop::yield(uint32_t id, const MatchInfoOut &to, const ParticipantId &from) {
@@ -480,7 +479,7 @@ bool ServerLoop::wake() {
   double now = clock_.realtime();
   keep_alive(t0);
   take_notes(t0);
-  take_others(t0);
+  take_others();
   for (auto &f : followed_) {  // the owner's sim clock, for the samples' checks
     const MatchInfoOut &i = f.second.info;
     Match *m = host_.find(f.first);

@@ -151,7 +151,7 @@ class ServerLoop {
   // The phases, in the order step runs them (t0: mono s of the wake-up,
   // now: server s).
   void take_notes(double t0);
-  void take_others(double t0);
+  void take_others();
   void take_samples(double now);
   void take_controls(double now);
   void take_over(double t0, double now);
@@ -192,7 +192,7 @@ class ServerLoop {
   Scheduled *scheduled(uint32_t id);
   ServerView own_view() const;
   std::vector<ServerView> views() const;  // the live servers heard of, and this one
-  void other_info(const MatchInfoOut &info, const ParticipantId &from, double t0);
+  void other_info(const MatchInfoOut &info, const ParticipantId &from);
   void yield(uint32_t id, const MatchInfoOut &to, const ParticipantId &from);
   bool claim(const MatchConfig &config, double t0, std::string *err);
   void claim_unplaced(double t0);
