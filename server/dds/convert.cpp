@@ -312,6 +312,8 @@ balldds::MatchInfo to_idl(const MatchInfoOut &in) {
   o.max_rally_time(in.max_rally_time);
   o.serve_v_up(in.serve_v_up);
   o.seed(in.seed);
+  o.max_racket_speed(in.max_racket_speed);
+  o.racket_margin(in.racket_margin);
   return o;
 }
 
@@ -369,6 +371,8 @@ void from_idl(const balldds::MatchInfo &in, MatchInfoOut *o) {
   o->max_rally_time = in.max_rally_time();
   o->serve_v_up = in.serve_v_up();
   o->seed = in.seed();
+  o->max_racket_speed = in.max_racket_speed();
+  o->racket_margin = in.racket_margin();
 }
 
 balldds::ServerStatus to_idl(const StatusOut &in) {

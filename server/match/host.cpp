@@ -52,6 +52,8 @@ Match *Host::follow(const MatchInfoOut &info, std::string *err) {
   c.serve_v_up = info.serve_v_up;
   c.court_x_lo = info.court_x[0];
   c.seed = info.seed;
+  c.max_racket_speed = info.max_racket_speed;
+  c.racket_margin = info.racket_margin;
   if (info.level < BALL_LEVEL_CUSTOM || info.level > BALL_LEVEL_ADVANCED) {
     *err = "level " + std::to_string(info.level) + " is not a game level";
     return nullptr;

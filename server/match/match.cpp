@@ -11,8 +11,9 @@ namespace {
 
 constexpr double kMinNormal = 1e-6;   // |normal| below: zero_normal
 constexpr double kMaxNormal = 1e6;    // above: out_of_range
-constexpr double kBoxMargin = 30.0;   // m around the court a racket may be
-constexpr double kBoxHeight = 30.0;   // m above the floor
+constexpr double kBoxHeight = 30.0;   // m above the floor a racket may be
+constexpr double kUnderFloor = 1.0;   // m under it: a swing's straight line through a low contact, a tracker's error
+constexpr double kOverNet = 1.0;      // m beyond the net a racket may reach
 constexpr double kFarAway = 30.0;     // m beyond the court: the ball has left it
 
 bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
@@ -306,20 +307,39 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now) {
   double n = ball_v3_norm(s.normal);
   if (!(n >= kMinNormal)) return SampleResult::zero_normal;
   if (n > kMaxNormal) return SampleResult::out_of_range;
-  if (!in_range(s.center.x, court_.x_lo - kBoxMargin, court_.x_hi + kBoxMargin) ||
-      !in_range(s.center.z, court_.z_lo - kBoxMargin, court_.z_hi + kBoxMargin) ||
-      !in_range(s.center.y, court_.floor - 1.0, court_.floor + kBoxHeight))
+  // the player's own half, a margin beyond its baseline and sidelines, a
+  // reach over the net, about above the floor
+  double m = config_.racket_margin;
+  bool near_side = Court::side_of_slot(s.player) == 0;
+  double x_lo = near_side ? court_.x_lo - m : court_.net_x - kOverNet;
+  double x_hi = near_side ? court_.net_x + kOverNet : court_.x_hi + m;
+  if (!in_range(s.center.x, x_lo, x_hi) || !in_range(s.center.z, court_.z_lo - m, court_.z_hi + m) ||
+      !in_range(s.center.y, court_.floor - kUnderFloor, court_.floor + kBoxHeight))
     return SampleResult::out_of_range;
   if (s.capture_time > clock_now() + config_.max_sample_lead) return SampleResult::out_of_range;
   // well formed and from the holder: the player is there
   slot.last_seen = now;
   slot.alive = true;
   if (slot.has_seq) {
-    if (s.seq == slot.last_seq) return SampleResult::duplicate;
-    if (s.seq < slot.last_seq) return SampleResult::out_of_order;
+    // serial number arithmetic (RFC 1982): a stream wraps around instead of locking at 2^32 - 1
+    int32_t ahead = static_cast<int32_t>(s.seq - slot.last_seq);
+    if (ahead == 0) return SampleResult::duplicate;
+    if (ahead < 0) return SampleResult::out_of_order;
   }
   if (s.capture_time < clock_now() - config_.max_sample_age) return SampleResult::stale;
-  if (state_ != MatchState::playing) return SampleResult::idle;
+  // a racket is a body: no faster than max_racket_speed since its previous sample, no jump
+  if (slot.has_prev && s.capture_time > slot.prev_time &&
+      ball_v3_norm(ball_v3_sub(s.center, slot.prev_center)) >
+          config_.max_racket_speed * (s.capture_time - slot.prev_time))
+    return SampleResult::too_fast;
+  if (state_ != MatchState::playing) {
+    slot.has_seq = true;
+    slot.last_seq = s.seq;
+    slot.has_prev = true;
+    slot.prev_time = s.capture_time;
+    slot.prev_center = s.center;
+    return SampleResult::idle;
+  }
   // a sample identical to a kept one (BALL_EDUPLICATE) or not newer than the
   // newest kept (BALL_ESTALE) is libball's to tell; the sim stays as it was
   ball_racket_sample rs;
@@ -336,6 +356,9 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now) {
   }
   slot.has_seq = true;
   slot.last_seq = s.seq;
+  slot.has_prev = true;
+  slot.prev_time = s.capture_time;
+  slot.prev_center = s.center;
   slot.samples++;
   slot.ref.valid = true;
   slot.ref.seq = s.seq;
@@ -366,8 +389,10 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       }
       if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
       Slot &s = slots_[slot];
-      if (s.held && s.owner == c.from) {  // a repeated join: nothing changes
+      if (s.held && s.owner == c.from) {  // a repeated join: the holder's stream starts anew
         s.alive = true;
+        s.has_seq = false;
+        s.has_prev = false;
         return Reason::none;
       }
       if (s.held && s.alive && now - s.last_seen <= config_.player_timeout)
@@ -433,13 +458,22 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       pause_reason_ = Reason::none;
       emit(out, EventKind::resume, -1, sim_.time);
       return Reason::none;
-    case ControlKind::time_base:
+    case ControlKind::time_base: {
       if (!in_bounds(find_field(match_fields(), "time_base")->bounds, c.time_base))
         return refuse(c, Reason::refused_bad_value, out);
+      // it changes every player's clock: it takes every holder asking for the same value
+      bool all = true;
+      for (int i = 0; i < config_.players; ++i) {
+        if (slots_[i].held && slots_[i].owner == c.from) slots_[i].asked_time_base = c.time_base;
+        all = all && slots_[i].held && slots_[i].asked_time_base == c.time_base;
+      }
+      if (!all) return Reason::none;  // asked: it waits for the others
+      for (int i = 0; i < config_.players; ++i) slots_[i].asked_time_base = 0.0;
       config_.time_base = c.time_base;
       emit(out, EventKind::time_base, -1, sim_.time, Reason::none, c.time_base);
       out->info_changed = true;
       return Reason::none;
+    }
     default:
       return refuse(c, Reason::refused_bad_value, out);
   }
@@ -488,6 +522,8 @@ MatchInfoOut Match::info() const {
   i.max_rally_time = config_.max_rally_time;
   i.serve_v_up = config_.serve_v_up;
   i.seed = config_.seed;
+  i.max_racket_speed = config_.max_racket_speed;
+  i.racket_margin = config_.racket_margin;
   return i;
 }
 

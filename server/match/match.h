@@ -101,6 +101,10 @@ class Match {
     bool has_seq = false;
     uint32_t last_seq = 0;
     SampleRef ref;             // the newest accepted sample
+    bool has_prev = false;     // prev_*: the newest sample that passed every check (accepted or idle)
+    double prev_time = 0.0;    // sim s: its capture time
+    ball_vec3 prev_center{0, 0, 0};  // m
+    double asked_time_base = 0.0;    // the time base its holder asked for (0: none): a change needs every holder's
   };
 
   void emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason = Reason::none,

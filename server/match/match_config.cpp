@@ -48,6 +48,13 @@ const std::vector<Field<MatchConfig>> &match_fields() {
        "capture times further ahead of the sim clock are out of range", "--max-sample-lead"},
       {"serve_v_up", &M::serve_v_up, open_closed(0.0, 30.0), "m/s", "the serve's vertical launch speed",
        "--serve-v-up"},
+      {"max_racket_speed", &M::max_racket_speed, open_closed(0.0, 1000.0), "m/s",
+       "a sample implying a faster racket since the slot's previous one is refused (`too_fast`)",
+       "--max-racket-speed"},
+      {"racket_margin", &M::racket_margin, closed(0.0, 100.0), "m",
+       "a racket centre beyond its player's half (its baseline or sidelines) by more, over the net by more than "
+       "1 m, or more than 1 m under the floor, is refused (`out_of_range`)",
+       "--racket-margin"},
       {"court_x_lo", &M::court_x_lo, closed(-BALL_MAX_COORD, BALL_MAX_COORD), "m",
        "where the court starts; it spans x in [court_x_lo, 2 net_x - court_x_lo], z over the net", "--court-x-lo"},
       {"seed", &M::seed, whole(0, INT64_MAX), "", "the serves' placement", "--seed", "1 (+ index with `--matches`)"},

@@ -28,6 +28,8 @@ struct MatchConfig {
   double max_sample_age = 2.0;        // sim s: older samples are stale
   double max_sample_lead = 0.5;       // sim s: capture times further ahead are out of range
   double serve_v_up = 4.0;            // m/s: vertical launch speed of a serve
+  double max_racket_speed = 50.0;     // m/s: a racket implied faster between two samples is refused
+  double racket_margin = 8.0;         // m: how far beyond its own half (sidelines, baseline) a racket may be
   double court_x_lo = 0.0;            // m: where the court starts (Court)
   uint64_t seed = 1;                  // serve placement
 };

@@ -118,7 +118,7 @@ void from_json(const json &j, StateOut &s) { BALL_STATE_KEYS(BALL_GET, s) }
   X("serve_delay", i.serve_delay) X("max_rally_time", i.max_rally_time) X("serve_v_up", i.serve_v_up)   \
   X("seed", i.seed) X("segment_cause", i.segment_cause) X("segment_index", i.segment_cause_index)             \
   X("segment_t0", i.segment.t0) X("segment_p0", i.segment.p0) X("segment_v0", i.segment.v0)             \
-  X("segment_s0", i.segment.s0)
+  X("segment_s0", i.segment.s0) X("max_racket_speed", i.max_racket_speed) X("racket_margin", i.racket_margin)
 
 void to_json(json &j, const SlotInfo &s) {
   j = json::object();

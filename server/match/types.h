@@ -101,7 +101,8 @@ bool parse_hex(const std::string &text, ParticipantId *id);  // false unless 24 
   X(out_of_order, "out_of_order", 8)   /* seq older than the newest accepted one */   \
   X(stale, "stale", 9)                 /* too old, or libball's BALL_ESTALE */        \
   X(rejected, "rejected", 10)          /* refused by DDS itself (resource limits); DDS layer only */ \
-  X(lost, "lost", 11)                  /* never arrived: a gap or a full history; DDS layer only */
+  X(lost, "lost", 11)                  /* never arrived: a gap or a full history; DDS layer only */ \
+  X(too_fast, "too_fast", 12)          /* implies a racket faster than max_racket_speed since the previous one */
 
 #define BALL_ENUMERATOR(e, name, idl) e,
 enum class MatchState { BALL_MATCH_STATES(BALL_ENUMERATOR) };
@@ -315,6 +316,8 @@ struct MatchInfoOut {
   double max_rally_time = 0.0;     // sim s: a longer rally is a let
   double serve_v_up = 0.0;         // m/s: the serve's vertical launch speed
   uint64_t seed = 0;               // the serves' placement
+  double max_racket_speed = 0.0;   // m/s: a faster implied racket is refused
+  double racket_margin = 0.0;      // m: how far beyond its half a racket may be
 };
 
 // The current segment a MatchInfo carries, as a Segment (without its

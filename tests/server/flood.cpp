@@ -81,7 +81,8 @@ int main(int argc, char **argv) {
     s.player = slot;
     s.seq = ++seq[slot];
     s.capture_time = t;
-    s.center = ball_v3(info.court_x[0] - 5.0, 1.0, info.court_z[0] - 5.0 - slot);
+    // behind its own baseline, off the side: inside the racket margin (docs/protocol.md)
+    s.center = ball_v3(slot == 0 ? info.court_x[0] - 4.0 : info.court_x[1] + 4.0, 1.0, info.court_z[0] - 4.0 - slot);
     s.normal = ball_v3(1, 0, 0);
     return s;
   };

@@ -21,6 +21,13 @@ inline ParticipantId participant(uint8_t n) {
   return id;
 }
 
+// Where a test parks a player's racket: behind its own baseline and off the
+// side of the court, out of the ball's way but inside the racket margin.
+inline ball_vec3 parked_center(const Court &c, int slot) {
+  double x = Court::side_of_slot(slot) == 0 ? c.x_lo - 4.0 : c.x_hi + 4.0;
+  return ball_v3(x, 1.0, c.z_lo - 4.0 - 0.5 * slot);
+}
+
 inline MatchConfig default_config() {
   MatchConfig c;
   c.id = 7;
@@ -79,7 +86,7 @@ struct Game {
     s.player = slot;
     s.seq = ++seq[slot];
     s.capture_time = match.sim().time;
-    s.center = ball_v3(match.court().x_lo - 5.0, 1.0, match.court().z_lo - 5.0 - slot);
+    s.center = parked_center(match.court(), slot);
     s.normal = ball_v3(1, 0, 0);
     s.from = owner[slot];
     return s;

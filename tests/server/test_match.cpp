@@ -228,6 +228,81 @@ TEST(samples_dropped_by_reason_leave_the_ball_alone) {
   CHECK(h.match.on_sample(h.parked_sample(0), h.now) == SampleResult::idle);
 }
 
+// A player's racket stays a body on its own side: a sample implying more
+// than max_racket_speed since the slot's previous one is too_fast, a centre
+// beyond the player's half (plus the margin, 1 m over the net, 1 m under the
+// floor) out_of_range, whatever else it says; the ball is never touched.
+TEST(a_racket_stays_physical_and_on_its_side) {
+  Game g = two_players();
+  g.run(1.0);
+  const Court &c = g.match.court();
+  const MatchConfig &cfg = g.match.config();
+  RacketSampleIn prev = g.parked_sample(0);
+  CHECK(g.match.on_sample(prev, g.now) == SampleResult::accepted);
+  uint64_t hash = ball_sim_hash(&g.match.sim());
+  // moves of d metres 0.1 s later: 4.99 m is 49.9 m/s, 5.01 m 50.1 m/s (max_racket_speed 50)
+  auto moved = [&](double dx, double dz, double dt) {
+    RacketSampleIn s = prev;
+    s.seq = ++g.seq[0];
+    s.capture_time = prev.capture_time + dt;
+    s.center.x += dx;
+    s.center.z += dz;
+    return s;
+  };
+  CHECK_NEAR(cfg.max_racket_speed, 50.0, 0.0);
+  CHECK(g.match.on_sample(moved(5.01, 0.0, 0.1), g.now) == SampleResult::too_fast);
+  CHECK(g.match.on_sample(moved(0.0, 12.0, 0.1), g.now) == SampleResult::too_fast);  // a jump across the court
+  CHECK_EQ(ball_sim_hash(&g.match.sim()), hash);
+  RacketSampleIn ok = moved(4.99, 0.0, 0.1);
+  CHECK(g.match.on_sample(ok, g.now) == SampleResult::accepted);
+  prev = ok;
+  // the half of slot 0 (x < net_x) and its margin, over the net, under the floor
+  auto at = [&](double x, double y, double z) {
+    RacketSampleIn s = prev;
+    s.seq = ++g.seq[0];
+    s.capture_time = prev.capture_time + 10.0;  // slow enough for any move
+    s.center = ball_v3(x, y, z);
+    return g.match.on_sample(s, g.now);
+  };
+  double m = cfg.racket_margin;
+  CHECK(at(c.net_x + 1.1, 1.0, c.z_mid()) == SampleResult::out_of_range);       // over the net by 1.1 m
+  CHECK(at(c.x_lo - m - 0.1, 1.0, c.z_mid()) == SampleResult::out_of_range);    // behind the baseline
+  CHECK(at(c.x_lo + 1.0, 1.0, c.z_hi + m + 0.1) == SampleResult::out_of_range); // off the sideline
+  CHECK(at(c.x_lo + 1.0, c.floor - 1.1, c.z_mid()) == SampleResult::out_of_range);  // under the floor
+  // slot 1 on the far side: the near side is out of its range, its own is not
+  RacketSampleIn far = g.parked_sample(1);
+  CHECK(g.match.on_sample(far, g.now) == SampleResult::accepted);
+  RacketSampleIn near = g.parked_sample(1);
+  near.capture_time = far.capture_time + 10.0;
+  near.center.x = c.net_x - 1.1;
+  CHECK(g.match.on_sample(near, g.now) == SampleResult::out_of_range);
+}
+
+// Sequence numbers compare as serial numbers (RFC 1982): a stream at
+// 2^32 - 1 goes on at 0 instead of locking; a holder's repeated JOIN starts
+// its stream anew.
+TEST(sample_seq_wraps_and_a_rejoin_restarts_the_stream) {
+  Game g = two_players();
+  g.run(1.0);
+  g.park[0] = false;  // slot 0's stream by hand from here
+  auto next = [&](uint32_t seq) {
+    g.run(0.05);
+    g.seq[0] = seq - 1;
+    return g.match.on_sample(g.parked_sample(0), g.now);
+  };
+  // ahead by less than 2^31 each time: on across the wrap
+  CHECK(next(0x7FFFFFF0u) == SampleResult::accepted);
+  CHECK(next(0xFFFFFFE0u) == SampleResult::accepted);
+  CHECK(next(0xFFFFFFFFu) == SampleResult::accepted);
+  CHECK(next(0u) == SampleResult::accepted);
+  CHECK(next(1u) == SampleResult::accepted);
+  CHECK(next(0xFFFFFFF0u) == SampleResult::out_of_order);  // behind 1 by 17
+  CHECK(next(1u) == SampleResult::duplicate);
+  // the holder joins again (a restarted client): its seq 1 is new again
+  CHECK(g.control(ControlKind::join, A, 0) == Reason::none);
+  CHECK(next(1u) == SampleResult::accepted);
+}
+
 TEST(vanished_player_pauses_and_resumes) {
   MatchConfig c = default_config();
   c.player_timeout = 0.5;
@@ -327,11 +402,20 @@ TEST(controls) {
   g.run(1.0);
   CHECK(g.control(ControlKind::time_base, C, -1, 0.5) == Reason::refused_not_player);
   CHECK(g.control(ControlKind::time_base, A, -1, 50.0) == Reason::refused_bad_value);
+  // a time base needs every holder asking for the same value: one asking changes nothing
   CHECK(g.control(ControlKind::time_base, A, -1, 0.5) == Reason::none);
   double t = g.match.sim().time;
   g.run(1.0);
+  CHECK_NEAR(g.match.sim().time - t, 1.0, 1e-9);
+  CHECK(g.first(EventKind::time_base) == nullptr);
+  CHECK(g.control(ControlKind::time_base, B, -1, 2.0) == Reason::none);  // another value: still none
+  CHECK(g.control(ControlKind::time_base, B, -1, 0.5) == Reason::none);
+  CHECK(g.first(EventKind::time_base) != nullptr);
+  t = g.match.sim().time;
+  g.run(1.0);
   CHECK_NEAR(g.match.sim().time - t, 0.5, 1e-9);  // slow motion: half a sim second per real second
   CHECK(g.control(ControlKind::time_base, A, -1, 2.0) == Reason::none);
+  CHECK(g.control(ControlKind::time_base, B, -1, 2.0) == Reason::none);
   t = g.match.sim().time;
   g.run(1.0);
   CHECK_NEAR(g.match.sim().time - t, 2.0, 1e-9);
