@@ -137,11 +137,14 @@ static const ball_field racket_fields[] = {
     F(target, "target", VEC3, ball_racket_def, -BALL_MAX_COORD, BALL_MAX_COORD, 0, 0, 20.0, 0.0, 5.485, "m",
       "eq 8", "each in [-1e9, 1e9]",
       "goal point when partner is -1 (its y is ignored)"),
+    F(goal_reach, "goal_reach", REAL, ball_racket_def, 0, BALL_MAX_COORD, 0, 0, BALL_MAX_COORD, 0, 0, "m", "eq 8",
+      "in [0, 1e9]",
+      "the partner's racket as the autonomous goal, moved to within this horizontal distance of target"),
 };
 
 #define COUNT(a) ((int)(sizeof(a) / sizeof((a)[0])))
 #define N_PLANE_FIELDS 7
-#define N_RACKET_FIELDS 3
+#define N_RACKET_FIELDS 4
 
 const ball_field *ball_model_fields(int *count) {
   if (count) *count = COUNT(model_fields);
@@ -205,7 +208,7 @@ static const char *const wall_names[BALL_MAX_WALLS][N_PLANE_FIELDS] = {
     PLANE_NAMES("walls[9]."),  PLANE_NAMES("walls[10]."), PLANE_NAMES("walls[11]."),
     PLANE_NAMES("walls[12]."), PLANE_NAMES("walls[13]."), PLANE_NAMES("walls[14]."),
     PLANE_NAMES("walls[15].")};
-#define RACKET_NAMES(p) {p "radius", p "partner", p "target"}
+#define RACKET_NAMES(p) {p "radius", p "partner", p "target", p "goal_reach"}
 static const char *const racket_names[BALL_MAX_RACKETS][N_RACKET_FIELDS] = {
     RACKET_NAMES("rackets[0]."), RACKET_NAMES("rackets[1]."), RACKET_NAMES("rackets[2]."),
     RACKET_NAMES("rackets[3].")};

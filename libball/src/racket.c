@@ -321,8 +321,12 @@ static void respond(const ball_model *m, const ball__flight *fl, ball_sim *sim, 
     ball_racket_pose pp;
     int partner = m->rackets[i].partner;
     double v_up = ball__response_v_up(m, pose->velocity);
-    if (partner >= 0 && estimate(m, sim, partner, h->t, &pp) == BALL_OK)
-      goal = pp.center;
+    if (partner >= 0 && estimate(m, sim, partner, h->t, &pp) == BALL_OK) {
+      /* the partner's racket, within goal_reach of target horizontally */
+      double dx = pp.center.x - goal.x, dz = pp.center.z - goal.z, d = sqrt(dx * dx + dz * dz);
+      double k = m->rackets[i].goal_reach / d;
+      goal = d > m->rackets[i].goal_reach ? ball_v3(goal.x + dx * k, pp.center.y, goal.z + dz * k) : pp.center;
+    }
     if (m->response == BALL_RESPONSE_AUTONOMOUS) {
       v0 = ball__response_autonomous(m, h->q, goal, v_up, m->friendly_factor);
     } else {

@@ -1,5 +1,7 @@
 #include "court.h"
 
+#include <algorithm>
+
 #include <cmath>
 #include <cstring>
 
@@ -75,6 +77,18 @@ bool build_match_model(const ball_scene &scene, const Court &court, const ModelS
   // a racket added above may name a partner the scene's own rackets lack
   for (int i = 0; i < m.n_rackets; ++i)
     if (m.rackets[i].partner >= m.n_rackets) m.rackets[i].partner = -1;
+  // the autonomous ball (eq 8, 9) flies to the partner's racket, but lands
+  // in the partner's half of the court: the goal, where the ball comes back
+  // to the stroke's height, within half the radius of the circle inscribed
+  // in that half (it lands a couple of metres beyond the goal); a partner
+  // who parks its racket off the court must not win the point
+  for (int i = 0; i < setup.players; ++i) {
+    ball_racket_def &r = m.rackets[i];
+    if (r.partner < 0) continue;
+    int side = Court::side_of_slot(r.partner);
+    r.target = court.spot(side, 0.5, 0.0);
+    r.goal_reach = 0.5 * std::min(0.5 * court.side_length(side), 0.5 * (court.z_hi - court.z_lo));
+  }
   m.effects |= BALL_EFFECT_RACKETS;
   if (setup.extrapolation_time >= 0.0) m.extrapolation_time = setup.extrapolation_time;
   if (setup.stale_time >= 0.0) m.stale_time = setup.stale_time;

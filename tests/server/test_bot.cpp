@@ -109,3 +109,59 @@ TEST(skill_decides_the_points) {
 }
 
 CHECK_MAIN
+
+// At easy the ball flies to the partner's racket (eq 8, 9): a player who
+// parks its racket off the court, inside the racket margin, must not win
+// the honest player's strokes as out. The autonomous goal stays within the
+// circle inscribed in the partner's half (court.cpp), so every return of
+// the honest bot lands in, and the parked player loses its points.
+TEST(a_racket_parked_off_the_court_wins_nothing_at_easy) {
+  MatchConfig c = default_config();
+  c.level = BALL_LEVEL_EASY;
+  Game g(c);
+  BotBrain honest;
+  BotParams p;
+  p.slot = 0;
+  p.lead = bot_lead(15.0, 0.0, 0.0, 0.0);
+  honest.init(g.match.model(), g.match.court(), p);
+  g.join(0, participant(1));
+  g.park[0] = false;
+  g.join(1, participant(2));
+  g.park[1] = false;
+  const Court &court = g.match.court();
+  // slot 1's racket: 7 m off the far sideline, at the far baseline, 1 m high
+  ball_vec3 parked = ball_v3(court.x_hi - 2.0, 1.0, court.z_hi + 7.0);
+  double next = 0.0;
+  uint64_t accepted = 0;
+  for (int k = 0; k < 120 * 60; ++k) {
+    double sim = g.match.sim().time;
+    while (next <= sim + 1e-12) {
+      RacketSampleIn s = bot_sample(g, honest, 0, next);
+      accepted += g.match.on_sample(s, g.now) == SampleResult::accepted;
+      RacketSampleIn q = g.parked_sample(1);
+      q.capture_time = next;
+      q.center = parked;
+      accepted += g.match.on_sample(q, g.now) == SampleResult::accepted;
+      next += 1.0 / 15.0;
+    }
+    g.out.clear();
+    g.match.frame(g.now, &g.out);
+    g.keep();
+    if (!g.out.segments.empty()) {
+      const SegmentOut &s = g.out.segments.back();
+      honest.on_segment(s.segment, s.cause == Cause::serve, s.cause_index, g.match.sim().time);
+    }
+    g.now += g.match.frame_time();
+  }
+  int out_after_honest = 0, won[2] = {0, 0};
+  for (const auto &e : g.events)
+    if (e.kind == EventKind::point && e.side >= 0) {
+      won[e.side]++;
+      out_after_honest += e.side == 1 && e.reason == Reason::point_out;
+    }
+  std::printf("  parked off the court: honest side %d points, parked side %d; %d honest strokes out; %lu samples\n",
+              won[0], won[1], out_after_honest, (unsigned long)accepted);
+  CHECK(g.match.counters().hits >= 10);
+  CHECK_EQ(out_after_honest, 0);
+  CHECK(won[0] > won[1]);
+}

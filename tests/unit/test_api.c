@@ -584,7 +584,7 @@ static void the_field_table_makes_the_defaults_and_names(void **state) {
   (void)state;
   ball_model_default(&m);
   memset(&from_table, 0, sizeof from_table);
-  assert_true(n > 30 && np == 7 && nr == 3);
+  assert_true(n > 30 && np == 7 && nr == 4);
   for (i = 0; i < n; i++) {
     char *p = (char *)&from_table + f[i].offset;
     assert_non_null(f[i].name);

@@ -2,6 +2,7 @@
  * hit emits, eq 7's restart point, and the swept test's time of impact inside
  * a frame at 6 Hz where the frame-based tests see the hit late or not at all. */
 #include <limits.h>
+#include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -98,6 +99,44 @@ static void set_sleep_skips_exactly_the_frames_given(void **state) {
   assert_int_equal(ball_sim_set_sleep(NULL, 1), BALL_EINVAL);
 }
 
+/* eq 8, 9 with a partner: the autonomous ball flies to the partner's
+ * racket; with goal_reach, to the point within that horizontal distance of
+ * the racket's target nearest it (a partner parked off the court gets a
+ * ball in the court). The direction of V0's horizontal part is the goal's. */
+static void autonomous_goal_stays_within_reach_of_target(void **state) {
+  int k;
+  (void)state;
+  for (k = 0; k < 3; k++) {
+    ball_model m;
+    ball_sim sim;
+    ball_event ev[4];
+    int n;
+    double reach = k == 0 ? BALL_MAX_COORD : k == 1 ? 5.0 : 50.0;
+    ball_vec3 partner = ball_v3(20.0, 1.0, 40.0), target = ball_v3(17.0, 0.0, 5.0), goal;
+    still_racket_model(&m, 3);
+    m.n_rackets = 2;
+    m.response = BALL_RESPONSE_AUTONOMOUS;
+    m.friendly_factor = 1.0;
+    m.rackets[0].partner = 1;
+    m.rackets[0].target = target;
+    m.rackets[0].goal_reach = reach;
+    m.rackets[1].partner = 0;
+    assert_ok(ball_sim_init(&sim, &m));
+    assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
+    assert_ok(ball_racket_push(&sim, 1, &(ball_racket_sample){0.0, partner, {1, 0, 0}}));
+    assert_ok(ball_step(&sim, 0.01, ev, 4, &n));
+    assert_int_equal(n, 1);
+    assert_int_equal(ev[0].kind, BALL_EVENT_RACKET);
+    if (k == 1) { /* |partner - target| = 35.13 m: moved to 5 m from target, toward the partner */
+      double d = sqrt(3.0 * 3.0 + 35.0 * 35.0);
+      goal = ball_v3(17.0 + 3.0 * 5.0 / d, 0.0, 5.0 + 35.0 * 5.0 / d);
+    } else { /* within reach: the partner's racket itself, as the paper has it */
+      goal = partner;
+    }
+    assert_near(ev[0].velocity_out.z / ev[0].velocity_out.x, (goal.z - ev[0].point.z) / (goal.x - ev[0].point.x), 1e-12);
+  }
+}
+
 static void eq7_hit_event_fields_and_restart_at_q_plus_v0_dt(void **state) {
   ball_model m;
   ball_sim sim;
@@ -187,6 +226,7 @@ int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(sleep_frames_prevent_double_hit_of_one_stroke),
       cmocka_unit_test(set_sleep_skips_exactly_the_frames_given),
+      cmocka_unit_test(autonomous_goal_stays_within_reach_of_target),
       cmocka_unit_test(eq7_hit_event_fields_and_restart_at_q_plus_v0_dt),
       cmocka_unit_test(swept_finds_overtaking_racket_inside_6hz_frame),
   };

@@ -145,6 +145,8 @@ typedef struct ball_racket_def {
   double radius;      /* r_disc, m */
   int partner;        /* racket the autonomous ball flies to; -1: fly to target */
   ball_vec3 target;   /* goal point when partner is -1 (its y is ignored: eq 8), m */
+  double goal_reach;  /* the partner's racket as the goal, but no farther than this from target
+                         horizontally (a partner off the court gets a ball in it), m */
 } ball_racket_def;
 
 /* One tracker or network sample of a racket. */
