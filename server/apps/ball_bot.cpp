@@ -39,6 +39,8 @@ int main(int argc, char **argv) {
   player_opt.apply(&pp);
 
   std::string err;
+  ServerChoice chosen;
+  if (!ServerChoice::parse(pp.servers, &chosen, &err)) return fail(kProgram, err);
   ball_scene sc;
   if (!load_scene(scene, &sc, &err)) return fail(kProgram, err);
   install_stop_signals();
@@ -71,9 +73,9 @@ int main(int argc, char **argv) {
   if (!quiet)
     std::printf("%s: match %u slot %d: %" PRIu64 " samples taken, %" PRIu64 " lost on the link, %" PRIu64
                 " written, %" PRIu64 " writes refused; %" PRIu64 " segments; %" PRIu64 " balls played (%" PRIu64
-                " late, %" PRIu64 " missed on purpose)\n",
+                " late, %" PRIu64 " missed on purpose); %" PRIu64 " server samples refused\n",
                 kProgram, r.match, r.slot, r.samples, r.lost, r.written, r.write_failures, r.segments, r.plans,
-                r.late, r.missed_on_purpose);
+                r.late, r.missed_on_purpose, r.refused);
   if (!stats_json.empty() && !write_file(stats_json, json(r).dump(1), &err)) return fail(kProgram, err);
   // a LEAVE written just now must get out before the participant goes
   if (left) sleep_until(mono_now() + 0.2);

@@ -42,7 +42,7 @@ struct Snapshots {
       // its scene's court (net, walls) if found by name, else libball's, with the announced flight fields
       ball_scene scene;
       std::string err;
-      if (!load_scene(d.info.scene, &scene, &err)) ball_scene_default(&scene);
+      if (!plain_scene_name(d.info.scene) || !load_scene(d.info.scene, &scene, &err)) ball_scene_default(&scene);
       scene.model.radius = d.info.model.radius;
       scene.model.floor_level = d.info.model.floor_level;
       scene.model.gravity = d.info.model.gravity;
@@ -110,7 +110,10 @@ int main(int argc, char **argv) {
   DdsOptions dds_opt;
   std::vector<std::string> cameras;
   for (int i = 0; i < BALL_CAMERA_PRESET_COUNT; ++i) cameras.push_back(ball_camera_preset_name(static_cast<ball_camera_preset>(i)));
+  std::string servers;
   cli.add_option("--match", ws.match, "watch this match only (default: all)");
+  cli.add_option("--servers", servers, "use the server topics only from these server ids, comma-separated "
+                                       "(default: any; the record keeps everything received)");
   cli.add_option("--fps", ws.fps, "frames per second of the watcher's own ball")->capture_default_str()->check(CLI::Range(1.0, 1000.0));
   cli.add_option("--duration", duration, "stop after S real seconds (0: until SIGINT/SIGTERM)")->check(CLI::Range(0.0, 1e9));
   cli.add_option("--until-hits", until_hits, "stop once this many racket hits were seen in play")->check(CLI::Range(0, 1000000));
@@ -127,6 +130,7 @@ int main(int argc, char **argv) {
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
   ws.log = !no_log && !quiet;
+  if (!ServerChoice::parse(servers, &ws.servers, &err)) return fail(kProgram, err);
   ws.snapshot_every = snap.dir.empty() ? 0.0 : every;
   struct stat st {};
   if (!snap.dir.empty() && ::stat(snap.dir.c_str(), &st) != 0 && ::mkdir(snap.dir.c_str(), 0777) != 0)

@@ -228,9 +228,7 @@ std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes
   // another server's match may name a scene by libball's name (a standby
   // follows it); a name from the wire is never a path
   host->set_scene_source([](const std::string &name, ball_scene *scene, std::string *e) {
-    bool plain = !name.empty() && name.find_first_not_of("abcdefghijklmnopqrstuvwxyz"
-                                                         "ABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") == std::string::npos;
-    return plain && load_scene(name, scene, e);
+    return plain_scene_name(name) && load_scene(name, scene, e);
   });
   for (size_t i = 0; i < config->matches.size(); ++i) {
     MatchEntry &e = config->matches[i];

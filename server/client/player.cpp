@@ -1,5 +1,9 @@
 #include "player.h"
 
+#include <cmath>
+
+#include "ball/vec3.h"
+
 namespace ballsrv {
 
 namespace {
@@ -25,6 +29,8 @@ const std::vector<Field<PlayerParams>> &player_fields() {
       {"lead", &P::lead, closed(0.0, 2.0), "s", "on the stroke line before contact", "--lead",
        "from rate, delay, jitter, loss"},
       {"seed", &P::seed, whole(0, INT64_MAX), "", "seed of every random draw", "--seed"},
+      {"servers", &P::servers, {}, "", "take the server topics only from these server ids, comma-separated",
+       "--servers", "any"},
   };
   return table;
 }
@@ -35,13 +41,23 @@ BotPlayer::BotPlayer(const ball_scene &scene, const ParticipantId &me, const Pla
       p_(params),
       link_({params.delay, params.jitter, params.loss}, params.seed * 0x9e3779b97f4a7c15ull + 7),
       noise_(params.seed * 31 + 5),
-      slot_(params.player) {}
+      slot_(params.player) {
+  std::string err;
+  ServerChoice::parse(params.servers, &servers_, &err);  // checked by the program before
+}
 
-bool BotPlayer::on_info(const MatchInfoOut &in, double real) {
-  if (in.match_id != p_.match) return true;
+void BotPlayer::on_info(const MatchInfoOut &in, double real) {
+  if (in.match_id != p_.match) return;
+  if (!servers_.accepts(in.server_id) || !usable_info(in)) {
+    counters_.refused++;
+    return;
+  }
+  if (!clock_.observe(in.sim_time, in.server_time, in.time_base, in.state == MatchState::playing, real)) {
+    counters_.refused++;
+    return;
+  }
   info_ = in;
   have_info_ = true;
-  clock_.observe(in.sim_time, in.server_time, in.time_base, in.state == MatchState::playing, real);
   if (!joined_) {
     for (int i = 0; i < in.players; ++i)
       if (in.slots[i].held && in.slots[i].owner == me_ && (p_.player < 0 || p_.player == i)) slot_ = i;
@@ -59,8 +75,10 @@ bool BotPlayer::on_info(const MatchInfoOut &in, double real) {
     Court court;
     ball_model model;
     if (!court_from_model(scene_.model, in.court_x[0], &court, &error_) ||
-        !build_match_model(scene_, court, setup, &model, &error_))
-      return false;
+        !build_match_model(scene_, court, setup, &model, &error_)) {
+      counters_.refused++;
+      return;
+    }
     model_ = model;
     court_ = court;
     model_hash_ = ball_model_hash(&model_);
@@ -87,17 +105,25 @@ bool BotPlayer::on_info(const MatchInfoOut &in, double real) {
   }
   // the segment in effect, for a bot that has not got it (one that joined
   // after a failover, whose new server has written no segment yet)
-  if (in.segment_seq > newest_seq_) on_segment(current_segment(in), real);
-  return true;
+  if (in.segment_seq > 0 && segment_is_news(in.segment_seq, newest_seq_, in.segment_seq))
+    on_segment(current_segment(in), real);
 }
 
 void BotPlayer::on_state(const StateOut &s, double real) {
   if (s.match_id != p_.match) return;
-  clock_.observe(s.sim_time, s.server_time, info_.time_base, s.state == MatchState::playing, real);
+  if (!servers_.accepts(s.server_id) ||
+      !clock_.observe(s.sim_time, s.server_time, info_.time_base, s.state == MatchState::playing, real))
+    counters_.refused++;
 }
 
 void BotPlayer::on_segment(const SegmentOut &seg, double real) {
-  if (seg.match_id != p_.match || seg.seq <= newest_seq_) return;
+  if (seg.match_id != p_.match) return;
+  if (!servers_.accepts(seg.server_id) || !segment_is_news(seg.seq, newest_seq_, info_.segment_seq) ||
+      !std::isfinite(seg.segment.t0) || !ball_v3_finite(seg.segment.p0) || !ball_v3_finite(seg.segment.v0) ||
+      !ball_v3_finite(seg.segment.s0)) {
+    if (seg.seq != newest_seq_) counters_.refused++;  // (the same segment again is no news, not a refusal)
+    return;
+  }
   newest_seq_ = seg.seq;
   counters_.segments++;
   if (brain_ready_ && clock_.valid())

@@ -14,6 +14,7 @@
 #include "fields.h"
 #include "link.h"
 #include "sim_clock.h"
+#include "trust.h"
 #include "types.h"
 
 namespace ballsrv {
@@ -33,6 +34,7 @@ struct PlayerParams {
   double move_speed = 12.0;   // m/s the racket travels between strokes
   double lead = -1.0;         // s on the stroke line before contact; < 0: bot_lead(rate, delay, jitter, loss)
   uint64_t seed = 1;          // of every random draw
+  std::string servers;        // the server ids it takes the server topics from, comma-separated ("": any)
 };
 const std::vector<Field<PlayerParams>> &player_fields();
 
@@ -41,6 +43,8 @@ struct PlayerCounters {
   uint64_t lost = 0;      // of those, lost on the link
   uint64_t delivered = 0; // handed to the caller to write
   uint64_t segments = 0;  // newer segments seen
+  uint64_t refused = 0;   // server samples not taken: another server, numbers out of range, a clock pair or
+                          // a segment seq that does not fit (trust.h)
   bool hash_differs = false;  // its model is not the server's (another scene?)
 };
 
@@ -49,8 +53,10 @@ class BotPlayer {
   BotPlayer(const ball_scene &scene, const ParticipantId &me, const PlayerParams &params);
 
   // What the server said; `real` is the local realtime clock at reception.
-  // false (with error()) if the match's model cannot be built from the scene.
-  bool on_info(const MatchInfoOut &info, double real);
+  // What does not fit (trust.h) is refused and counted; a MatchInfo whose
+  // model cannot be built from the scene leaves the bot as it was, with
+  // error() saying why. Nothing from the wire ends the bot.
+  void on_info(const MatchInfoOut &info, double real);
   void on_state(const StateOut &state, double real);
   void on_segment(const SegmentOut &segment, double real);
 
@@ -76,6 +82,7 @@ class BotPlayer {
   ParticipantId me_;
   PlayerParams p_;
   SimClock clock_;
+  ServerChoice servers_;
   BotBrain brain_;
   Link<RacketSampleIn> link_;
   Rng noise_;

@@ -20,11 +20,7 @@ bool PlayerGroup::tick(ClientPort &port, double mono, double real,
   while (port.take(&info)) {
     auto it = by_match_.find(info.match_id);
     if (it == by_match_.end()) continue;
-    for (BotPlayer *b : it->second)
-      if (!b->on_info(info, real)) {
-        error_ = "cannot build the match's model from the scene: " + b->error();
-        return false;
-      }
+    for (BotPlayer *b : it->second) b->on_info(info, real);
   }
   StateOut state;
   while (port.take(&state)) {
@@ -77,6 +73,7 @@ BotReport PlayerGroup::report(size_t i, const ParticipantId &me) const {
   r.plans = b.brain_counters().plans;
   r.late = b.brain_counters().late;
   r.missed_on_purpose = b.brain_counters().missed_on_purpose;
+  r.refused = b.counters().refused;
   r.participant = hex(me);
   return r;
 }

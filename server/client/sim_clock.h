@@ -12,6 +12,7 @@
 // latency alone: a fraction of a millisecond on loopback.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 
 namespace ballsrv {
@@ -19,8 +20,28 @@ namespace ballsrv {
 class SimClock {
  public:
   // A (sim_time, server_time) pair received at local realtime `local_now`.
-  void observe(double sim_time, double server_time, double time_base, bool running, double local_now) {
+  // false (and counted in rejected()) for a pair that does not fit: a
+  // number that is not finite, a time base outside [0.05, 20], or, once
+  // the clock runs, an offset more than kMaxJump from the clock's own (a
+  // forged pair must not move the clock); kConfirm such pairs in a row that
+  // agree with each other are a new clock (a server on another host) and
+  // the estimate starts anew from them.
+  bool observe(double sim_time, double server_time, double time_base, bool running, double local_now) {
     double offset = local_now - server_time;
+    if (!std::isfinite(sim_time) || !std::isfinite(offset) || !(time_base >= 0.05 && time_base <= 20.0)) {
+      rejected_++;
+      return false;
+    }
+    if (valid_ && std::fabs(offset - this->offset()) > kMaxJump) {
+      rejected_++;
+      bool agrees = outliers_ > 0 && std::fabs(offset - outlier_offset_) <= kMaxJump;
+      outliers_ = agrees ? outliers_ + 1 : 1;
+      outlier_offset_ = offset;
+      if (outliers_ < kConfirm) return false;
+      next_ = 0;  // a new clock: the window starts over
+      valid_ = false;
+    }
+    outliers_ = 0;
     offsets_[next_ % kWindow] = offset;
     next_++;
     // the newest anchor wins when it is at least as recent (pairs can arrive out of order)
@@ -31,6 +52,7 @@ class SimClock {
       running_ = running;
     }
     valid_ = true;
+    return true;
   }
 
   bool valid() const { return valid_; }
@@ -55,9 +77,16 @@ class SimClock {
 
   bool running() const { return running_; }
   double time_base() const { return time_base_; }
+  unsigned long rejected() const { return rejected_; }  // pairs that did not fit
+
+  static constexpr double kMaxJump = 2.0;  // s: an offset this far from the clock's is not its
+  static constexpr int kConfirm = 10;      // pairs in a row that make a new clock (a burst of forged ones must be long)
 
  private:
   static constexpr size_t kWindow = 128;  // pairs: about 2 s of 60 Hz states
+  unsigned long rejected_ = 0;
+  int outliers_ = 0;            // pairs in a row that did not fit
+  double outlier_offset_ = 0.0; // the newest of them
   double offsets_[kWindow] = {0};
   size_t next_ = 0;
   bool valid_ = false;

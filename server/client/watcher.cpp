@@ -100,11 +100,16 @@ void Watcher::on_ready(double real) {
 void Watcher::on_info(const MatchInfoOut &info, double real) {
   if (!wanted(info.match_id)) return;
   Watched &w = watched(info.match_id);
+  out_.records.push_back(record_line(info, real));  // what arrived; used only if it fits (trust.h)
+  if (!settings_.servers.accepts(info.server_id) || !usable_info(info) ||
+      !w.clock.observe(info.sim_time, info.server_time, info.time_base, info.state == MatchState::playing, real)) {
+    w.tally.not_taken++;
+    return;
+  }
   bool first = !w.has_info;
   MatchState before = w.info.state;
   w.info = info;
   w.has_info = true;
-  w.clock.observe(info.sim_time, info.server_time, info.time_base, info.state == MatchState::playing, real);
   // the segment in effect, when no Segment sample brought it (a watcher
   // that joined after a failover, whose new server has written none yet)
   if (info.segment_seq > 0 && !w.segments.count(info.segment_seq) &&
@@ -115,20 +120,25 @@ void Watcher::on_info(const MatchInfoOut &info, double real) {
         std::string("match ") + name_of(info.state) + " (" + info.scene + ", level " +
             ball_level_name(static_cast<ball_level>(info.level)) + ", " + std::to_string(info.players) +
             " players, server " + std::to_string(info.server_id) + ")");
-  out_.records.push_back(record_line(info, real));
 }
 
 void Watcher::on_segment(const SegmentOut &seg, double real) {
   if (!wanted(seg.match_id)) return;
   Watched &w = watched(seg.match_id);
+  out_.records.push_back(record_line(seg, real));  // what arrived; used only if it fits
+  uint32_t newest = w.segments.empty() ? 0 : w.segments.rbegin()->first;
+  if (!settings_.servers.accepts(seg.server_id) || !segment_fits(seg.seq, newest, w.info.segment_seq)) {
+    w.tally.not_taken++;
+    return;
+  }
   if (first_segment_after_ < 0.0) first_segment_after_ = real - start_real_;
+  if (!segment_fits(seg.seq, newest, 0)) w.segments.clear();  // a match started anew (its MatchInfo says so)
   w.segments[seg.seq] = seg;
   while (w.segments.size() > kKeepSegments) w.segments.erase(w.segments.begin());
   if (seg.cause == Cause::racket && seg.sample.valid) {
     latency_.add(real - seg.sample.source_time);
     latency_server_.add(seg.server_time - seg.sample.source_time);
   }
-  out_.records.push_back(record_line(seg, real));
 }
 
 void Watcher::on_event(const EventOut &e, double real) {
@@ -166,9 +176,13 @@ void Watcher::on_state(const StateOut &s, double real) {
   if (!wanted(s.match_id)) return;
   Watched &w = watched(s.match_id);
   w.tally.states++;
-  w.clock.observe(s.sim_time, s.server_time, w.info.time_base, s.state == MatchState::playing, real);
-  w.pending.push_back(s);
   out_.records.push_back(record_line(s, real));
+  if (!settings_.servers.accepts(s.server_id) ||
+      !w.clock.observe(s.sim_time, s.server_time, w.info.time_base, s.state == MatchState::playing, real)) {
+    w.tally.not_taken++;
+    return;
+  }
+  w.pending.push_back(s);
 }
 
 void Watcher::on_status(const StatusOut &s) { servers_[s.server_id] = s; }

@@ -18,6 +18,7 @@
 #include "frame_clock.h"
 #include "records.h"
 #include "sim_clock.h"
+#include "trust.h"
 
 namespace ballsrv {
 
@@ -27,6 +28,7 @@ struct WatcherSettings {
   bool log = true;             // the rally log
   bool record_frames = false;  // the own ball in the record, every frame
   double snapshot_every = 0.0; // sim s between snapshot frames, on multiples of it; 0: none
+  ServerChoice servers;        // the servers whose samples it uses (recorded all the same)
 };
 
 // One line of the rally log.

@@ -104,10 +104,13 @@ struct WatchedMatchSummary {
   uint64_t frames = 0;            // own frames evaluated
   uint64_t snapshots = 0;
   uint32_t segments = 0;          // seq of the newest segment
+  uint64_t not_taken = 0;         // server samples recorded but not used: another server's, numbers out of range,
+                                  // a clock pair or a segment seq that does not fit (trust.h)
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WatchedMatchSummary, match, hits, dead_hits, bounces, nets, walls, sounds, serves,
                                    points, lets, score, pauses, resumes, refused, events_missed, states,
-                                   states_checked, states_unmatched, max_error, frames, snapshots, segments)
+                                   states_checked, states_unmatched, max_error, frames, snapshots, segments,
+                                   not_taken)
 
 // A server's status line (ServerStatus): every field, drops by name.
 void to_json(json &j, const StatusOut &s);
@@ -167,10 +170,11 @@ struct BotReport {
   int slot = -1;
   uint64_t samples = 0, lost = 0, written = 0, write_failures = 0, segments = 0;
   uint64_t plans = 0, late = 0, missed_on_purpose = 0;
+  uint64_t refused = 0;     // server samples not taken (trust.h)
   std::string participant;  // hex GUID prefix
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BotReport, match, slot, samples, lost, written, write_failures, segments, plans,
-                                   late, missed_on_purpose, participant)
+                                   late, missed_on_purpose, refused, participant)
 
 struct LoadRow {  // one point (match count, state rate) of one round of the load benchmark
   int matches = 0, bots = 0;

@@ -95,4 +95,9 @@ bool parse_name(const std::string &n, SampleResult *out) {
   return true;
 }
 
+bool plain_scene_name(const std::string &name) {
+  return !name.empty() && name.size() < static_cast<size_t>(kNameLen) &&
+         name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_-") == std::string::npos;
+}
+
 }  // namespace ballsrv

@@ -121,6 +121,11 @@ enum class SampleResult : int {
 constexpr int kDropReasons = static_cast<int>(SampleResult::drop_count);
 constexpr int kDropSlots = 16;  // IDL DROP_REASONS: room on the wire for more reasons
 
+// A scene name from the wire that a program may look up: letters, digits,
+// '_' and '-' only, never a path (a MatchInfo naming a FIFO once hung
+// ball-watch).
+bool plain_scene_name(const std::string &name);
+
 // Drop counters as words: "12 (stale 10, duplicate 2)", or "0".
 std::string drops_text(const std::array<uint64_t, kDropSlots> &drops);
 

@@ -35,6 +35,32 @@ TEST(sim_clock_maps_by_the_smallest_offset) {
   CHECK_NEAR(c.sim_now(1010.0 + skew), 11.2, 0.0);
 }
 
+// Pairs that do not fit move nothing (counted): a number that is not
+// finite, a time base out of range, a forged pair from a clock 1e6 s away
+// (three of them froze every bot for good before); ten in a row that agree
+// with each other are a new clock (another server's host), adopted.
+TEST(sim_clock_refuses_pairs_that_do_not_fit) {
+  SimClock c;
+  const double skew = 100.0;
+  for (int i = 0; i < 5; ++i) CHECK(c.observe(10.0 + i, 1000.0 + i, 1.0, true, 1000.0 + i + skew + 0.001));
+  double before = c.sim_now(1005.0 + skew);
+  CHECK(!c.observe(std::nan(""), 1005.0, 1.0, true, 1005.0 + skew));
+  CHECK(!c.observe(15.0, 1005.0, 50.0, true, 1005.0 + skew));
+  CHECK(!c.observe(15.0, 1005.0, 0.0, true, 1005.0 + skew));
+  for (int i = 0; i < 3; ++i) CHECK(!c.observe(1e9, 1e12, 1.0, true, 1005.0 + skew));
+  CHECK(!c.observe(15.0, 1005.0 + 3.0, 1.0, true, 1005.0 + skew));  // 3 s off: a jump
+  CHECK_EQ(c.rejected(), 7ul);
+  CHECK_NEAR(c.sim_now(1005.0 + skew), before, 0.0);
+  // a real pair between forged ones breaks their run
+  for (int i = 0; i < SimClock::kConfirm - 1; ++i) CHECK(!c.observe(50.0, 2000.0 + i, 1.0, true, 1005.0 + skew));
+  CHECK(c.observe(15.0, 1005.0, 1.0, true, 1005.0 + skew + 0.001));
+  CHECK(!c.observe(50.0, 2000.0, 1.0, true, 1005.0 + skew));
+  // a new clock, 500 s off, kConfirm pairs in a row: adopted
+  for (int i = 0; i < SimClock::kConfirm - 1; ++i) CHECK(!c.observe(20.0 + i, 500.0 + i, 1.0, true, 1006.0 + i + skew));
+  CHECK(c.observe(20.0 + 9, 500.0 + 9, 1.0, true, 1006.0 + 9 + skew));
+  CHECK_NEAR(c.sim_now(1016.0 + skew), 30.0, 1e-9);
+}
+
 TEST(link_delays_reorders_and_loses) {
   Link<int> clean({0.1, 0.0, 0.0}, 1);
   for (int i = 0; i < 10; ++i) clean.send(i, i * 0.01);
@@ -67,7 +93,8 @@ TEST(player_joins_then_sends) {
   std::vector<RacketSampleIn> samples;
   std::vector<ControlIn> controls;
   MatchInfoOut info = g.match.info();
-  CHECK(bot.on_info(info, 0.0));
+  bot.on_info(info, 0.0);
+  CHECK_EQ(bot.counters().refused, 0u);
   CHECK_EQ(bot.model_hash(), info.model_hash);  // the bot builds the server's model
   bot.tick(0.0, 0.0, &samples, &controls);
   CHECK_EQ(controls.size(), 1u);
@@ -78,7 +105,7 @@ TEST(player_joins_then_sends) {
   bot.tick(0.6, 0.6, &samples, &controls);
   CHECK_EQ(controls.size(), 2u);
   g.control(ControlKind::join, me, 1);
-  CHECK(bot.on_info(g.match.info(), 0.7));
+  bot.on_info(g.match.info(), 0.7);
   CHECK(bot.joined());
   CHECK_EQ(bot.slot(), 1);
   for (int k = 0; k < 20; ++k) bot.tick(0.7 + k * 0.05, 0.7 + k * 0.05, &samples, &controls);
@@ -94,6 +121,61 @@ TEST(player_joins_then_sends) {
   ControlIn bye;
   CHECK(bot.leave(&bye));
   CHECK(bye.kind == ControlKind::leave && bye.player == 1);
+}
+
+// A bot takes nothing that does not fit and ends on nothing from the wire:
+// a MatchInfo with level 99 or a NaN clock, another server's samples when
+// it chose server 1, a segment seq 0xFFFFFFFF; the real stream goes on.
+TEST(a_bot_takes_nothing_that_does_not_fit) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(9));
+  g.run(2.0);  // serves
+  ball_scene scene;
+  ball_scene_default(&scene);
+  PlayerParams p;
+  p.match = g.match.id();
+  p.player = 1;
+  p.servers = "1";
+  BotPlayer bot(scene, participant(9), p);
+  MatchInfoOut info = g.match.info();
+  info.server_id = 1;
+  info.server_time = 1000.0;
+  bot.on_info(info, 1000.0);
+  CHECK(bot.joined());
+  CHECK_EQ(bot.counters().refused, 0u);
+  MatchInfoOut bad = info;
+  bad.level = 99;
+  bot.on_info(bad, 1000.1);
+  bad = info;
+  bad.sim_time = std::nan("");
+  bot.on_info(bad, 1000.1);
+  bad = info;
+  bad.server_id = 2;  // not chosen
+  bot.on_info(bad, 1000.1);
+  CHECK_EQ(bot.counters().refused, 3u);
+  CHECK_EQ(bot.model_hash(), info.model_hash);  // still the real match's model
+  CHECK(!g.segments.empty());
+  SegmentOut real = g.segments.back();
+  real.server_id = 1;
+  uint64_t seen = bot.counters().segments;
+  SegmentOut forged = real;
+  forged.seq = 0xFFFFFFFFu;
+  bot.on_segment(forged, 1000.2);
+  forged.seq = real.seq + kMaxSeqAhead + 1;
+  bot.on_segment(forged, 1000.2);
+  CHECK_EQ(bot.counters().refused, 5u);
+  real.seq += 1;  // the server's next segment still gets through
+  bot.on_segment(real, 1000.3);
+  CHECK_EQ(bot.counters().segments, seen + 1);
+  CHECK(segment_is_news(5, 0xFFFFFFFEu, 0));  // across the wrap
+  CHECK(!segment_is_news(3, 5, 0));
+  CHECK(segment_is_news(3, 5, 3));            // a match started anew: the info says so
+  ServerChoice any, two;
+  std::string err;
+  CHECK(ServerChoice::parse("", &any, &err) && any.accepts(77));
+  CHECK(ServerChoice::parse("1,2", &two, &err) && two.accepts(2) && !two.accepts(3));
+  CHECK(!ServerChoice::parse("1,x", &two, &err) && err.find("server ids") != std::string::npos);
 }
 
 namespace {

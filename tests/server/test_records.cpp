@@ -166,7 +166,7 @@ TEST(reports_come_back) {
   CHECK_EQ(wb.matches[0].max_error, 1e-300);
   CHECK_EQ(wb.servers[0].samples_in, 371u);
 
-  BotReport b{2, 1, 300, 60, 240, 1, 55, 8, 1, 0, hex(participant(7))};
+  BotReport b{2, 1, 300, 60, 240, 1, 55, 8, 1, 0, 3, hex(participant(7))};
   CHECK(same(round_trip(b), b));
   LoadRow l;
   l.matches = 100;

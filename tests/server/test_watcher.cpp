@@ -241,3 +241,41 @@ TEST(summary_lines_say_the_numbers) {
 }
 
 CHECK_MAIN
+
+// What does not fit is recorded (it arrived) but not used, and counted: a
+// segment 0xFFFFFFFF ahead, another server's samples when server 1 was
+// chosen, a MatchInfo with level 99 or a clock 1e6 s away; the watcher's
+// own ball stays on the real stream.
+TEST(what_does_not_fit_is_recorded_not_used) {
+  Game g = played(3.0);
+  WatcherSettings ws;
+  std::string err;
+  CHECK(ServerChoice::parse("1", &ws.servers, &err));
+  Watcher w(ws);
+  MatchInfoOut info = info_at(g, g.match.sim().time, 1000.0, MatchState::playing);
+  info.server_id = 1;
+  w.on_info(info, 1000.0);
+  for (SegmentOut s : g.segments) {
+    s.server_id = 1;
+    w.on_segment(s, 1000.0);
+  }
+  uint32_t newest = g.segments.back().seq;
+  SegmentOut forged = g.segments.back();
+  forged.server_id = 1;
+  forged.seq = 0xFFFFFFFFu;
+  w.on_segment(forged, 1000.0);
+  forged.seq = newest + 1;
+  forged.server_id = 2;  // not chosen
+  w.on_segment(forged, 1000.0);
+  MatchInfoOut bad = info;
+  bad.level = 99;
+  w.on_info(bad, 1000.1);
+  bad = info;
+  bad.server_time = 1e6;  // a clock 1e6 s away
+  w.on_info(bad, 1000.1);
+  const WatchedMatchSummary m = w.summary(1).matches[0];
+  CHECK_EQ(m.not_taken, 4u);
+  CHECK_EQ(m.segments, newest);
+  CHECK_EQ(count_type(w.output(), "segment"), g.segments.size() + 2);  // recorded all the same
+  CHECK_EQ(count_type(w.output(), "match_info"), 3u);
+}

@@ -1,0 +1,62 @@
+#include "trust.h"
+
+#include "ball/vec3.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+
+namespace ballsrv {
+
+bool ServerChoice::accepts(uint32_t server_id) const {
+  return ids.empty() || std::find(ids.begin(), ids.end(), server_id) != ids.end();
+}
+
+bool ServerChoice::parse(const std::string &text, ServerChoice *out, std::string *err) {
+  ServerChoice c;
+  size_t i = 0;
+  while (i < text.size()) {
+    size_t j = text.find(',', i);
+    std::string item = text.substr(i, j == std::string::npos ? std::string::npos : j - i);
+    char *end = nullptr;
+    unsigned long long v = std::strtoull(item.c_str(), &end, 10);
+    if (item.empty() || item.find_first_not_of("0123456789") != std::string::npos || v > UINT32_MAX) {
+      *err = "servers \"" + text + "\": not a comma-separated list of server ids";
+      return false;
+    }
+    c.ids.push_back(static_cast<uint32_t>(v));
+    if (j == std::string::npos) break;
+    i = j + 1;
+  }
+  *out = c;
+  return true;
+}
+
+bool usable_info(const MatchInfoOut &i) {
+  auto finite = [](double v) { return std::isfinite(v); };
+  return i.players >= 1 && i.players <= kMaxPlayers && i.level >= BALL_LEVEL_CUSTOM &&
+         i.level <= BALL_LEVEL_ADVANCED && i.time_base >= 0.05 && i.time_base <= 20.0 && i.frame_time > 0.0 &&
+         i.frame_time <= 10.0 && finite(i.sim_time) && finite(i.server_time) && finite(i.model.gravity) &&
+         finite(i.model.mass) && i.model.mass > 0.0 && finite(i.model.air_friction) && i.model.air_friction >= 0.0 &&
+         finite(i.model.spin_damping) && i.model.spin_damping > 0.0 && finite(i.model.radius) &&
+         i.model.radius >= 0.0 && finite(i.model.floor_level) && finite(i.model.extrapolation_time) &&
+         finite(i.model.stale_time) && ball_v3_finite(i.segment.p0) && ball_v3_finite(i.segment.v0) &&
+         ball_v3_finite(i.segment.s0) && finite(i.segment.t0);
+}
+
+bool segment_is_news(uint32_t seq, uint32_t newest, uint32_t info_seq) {
+  if (newest == 0) return true;
+  if (seq == info_seq && seq != newest) return true;
+  int32_t ahead = static_cast<int32_t>(seq - newest);
+  return ahead > 0 && static_cast<uint32_t>(ahead) <= kMaxSeqAhead;
+}
+
+bool segment_fits(uint32_t seq, uint32_t newest, uint32_t info_seq) {
+  if (newest == 0 || seq == info_seq) return true;
+  // plain differences (a stream of 2^32 segments does not happen: one that
+  // wraps is forged)
+  int64_t d = static_cast<int64_t>(seq) - static_cast<int64_t>(newest);
+  return d >= -static_cast<int64_t>(kMaxSeqAhead) && d <= static_cast<int64_t>(kMaxSeqAhead);
+}
+
+}  // namespace ballsrv

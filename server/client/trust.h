@@ -1,0 +1,42 @@
+// What a client takes from the server topics, free of DDS (docs/protocol.md,
+// "Clients that trust no one"): samples of the servers it chose, MatchInfo
+// whose numbers are in their ranges, segment numbers that fit the stream,
+// scene names that are names, never paths. What it refuses it counts and
+// drops; it never exits on a value from the wire.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "types.h"
+
+namespace ballsrv {
+
+// The servers a client chose, from "1,2" ("": any server).
+struct ServerChoice {
+  std::vector<uint32_t> ids;  // empty: any
+  bool accepts(uint32_t server_id) const;
+  // false with a sentence in err unless a comma-separated list of ids.
+  static bool parse(const std::string &text, ServerChoice *out, std::string *err);
+};
+
+// A MatchInfo a client can use: slots, level, time base, frame time and the
+// flight model in their ranges (a forged level 99 once made ball-bot exit).
+bool usable_info(const MatchInfoOut &info);
+
+// Segments further ahead of the newest than this are not the stream's (a
+// forged seq 0xFFFFFFFF once blinded every bot): unless the newest
+// MatchInfo names that seq as the one in effect.
+constexpr uint32_t kMaxSeqAhead = 1000;
+// Whether segment `seq` is news for a stream whose newest is `newest` (0:
+// none yet) and whose newest MatchInfo names `info_seq` as in effect:
+// ahead of it in serial-number arithmetic, by at most kMaxSeqAhead, or
+// info_seq itself (a server that started the match anew).
+bool segment_is_news(uint32_t seq, uint32_t newest, uint32_t info_seq);
+// Whether segment `seq` belongs to that stream at all: within kMaxSeqAhead
+// of the newest either way, without wrapping around (a late joiner gets
+// older ones after the one in effect), or info_seq itself.
+bool segment_fits(uint32_t seq, uint32_t newest, uint32_t info_seq);
+
+}  // namespace ballsrv
