@@ -153,6 +153,7 @@ struct Reader<T>::Notes : public fdds::DataReaderListener {
   }
 
   void add(StatusNote::Kind kind, ParticipantId who, int count) {
+    if (count <= 0) return;  // nothing new (DDS's total_count_change)
     std::lock_guard<std::mutex> lock(mutex);
     notes.push_back(StatusNote{kind, who, count});
   }

@@ -47,6 +47,13 @@ void ServerEndpoints::take_notes(std::vector<PortNote> *out) {
   other_status_.drain_status(&notes_);
   for (const auto &n : notes_)
     if (n.kind == StatusNote::writer_lost && n.who != domain_.id()) out->push_back({PortNote::server_lost, n.who, 1});
+  // the controls DDS refused or lost (drained, never left to pile up)
+  notes_.clear();
+  controls_.drain_status(&notes_);
+  for (const auto &n : notes_) {
+    if (n.kind == StatusNote::rejected) out->push_back({PortNote::control_rejected, {}, static_cast<uint64_t>(n.count)});
+    if (n.kind == StatusNote::samples_lost) out->push_back({PortNote::control_lost, {}, static_cast<uint64_t>(n.count)});
+  }
   notes_.clear();
   samples_.drain_status(&notes_);
   for (const auto &n : notes_) {

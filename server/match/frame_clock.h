@@ -41,12 +41,28 @@ class FrameClock {
   double period_, d0_, r0_;
 };
 
-// Values of one period (frame times, latencies); quantiles by selection on a copy.
+// Values of one period (frame times, latencies); quantiles by selection on a
+// copy. Bounded: past kCap values it keeps a uniform sample of them
+// (reservoir sampling, a fixed pseudo-random sequence), so that a long run or
+// a flood of hits cannot grow it without end; size() is every value added.
 class Percentiles {
  public:
-  void add(double v) { values_.push_back(v); }
-  void clear() { values_.clear(); }
-  size_t size() const { return values_.size(); }
+  static constexpr size_t kCap = 100000;
+  void add(double v) {
+    if (values_.size() < kCap) {
+      values_.push_back(v);
+    } else {
+      state_ = state_ * 6364136223846793005ull + 1442695040888963407ull;  // an LCG: the same on every run
+      uint64_t k = (state_ >> 11) % (added_ + 1);
+      if (k < kCap) values_[k] = v;
+    }
+    added_++;
+  }
+  void clear() {
+    values_.clear();
+    added_ = 0;
+  }
+  size_t size() const { return static_cast<size_t>(added_); }
   // the value of rank round(q (n - 1)) from the smallest; 0 when empty
   double quantile(double q) const {
     if (values_.empty()) return 0.0;
@@ -59,6 +75,8 @@ class Percentiles {
 
  private:
   std::vector<double> values_;
+  uint64_t added_ = 0;
+  uint64_t state_ = 0x9e3779b97f4a7c15ull;
 };
 
 }  // namespace ballsrv

@@ -14,6 +14,7 @@ constexpr double kMaxNormal = 1e6;    // above: out_of_range
 constexpr double kBoxHeight = 30.0;   // m above the floor a racket may be
 constexpr double kUnderFloor = 1.0;   // m under it: a swing's straight line through a low contact, a tracker's error
 constexpr double kOverNet = 1.0;      // m beyond the net a racket may reach
+constexpr int32_t kMaxSeqJump = 1000; // a holder's seq goes at most this far ahead of its previous (33 s at 30 Hz)
 constexpr double kFarAway = 30.0;     // m beyond the court: the ball has left it
 
 bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
@@ -324,7 +325,9 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now) {
     // serial number arithmetic (RFC 1982): a stream wraps around instead of locking at 2^32 - 1
     int32_t ahead = static_cast<int32_t>(s.seq - slot.last_seq);
     if (ahead == 0) return SampleResult::duplicate;
-    if (ahead < 0) return SampleResult::out_of_order;
+    // behind, or further ahead than a stream goes between two samples (a
+    // forged seq must not put the holder's own stream behind it)
+    if (ahead < 0 || ahead > kMaxSeqJump) return SampleResult::out_of_order;
   }
   if (s.capture_time < clock_now() - config_.max_sample_age) return SampleResult::stale;
   // a racket is a body: no faster than max_racket_speed since its previous sample, no jump

@@ -369,8 +369,17 @@ void ServerLoop::take_notes(double t0) {
         // refused by the reader or lost on the link: counted in and dropped, so that
         // samples_in = samples_ok + idle + every drop (docs/protocol.md)
         SampleResult why = n.kind == PortNote::rejected ? SampleResult::rejected : SampleResult::lost;
-        stats_.totals.drops[static_cast<int>(why)] += n.count;
-        stats_.totals.samples_in += n.count;
+        uint64_t count = n.kind == PortNote::lost ? std::min(n.count, kMaxLostPerNote) : n.count;
+        stats_.totals.drops[static_cast<int>(why)] += count;
+        stats_.totals.samples_in += count;
+        break;
+      }
+      case PortNote::control_rejected:
+      case PortNote::control_lost: {
+        // controls DDS refused or lost: in, and refused, like a malformed one
+        uint64_t count = n.kind == PortNote::control_lost ? std::min(n.count, kMaxLostPerNote) : n.count;
+        stats_.totals.controls_in += count;
+        stats_.totals.controls_refused += count;
         break;
       }
     }

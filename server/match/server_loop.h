@@ -43,8 +43,9 @@ namespace ballsrv {
 // What the network side noticed about the racket samples' writers.
 struct PortNote {
   // writer_lost: a player's racket writer; server_lost: another server's
-  // writers of the server topics (its liveliness lost or unmatched)
-  enum Kind { writer_lost, deadline_missed, rejected, lost, server_lost } kind;
+  // writers of the server topics (its liveliness lost or unmatched);
+  // rejected, lost: racket samples; control_rejected, control_lost: controls
+  enum Kind { writer_lost, deadline_missed, rejected, lost, server_lost, control_rejected, control_lost } kind;
   ParticipantId who{};  // writer_lost, server_lost: the participant; zeros otherwise
   uint64_t count = 1;   // samples or deadlines
 };
@@ -76,6 +77,10 @@ class ServerPort {
 constexpr double kFollowWake = 1.0 / 60.0;
 // s between two assertions of the writers' liveliness: 4 per 1 s lease
 constexpr double kLivelinessPeriod = 0.25;
+// Samples one note of DDS may count as lost: DDS counts a gap in a writer's
+// sequence numbers, which one forged datagram can make 2^31 long (a gap
+// beyond this is a restart or a forgery, not that many samples).
+constexpr uint64_t kMaxLostPerNote = 1000;
 
 struct LoopSettings {
   uint32_t server_id = 1;        // in every sample written

@@ -290,14 +290,17 @@ TEST(sample_seq_wraps_and_a_rejoin_restarts_the_stream) {
     g.seq[0] = seq - 1;
     return g.match.on_sample(g.parked_sample(0), g.now);
   };
-  // ahead by less than 2^31 each time: on across the wrap
-  CHECK(next(0x7FFFFFF0u) == SampleResult::accepted);
-  CHECK(next(0xFFFFFFE0u) == SampleResult::accepted);
+  // on across the wrap, never more than 1000 ahead at once
+  CHECK(next(0xFFFFFFF0u) == SampleResult::out_of_order);  // a jump
+  CHECK(g.control(ControlKind::join, A, 0) == Reason::none);  // a rejoin: the stream starts anew
+  CHECK(next(0xFFFFFFF0u) == SampleResult::accepted);
   CHECK(next(0xFFFFFFFFu) == SampleResult::accepted);
   CHECK(next(0u) == SampleResult::accepted);
   CHECK(next(1u) == SampleResult::accepted);
   CHECK(next(0xFFFFFFF0u) == SampleResult::out_of_order);  // behind 1 by 17
   CHECK(next(1u) == SampleResult::duplicate);
+  CHECK(next(1u + 1001u) == SampleResult::out_of_order);    // 1001 ahead: a forged seq, not the stream
+  CHECK(next(1u + 1000u) == SampleResult::accepted);
   // the holder joins again (a restarted client): its seq 1 is new again
   CHECK(g.control(ControlKind::join, A, 0) == Reason::none);
   CHECK(next(1u) == SampleResult::accepted);

@@ -209,6 +209,37 @@ TEST(samples_and_notes_balance_the_books) {
   CHECK(r.host.find(0)->state() == MatchState::paused);
 }
 
+// Counters that do not lie: a gap DDS reports in one writer's sequence
+// numbers counts at most kMaxLostPerNote (one forged datagram made it
+// 2^31 - 1), controls DDS refused or lost are in and refused, and the books
+// still balance.
+TEST(dds_notes_count_what_they_can_mean) {
+  Rig r({60.0});
+  r.port.notes = {{PortNote::lost, {}, 2147483647ull}, {PortNote::rejected, {}, 5},
+                  {PortNote::control_rejected, {}, 73}, {PortNote::control_lost, {}, 1ull << 40}};
+  r.loop->step();
+  const LoopStats &s = r.loop->stats();
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::lost)], kMaxLostPerNote);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::rejected)], 5u);
+  CHECK_EQ(s.totals.samples_in, kMaxLostPerNote + 5);
+  CHECK_EQ(s.totals.controls_in, 73u + kMaxLostPerNote);
+  CHECK_EQ(s.totals.controls_refused, 73u + kMaxLostPerNote);
+}
+
+// Percentiles keep at most kCap values, a uniform sample of all: a day of
+// latencies costs no more memory than a second's worth, and the quantiles hold.
+TEST(percentiles_are_bounded) {
+  Percentiles p;
+  const size_t n = 3 * Percentiles::kCap;
+  for (size_t i = 0; i < n; ++i) p.add(static_cast<double>(i));
+  CHECK_EQ(p.size(), n);
+  CHECK_NEAR(p.quantile(0.5), 0.5 * n, 0.01 * n);
+  CHECK_NEAR(p.quantile(0.99), 0.99 * n, 0.01 * n);
+  CHECK(p.max() <= static_cast<double>(n - 1));
+  p.clear();
+  CHECK_EQ(p.size(), 0u);
+}
+
 TEST(refused_writes_are_counted) {
   FakeClock clock;
   FakePort port;
