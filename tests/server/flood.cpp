@@ -6,7 +6,9 @@
 // holds nothing. With --burst M it then writes M more out_of_range samples
 // in one go, faster than the server's reader keeps them (its history holds
 // 64 a slot between two frames): DDS must count what it refuses. It writes
-// what it sent, by kind, as JSON.
+// what it sent, by kind, as JSON. With --key-flood N, B writes N samples
+// every 10 ms under A's own keys (slot 0 and 1 of match 0) while the match
+// plays: a stranger's flood must not make A's slots vanish.
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <cstdio>
@@ -32,7 +34,7 @@ const SampleResult kKinds[] = {SampleResult::unknown_match, SampleResult::bad_sl
 
 int main(int argc, char **argv) {
   CLI::App cli{"ball_flood: well-formed parked rackets on match 0, then malformed samples of every kind"};
-  long per_kind = 0, burst = 0;
+  long per_kind = 0, burst = 0, key_flood = 0;
   double duration = 12.0, interval = 0.0008;
   std::string out_json;
   DdsOptions dds_opt;
@@ -40,6 +42,7 @@ int main(int argc, char **argv) {
   cli.add_option("--duration", duration, "s to run");
   cli.add_option("--interval", interval, "s between malformed samples");
   cli.add_option("--burst", burst, "then this many out_of_range samples at once");
+  cli.add_option("--key-flood", key_flood, "B writes this many samples every 10 ms under A's keys once the match plays");
   cli.add_option("--out", out_json, "JSON file of what was sent");
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
@@ -73,6 +76,7 @@ int main(int argc, char **argv) {
   };
   const double start = mono_now();
   double next_valid = start, next_join = start, next_bad = start, flood_started = -1.0, first_valid = -1.0;
+  double next_key_flood = start;
   bool playing = false;
 
   auto parked = [&](int slot, double t) {
@@ -166,6 +170,18 @@ int main(int argc, char **argv) {
         s.center.y = 1e4;  // out_of_range
         put(a_samples, s);
       }
+    }
+    // the key flood: B under A's keys, as fast as it goes
+    if (key_flood > 0 && ready && now >= next_key_flood) {
+      for (long i = 0; i < key_flood; ++i) {
+        int slot = static_cast<int>(i % 2);
+        RacketSampleIn s = parked(slot, sim);
+        seq[slot]--;  // A's own stream goes on as it was
+        s.seq = static_cast<uint32_t>(i);
+        put(b_samples, s);
+      }
+      sent["key_flood"] += key_flood;
+      next_key_flood = now + 0.01;
     }
     sleep_until(std::min(next_valid, now + 0.0005));
   }

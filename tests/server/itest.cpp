@@ -273,6 +273,59 @@ void case_flood(const Env &env) {
 }
 
 // a watcher that joins late gets the current segment at once
+// A stranger floods a player's own keys from its own writer (2 x 200,000
+// samples a second under slot 0's and 1's keys of the match A plays): A's
+// slots never vanish, and every sample that reached the server is counted
+// once (not_owner, and what DDS lost on the way), the books balanced.
+void case_key_flood(const Env &env) {
+  Case c{env};
+  std::string rec = path(env, "watch.jsonl");
+  std::string stats = path(env, "server.json"), flood_out = path(env, "flood.json");
+  Server server(Process::start({env.bin + "/ball-server", "--domain", env.dom(), "--startup-wait", "0", "--duration",
+                                "120", "--stats-json", stats},
+                               rec + ".server.out", rec + ".server.err"));
+  Process w = c.watcher(rec, {"--match", "0"});
+  // A plays for 10 s; its slots vanish a player timeout after it stops (not counted)
+  double ended = realtime_now() + 10.0;
+  Process f = Process::start({env.bin + "/ball_flood", "--domain", env.dom(), "--key-flood", "4000", "--duration",
+                              "10", "--out", flood_out},
+                             rec + ".flood.out", rec + ".flood.err");
+  int frc = f.wait(30.0);
+  CHECK_MSG(frc == 0, "ball_flood exit status %d", frc);
+  w.stop();
+  int rc = server.p.stop(5.0);
+  server.p = Process();
+  CHECK_MSG(rc == 0, "the server's exit status %d", rc);
+  Tail t(rec);
+  t.poll();
+  size_t pauses = count(t.lines, [&](const json &j) { return is_event(j, EventKind::pause) && recv(j) < ended; });
+  ServerReport r;
+  json sent;
+  try {
+    std::ifstream fs(stats), ff(flood_out);
+    r = json::parse(fs).get<ServerReport>();
+    sent = json::parse(ff);
+  } catch (const std::exception &e) {
+    CHECK_MSG(false, "the counters: %s", e.what());
+    return;
+  }
+  long flooded = sent.at("sent").value("key_flood", 0L);
+  uint64_t not_owner = r.status.drops[static_cast<int>(SampleResult::not_owner)];
+  uint64_t all_drops = 0;
+  for (int i = 0; i < kDropReasons; ++i) all_drops += r.status.drops[i];
+  note("%ld samples under the player's keys from a stranger: %llu not_owner, %llu lost or rejected by DDS; %zu "
+       "pauses; the player's %llu samples accepted",
+       flooded, static_cast<unsigned long long>(not_owner),
+       static_cast<unsigned long long>(r.status.drops[static_cast<int>(SampleResult::lost)] +
+                                       r.status.drops[static_cast<int>(SampleResult::rejected)]),
+       pauses, static_cast<unsigned long long>(r.status.samples_ok));
+  CHECK(flooded >= 500000);
+  CHECK_EQ(pauses, 0u);
+  CHECK(r.status.samples_ok >= 100u);  // A's 2 x 10 a second, for the flood's seconds
+  CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.samples_idle + all_drops);
+  CHECK(r.status.samples_in <= static_cast<uint64_t>(flooded) + 1000u);
+}
+
 void case_late_join(const Env &env) {
   Case c{env};
   std::string late = path(env, "late.jsonl");
@@ -573,6 +626,7 @@ TEST(rally) { in_case(case_rally); }
 TEST(desync) { in_case(case_desync); }
 TEST(pause) { in_case(case_pause); }
 TEST(flood) { in_case(case_flood); }
+TEST(key_flood) { in_case(case_key_flood); }
 TEST(late_join) { in_case(case_late_join); }
 TEST(lossy) { in_case(case_lossy); }
 TEST(server_cli) { in_case(case_server_cli); }
