@@ -92,7 +92,12 @@ struct LoopSettings {
   uint32_t claim = 0;            // configured or created matches it may claim; 0: it serves its configured ones
   uint32_t strength = 20;        // its match writers' ownership strength (the QoS file's, for ServerStatus)
   double settle = 1.0;           // real s a claimed match waits before its first frame (startup_wait)
-  double takeover_grace = 0.2;   // real s from the owner's writers lost to the take-over
+  // real s from the first of the owner's writers lost to the take-over: the
+  // owner asserted its writers together every kLivelinessPeriod and each
+  // write asserts its writer again, so a reader lets the last of them go up
+  // to a period after the first; a sample written before a reader let its
+  // owner's writer go is dropped by that reader (exclusive ownership)
+  double takeover_grace = kLivelinessPeriod + 0.15;
   double orphan_wait = 5.0;      // real s an owner is gone before a claimant may start its match anew
 };
 
