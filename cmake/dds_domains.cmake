@@ -22,6 +22,7 @@ set(BALL_DDS_DOMAINS
   "dds_primary_back|111|test: the old primary restarted takes nothing back"
   "dds_claim|112|test: two claimants started together split the matches"
   "dds_key_flood|113|test: a stranger floods a player's own keys: the player never vanishes"
+  "dds_create_expires|114|test: a created match nobody joins goes, its MatchInfo disposed"
   "dds_discovery|120|test: server, bots and watcher found through a Discovery Server only"
   "test_teardown|141|test: one participant deleted within the teardown limit")
 

@@ -185,6 +185,11 @@ const std::vector<Field<ServerConfig>> &server_fields() {
       {"max_matches", &C::max_matches, whole(1, 100000), "", "room for matches; sizes every DDS resource limit",
        "--max-matches", create_room.c_str()},
       {"allow_create", &C::allow_create, {}, "", "clients may CREATE matches from the catalogue (`--no-create`)"},
+      {"max_creates", &C::max_creates, whole(0, 100000), "",
+       "matches one participant's CREATEs may have standing (the rest refused, `no_room`)", "--max-creates"},
+      {"create_timeout", &C::create_timeout, open_closed(0.0, 3600.0), "s",
+       "a created match nobody holds a slot of for this long is removed (its MatchInfo disposed)",
+       "--create-timeout"},
       {"standby", &C::standby, {}, "",
        "follow the other servers' matches and take one over when its server dies (`--standby`; docs/server.md, "
        "\"Several servers and failover\")"},
@@ -223,6 +228,7 @@ std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes
                                 std::string *err) {
   if (player_timeout > 0.0) config->defaults.player_timeout = player_timeout;
   auto host = std::make_unique<Host>(config->max_matches, config->allow_create, config->defaults);
+  host->set_max_creates(config->max_creates);
   for (const auto &c : scenes.catalogue)
     if (!host->add_scene(c.first, c.second, err)) return nullptr;
   // another server's match may name a scene by libball's name (a standby
@@ -253,6 +259,7 @@ LoopSettings loop_settings(const ServerConfig &config, uint32_t strength) {
   s.claim = config.claim;
   s.strength = strength;
   s.settle = config.startup_wait;  // a claim settles as long as the servers listen to each other at start
+  s.create_timeout = config.create_timeout;
   return s;
 }
 

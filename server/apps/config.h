@@ -39,6 +39,8 @@ struct ServerConfig {
   uint32_t max_matches = 0;                  // 0: the configured matches, plus kCreateRoom when CREATE is allowed,
                                              // plus kFollowRoom for a standby
   bool allow_create = true;                  // clients may CREATE matches from the catalogue
+  uint32_t max_creates = 2;                  // matches one participant's CREATEs may have standing
+  double create_timeout = 30.0;              // s a created match stands with nobody holding a slot
   bool standby = false;                      // follows other servers' matches, takes them over (--standby)
   uint32_t claim = 0;                        // claims up to this many unplaced or created matches; 0: none
   int realtime_priority = 0;                 // SCHED_FIFO priority of its loop thread, 1-99; 0: the normal scheduler

@@ -393,6 +393,12 @@ bool Writer<T>::write(const T &sample) {
 }
 
 template <class T>
+bool Writer<T>::dispose(const T &key_sample) {
+  typename Wire<T>::Idl wire = to_idl(key_sample);
+  return w_ && w_->dispose(&wire, eprosima::fastrtps::rtps::c_InstanceHandle_Unknown) == ReturnCode_t::RETCODE_OK;
+}
+
+template <class T>
 bool Writer<T>::assert_liveliness() {
   return w_ && w_->assert_liveliness() == ReturnCode_t::RETCODE_OK;
 }

@@ -96,6 +96,9 @@ class Writer {
   // Asserts the writer's liveliness (a writer of manual-by-topic liveliness
   // must, within its lease, or its readers count it gone); false: refused.
   bool assert_liveliness();
+  // Disposes the instance of the sample's key (its readers see it gone, a
+  // late joiner is not handed it); false: refused.
+  bool dispose(const T &key_sample);
   int matched() const;  // readers matched now
   bool valid() const { return w_ != nullptr; }
 

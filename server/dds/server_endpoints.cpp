@@ -39,6 +39,12 @@ bool ServerEndpoints::assert_liveliness() {
   return ok;
 }
 
+bool ServerEndpoints::dispose_match(uint32_t match_id) {
+  MatchInfoOut key;
+  key.match_id = match_id;
+  return infos_.dispose(key);
+}
+
 void ServerEndpoints::take_notes(std::vector<PortNote> *out) {
   // another server's writers gone (liveliness lost, or unmatched with its participant)
   notes_.clear();

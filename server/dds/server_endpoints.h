@@ -33,6 +33,7 @@ class ServerEndpoints : public ServerPort {
   bool write(const MatchInfoOut &i) override { return infos_.write(i); }
   bool write(const StatusOut &s) override { return status_.write(s); }
   bool assert_liveliness() override;
+  bool dispose_match(uint32_t match_id) override;
 
  private:
   explicit ServerEndpoints(Domain &domain) : domain_(domain) {}

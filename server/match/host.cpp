@@ -67,8 +67,14 @@ Match *Host::follow(const MatchInfoOut &info, std::string *err) {
   return m;
 }
 
+ParticipantId Host::creator(uint32_t id) const {
+  auto it = creators_.find(id);
+  return it == creators_.end() ? ParticipantId{} : it->second;
+}
+
 void Host::remove(uint32_t id) {
   by_id_.erase(id);
+  creators_.erase(id);
   matches_.erase(std::remove_if(matches_.begin(), matches_.end(),
                                 [id](const std::unique_ptr<Match> &m) { return m->id() == id; }),
                  matches_.end());
@@ -122,6 +128,9 @@ Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match 
   if (*match) return (*match)->on_control(c, now, out);  // refused there: it exists
   auto scene = scenes_.find(c.scene);
   if (!allow_create_ || matches_.size() >= max_matches_) return Reason::refused_no_room;
+  uint32_t standing = 0;
+  for (const auto &kv : creators_) standing += kv.second == c.from;
+  if (standing >= max_creates_) return Reason::refused_no_room;  // its share is taken
   const Bounds &players = find_field(match_fields(), "players")->bounds;
   if (scene == scenes_.end() || c.players < players.ilo || c.players > players.ihi || c.level < 0 ||
       c.level > BALL_LEVEL_ADVANCED)
@@ -133,6 +142,7 @@ Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match 
   config.level = static_cast<ball_level>(c.level);
   std::string err;
   if (!add_match(config, scene->second, &err)) return Reason::refused_bad_value;
+  creators_[c.match_id] = c.from;
   *match = find(c.match_id);
   out->info_changed = true;
   return Reason::none;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <functional>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <string>
@@ -18,6 +19,11 @@ class Host {
   // `max_matches` bounds matches created on request (and sizes DDS); the
   // template gives every setting of such a match but id, scene, players and level.
   Host(size_t max_matches, bool allow_create, MatchConfig create_template);
+  // One participant may have at most `n` matches it created standing (a
+  // stranger's CREATEs must not fill max_matches for good).
+  void set_max_creates(uint32_t n) { max_creates_ = n; }
+  // The participant that created match `id` (zeros: configured, or unknown).
+  ParticipantId creator(uint32_t id) const;
 
   // A scene a CREATE may name (at most 31 bytes).
   bool add_scene(const std::string &name, const ball_scene &scene, std::string *err);
@@ -59,6 +65,8 @@ class Host {
   SceneSource source_;
   std::vector<std::unique_ptr<Match>> matches_;
   std::map<uint32_t, Match *> by_id_;
+  std::map<uint32_t, ParticipantId> creators_;  // the matches created on request, by whom
+  uint32_t max_creates_ = UINT32_MAX;
 };
 
 }  // namespace ballsrv

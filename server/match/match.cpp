@@ -87,6 +87,12 @@ bool Match::all_present() const {
   return true;
 }
 
+bool Match::held() const {
+  for (int i = 0; i < config_.players; ++i)
+    if (slots_[i].held) return true;
+  return false;
+}
+
 bool Match::holds_slot(const ParticipantId &who) const {
   for (int i = 0; i < config_.players; ++i)
     if (slots_[i].held && slots_[i].owner == who) return true;

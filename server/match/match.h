@@ -66,6 +66,7 @@ class Match {
   bool follow(const MatchInfoOut &info, std::string *err);
   void follow_clock(double sim_now) { follow_time_ = sim_now; }
   bool following() const { return following_; }
+  bool held() const;  // a participant holds one of its slots
 
   // Goes on from the owner's newest segment (nullptr: none yet) and
   // MatchInfo: the ball on the segment (at the info's sim time when the info

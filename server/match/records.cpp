@@ -228,7 +228,7 @@ void from_json(const json &j, MatchReport &m) {
   X("writers_lost", r.writers_lost) X("conflicts", r.conflicts) X("latency_p50", r.latency_p50)         \
   X("latency_p99", r.latency_p99) X("latency_count", r.latency_count) X("matches", r.matches)           \
   X("takeovers", r.takeovers) X("yields", r.yields) X("claims", r.claims)                               \
-  X("follow_failures", r.follow_failures) X("following", r.following)
+  X("follow_failures", r.follow_failures) X("following", r.following) X("created_expired", r.created_expired)
 
 void to_json(json &j, const ServerReport &r) {
   j = json::object();

@@ -30,6 +30,26 @@ void ServerLoop::drop_own_if_standby() {
   for (uint32_t id : own) host_.remove(id);
 }
 
+// A match created on request that nobody held a slot of for create_timeout
+// goes: a stranger's CREATEs must not fill max_matches (or squat an id) for good.
+void ServerLoop::expire_created(double t0) {
+  for (auto it = sched_.begin(); it != sched_.end();) {
+    Match *m = it->match;
+    if (m->held()) it->last_held = t0;
+    if (host_.creator(m->id()) == ParticipantId{} || t0 - it->last_held < settings_.create_timeout) {
+      ++it;
+      continue;
+    }
+    uint32_t id = m->id();
+    if (!port_.dispose_match(id)) stats_.write_failures++;
+    it = sched_.erase(it);
+    host_.remove(id);
+    stats_.created_expired++;
+    say("removed match " + std::to_string(id) + ": created, and nobody held a slot for " +
+        std::to_string(static_cast<int>(settings_.create_timeout)) + " s");
+  }
+}
+
 void ServerLoop::keep_alive(double t0) {
   if (t0 < next_assert_) return;
   if (!port_.assert_liveliness()) stats_.liveliness_failures++;
@@ -58,6 +78,7 @@ ServerLoop::Scheduled ServerLoop::schedule(Match *m) {
   s.k = s.clock.first_at(now);
   s.last_frame_real = s.clock.realtime_at(now);
   s.since = clock_.realtime();
+  s.last_held = now;
   // the periodic MatchInfo of many matches spread over the interval (by the
   // golden ratio of their ids), not all in one wake-up: 1000 at once took
   // 10-20 ms, and every frame of that wake-up overran, 1 in 60
@@ -503,6 +524,7 @@ bool ServerLoop::wake() {
   if (t1 < next_status_) return false;
   // the status phase
   if (settings_.claim > 0) claim_unplaced(t1);
+  expire_created(t1);
   close_period();
   stats_.late_p99.add(stats_.late.quantile(0.99));
   stats_.late.clear();
@@ -574,6 +596,7 @@ ServerReport ServerLoop::report() const {
   r.yields = stats_.yields;
   r.claims = stats_.claims;
   r.follow_failures = stats_.follow_failures;
+  r.created_expired = stats_.created_expired;
   r.following = static_cast<uint32_t>(followed_.size());
   r.latency_p50 = stats_.latency_all.quantile(0.5);
   r.latency_p99 = stats_.latency_all.quantile(0.99);

@@ -70,6 +70,9 @@ class ServerPort {
   // Asserts the liveliness of every writer (docs/protocol.md: manual by
   // topic, lease 1 s); the loop calls it every kLivelinessPeriod. false: refused.
   virtual bool assert_liveliness() = 0;
+  // A match this server no longer has: its MatchInfo instance disposed (a
+  // late joiner is not handed it). false: refused.
+  virtual bool dispose_match(uint32_t match_id) = 0;
 };
 
 // s: how often a standby with nothing of its own to step wakes to take
@@ -99,6 +102,7 @@ struct LoopSettings {
   // owner's writer go is dropped by that reader (exclusive ownership)
   double takeover_grace = kLivelinessPeriod + 0.15;
   double orphan_wait = 5.0;      // real s an owner is gone before a claimant may start its match anew
+  double create_timeout = 30.0;  // real s a created match stands with nobody holding a slot before it goes
 };
 
 // The loop's counters: the status line, ServerStatus, the stats file.
@@ -115,6 +119,7 @@ struct LoopStats {
   uint64_t claims = 0;          // matches claimed (configured or created)
   uint64_t follow_failures = 0; // another server's matches this one could not follow or restore
   uint64_t liveliness_failures = 0;  // liveliness assertions the port refused
+  uint64_t created_expired = 0;  // created matches removed: nobody held a slot for create_timeout
   Percentiles frame_time;       // real s of work per wake-up, this status period
   Percentiles late;             // real s a frame started after its deadline, this status period
   Percentiles late_p99;         // each period's p99 of that, over the run
@@ -185,6 +190,7 @@ class ServerLoop {
     double firm_at = 0.0;          // mono s: no frame before (a claim settling)
     double since = 0.0;            // server s: when this server began to step it
     bool taken_over = false;       // from another server
+    double last_held = 0.0;        // mono s a slot was last held (for a created match's expiry)
   };
   // Another server's match this one follows (a standby).
   struct Followed {
@@ -235,6 +241,7 @@ class ServerLoop {
   uint32_t claimed_ = 0;
   double next_assert_ = 0.0;  // mono s of the next liveliness assertion
   void keep_alive(double t0);
+  void expire_created(double t0);
 };
 
 // The status line: "ball-server 1: 12 s, matches 1 (1 playing), samples in ...".

@@ -76,6 +76,11 @@ struct FakePort : ServerPort {
     asserted++;
     return !refuse;
   }
+  std::vector<uint32_t> disposed;
+  bool dispose_match(uint32_t match_id) override {
+    disposed.push_back(match_id);
+    return !refuse;
+  }
 
   template <class T>
   static bool pop(std::deque<T> &q, T *out) {

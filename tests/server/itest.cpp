@@ -326,6 +326,37 @@ void case_key_flood(const Env &env) {
   CHECK(r.status.samples_in <= static_cast<uint64_t>(flooded) + 1000u);
 }
 
+// A match a client CREATEd and nobody joined goes after create_timeout: a
+// watcher that comes later is not handed its MatchInfo (the instance is
+// disposed), while the configured match stays.
+void case_create_expires(const Env &env) {
+  Case c{env};
+  Server server(c.server({"--create-timeout", "2", "--max-creates", "1"}));
+  std::string err;
+  int rc = run_to_end(env, {env.bin + "/ball_create", "--domain", env.dom(), "--match", "40", "--duration", "1.5",
+                            "--out", path(env, "create.json")},
+                      "create", &err);
+  CHECK_MSG(rc == 0, "ball_create: status %d: %s", rc, err.c_str());
+  usleep(4 * 1000000);  // the 2 s timeout, the status period that looks
+  std::string rec = path(env, "late.jsonl");
+  Process w = c.watcher(rec);
+  usleep(2500000);
+  w.stop();
+  Tail t(rec);
+  t.poll();
+  size_t of40 = count(t.lines, [](const json &j) { return is_type(j, "match_info") && j.at("match") == 40; });
+  size_t of0 = count(t.lines, [](const json &j) { return is_type(j, "match_info") && j.at("match") == 0; });
+  note("a watcher 4 s after the CREATE: %zu MatchInfo of the created match, %zu of the configured one", of40, of0);
+  CHECK_EQ(of40, 0u);
+  CHECK(of0 >= 1u);
+  int src = server.p.stop(5.0);
+  server.p = Process();
+  CHECK_MSG(src == 0, "the server's exit status %d", src);
+  std::ifstream f(path(env, "server.json"));
+  ServerReport r = json::parse(f).get<ServerReport>();
+  CHECK_EQ(r.created_expired, 1u);
+}
+
 void case_late_join(const Env &env) {
   Case c{env};
   std::string late = path(env, "late.jsonl");
@@ -627,6 +658,7 @@ TEST(desync) { in_case(case_desync); }
 TEST(pause) { in_case(case_pause); }
 TEST(flood) { in_case(case_flood); }
 TEST(key_flood) { in_case(case_key_flood); }
+TEST(create_expires) { in_case(case_create_expires); }
 TEST(late_join) { in_case(case_late_join); }
 TEST(lossy) { in_case(case_lossy); }
 TEST(server_cli) { in_case(case_server_cli); }

@@ -543,6 +543,24 @@ TEST(host_routes_and_creates) {
   closed.add_scene("tennis", scene, &err);
   c.kind = ControlKind::create;
   CHECK(closed.on_control(c, 0.0, &out, &m) == Reason::refused_no_room);
+  // one participant's CREATEs have at most max_creates matches standing; another's are its own
+  Host open(8, true, t);
+  open.add_scene("tennis", scene, &err);
+  open.set_max_creates(2);
+  c.from = participant(3);
+  for (uint32_t id : {20u, 21u}) {
+    c.match_id = id;
+    CHECK(open.on_control(c, 0.0, &out, &m) == Reason::none);
+  }
+  c.match_id = 22;
+  CHECK(open.on_control(c, 0.0, &out, &m) == Reason::refused_no_room);
+  c.from = participant(4);
+  CHECK(open.on_control(c, 0.0, &out, &m) == Reason::none);
+  CHECK(open.creator(20) == participant(3) && open.creator(22) == participant(4));
+  open.remove(20);  // one gone: the first may create again
+  c.from = participant(3);
+  c.match_id = 23;
+  CHECK(open.on_control(c, 0.0, &out, &m) == Reason::none);
 }
 
 CHECK_MAIN

@@ -240,6 +240,43 @@ TEST(percentiles_are_bounded) {
   CHECK_EQ(p.size(), 0u);
 }
 
+// A created match nobody holds a slot of for create_timeout goes, its
+// MatchInfo disposed; one a player joined stays.
+TEST(a_created_match_nobody_joins_goes) {
+  FakeClock clock;
+  FakePort port;
+  port.clock = &clock;
+  Host host(8, true, default_config());
+  ball_scene scene;
+  ball_scene_default(&scene);
+  std::string err;
+  host.add_scene("tennis", scene, &err);
+  LoopSettings s;
+  s.create_timeout = 2.0;
+  ServerLoop loop(host, port, clock, s);
+  loop.start();
+  ControlIn c;
+  c.kind = ControlKind::create;
+  c.scene = "tennis";
+  c.players = 2;
+  c.from = participant(5);
+  c.match_id = 30;
+  port.controls.push_back(c);
+  c.match_id = 31;
+  port.controls.push_back(c);
+  loop.step();
+  CHECK_EQ(host.matches().size(), 2u);
+  port.controls.push_back(join(31, 0, participant(6)));
+  while (clock.now < kStart + 1.9) loop.step();
+  CHECK_EQ(host.matches().size(), 2u);
+  while (clock.now < kStart + 3.1) loop.step();  // the status at kStart + 3 looks
+  CHECK(host.find(30) == nullptr);
+  CHECK(host.find(31) != nullptr);
+  CHECK(port.disposed == std::vector<uint32_t>{30});
+  CHECK_EQ(loop.report().created_expired, 1u);
+  CHECK_EQ(loop.status_now().matches, 1u);
+}
+
 TEST(refused_writes_are_counted) {
   FakeClock clock;
   FakePort port;

@@ -70,7 +70,7 @@ add_dependencies(ball_itest ball-server ball-bot ball-watch ball-load ball_flood
 # each case on the DDS domain cmake/dds_domains.cmake gives it: parallel runs
 # never meet; the discovery case runs Debian's fastdds-tools (./run setup)
 find_program(BALL_FASTDDS fastdds)
-set(BALL_ITEST_CASES rally desync pause flood key_flood late_join lossy server_cli busy snapshots discovery
+set(BALL_ITEST_CASES rally desync pause flood key_flood create_expires late_join lossy server_cli busy snapshots discovery
   failover standby_killed primary_back claim)
 foreach(case ${BALL_ITEST_CASES})
   ball_dds_domain(dds_${case} domain)
