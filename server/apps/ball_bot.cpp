@@ -45,9 +45,12 @@ int main(int argc, char **argv) {
   if (!load_scene(scene, &sc, &err)) return fail(kProgram, err);
   install_stop_signals();
   auto domain = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
-                                  dds_opt.discovery_server, "ball-bot", &err);
+                                  dds_opt.discovery_server, "ball-bot", &err,
+                                  {dds_opt.security, dds_opt.identity});
   if (!domain) return fail(kProgram, err);
-  auto port = dds::ClientEndpoints::open(*domain, {kMaxPlayers, 1, dds::kClientRoom, false, false}, &err);
+  // under DDS Security a player writes in its match's partition only (docs/security.md)
+  std::string partition = domain->secure() ? dds::match_partition(pp.match) : "";
+  auto port = dds::ClientEndpoints::open(*domain, {kMaxPlayers, 1, dds::kClientRoom, false, false, partition}, &err);
   if (!port) return fail(kProgram, err);
   PlayerGroup group({BotPlayer(sc, domain->id(), pp)});
   const BotPlayer &bot = group.bots()[0];

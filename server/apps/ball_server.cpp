@@ -42,7 +42,8 @@ int main(int argc, char **argv) {
   install_stop_signals();
   std::string profile = find_profile(config.profile);
   auto domain = dds::Domain::open(config.domain, profile, config.participant, config.discovery_server,
-                                  "ball-server " + std::to_string(config.server_id), &err);
+                                  "ball-server " + std::to_string(config.server_id), &err,
+                                  {config.security, config.identity});
   if (!domain) return fail(kProgram, err);
   // the player timeout is the liveliness lease the racket samples reader requests
   auto host = make_host(&config, scenes, domain->reader_lease(dds::kRacketProfile), &err);

@@ -140,9 +140,10 @@ int main(int argc, char **argv) {
 
   install_stop_signals();
   auto domain = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
-                                  dds_opt.discovery_server, "ball-watch", &err);
+                                  dds_opt.discovery_server, "ball-watch", &err,
+                                  {dds_opt.security, dds_opt.identity});
   if (!domain) return fail(kProgram, err);
-  auto port = dds::ClientEndpoints::open(*domain, {0, 0, dds::kClientRoom, true, true}, &err);
+  auto port = dds::ClientEndpoints::open(*domain, {0, 0, dds::kClientRoom, true, true, ""}, &err);
   if (!port) return fail(kProgram, err);
   OutputFile rec;
   if (!record.empty() && !rec.open(record)) return fail(kProgram, rec.error());

@@ -95,16 +95,22 @@ void add_dds_options(CLI::App &app, DdsOptions *o) {
   app.add_option("--profile", o->profile,
                  "QoS profile file (default: $BALL_QOS_PROFILE, the installed one, the source tree's)");
   app.add_option("--participant-profile", o->participant,
-                 "participant profile of that file: loopback (default), lan, secure_lan, discovery_client");
+                 "participant profile of that file: loopback (default), lan, discovery_client");
   app.add_option("--discovery-server", o->discovery_server,
                  "with discovery_client: the Discovery Server(s), HOST:PORT[;HOST:PORT...] as in ROS_DISCOVERY_SERVER "
                  "(default: the profile's, 127.0.0.1:11811)");
+  app.add_option("--secure", o->security,
+                 "DDS Security: the folder of ca.pem, governance.p7s, permissions.p7s and the identities "
+                 "(docs/security.md; ./run certs makes test ones)");
+  app.add_option("--identity", o->identity, "with --secure: this participant's identity, NAME.pem and NAME.key");
 }
 
 std::vector<std::string> dds_arguments(const DdsOptions &o) {
   std::vector<std::string> a = {"--domain", std::to_string(o.domain), "--participant-profile", o.participant};
   if (!o.profile.empty()) a.insert(a.end(), {"--profile", o.profile});
   if (!o.discovery_server.empty()) a.insert(a.end(), {"--discovery-server", o.discovery_server});
+  if (!o.security.empty()) a.insert(a.end(), {"--secure", o.security});
+  if (!o.identity.empty()) a.insert(a.end(), {"--identity", o.identity});
   return a;
 }
 

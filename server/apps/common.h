@@ -60,6 +60,8 @@ struct DdsOptions {
   std::string profile;
   std::string participant = "loopback";
   std::string discovery_server;
+  std::string security;  // DDS Security's folder ("": an open domain; docs/security.md)
+  std::string identity;  // the identity in it: NAME.pem and NAME.key
 };
 void add_dds_options(CLI::App &app, DdsOptions *o);
 // The same options as arguments, for a program this one starts ("--domain", "7", ...).

@@ -133,8 +133,8 @@ void parse_into(const json &root, const std::string &base_dir, ServerConfig *c) 
     const Field<ServerConfig> *f = find_field(server_fields(), k);
     if (!f) bad(p, "unknown key \"" + k + "\"");
     if (k == "defaults") continue;
-    if (k == "profile") {
-      c->profile = relative_to(text(v, p), base_dir);
+    if (k == "profile" || k == "security") {
+      (k == "profile" ? c->profile : c->security) = relative_to(text(v, p), base_dir);
     } else if (k == "catalogue") {
       if (!v.is_object()) bad(p, "expected an object of scene names and scenes");
       const Field<MatchConfig> &name = *find_field(match_fields(), "scene_name");
@@ -178,10 +178,14 @@ const std::vector<Field<ServerConfig>> &server_fields() {
       {"domain", &C::domain, whole(0, kMaxDomain), "", "DDS domain id (docs/server.md, \"DDS domains\")"},
       {"profile", std::monostate{}, {}, "", "the QoS profile file, relative to the config file", nullptr,
        "found as above"},
-      {"participant_profile", &C::participant, {}, "", "`loopback`, `lan`, `secure_lan`, `discovery_client`"},
+      {"participant_profile", &C::participant, {}, "", "`loopback`, `lan`, `discovery_client`"},
       {"discovery_server", &C::discovery_server, {}, "",
        "with `discovery_client`: `HOST:PORT[;HOST:PORT...]` (docs/server.md, \"Without multicast: a Discovery "
        "Server\")", nullptr, "the profile's"},
+      {"security", std::monostate{}, {}, "",
+       "DDS Security: the folder of the CA, the signed documents and the identities, relative to the config "
+       "file (docs/security.md)", nullptr, "an open domain"},
+      {"identity", &C::identity, {}, "", "with `security`: the server's identity (NAME.pem, NAME.key)"},
       {"max_matches", &C::max_matches, whole(1, 100000), "", "room for matches; sizes every DDS resource limit",
        "--max-matches", create_room.c_str()},
       {"allow_create", &C::allow_create, {}, "", "clients may CREATE matches from the catalogue (`--no-create`)"},
@@ -287,6 +291,8 @@ void ServerOptions::add(CLI::App &app) {
   profile_ = app.get_option("--profile");
   participant_ = app.get_option("--participant-profile");
   discovery_server_ = app.get_option("--discovery-server");
+  security_ = app.get_option("--secure");
+  identity_ = app.get_option("--identity");
 }
 
 bool ServerOptions::apply(ServerConfig *config, std::string *err) const {
@@ -294,6 +300,8 @@ bool ServerOptions::apply(ServerConfig *config, std::string *err) const {
   if (profile_->count()) config->profile = dds_.profile;
   if (participant_->count()) config->participant = dds_.participant;
   if (discovery_server_->count()) config->discovery_server = dds_.discovery_server;
+  if (security_->count()) config->security = dds_.security;
+  if (identity_->count()) config->identity = dds_.identity;
   server_.apply(config);
   if (no_create_) config->allow_create = false;
   if (standby_) config->standby = true;

@@ -36,6 +36,8 @@ struct ServerConfig {
   std::string profile;                       // QoS profile file ("": find_profile)
   std::string participant = "loopback";      // its participant profile
   std::string discovery_server;              // a client profile's Discovery Servers ("": the profile's)
+  std::string security;                      // DDS Security's folder ("": an open domain)
+  std::string identity;                      // the server's identity in it
   uint32_t max_matches = 0;                  // 0: the configured matches, plus kCreateRoom when CREATE is allowed,
                                              // plus kFollowRoom for a standby
   bool allow_create = true;                  // clients may CREATE matches from the catalogue
@@ -82,7 +84,8 @@ class ServerOptions {
   FieldOptions<ServerConfig> server_;
   FieldOptions<MatchConfig> match_;
   DdsOptions dds_;
-  CLI::Option *domain_ = nullptr, *profile_ = nullptr, *participant_ = nullptr, *discovery_server_ = nullptr;
+  CLI::Option *domain_ = nullptr, *profile_ = nullptr, *participant_ = nullptr, *discovery_server_ = nullptr,
+              *security_ = nullptr, *identity_ = nullptr;
   int matches_ = 0;
   bool no_create_ = false;
   bool standby_ = false;

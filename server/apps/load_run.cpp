@@ -78,10 +78,10 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
   ball_scene scene;
   ball_scene_default(&scene);
   auto domain = dds::Domain::open(o.dds.domain, find_profile(o.dds.profile), o.dds.participant,
-                                  o.dds.discovery_server, "ball-load", err);
+                                  o.dds.discovery_server, "ball-load", err, {o.dds.security, o.dds.identity});
   if (!domain) return false;
   int room = std::max(o.first_match + o.matches, dds::kClientRoom);
-  auto dds_port = dds::ClientEndpoints::open(*domain, {o.matches * 2, o.matches, room, false, true}, err);
+  auto dds_port = dds::ClientEndpoints::open(*domain, {o.matches * 2, o.matches, room, false, true, ""}, err);
   if (!dds_port) return false;
   CountingPort port(*dds_port);
   std::vector<BotPlayer> bots;
@@ -235,6 +235,9 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
 
 int run_load(const LoadOptions &o) {
   std::string err;
+  if (!o.dds.security.empty())  // one participant plays every match: no single match partition fits it
+    return fail(kProgram, "ball-load plays many matches from one participant and runs on an open domain; "
+                          "under DDS Security a player writes in its own match only (docs/security.md)");
   if (!o.part_json.empty()) {  // a bot process: its part, to the file
     bool written = false;
     bool ok = drive(o, {}, [&](const LoadPart &p) {

@@ -6,8 +6,8 @@ namespace dds {
 std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNeeds &n, std::string *err) {
   std::unique_ptr<ClientEndpoints> p(new ClientEndpoints());
   if (n.players > 0) {
-    p->samples_ = d.writer<RacketSampleIn>(kRacketTopic, kRacketProfile, {n.players}, err);
-    p->controls_ = d.writer<ControlIn>(kControlTopic, kControlProfile, {n.controls}, err);
+    p->samples_ = d.writer<RacketSampleIn>(kRacketTopic, kRacketProfile, {n.players, 0, n.partition}, err);
+    p->controls_ = d.writer<ControlIn>(kControlTopic, kControlProfile, {n.controls, 0, n.partition}, err);
     if (!p->samples_.valid() || !p->controls_.valid()) return nullptr;
   }
   p->segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {n.matches}, err);

@@ -18,6 +18,7 @@ struct ClientNeeds {
   int matches = kClientRoom;  // matches its readers make room for
   bool events = false;    // reads ball/events
   bool status = false;    // reads ball/server_status
+  std::string partition;  // its writers' DDS partition: under DDS Security its match's (match_partition)
 };
 
 // The size of one sample of every topic (load.h).

@@ -2,6 +2,7 @@
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/domain/DomainParticipantListener.hpp>
 #include <fastdds/dds/publisher/DataWriter.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
@@ -20,11 +21,13 @@
 #include <atomic>
 #include <cerrno>
 #include <chrono>
+#include <deque>
 #include <condition_variable>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
 #include <thread>
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -65,9 +68,17 @@ ParticipantId prefix_of(const eprosima::fastrtps::rtps::GUID_t &guid) {
 
 double seconds(const eprosima::fastrtps::rtps::Time_t &t) { return static_cast<double>(t.to_ns()) * 1e-9; }
 
+std::array<uint8_t, 16> guid_bytes(const eprosima::fastrtps::rtps::GUID_t &g) {
+  std::array<uint8_t, 16> b;
+  std::copy(std::begin(g.guidPrefix.value), std::end(g.guidPrefix.value), b.begin());
+  std::copy(std::begin(g.entityId.value), std::end(g.entityId.value), b.begin() + 12);
+  return b;
+}
+
 SampleMeta meta_of(const fdds::SampleInfo &info) {
   SampleMeta m;
   m.from = prefix_of(info.sample_identity.writer_guid());
+  m.writer = guid_bytes(info.sample_identity.writer_guid());
   m.source_time = seconds(info.source_timestamp);
   m.reception_time = seconds(info.reception_timestamp);
   return m;
@@ -84,6 +95,53 @@ void size_limits(Qos *qos, Sizing sizing) {
   rl.max_samples_per_instance = depth;
   rl.max_samples = instances * depth;
   rl.allocated_samples = std::min(rl.max_samples, 256);
+  // the endpoint's own partition (a Fast DDS property: DDS keeps partitions per publisher)
+  if (!sizing.partition.empty()) qos->properties().properties().emplace_back("partitions", sizing.partition);
+}
+
+bool readable(const std::string &path) {
+  std::ifstream f(path);
+  return static_cast<bool>(f);
+}
+
+// The DDS Security properties of a participant (docs/security.md), or false
+// with the file that is missing.
+bool use_security(const Security &sec, fdds::DomainParticipantQos *qos, std::string *err) {
+  if (sec.identity.empty()) {
+    *err = "--secure " + sec.dir + " needs --identity NAME (NAME.pem and NAME.key in that folder)";
+    return false;
+  }
+  std::string d = sec.dir;
+  if (!d.empty() && d[0] != '/') {
+    char cwd[4096];
+    if (getcwd(cwd, sizeof cwd)) d = std::string(cwd) + "/" + d;
+  }
+  const std::string files[] = {"ca.pem", sec.identity + ".pem", sec.identity + ".key", "governance.p7s",
+                               "permissions.p7s"};
+  for (const auto &f : files)
+    if (!readable(d + "/" + f)) {
+      *err = "DDS Security: " + d + "/" + f + ": " + std::strerror(errno) + " (./run certs makes test certificates)";
+      return false;
+    }
+  std::vector<std::pair<std::string, std::string>> props = {
+      {"dds.sec.auth.plugin", "builtin.PKI-DH"},
+      {"dds.sec.auth.builtin.PKI-DH.identity_ca", "file://" + d + "/ca.pem"},
+      {"dds.sec.auth.builtin.PKI-DH.identity_certificate", "file://" + d + "/" + sec.identity + ".pem"},
+      {"dds.sec.auth.builtin.PKI-DH.private_key", "file://" + d + "/" + sec.identity + ".key"},
+      {"dds.sec.access.plugin", "builtin.Access-Permissions"},
+      {"dds.sec.access.builtin.Access-Permissions.permissions_ca", "file://" + d + "/ca.pem"},
+      {"dds.sec.access.builtin.Access-Permissions.governance", "file://" + d + "/governance.p7s"},
+      {"dds.sec.access.builtin.Access-Permissions.permissions", "file://" + d + "/permissions.p7s"},
+      {"dds.sec.crypto.plugin", "builtin.AES-GCM-GMAC"}};
+  auto &all = qos->properties().properties();
+  for (const auto &p : props) {
+    auto it = std::find_if(all.begin(), all.end(), [&](const eprosima::fastrtps::rtps::Property &x) {
+      return x.name() == p.first;
+    });
+    if (it != all.end()) it->value(p.second);
+    else all.emplace_back(p.first, p.second);
+  }
+  return true;
 }
 
 // The Discovery Servers of a client profile replaced by `list`, read by
@@ -177,8 +235,44 @@ struct Reader<T>::Notes : public fdds::DataReaderListener {
   }
 };
 
+// The partitions of the remote writers discovered (their publication data).
+struct Publications : public fdds::DomainParticipantListener {
+  using Guid = std::array<uint8_t, 16>;
+  // a removed writer's partitions stay known for the samples of it still
+  // waiting in a reader; the newest kRemovedKept only (bounded)
+  static constexpr size_t kRemovedKept = 1024;
+  mutable std::mutex mutex;
+  std::map<Guid, std::vector<std::string>> partitions;
+  std::map<Guid, std::vector<std::string>> removed;
+  std::deque<Guid> removed_order;
+  void on_publisher_discovery(fdds::DomainParticipant *, eprosima::fastrtps::rtps::WriterDiscoveryInfo &&info) override {
+    using S = eprosima::fastrtps::rtps::WriterDiscoveryInfo;
+    Guid g = guid_bytes(info.info.guid());
+    std::lock_guard<std::mutex> lock(mutex);
+    if (info.status != S::REMOVED_WRITER) {
+      partitions[g] = info.info.m_qos.m_partition.getNames();
+      return;
+    }
+    auto it = partitions.find(g);
+    if (it == partitions.end()) return;
+    if (removed.emplace(g, std::move(it->second)).second) removed_order.push_back(g);
+    partitions.erase(it);
+    while (removed_order.size() > kRemovedKept) {
+      removed.erase(removed_order.front());
+      removed_order.pop_front();
+    }
+  }
+  const std::vector<std::string> *find(const Guid &g) const {
+    auto it = partitions.find(g);
+    if (it != partitions.end()) return &it->second;
+    it = removed.find(g);
+    return it == removed.end() ? nullptr : &it->second;
+  }
+};
+
 struct Domain::Impl {
   fdds::DomainParticipant *participant = nullptr;
+  Publications publications;
   fdds::Publisher *publisher = nullptr;
   fdds::Subscriber *subscriber = nullptr;
   std::map<std::string, fdds::Topic *> topics;
@@ -217,9 +311,17 @@ struct Domain::Impl {
   }
 };
 
+namespace {
+// why an endpoint may be refused under DDS Security
+std::string denied(const std::string &partition) {
+  return ": the identity's permissions do not grant it" +
+         (partition.empty() ? std::string() : " in partition " + partition) + " (docs/security.md)";
+}
+}  // namespace
+
 std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_file,
                                      const std::string &participant_profile, const std::string &discovery_servers,
-                                     const std::string &name, std::string *err) {
+                                     const std::string &name, std::string *err, const Security &security) {
   if (domain_id < 0 || domain_id > kMaxDomain) {
     *err = "domain " + std::to_string(domain_id) + " is unusable: RTPS maps domains 0 to " +
            std::to_string(kMaxDomain) + " onto UDP ports";
@@ -254,15 +356,20 @@ std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_f
     *err = "participant profile \"" + participant_profile + "\": " + *err;
     return nullptr;
   }
+  if (!security.dir.empty() && !use_security(security, &qos, err)) return nullptr;
   qos.name(name);
   auto d = std::make_unique<Domain>(Key{});
   d->impl_ = std::make_unique<Impl>();
   d->domain_id_ = domain_id;
-  d->impl_->participant = factory->create_participant(domain_id, qos);
+  d->secure_ = !security.dir.empty();
+  d->impl_->participant = factory->create_participant(domain_id, qos, &d->impl_->publications,
+                                                      fdds::StatusMask::none());
   if (!d->impl_->participant) {
     *err = "domain " + std::to_string(domain_id) +
-           " is busy or unusable: no participant could be created (its UDP ports taken, or the "
-           "profile's transport cannot be used here)";
+           " is busy or unusable: no participant could be created (its UDP ports taken, the "
+           "profile's transport cannot be used here" +
+           std::string(security.dir.empty() ? ")" : ", or the DDS Security files do not fit: a certificate not "
+                                                    "signed by ca.pem, documents not signed by it, no grant for the identity)");
     return nullptr;
   }
   d->impl_->publisher = d->impl_->participant->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
@@ -315,6 +422,14 @@ Domain::~Domain() {
 
 ParticipantId Domain::id() const { return prefix_of(impl_->participant->guid()); }
 
+bool Domain::writes_in(const std::array<uint8_t, 16> &writer, const std::string &partition) const {
+  std::lock_guard<std::mutex> lock(impl_->publications.mutex);
+  const std::vector<std::string> *names = impl_->publications.find(writer);
+  return names && std::find(names->begin(), names->end(), partition) != names->end();
+}
+
+std::string match_partition(uint32_t id) { return "match/" + std::to_string(id); }
+
 double Domain::reader_lease(const char *profile) const {
   fdds::DataReaderQos qos;
   if (impl_->subscriber->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) return 0.0;
@@ -352,6 +467,7 @@ Writer<T> Domain::writer(const char *topic_name, const char *profile, Sizing siz
   w.w_ = impl_->publisher->create_datawriter(t, qos);
   if (!w.w_) {
     *err = std::string("cannot create a writer on ") + topic_name + " with profile " + profile;
+    if (secure_) *err += denied(sizing.partition);
     return w;
   }
   impl_->writers.push_back(w.w_);
@@ -378,6 +494,7 @@ Reader<T> Domain::reader(const char *topic_name, const char *profile, Sizing siz
   r.r_ = impl_->subscriber->create_datareader(t, qos, notes.get(), mask);
   if (!r.r_) {
     *err = std::string("cannot create a reader on ") + topic_name + " with profile " + profile;
+    if (secure_) *err += denied(sizing.partition);
     return r;
   }
   r.notes_ = notes.get();

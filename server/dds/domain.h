@@ -6,11 +6,13 @@
 // must not outlive it. Nothing else in the project includes a DDS header.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "types.h"
@@ -63,12 +65,28 @@ constexpr int kClientRoom = 4096;
 // (docs/server.md, "Load").
 struct Sizing {
   int instances = 1;
-  int inbox = 0;  // samples; 0: samples wait in the DDS reader until taken
+  int inbox = 0;          // samples; 0: samples wait in the DDS reader until taken
+  std::string partition;  // the endpoint's DDS partition ("": the default one); under DDS
+                          // Security a player writes only in its match's, match/<id>
+  Sizing(int instances_ = 1, int inbox_ = 0, std::string partition_ = "")  // NOLINT: {n} sizes
+      : instances(instances_), inbox(inbox_), partition(std::move(partition_)) {}
+};
+
+// The DDS partition of match `id`'s players (docs/security.md).
+std::string match_partition(uint32_t id);
+constexpr const char *kAnyMatchPartition = "match/*";
+
+// DDS Security for a participant (docs/security.md): the folder of the
+// certificates and signed documents (`./run certs`) and the identity in it.
+struct Security {
+  std::string dir;       // "": an open domain
+  std::string identity;  // NAME: NAME.pem and NAME.key in dir
 };
 
 // What DDS says about a sample besides its data.
 struct SampleMeta {
   ParticipantId from{};      // the writer's participant GUID prefix
+  std::array<uint8_t, 16> writer{};  // the writer's whole GUID
   double source_time = 0.0;  // writer's realtime clock at write, s since 1970
   double reception_time = 0.0;
 };
@@ -154,15 +172,22 @@ class Domain {
   // invalid profile file, a domain id outside [0, 232], discovery servers
   // for a profile that is not a Discovery Server client or a list Fast DDS
   // cannot read, a participant that cannot be created.
+  // With security.dir, the participant authenticates with the identity's
+  // certificate and obeys the signed governance and permissions (a missing
+  // file is an error naming it).
   static std::unique_ptr<Domain> open(int domain_id, const std::string &profile_file,
                                       const std::string &participant_profile, const std::string &discovery_servers,
-                                      const std::string &name, std::string *err);
+                                      const std::string &name, std::string *err, const Security &security = {});
   ~Domain();
   Domain(const Domain &) = delete;
   Domain &operator=(const Domain &) = delete;
 
   ParticipantId id() const;
   int domain_id() const { return domain_id_; }
+  bool secure() const { return secure_; }
+  // Whether the discovered remote writer `writer` writes in `partition`
+  // (DDS Security has checked its permissions for every partition it names).
+  bool writes_in(const std::array<uint8_t, 16> &writer, const std::string &partition) const;
 
   // Endpoints on `topic` with the data_writer/data_reader profile `profile`;
   // an invalid handle with err on failure. A writer with exclusive
@@ -183,6 +208,7 @@ class Domain {
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int domain_id_ = 0;
+  bool secure_ = false;
 };
 
 }  // namespace dds

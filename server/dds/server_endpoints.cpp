@@ -16,8 +16,11 @@ std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, i
   if (p->states_.valid()) p->infos_ = d.writer<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room}, err, role);
   if (p->infos_.valid()) p->status_ = d.writer<StatusOut>(kStatusTopic, kStatusProfile, {1}, err);
   if (!p->status_.valid()) return nullptr;
-  p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, {sample_room, sample_room * kInboxPerSlot}, err);
-  p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile, {match_room + 64}, err);
+  // under DDS Security players write in their match's partition (docs/security.md)
+  std::string from_players = d.secure() ? kAnyMatchPartition : "";
+  p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile,
+                                         {sample_room, sample_room * kInboxPerSlot, from_players}, err);
+  p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile, {match_room + 64, 0, from_players}, err);
   p->others_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room + 64}, err);
   // (only a standby reads segments: every other server would take its own back)
   if (follows) p->other_segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {match_room + 64}, err);
@@ -80,6 +83,7 @@ bool ServerEndpoints::take_sample(RacketSampleIn *sample) {
   if (!samples_.take(sample, &meta)) return false;
   sample->from = meta.from;
   sample->source_time = meta.source_time;
+  sample->permitted = !domain_.secure() || domain_.writes_in(meta.writer, match_partition(sample->match_id));
   return true;
 }
 
@@ -87,6 +91,7 @@ bool ServerEndpoints::take_control(ControlIn *control) {
   SampleMeta meta;
   if (!controls_.take(control, &meta)) return false;
   control->from = meta.from;
+  control->permitted = !domain_.secure() || domain_.writes_in(meta.writer, match_partition(control->match_id));
   return true;
 }
 

@@ -411,7 +411,7 @@ void ServerLoop::take_samples(double now) {
   RacketSampleIn sample;
   while (port_.take_sample(&sample)) {
     stats_.totals.samples_in++;
-    SampleResult r = host_.on_sample(sample, now);
+    SampleResult r = sample.permitted ? host_.on_sample(sample, now) : SampleResult::not_permitted;
     if (r == SampleResult::accepted) stats_.totals.samples_ok++;
     else if (r == SampleResult::idle) stats_.samples_idle++;
     else stats_.totals.drops[static_cast<int>(r)]++;
@@ -422,7 +422,7 @@ void ServerLoop::take_controls(double now) {
   ControlIn control;
   while (port_.take_control(&control)) {
     stats_.totals.controls_in++;
-    if (!control.valid) {
+    if (!control.valid || !control.permitted) {
       stats_.totals.controls_refused++;
       continue;
     }

@@ -102,7 +102,8 @@ bool parse_hex(const std::string &text, ParticipantId *id);  // false unless 24 
   X(stale, "stale", 9)                 /* too old, or libball's BALL_ESTALE */        \
   X(rejected, "rejected", 10)          /* refused by DDS itself (resource limits); DDS layer only */ \
   X(lost, "lost", 11)                  /* never arrived: a gap or a full history; DDS layer only */ \
-  X(too_fast, "too_fast", 12)          /* implies a racket faster than max_racket_speed since the previous one */
+  X(too_fast, "too_fast", 12)          /* implies a racket faster than max_racket_speed since the previous one */ \
+  X(not_permitted, "not_permitted", 13) /* DDS Security: its writer's partition is not the match's */
 
 #define BALL_ENUMERATOR(e, name, idl) e,
 enum class MatchState { BALL_MATCH_STATES(BALL_ENUMERATOR) };
@@ -174,6 +175,7 @@ struct RacketSampleIn {
   ball_vec3 normal{1, 0, 0};  // the disc normal, any length in [1e-6, 1e6] (normalised by libball)
   ParticipantId from{};       // the sender: its writer's participant GUID prefix (filled in by the DDS layer)
   double source_time = 0.0;   // server s: the writer's DDS source timestamp (0: unknown)
+  bool permitted = true;      // false: under DDS Security, written outside the match's partition (DDS layer)
 };
 
 // client -> server: a control message (MatchControl).
@@ -188,6 +190,7 @@ struct ControlIn {
   std::string scene;          // CREATE: a scene name of the server's catalogue
   ParticipantId from{};       // the sender (filled in by the DDS layer)
   bool valid = true;          // false: an enum out of range or a scene name without its NUL on the wire
+  bool permitted = true;      // false: under DDS Security, written outside the match's partition (DDS layer)
 };
 
 // The newest sample of a racket when it hit the ball, for latency.

@@ -29,7 +29,8 @@ int main(int argc, char **argv) {
   std::string err;
   install_stop_signals();
   auto d = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
-                             dds_opt.discovery_server, "ball_create", &err);
+                             dds_opt.discovery_server, "ball_create", &err,
+                             {dds_opt.security, dds_opt.identity});
   if (!d) return fail("ball_create", err);
   auto controls = d->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {1}, &err);
   auto infos = d->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {dds::kClientRoom}, &err);

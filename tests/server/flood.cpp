@@ -51,7 +51,8 @@ int main(int argc, char **argv) {
   install_stop_signals();
   std::string profile = find_profile(dds_opt.profile);
   auto participant = [&](const char *name) {
-    return dds::Domain::open(dds_opt.domain, profile, dds_opt.participant, dds_opt.discovery_server, name, &err);
+    return dds::Domain::open(dds_opt.domain, profile, dds_opt.participant, dds_opt.discovery_server, name, &err,
+                             dds::Security{dds_opt.security, dds_opt.identity});
   };
   auto a = participant("flood A");
   auto b = a ? participant("flood B") : nullptr;

@@ -206,8 +206,10 @@ TEST(dds_options_pass_to_a_started_server) {
   o.profile = "q.xml";
   o.participant = "discovery_client";
   o.discovery_server = "10.0.0.5:11811;10.0.0.6:11811";
+  o.security = "/etc/ball/certs";
+  o.identity = "server2";
   std::vector<std::string> args = dds_arguments(o);
-  CHECK_EQ(args.size(), 8u);
+  CHECK_EQ(args.size(), 12u);
   CLI::App app;
   ServerOptions opt;
   opt.add(app);
@@ -218,11 +220,19 @@ TEST(dds_options_pass_to_a_started_server) {
   CHECK_EQ(c.domain, 7);
   CHECK(c.profile == "q.xml" && c.participant == "discovery_client");
   CHECK(c.discovery_server == "10.0.0.5:11811;10.0.0.6:11811");
+  CHECK(c.security == "/etc/ball/certs" && c.identity == "server2");
   CHECK_EQ(dds_arguments(DdsOptions{}).size(), 4u);  // no profile file, no servers: the programs' own defaults
   ServerConfig f;
   CHECK(parse_config(R"({"participant_profile": "discovery_client", "discovery_server": "ds:11811"})", "t.json", "",
                      &f, &err));
   CHECK(f.participant == "discovery_client" && f.discovery_server == "ds:11811");
+  // DDS Security's folder is relative to the config file, as the profile is; "" stays an open domain
+  ServerConfig g;
+  CHECK(parse_config(R"({"security": "certs", "identity": "server1"})", "t.json", "/srv/ball", &g, &err));
+  CHECK(g.security == "/srv/ball/certs" && g.identity == "server1");
+  ServerConfig h;
+  CHECK(parse_config(R"({"security": "", "identity": ""})", "t.json", "/srv/ball", &h, &err));
+  CHECK(h.security.empty() && h.identity.empty());
 }
 
 // server/config/example.json uses every key of both tables, and reads
@@ -246,7 +256,7 @@ TEST(the_example_uses_every_key) {
     CHECK_MSG(used.count(k.key), "match key %s is not in %s", k.key, BALL_EXAMPLE_CONFIG);
     keys++;
   }
-  CHECK_EQ(keys, 17 + 18);
+  CHECK_EQ(keys, 19 + 18);
   ServerConfig c;
   std::string err;
   CHECK_MSG(load_config_file(BALL_EXAMPLE_CONFIG, &c, &err), "%s", err.c_str());
