@@ -8,6 +8,7 @@
 set(BALL_DDS_DOMAINS
   "ball-demo|42|`./run demo` (ball-demo's default `--domain`)"
   "ball-load|90|`./run bench-server` (ball-load's default `--domain`)"
+  "bench-security|91|`./run bench-security` (its `--domain`)"
   "dds_rally|100|test: two bots rally"
   "dds_desync|101|test: the watcher's ball against the server's states"
   "dds_pause|102|test: a killed bot pauses its match"
@@ -23,6 +24,7 @@ set(BALL_DDS_DOMAINS
   "dds_claim|112|test: two claimants started together split the matches"
   "dds_key_flood|113|test: a stranger floods a player's own keys: the player never vanishes"
   "dds_create_expires|114|test: a created match nobody joins goes, its MatchInfo disposed"
+  "dds_secure|115|test: DDS Security: no plaintext on the wire, strangers and other matches' players kept out"
   "dds_discovery|120|test: server, bots and watcher found through a Discovery Server only"
   "test_teardown|141|test: one participant deleted within the teardown limit")
 

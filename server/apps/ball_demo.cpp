@@ -69,6 +69,9 @@ int main(int argc, char **argv) {
   cli.add_option("--domain", domain, "DDS domain id")->capture_default_str()->check(CLI::Range(0, kMaxDomain));
   cli.add_option("--level", level, "game level: easy, mid, advanced")->capture_default_str();
   cli.add_option("--scene", scene, "the match's scene")->capture_default_str();
+  std::string secure;
+  cli.add_option("--secure", secure,
+                 "DDS Security: the folder of ./run certs (identities server1, watch, m0-a, m0-b; docs/security.md)");
   bot_opt.add(cli, player_fields(), bots, {"rate", "delay", "miss", "noise", "seed"});
   CLI11_PARSE(cli, argc, argv);
   bot_opt.apply(&bots);
@@ -79,23 +82,31 @@ int main(int argc, char **argv) {
   if (!mkdtemp(dir_template)) return fail(kProgram, "cannot make a temporary directory");
   const std::string dir = dir_template, bin = program_dir(), dom = std::to_string(domain);
   std::printf("%s: ball-server, two ball-bots (%s level, %g Hz, %g ms delay, miss rate %g) and ball-watch on "
-              "loopback, DDS domain %d, for %g s\n",
-              kProgram, level.c_str(), bots.rate, bots.delay * 1e3, bots.miss, domain, duration);
+              "loopback, DDS domain %d%s, for %g s\n",
+              kProgram, level.c_str(), bots.rate, bots.delay * 1e3, bots.miss, domain,
+              secure.empty() ? "" : " under DDS Security", duration);
+  // each program's identity on a secure domain (the names ./run certs makes)
+  auto as = [&](std::vector<std::string> args, const char *identity) {
+    if (!secure.empty()) args.insert(args.end(), {"--secure", secure, "--identity", identity});
+    return args;
+  };
   std::fflush(stdout);
   int rc = 0;
   {
-    Process server = Process::start({bin + "/ball-server", "--domain", dom, "--level", level, "--scene", scene,
-                                     "--startup-wait", "0", "--duration", fmt(duration + 20.0), "--stats-json",
-                                     dir + "/server.json"},
+    Process server = Process::start(as({bin + "/ball-server", "--domain", dom, "--level", level, "--scene", scene,
+                                        "--startup-wait", "0", "--duration", fmt(duration + 20.0), "--stats-json",
+                                        dir + "/server.json"},
+                                       "server1"),
                                     dir + "/server.log", dir + "/server.err");
     std::vector<Process> bot;
     for (int i = 0; i < 2; ++i)
-      bot.push_back(Process::start({bin + "/ball-bot", "--domain", dom, "--player", std::to_string(i), "--rate",
-                                    fmt(bots.rate), "--delay", fmt(bots.delay), "--miss", fmt(bots.miss), "--noise",
-                                    fmt(bots.noise), "--seed", std::to_string(bots.seed + i), "--scene", scene,
-                                    "--duration", fmt(duration + 15.0)},
+      bot.push_back(Process::start(as({bin + "/ball-bot", "--domain", dom, "--player", std::to_string(i), "--rate",
+                                       fmt(bots.rate), "--delay", fmt(bots.delay), "--miss", fmt(bots.miss), "--noise",
+                                       fmt(bots.noise), "--seed", std::to_string(bots.seed + i), "--scene", scene,
+                                       "--duration", fmt(duration + 15.0)},
+                                      i == 0 ? "m0-a" : "m0-b"),
                                    dir + "/bot" + std::to_string(i) + ".log", dir + "/bot" + std::to_string(i) + ".err"));
-    Process watch = Process::start({bin + "/ball-watch", "--domain", dom, "--duration", fmt(duration)});
+    Process watch = Process::start(as({bin + "/ball-watch", "--domain", dom, "--duration", fmt(duration)}, "watch"));
     if (server.pid() <= 0 || watch.pid() <= 0 || bot[0].pid() <= 0 || bot[1].pid() <= 0) rc = 1;
     // the watcher ends the demo; a stop signal ends it early
     while (rc == 0 && watch.running() && !stop_requested()) usleep(50000);

@@ -459,6 +459,8 @@ def check_pages(args):
                 continue  # a link, checked above
             if path.startswith("ball/") and not path.endswith(".h"):
                 continue  # a topic name (ball/segments), not a header
+            if re.fullmatch(r"match/(\d+|\*|<id>|<m>)", path):
+                continue  # a DDS partition (match/0, match/*), not server/match/
             lineno = line_of(text, m.start())
             if lineno in parents and text[text.rfind("\n", 0, m.start()) + 1:m.start()].strip() == "":
                 path = parents[lineno] + path  # an entry of a folder tree

@@ -5,7 +5,7 @@
 // hangs (a watchdog kills every group and exits). A case fails as well if
 // Fast DDS files are left in /dev/shm.
 //
-//   ball_itest CASE --bin DIR --domain N --work DIR [--fastdds PATH]
+//   ball_itest CASE --bin DIR --domain N --work DIR [--fastdds PATH] [--source DIR --python PATH --tcpdump PATH]
 #include <dirent.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -677,6 +677,9 @@ int main(int argc, char **argv) {
   cli.add_option("--domain", g_env.domain, "DDS domain id of this case (cmake/dds_domains.cmake)")->required();
   cli.add_option("--work", g_env.work, "directory for logs and records")->required();
   cli.add_option("--fastdds", g_env.fastdds, "the fastdds command (fastdds-tools), for the discovery case");
+  cli.add_option("--source", g_env.source, "the source tree (certs.sh, wire_check.py), for the secure case");
+  cli.add_option("--python", g_env.python, "Debian's python3 (python3-scapy), for the secure case");
+  cli.add_option("--tcpdump", g_env.tcpdump, "tcpdump, for the secure case");
   cli.add_option("--watchdog", watchdog, "s before everything is killed and the case fails");
   CLI11_PARSE(cli, argc, argv);
   // Under AddressSanitizer (./run asan): Debian's Fast DDS 2.9 deletes its

@@ -27,6 +27,7 @@ using namespace ballsrv::app;
 
 struct Env {
   std::string bin, work, fastdds;
+  std::string source, python, tcpdump;  // the source tree, Debian's python3, tcpdump (the secure case)
   int domain = 0;
   std::string dom() const { return std::to_string(domain); }
 };

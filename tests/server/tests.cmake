@@ -61,21 +61,32 @@ target_link_libraries(ball_create PRIVATE ball_app ball_dds)
 target_compile_options(ball_create PRIVATE ${BALL_CXX_WARNINGS})
 set_target_properties(ball_create PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/server)
 
-add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp ${CMAKE_CURRENT_LIST_DIR}/itest_failover.cpp)
+add_executable(ball_intrude ${CMAKE_CURRENT_LIST_DIR}/intrude.cpp)
+target_link_libraries(ball_intrude PRIVATE ball_app ball_dds)
+target_compile_options(ball_intrude PRIVATE ${BALL_CXX_WARNINGS})
+set_target_properties(ball_intrude PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/server)
+
+add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp ${CMAKE_CURRENT_LIST_DIR}/itest_failover.cpp
+  ${CMAKE_CURRENT_LIST_DIR}/itest_secure.cpp)
 target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static ball_render)
 target_include_directories(ball_itest PRIVATE ${PROJECT_SOURCE_DIR}/tests/render ${PROJECT_SOURCE_DIR}/tests/support)
 target_compile_options(ball_itest PRIVATE ${BALL_CXX_WARNINGS})
-add_dependencies(ball_itest ball-server ball-bot ball-watch ball-load ball_flood ball_create)
+add_dependencies(ball_itest ball-server ball-bot ball-watch ball-load ball_flood ball_create ball_intrude)
 
 # each case on the DDS domain cmake/dds_domains.cmake gives it: parallel runs
 # never meet; the discovery case runs Debian's fastdds-tools (./run setup)
 find_program(BALL_FASTDDS fastdds)
+# the secure case captures the loopback (tcpdump, as root) and reads the
+# capture with Debian's python3 and its python3-scapy (./run setup)
+find_program(BALL_TCPDUMP tcpdump PATHS /usr/bin /usr/sbin)
+find_program(BALL_ITEST_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
 set(BALL_ITEST_CASES rally desync pause flood key_flood create_expires late_join lossy server_cli busy snapshots discovery
-  failover standby_killed primary_back claim)
+  failover standby_killed primary_back claim secure)
 foreach(case ${BALL_ITEST_CASES})
   ball_dds_domain(dds_${case} domain)
   add_test(NAME dds_${case}
     COMMAND ball_itest ${case} --bin ${PROJECT_BINARY_DIR}/server --domain ${domain}
-            --work ${CMAKE_CURRENT_BINARY_DIR}/dds_${case} --fastdds ${BALL_FASTDDS})
+            --work ${CMAKE_CURRENT_BINARY_DIR}/dds_${case} --fastdds ${BALL_FASTDDS}
+            --source ${PROJECT_SOURCE_DIR} --python ${BALL_ITEST_PYTHON} --tcpdump ${BALL_TCPDUMP})
   set_tests_properties(dds_${case} PROPERTIES LABELS dds TIMEOUT 100)
 endforeach()

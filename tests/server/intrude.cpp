@@ -1,0 +1,105 @@
+// ball_intrude: a hostile participant of the DDS Security tests
+// (docs/security.md). One participant, with or without a certificate, that
+// writes into match --match from the DDS partition --partition: a JOIN for
+// slot 0 every 0.5 s and a well-formed racket sample for slot 0 at --rate Hz,
+// on the court and slow, so that only who writes it can refuse it (with
+// --wait-match only once the server's readers matched its writers). It
+// listens to the server topics and writes as JSON what it sent and what it
+// heard: a stranger hears nothing, a player of another match is refused by
+// the server as `not_permitted`.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "ball/vec3.h"
+#include "common.h"
+#include "domain.h"
+
+using namespace ballsrv;
+using namespace ballsrv::app;
+
+namespace {
+const char *kProgram = "ball_intrude";
+}
+
+int main(int argc, char **argv) {
+  CLI::App cli{"ball_intrude: JOIN and racket samples into a match from a chosen partition; what it heard"};
+  uint32_t match = 0;
+  double duration = 8.0, rate = 100.0;
+  std::string partition, out_json;
+  DdsOptions dds_opt;
+  cli.add_option("--match", match, "the match written into");
+  cli.add_option("--partition", partition, "the DDS partition of the writers (\"\": the default one)");
+  cli.add_option("--rate", rate, "racket samples per s")->check(CLI::Range(1.0, 1000.0));
+  cli.add_option("--duration", duration, "s to run");
+  cli.add_option("--out", out_json, "JSON file of what was sent and heard");
+  bool wait_match = false;
+  cli.add_flag("--wait-match", wait_match, "send only once a reader matched both writers (all of it then arrives)");
+  add_dds_options(cli, &dds_opt);
+  CLI11_PARSE(cli, argc, argv);
+
+  std::string err;
+  install_stop_signals();
+  auto d = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
+                             dds_opt.discovery_server, kProgram, &err, {dds_opt.security, dds_opt.identity});
+  if (!d) return fail(kProgram, err);
+  auto samples = d->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {1, 0, partition}, &err);
+  dds::Writer<ControlIn> controls;
+  if (samples.valid()) controls = d->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {1, 0, partition}, &err);
+  if (!samples.valid() || !controls.valid()) return fail(kProgram, err);
+  auto infos = d->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {dds::kClientRoom}, &err);
+  auto states = d->reader<StateOut>(dds::kStateTopic, dds::kStateProfile, {dds::kClientRoom}, &err);
+  if (!infos.valid() || !states.valid()) return fail(kProgram, err);
+
+  long sent_samples = 0, sent_controls = 0, refused = 0, heard_infos = 0, heard_states = 0;
+  uint32_t seq = 0, control_seq = 0;
+  double sim = 0.0;  // the newest sim time heard (0: none)
+  const double start = mono_now();
+  double next_sample = start, next_join = start;
+  while (!stop_requested() && mono_now() - start < duration) {
+    double now = mono_now();
+    MatchInfoOut in;
+    while (infos.take(&in, nullptr)) heard_infos++;
+    StateOut st;
+    while (states.take(&st, nullptr)) {
+      heard_states++;
+      if (st.match_id == match) sim = st.sim_time;
+    }
+    if (wait_match && (samples.matched() < 1 || controls.matched() < 1)) {
+      next_sample = next_join = now + 0.01;
+      sleep_until(next_sample);
+      continue;
+    }
+    if (now >= next_join) {
+      ControlIn c;
+      c.match_id = match;
+      c.seq = ++control_seq;
+      c.kind = ControlKind::join;
+      c.player = 0;
+      if (controls.write(c)) sent_controls++;
+      else refused++;
+      next_join = now + 0.5;
+    }
+    if (now >= next_sample) {
+      RacketSampleIn s;
+      s.match_id = match;
+      s.player = 0;
+      s.seq = ++seq;
+      s.capture_time = sim + (now - start) * 1e-3;  // moves on, never ahead of the server's clock by much
+      s.center = ball_v3(2.0, 1.0, 4.0);             // on slot 0's side of the default court
+      s.normal = ball_v3(1, 0, 0);
+      if (samples.write(s)) sent_samples++;
+      else refused++;
+      next_sample += 1.0 / rate;
+    }
+    sleep_until(std::min(next_sample, next_join));
+  }
+  nlohmann::json j = {{"samples", sent_samples}, {"controls", sent_controls}, {"write_failures", refused},
+                      {"heard_infos", heard_infos}, {"heard_states", heard_states},
+                      {"participant", hex(d->id())}};
+  if (!out_json.empty() && !write_file(out_json, j.dump(1), &err)) return fail(kProgram, err);
+  std::printf("%s: %ld samples, %ld controls sent, %ld refused; heard %ld infos, %ld states\n", kProgram,
+              sent_samples, sent_controls, refused, heard_infos, heard_states);
+  std::fflush(stdout);
+  return refused ? 1 : 0;
+}

@@ -1,0 +1,128 @@
+#!/usr/bin/env python3
+"""What the DDS Security test (tests/server/itest.cpp, case `secure`) asks of
+a loopback capture (docs/security.md, "What the tests show"). Reads pcap files
+with scapy (Debian's python3-scapy); prints one JSON object.
+
+  wire_check.py scan PCAP RECORD
+      how often the capture holds, in plaintext, the topic names and the ball
+      positions of a watcher's record (each as the 8 little-endian bytes of
+      its double, as CDR puts it on the wire)
+
+  wire_check.py forge OPEN_PCAP DOMAIN [--prefix HEX] [--match ID] [--count N]
+      takes a plaintext racket sample (RacketSample, docs/protocol.md) from a
+      capture of an open domain, rewrites its match id (default 999999) and
+      its sequence numbers, puts the participant GUID prefix HEX (default:
+      the writer's own) into the RTPS header and sends it N times to every
+      user unicast port of DOMAIN's first 8 participants on 127.0.0.1
+"""
+import argparse
+import json
+import socket
+import struct
+import sys
+
+from scapy.all import UDP, rdpcap  # noqa: E402
+
+TOPICS = ["ball/ball_state", "ball/racket_samples", "ball/match_control", "ball/match_info", "ball/segments"]
+RTPS_HEADER = 20          # "RTPS", version, vendor, GUID prefix (12)
+DATA = 0x15               # the DATA submessage id
+RACKET_PAYLOAD = 4 + 72   # encapsulation + RacketSample in XCDR1 (docs/protocol.md)
+
+
+def udp_payloads(pcap):
+    for pkt in rdpcap(pcap):
+        if UDP in pkt:
+            yield bytes(pkt[UDP].payload), pkt[UDP].dport
+
+
+def scan(args):
+    raw = b"".join(p for p, _ in udp_payloads(args.pcap))
+    positions = []
+    with open(args.record) as f:
+        for line in f:
+            j = json.loads(line)
+            if j.get("type") == "state":
+                positions.append(j["position"])
+    found = 0
+    for pos in positions:
+        found += any(struct.pack("<d", c) in raw for c in pos if c != 0.0)
+    return {
+        "bytes": len(raw),
+        "rtps": raw.count(b"RTPS"),
+        "topics": {t: raw.count(t.encode()) for t in TOPICS},
+        "positions": len(positions),
+        "positions_found": found,
+    }
+
+
+def racket_samples(datagram):
+    """(offset of the serialized payload, offset of writerSN) of every DATA
+    submessage of the datagram whose payload is a RacketSample's size."""
+    out = []
+    if len(datagram) < RTPS_HEADER or datagram[:4] != b"RTPS":
+        return out
+    i = RTPS_HEADER
+    while i + 4 <= len(datagram):
+        sid, flags = datagram[i], datagram[i + 1]
+        endian = "<" if flags & 1 else ">"
+        (length,) = struct.unpack(endian + "H", datagram[i + 2:i + 4])
+        body = i + 4
+        end = len(datagram) if length == 0 else body + length
+        if sid == DATA and not flags & 0x02:  # no inline QoS
+            (to_qos,) = struct.unpack(endian + "H", datagram[body + 2:body + 4])
+            payload = body + 4 + to_qos
+            if end - payload == RACKET_PAYLOAD:
+                out.append((payload, body + 12))
+        i = end
+    return out
+
+
+def forge(args):
+    found = None
+    for datagram, port in udp_payloads(args.pcap):
+        samples = racket_samples(datagram)
+        if samples:
+            found = (bytearray(datagram), samples)
+    if found is None:
+        return {"forged": 0, "error": "no plaintext racket sample in " + args.pcap}
+    d, samples = found
+    writer_prefix = bytes(d[8:20]).hex()
+    if args.prefix:
+        d[8:20] = bytes.fromhex(args.prefix)
+    for payload, sn in samples:
+        # the writer's sequence number and the stream's seq far ahead: never a duplicate
+        high, low = struct.unpack("<iI", d[sn:sn + 8])
+        low += 50
+        d[sn:sn + 8] = struct.pack("<iI", high + (low >> 32), low & 0xFFFFFFFF)
+        d[payload + 4:payload + 8] = struct.pack("<I", args.match)
+        (seq,) = struct.unpack("<I", d[payload + 12:payload + 16])
+        d[payload + 12:payload + 16] = struct.pack("<I", (seq + 100000) & 0xFFFFFFFF)
+    ports = [7400 + 250 * args.domain + 11 + 2 * p for p in range(8)]
+    s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    for _ in range(args.count):
+        for port in ports:
+            s.sendto(bytes(d), ("127.0.0.1", port))
+    return {"forged": len(samples), "writer_prefix": writer_prefix, "prefix": bytes(d[8:20]).hex(),
+            "ports": ports, "sent": args.count * len(ports)}
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    sub = ap.add_subparsers(dest="verb", required=True)
+    a = sub.add_parser("scan")
+    a.add_argument("pcap")
+    a.add_argument("record")
+    b = sub.add_parser("forge")
+    b.add_argument("pcap")
+    b.add_argument("domain", type=int)
+    b.add_argument("--prefix", default="")
+    b.add_argument("--match", type=int, default=999999)
+    b.add_argument("--count", type=int, default=5)
+    args = ap.parse_args()
+    out = scan(args) if args.verb == "scan" else forge(args)
+    print(json.dumps(out))
+    return 0 if "error" not in out else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
