@@ -90,3 +90,15 @@ foreach(case ${BALL_ITEST_CASES})
             --source ${PROJECT_SOURCE_DIR} --python ${BALL_ITEST_PYTHON} --tcpdump ${BALL_TCPDUMP})
   set_tests_properties(dds_${case} PROPERTIES LABELS dds TIMEOUT 100)
 endforeach()
+
+# the demo under DDS Security (./run demo --secure) rallies: its summary
+# counts hits; the certificates are made by the script ./run certs runs
+add_test(NAME demo_secure_certs
+  COMMAND bash ${PROJECT_SOURCE_DIR}/server/security/certs.sh ${CMAKE_CURRENT_BINARY_DIR}/demo_secure_certs 1)
+set_tests_properties(demo_secure_certs PROPERTIES FIXTURES_SETUP demo_secure_certs LABELS dds)
+ball_dds_domain(demo_secure domain)
+add_test(NAME demo_secure
+  COMMAND ball-demo --secure ${CMAKE_CURRENT_BINARY_DIR}/demo_secure_certs --domain ${domain} --duration 12)
+set_tests_properties(demo_secure PROPERTIES FIXTURES_REQUIRED demo_secure_certs LABELS dds TIMEOUT 100
+  PASS_REGULAR_EXPRESSION "summary: match 0: [1-9][0-9]* hits.*ball-demo: done"
+  FAIL_REGULAR_EXPRESSION "FAILED")
