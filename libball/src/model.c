@@ -79,7 +79,7 @@ static const ball_field model_fields[] = {
       "in [0, 1e7]",
       "eq 7 speed clamp, lower end"),
     F(v_max, "racket.v_max", REAL, ball_model, 0, BALL_MAX_SPEED, 0, RACKETS, 40.0, 0, 0, "m/s", "eq 7",
-      "in [v_min, 1e7]", "eq 7 speed clamp, upper end"),
+      "in [v_min, 1e7]", "eq 7 speed clamp, upper end; every response reads the racket speed clamped to it"),
     F(v_up, "racket.v_up", REAL, ball_model, 0, BALL_MAX_SPEED, LO_OPEN, RACKETS, 4.0, 0, 0, "m/s", "eq 8",
       "in (0, 1e7]",
       "V_up, the autonomous ball's vertical launch speed"),

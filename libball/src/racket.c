@@ -308,19 +308,24 @@ static void respond(const ball_model *m, const ball__flight *fl, ball_sim *sim, 
   ball_state in;
   ball_vec3 v0, s0 = ball_v3(0.0, 0.0, 0.0), p0 = h->q;
   const ball_racket_pose *pose = h->pose;
+  /* the racket velocity every response reads, its speed at most v_max (eq 7's
+   * clamp): a racket is a body, however fast its samples imply it moved
+   * (docs/rackets.md, "Racket speed") */
+  double speed = ball_v3_norm(pose->velocity);
+  ball_vec3 v_racket = speed > m->v_max ? ball_v3_scale(pose->velocity, m->v_max / speed) : pose->velocity;
   ball__eval_f(fl, &sim->seg, h->t, &in);
   if (m->response == BALL_RESPONSE_RACKET) {
-    v0 = ball__response_racket(m, pose->velocity, h->face); /* eq 7 */
+    v0 = ball__response_racket(m, v_racket, h->face); /* eq 7 */
     p0 = ball_v3_add(h->q, ball_v3_scale(v0, dt));                    /* eq 7: P = Q + V0 dt */
   } else if (m->response == BALL_RESPONSE_PHYSICAL) {
-    ball__response_physical(m, in.velocity, in.spin, h->face, pose->velocity, &v0, &s0);
+    ball__response_physical(m, in.velocity, in.spin, h->face, v_racket, &v0, &s0);
   } else {
     /* eq 8, 9: the goal is the partner's racket (its estimated centre now) or
      * the racket's target point when there is no partner or it has no pose */
     ball_vec3 goal = m->rackets[i].target;
     ball_racket_pose pp;
     int partner = m->rackets[i].partner;
-    double v_up = ball__response_v_up(m, pose->velocity);
+    double v_up = ball__response_v_up(m, v_racket);
     if (partner >= 0 && estimate(m, sim, partner, h->t, &pp) == BALL_OK) {
       /* the partner's racket, within goal_reach of target horizontally */
       double dx = pp.center.x - goal.x, dz = pp.center.z - goal.z, d = sqrt(dx * dx + dz * dz);
@@ -331,7 +336,7 @@ static void respond(const ball_model *m, const ball__flight *fl, ball_sim *sim, 
       v0 = ball__response_autonomous(m, h->q, goal, v_up, m->friendly_factor);
     } else {
       ball_vec3 vf = ball__response_autonomous(m, h->q, goal, v_up, 1.0);
-      v0 = ball__response_mixed(vf, pose->velocity, m->friendly_factor); /* eq 10 */
+      v0 = ball__response_mixed(vf, v_racket, m->friendly_factor); /* eq 10 */
     }
   }
   ball__segment_start(&sim->seg, h->t, p0, v0, s0, 0);

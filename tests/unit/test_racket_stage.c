@@ -174,7 +174,7 @@ static void eq7_hit_event_fields_and_restart_at_q_plus_v0_dt(void **state) {
  * 20 m/s, sampled at 6 Hz. Without drag x_ball = 2 t and x_racket = -4 + 20 t:
  * the surfaces (ball radius 0.033) touch when 2 t + 4 - 20 t = 0.033,
  * t = 3.967 / 18 = 0.22038888... s, inside the second frame [1/6, 2/6]. */
-static int overtake(ball_detect detect, ball_event *hit) {
+static int overtake_at(ball_detect detect, ball_response response, double speed, double v_max, ball_event *hit) {
   ball_model m;
   ball_sim sim;
   ball_event ev[4];
@@ -187,7 +187,10 @@ static int overtake(ball_detect detect, ball_event *hit) {
   m.rackets[0].radius = 0.15;
   m.detect = detect;
   m.collision_distance = 0.183;
-  m.response = BALL_RESPONSE_PHYSICAL;
+  m.response = response;
+  m.v_min = 0.0;
+  m.v_max = v_max;
+  m.friendly_factor = 0.5; /* mixed: half the racket's own velocity (eq 10) */
   m.stale_time = 10.0;
   m.initial_position = ball_v3(0, 1, 0);
   m.initial_velocity = ball_v3(2, 0, 0);
@@ -195,7 +198,7 @@ static int overtake(ball_detect detect, ball_event *hit) {
   for (f = 0; f <= 3; f++) {
     double t = f * dt;
     /* the racket follows the ball's height at the sample times */
-    ball_racket_sample s = {t, {-4.0 + 20.0 * t, 1.0 - 0.5 * 9.81 * t * t, 0}, {1, 0, 0}};
+    ball_racket_sample s = {t, {-4.0 + speed * t, 1.0 - 0.5 * 9.81 * t * t, 0}, {1, 0, 0}};
     assert_ok(ball_racket_push(&sim, 0, &s));
     if (f == 0) continue;
     assert_ok(ball_step(&sim, dt, ev, 4, &n));
@@ -205,6 +208,10 @@ static int overtake(ball_detect detect, ball_event *hit) {
     }
   }
   return 0;
+}
+
+static int overtake(ball_detect detect, ball_event *hit) {
+  return overtake_at(detect, BALL_RESPONSE_PHYSICAL, 20.0, 40.0, hit);
 }
 
 static void swept_finds_overtaking_racket_inside_6hz_frame(void **state) {
@@ -222,6 +229,48 @@ static void swept_finds_overtaking_racket_inside_6hz_frame(void **state) {
   assert_int_equal(overtake(BALL_DETECT_SPHERE, &ev), 0);
 }
 
+/* The physical response reads the racket velocity with its speed clamped to
+ * v_max: racket speeds along +x from 10 to 1e5 m/s (log-uniform, fixed seed)
+ * against v_max 30 m/s. Eq 11 with n = +x: V0.x = -2 + n . V_racket. The
+ * racket also falls with the ball (about 2 m/s down at the hit), so below
+ * 25 m/s V0.x = -2 + speed as without a clamp, from 40 m/s up the clamped
+ * velocity is within 1 % of v_max along x, and never beyond it. */
+static void physical_response_clamps_racket_speed_to_v_max(void **state) {
+  uint64_t seed = 12345;
+  int k, fast = 0, slow = 0;
+  (void)state;
+  for (k = 0; k < 40; k++) {
+    ball_event ev;
+    double speed;
+    seed = seed * 6364136223846793005ULL + 1442695040888963407ULL;
+    speed = 10.0 * pow(1e4, (double)(seed >> 11) / 9007199254740992.0);
+    assert_int_not_equal(overtake_at(BALL_DETECT_SWEPT, BALL_RESPONSE_PHYSICAL, speed, 30.0, &ev), 0);
+    assert_true(ev.velocity_out.x <= -2.0 + 30.0 + 1e-9);
+    if (speed < 25.0) {
+      assert_near(ev.velocity_out.x, -2.0 + speed, 1e-9 * speed);
+      slow++;
+    } else if (speed > 40.0) {
+      assert_true(ev.velocity_out.x >= -2.0 + 30.0 * 0.99);
+      fast++;
+    }
+  }
+  assert_true(fast >= 20 && slow >= 5); /* the draws cover both sides */
+}
+
+/* The mixed response (eq 10) reads it clamped too: a racket at 1e4 or 1e5
+ * m/s sends the ball off as one at v_max does (to within the racket's fall,
+ * which is the same for all three), not at thousands of m/s. */
+static void mixed_response_clamps_racket_speed_to_v_max(void **state) {
+  ball_event a, b, c;
+  (void)state;
+  assert_int_not_equal(overtake_at(BALL_DETECT_SWEPT, BALL_RESPONSE_MIXED, 1e5, 30.0, &a), 0);
+  assert_int_not_equal(overtake_at(BALL_DETECT_SWEPT, BALL_RESPONSE_MIXED, 1e4, 30.0, &b), 0);
+  assert_int_not_equal(overtake_at(BALL_DETECT_SWEPT, BALL_RESPONSE_MIXED, 300.0, 30.0, &c), 0);
+  assert_true(ball_v3_norm(a.velocity_out) < 100.0);
+  assert_true(ball_v3_norm(ball_v3_sub(a.velocity_out, b.velocity_out)) < 0.1);
+  assert_true(ball_v3_norm(ball_v3_sub(a.velocity_out, c.velocity_out)) < 0.5);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(sleep_frames_prevent_double_hit_of_one_stroke),
@@ -229,6 +278,8 @@ int main(void) {
       cmocka_unit_test(autonomous_goal_stays_within_reach_of_target),
       cmocka_unit_test(eq7_hit_event_fields_and_restart_at_q_plus_v0_dt),
       cmocka_unit_test(swept_finds_overtaking_racket_inside_6hz_frame),
+      cmocka_unit_test(physical_response_clamps_racket_speed_to_v_max),
+      cmocka_unit_test(mixed_response_clamps_racket_speed_to_v_max),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -188,7 +188,8 @@ typedef struct ball_model {
   ball_normal_mode normal_mode;               /* racket normal for the disc and swept tests */
   ball_response response;                     /* racket response */
   double collision_distance;                  /* d_COLL of the sphere test, m (> 0) */
-  double v_min, v_max;                        /* eq 7 speed clamp, m/s (0 <= v_min <= v_max) */
+  double v_min, v_max;                        /* eq 7 speed clamp, m/s (0 <= v_min <= v_max); every
+                                                 response reads the racket speed clamped to v_max */
   double v_up;                                /* eq 8 vertical launch speed, m/s (> 0) */
   double friendly_factor;                     /* eq 9, 10, >= 0 (eq 10 uses [0, 1]) */
   double spin_rack_damping;                   /* eq 12, [0, 1] */
