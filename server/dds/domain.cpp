@@ -12,6 +12,9 @@
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/ContentFilteredTopic.hpp>
+#include <fastdds/dds/topic/IContentFilter.hpp>
+#include <fastdds/dds/topic/IContentFilterFactory.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/common/InstanceHandle.h>
@@ -20,6 +23,7 @@
 
 #include <atomic>
 #include <cerrno>
+#include <cstdlib>
 #include <chrono>
 #include <deque>
 #include <condition_variable>
@@ -270,12 +274,51 @@ struct Publications : public fdds::DomainParticipantListener {
   }
 };
 
+// Doors (domain.h) as Fast DDS content filters of a class of our own: the
+// filter expression is the door's index. Fast DDS evaluates a reader's
+// filter before the sample enters its history (StatelessReader and
+// StatefulReader, change_received), so a sample turned away never becomes
+// an instance. A remote writer that does not know the class sends every
+// sample (no writer-side filtering).
+constexpr const char *kDoorClass = "BALL_DOOR";
+
+struct DoorFilter final : public fdds::IContentFilter {
+  std::shared_ptr<const Door> door;
+  bool evaluate(const SerializedPayload &payload, const FilterSampleInfo &, const GUID_t &) const override {
+    if (payload.length < 4 || payload.data[0] != 0 || payload.data[1] > 1) return true;  // not plain CDR
+    return door->admit(payload.data + 4, payload.length - 4, payload.data[1] == 1);
+  }
+};
+
+struct DoorFactory : public fdds::IContentFilterFactory {
+  std::mutex mutex;
+  std::vector<std::shared_ptr<const Door>> doors;
+  ReturnCode_t create_content_filter(const char *, const char *, const fdds::TopicDataType *, const char *expression,
+                                     const ParameterSeq &, fdds::IContentFilter *&filter) override {
+    char *end = nullptr;
+    unsigned long i = std::strtoul(expression, &end, 10);
+    std::lock_guard<std::mutex> lock(mutex);
+    if (end == expression || *end != '\0' || i >= doors.size()) return ReturnCode_t::RETCODE_BAD_PARAMETER;
+    DoorFilter *f = filter ? static_cast<DoorFilter *>(filter) : new DoorFilter;
+    f->door = doors[i];
+    filter = f;
+    return ReturnCode_t::RETCODE_OK;
+  }
+  ReturnCode_t delete_content_filter(const char *, fdds::IContentFilter *filter) override {
+    delete static_cast<DoorFilter *>(filter);
+    return ReturnCode_t::RETCODE_OK;
+  }
+};
+
 struct Domain::Impl {
   fdds::DomainParticipant *participant = nullptr;
   Publications publications;
   fdds::Publisher *publisher = nullptr;
   fdds::Subscriber *subscriber = nullptr;
   std::map<std::string, fdds::Topic *> topics;
+  DoorFactory doors;
+  bool doors_registered = false;
+  std::vector<fdds::ContentFilteredTopic *> filtered;
   std::vector<fdds::DataWriter *> writers;
   std::vector<fdds::DataReader *> readers;
   std::vector<std::shared_ptr<fdds::DataReaderListener>> listeners;
@@ -284,6 +327,8 @@ struct Domain::Impl {
     // reverse order of creation: endpoints, topics, publisher/subscriber, participant
     for (auto it = readers.rbegin(); it != readers.rend(); ++it) subscriber->delete_datareader(*it);
     for (auto it = writers.rbegin(); it != writers.rend(); ++it) publisher->delete_datawriter(*it);
+    for (auto *f : filtered) participant->delete_contentfilteredtopic(f);
+    if (doors_registered) participant->unregister_content_filter_factory(kDoorClass);
     for (auto &t : topics) participant->delete_topic(t.second);
     if (subscriber) participant->delete_subscriber(subscriber);
     if (publisher) participant->delete_publisher(publisher);
@@ -308,6 +353,31 @@ struct Domain::Impl {
     }
     topics[name] = t;
     return t;
+  }
+
+  // topic t behind a door (domain.h): a content filtered topic of the door's class
+  fdds::ContentFilteredTopic *door(fdds::Topic *t, std::shared_ptr<const Door> d, std::string *err) {
+    if (!doors_registered) {
+      if (participant->register_content_filter_factory(kDoorClass, &doors) != ReturnCode_t::RETCODE_OK) {
+        *err = "cannot register the door filter";
+        return nullptr;
+      }
+      doors_registered = true;
+    }
+    std::string index;
+    {
+      std::lock_guard<std::mutex> lock(doors.mutex);
+      index = std::to_string(doors.doors.size());
+      doors.doors.push_back(std::move(d));
+    }
+    fdds::ContentFilteredTopic *f = participant->create_contentfilteredtopic(
+        t->get_name() + "#door" + index, t, index, {}, kDoorClass);
+    if (!f) {
+      *err = "cannot create the door of " + t->get_name();
+      return nullptr;
+    }
+    filtered.push_back(f);
+    return f;
   }
 };
 
@@ -485,13 +555,18 @@ Reader<T> Domain::reader(const char *topic_name, const char *profile, Sizing siz
     return r;
   }
   size_limits(&qos, sizing);
+  fdds::TopicDescription *description = t;
+  if (sizing.door) {
+    description = impl_->door(t, sizing.door, err);
+    if (!description) return r;
+  }
   auto notes = std::make_shared<typename Reader<T>::Notes>();
   notes->inbox_cap = static_cast<size_t>(std::max(0, sizing.inbox));
   fdds::StatusMask mask = fdds::StatusMask::liveliness_changed() << fdds::StatusMask::subscription_matched()
                           << fdds::StatusMask::requested_deadline_missed() << fdds::StatusMask::sample_rejected()
                           << fdds::StatusMask::sample_lost();
   if (sizing.inbox > 0) mask << fdds::StatusMask::data_available();
-  r.r_ = impl_->subscriber->create_datareader(t, qos, notes.get(), mask);
+  r.r_ = impl_->subscriber->create_datareader(description, qos, notes.get(), mask);
   if (!r.r_) {
     *err = std::string("cannot create a reader on ") + topic_name + " with profile " + profile;
     if (secure_) *err += denied(sizing.partition);

@@ -63,13 +63,26 @@ constexpr int kClientRoom = 4096;
 // removes a taken one likewise, so a history that holds a frame's samples
 // costs O(samples^2) a frame; with an inbox it holds one or two
 // (docs/server.md, "Load").
+// A reader's door: it sees each arriving sample's CDR body (after the
+// 4-byte encapsulation) before DDS keeps it, and so before the sample's key
+// becomes an instance of the reader; false turns the sample away. Called
+// from DDS's receive threads. (Samples in an encoding other than plain CDR
+// are let in: the reader's own deserialization judges them.)
+class Door {
+ public:
+  virtual ~Door() = default;
+  virtual bool admit(const uint8_t *body, size_t size, bool little_endian) const = 0;
+};
+
 struct Sizing {
   int instances = 1;
   int inbox = 0;          // samples; 0: samples wait in the DDS reader until taken
   std::string partition;  // the endpoint's DDS partition ("": the default one); under DDS
                           // Security a player writes only in its match's, match/<id>
-  Sizing(int instances_ = 1, int inbox_ = 0, std::string partition_ = "")  // NOLINT: {n} sizes
-      : instances(instances_), inbox(inbox_), partition(std::move(partition_)) {}
+  std::shared_ptr<const Door> door;  // a reader's door (none: every sample DDS takes)
+  Sizing(int instances_ = 1, int inbox_ = 0, std::string partition_ = "",  // NOLINT: {n} sizes
+         std::shared_ptr<const Door> door_ = nullptr)
+      : instances(instances_), inbox(inbox_), partition(std::move(partition_)), door(std::move(door_)) {}
 };
 
 // The DDS partition of match `id`'s players (docs/security.md).

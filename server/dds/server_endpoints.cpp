@@ -1,7 +1,74 @@
 #include "server_endpoints.h"
 
+#include <atomic>
+#include <mutex>
+#include <unordered_map>
+
+#include "convert.h"
+
 namespace ballsrv {
 namespace dds {
+
+// The door of the racket and control readers (domain.h): only the samples
+// of the matches the server has, and their slots, become instances of the
+// readers; a control for another match only if it is a CREATE. Made-up
+// match ids then cannot fill the readers' instances and starve the real
+// ones (docs/protocol.md, "What the server does with a racket sample").
+// What it turns away is counted here and handed on as door notes.
+class MatchDoor : public Door {
+ public:
+  explicit MatchDoor(bool controls) : controls_(controls) {}
+  bool admit(const uint8_t *body, size_t size, bool le) const override {
+    // RacketSample: match_id u32 at 0, player u16 at 4; MatchControl: match_id u32 at 0, kind at 8
+    if (size < 12) return true;  // too short for its type: the reader's deserialization refuses it
+    uint32_t id = u32(body, le);
+    std::shared_ptr<const Admitted> in = admitted();
+    if (!in) return true;  // nothing said yet
+    auto it = in->find(id);
+    if (controls_) {
+      if (it != in->end() || u32(body + 8, le) == static_cast<uint32_t>(balldds::CONTROL_CREATE)) return true;
+      turned_away_[0]++;
+      return false;
+    }
+    if (it == in->end()) {
+      turned_away_[0]++;
+      return false;
+    }
+    uint16_t player = static_cast<uint16_t>(le ? body[4] | body[5] << 8 : body[4] << 8 | body[5]);
+    if (player < it->second) return true;
+    turned_away_[1]++;
+    return false;
+  }
+  void set(const std::vector<std::pair<uint32_t, int>> &matches) {
+    auto in = std::make_shared<Admitted>(matches.begin(), matches.end());
+    std::lock_guard<std::mutex> lock(mutex_);
+    admitted_ = std::move(in);
+  }
+  // turned away since the last call: [0] unknown match (controls: all), [1] bad slot
+  void take(uint64_t out[2]) {
+    for (int i = 0; i < 2; ++i) out[i] = turned_away_[i].exchange(0);
+  }
+
+ private:
+  using Admitted = std::unordered_map<uint32_t, int>;
+  static uint32_t u32(const uint8_t *b, bool le) {
+    return le ? uint32_t(b[0]) | uint32_t(b[1]) << 8 | uint32_t(b[2]) << 16 | uint32_t(b[3]) << 24
+              : uint32_t(b[3]) | uint32_t(b[2]) << 8 | uint32_t(b[1]) << 16 | uint32_t(b[0]) << 24;
+  }
+  std::shared_ptr<const Admitted> admitted() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return admitted_;
+  }
+  bool controls_;
+  mutable std::mutex mutex_;
+  std::shared_ptr<const Admitted> admitted_;
+  mutable std::atomic<uint64_t> turned_away_[2] = {{0}, {0}};
+};
+
+void ServerEndpoints::admit(const std::vector<std::pair<uint32_t, int>> &matches) {
+  sample_door_->set(matches);
+  control_door_->set(matches);
+}
 
 std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, int players, const char *role,
                                                        bool follows, std::string *err) {
@@ -18,9 +85,13 @@ std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, i
   if (!p->status_.valid()) return nullptr;
   // under DDS Security players write in their match's partition (docs/security.md)
   std::string from_players = d.secure() ? kAnyMatchPartition : "";
+  p->sample_door_ = std::make_shared<MatchDoor>(false);
+  p->control_door_ = std::make_shared<MatchDoor>(true);
   p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile,
-                                         {sample_room, sample_room * kInboxPerSlot, from_players}, err);
-  p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile, {match_room + 64, 0, from_players}, err);
+                                         {sample_room, sample_room * kInboxPerSlot, from_players, p->sample_door_},
+                                         err);
+  p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile,
+                                     {match_room + 64, 0, from_players, p->control_door_}, err);
   p->others_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room + 64}, err);
   // (only a standby reads segments: every other server would take its own back)
   if (follows) p->other_segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {match_room + 64}, err);
@@ -63,6 +134,12 @@ void ServerEndpoints::take_notes(std::vector<PortNote> *out) {
     if (n.kind == StatusNote::rejected) out->push_back({PortNote::control_rejected, {}, static_cast<uint64_t>(n.count)});
     if (n.kind == StatusNote::samples_lost) out->push_back({PortNote::control_lost, {}, static_cast<uint64_t>(n.count)});
   }
+  uint64_t away[2];
+  control_door_->take(away);
+  if (away[0]) out->push_back({PortNote::door_control, {}, away[0]});
+  sample_door_->take(away);
+  if (away[0]) out->push_back({PortNote::door_unknown_match, {}, away[0]});
+  if (away[1]) out->push_back({PortNote::door_bad_slot, {}, away[1]});
   notes_.clear();
   samples_.drain_status(&notes_);
   for (const auto &n : notes_) {

@@ -24,6 +24,7 @@ class ServerEndpoints : public ServerPort {
   void take_notes(std::vector<PortNote> *out) override;
   bool take_sample(RacketSampleIn *sample) override;
   bool take_control(ControlIn *control) override;
+  void admit(const std::vector<std::pair<uint32_t, int>> &matches) override;
   bool take_other_info(MatchInfoOut *info, ParticipantId *from) override;
   bool take_other_segment(SegmentOut *segment, ParticipantId *from) override;
   bool take_other_status(StatusOut *status, ParticipantId *from) override;
@@ -38,6 +39,7 @@ class ServerEndpoints : public ServerPort {
  private:
   explicit ServerEndpoints(Domain &domain) : domain_(domain) {}
   Domain &domain_;
+  std::shared_ptr<class MatchDoor> sample_door_, control_door_;
   Writer<SegmentOut> segments_;
   Writer<EventOut> events_;
   Writer<StateOut> states_;

@@ -395,6 +395,15 @@ void ServerLoop::take_notes(double t0) {
         stats_.totals.samples_in += count;
         break;
       }
+      case PortNote::door_unknown_match:
+      case PortNote::door_bad_slot: {
+        // turned away at the door: the first two checks of a sample (docs/protocol.md)
+        SampleResult why = n.kind == PortNote::door_bad_slot ? SampleResult::bad_slot : SampleResult::unknown_match;
+        stats_.totals.drops[static_cast<int>(why)] += n.count;
+        stats_.totals.samples_in += n.count;
+        break;
+      }
+      case PortNote::door_control:
       case PortNote::control_rejected:
       case PortNote::control_lost: {
         // controls DDS refused or lost: in, and refused, like a malformed one
@@ -405,6 +414,17 @@ void ServerLoop::take_notes(double t0) {
       }
     }
   }
+}
+
+// The port lets in only the samples and controls of the matches the host
+// has (its own and those it follows), told again whenever they change.
+void ServerLoop::admit_hosted() {
+  admitted_now_.clear();
+  for (const auto &m : host_.matches()) admitted_now_.emplace_back(m->id(), m->config().players);
+  if (admitted_once_ && admitted_now_ == admitted_) return;
+  admitted_.swap(admitted_now_);
+  admitted_once_ = true;
+  port_.admit(admitted_);
 }
 
 void ServerLoop::take_samples(double now) {
@@ -515,6 +535,7 @@ bool ServerLoop::wake() {
     Match *m = host_.find(f.first);
     if (m) m->follow_clock(i.sim_time + (i.state == MatchState::playing ? (now - i.server_time) * i.time_base : 0.0));
   }
+  admit_hosted();
   take_samples(now);
   take_controls(now);
   take_over(t0, now);

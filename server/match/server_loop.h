@@ -44,8 +44,13 @@ namespace ballsrv {
 struct PortNote {
   // writer_lost: a player's racket writer; server_lost: another server's
   // writers of the server topics (its liveliness lost or unmatched);
-  // rejected, lost: racket samples; control_rejected, control_lost: controls
-  enum Kind { writer_lost, deadline_missed, rejected, lost, server_lost, control_rejected, control_lost } kind;
+  // rejected, lost: racket samples; control_rejected, control_lost: controls;
+  // door_unknown_match, door_bad_slot: racket samples, door_control: controls,
+  // turned away at the reader's door (ServerPort::admit)
+  enum Kind {
+    writer_lost, deadline_missed, rejected, lost, server_lost, control_rejected, control_lost,
+    door_unknown_match, door_bad_slot, door_control
+  } kind;
   ParticipantId who{};  // writer_lost, server_lost: the participant; zeros otherwise
   uint64_t count = 1;   // samples or deadlines
 };
@@ -56,6 +61,11 @@ class ServerPort {
   virtual void take_notes(std::vector<PortNote> *out) = 0;  // appends what was noticed since the last call
   virtual bool take_sample(RacketSampleIn *sample) = 0;     // false: none left; from and source_time filled in
   virtual bool take_control(ControlIn *control) = 0;        // false: none left; from filled in
+  // The matches (id, player slots) whose samples and controls come in: the
+  // port may turn the others away before they cost it anything (a sample
+  // for another match or slot, a control but CREATE for another match),
+  // counted as door notes. Until the first call it lets everything in.
+  virtual void admit(const std::vector<std::pair<uint32_t, int>> &matches) { (void)matches; }
   // MatchInfo, segments and status written by other servers (our own are
   // skipped); false: none left
   virtual bool take_other_info(MatchInfoOut *info, ParticipantId *from) = 0;
@@ -167,6 +177,7 @@ class ServerLoop {
   // now: server s).
   void take_notes(double t0);
   void take_others();
+  void admit_hosted();
   void take_samples(double now);
   void take_controls(double now);
   void take_over(double t0, double now);
@@ -232,6 +243,8 @@ class ServerLoop {
   StatusOut status_;
   MatchOutput out_;
   std::vector<PortNote> notes_;
+  std::vector<std::pair<uint32_t, int>> admitted_, admitted_now_;  // the port's door: (match, slots)
+  bool admitted_once_ = false;
   std::function<void(const MatchInfoOut &, const ParticipantId &)> on_conflict_;
   std::function<void(const std::string &)> on_note_;
   std::map<uint32_t, Followed> followed_;

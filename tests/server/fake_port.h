@@ -53,6 +53,8 @@ struct FakePort : ServerPort {
     out->insert(out->end(), notes.begin(), notes.end());
     notes.clear();
   }
+  std::vector<std::vector<std::pair<uint32_t, int>>> admitted;  // every admit call's matches
+  void admit(const std::vector<std::pair<uint32_t, int>> &m) override { admitted.push_back(m); }
   bool take_sample(RacketSampleIn *s) override { return pop(samples, s); }
   bool take_control(ControlIn *c) override { return pop(controls, c); }
   bool take_other_info(MatchInfoOut *info, ParticipantId *from) override { return pop_from(others, info, from); }

@@ -6,7 +6,9 @@
 // --wait-match only once the server's readers matched its writers). It
 // listens to the server topics and writes as JSON what it sent and what it
 // heard: a stranger hears nothing, a player of another match is refused by
-// the server as `not_permitted`.
+// the server as `not_permitted`. With --junk N it cycles through N made-up
+// match ids from --match on, a JOIN and a sample for each: they must not
+// fill the server's readers.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -34,6 +36,8 @@ int main(int argc, char **argv) {
   cli.add_option("--duration", duration, "s to run");
   cli.add_option("--out", out_json, "JSON file of what was sent and heard");
   bool wait_match = false;
+  uint32_t junk = 0;
+  cli.add_option("--junk", junk, "write under this many match ids from --match on, in turn (made-up ids)");
   cli.add_flag("--wait-match", wait_match, "send only once a reader matched both writers (all of it then arrives)");
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
@@ -43,9 +47,11 @@ int main(int argc, char **argv) {
   auto d = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
                              dds_opt.discovery_server, kProgram, &err, {dds_opt.security, dds_opt.identity});
   if (!d) return fail(kProgram, err);
-  auto samples = d->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {1, 0, partition}, &err);
+  int keys = static_cast<int>(std::max<uint32_t>(1, junk));
+  auto samples = d->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {keys, 0, partition}, &err);
   dds::Writer<ControlIn> controls;
-  if (samples.valid()) controls = d->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {1, 0, partition}, &err);
+  if (samples.valid())
+    controls = d->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {keys, 0, partition}, &err);
   if (!samples.valid() || !controls.valid()) return fail(kProgram, err);
   auto infos = d->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {dds::kClientRoom}, &err);
   auto states = d->reader<StateOut>(dds::kStateTopic, dds::kStateProfile, {dds::kClientRoom}, &err);
@@ -70,9 +76,10 @@ int main(int argc, char **argv) {
       sleep_until(next_sample);
       continue;
     }
-    if (now >= next_join) {
+    uint32_t id = junk ? match + static_cast<uint32_t>(sent_samples % junk) : match;
+    if (now >= next_join || (junk && now >= next_sample)) {  // made-up ids: a JOIN with every sample
       ControlIn c;
-      c.match_id = match;
+      c.match_id = id;
       c.seq = ++control_seq;
       c.kind = ControlKind::join;
       c.player = 0;
@@ -82,7 +89,7 @@ int main(int argc, char **argv) {
     }
     if (now >= next_sample) {
       RacketSampleIn s;
-      s.match_id = match;
+      s.match_id = id;
       s.player = 0;
       s.seq = ++seq;
       s.capture_time = sim + (now - start) * 1e-3;  // moves on, never ahead of the server's clock by much

@@ -326,6 +326,57 @@ void case_key_flood(const Env &env) {
   CHECK(r.status.samples_in <= static_cast<uint64_t>(flooded) + 1000u);
 }
 
+// A stranger writes JOINs and racket samples under 3000 made-up match ids,
+// 500 of each a second, before and while two bots join match 0: the made-up
+// ids are turned away at the readers' door (counted unknown_match and
+// controls_refused, none rejected by DDS), so they never fill the readers'
+// instances, and the bots get their slots and rally.
+void case_junk_keys(const Env &env) {
+  Case c{env};
+  std::string junk_out = path(env, "junk.json");
+  Server server(c.server());
+  Process junk = Process::start({env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "1000", "--junk", "3000",
+                                 "--rate", "500", "--duration", "16", "--out", junk_out},
+                                path(env, "junk.out"), path(env, "junk.err"));
+  usleep(4000000);  // 2000 made-up ids so far: 27 times the readers' room for strangers
+  std::string rec = path(env, "watch.jsonl");
+  Process w = ready_watcher(c, rec, {});
+  Process b0 = c.bot(0, {"--rate", "15"}), b1 = c.bot(1, {"--rate", "15"});
+  Tail t(rec);
+  int hits = hits_after_serve_within(t, 3, 20.0);
+  CHECK_EQ(junk.wait(30.0), 0);
+  b0.stop();
+  b1.stop();
+  w.stop();
+  int rc = server.p.stop(5.0);
+  server.p = Process();
+  CHECK_MSG(rc == 0, "the server's exit status %d", rc);
+  ServerReport r;
+  json sent;
+  try {
+    std::ifstream fs(path(env, "server.json")), fj(junk_out);
+    r = json::parse(fs).get<ServerReport>();
+    sent = json::parse(fj);
+  } catch (const std::exception &e) {
+    CHECK_MSG(false, "the counters: %s", e.what());
+    return;
+  }
+  uint64_t samples = sent.value("samples", 0u), controls = sent.value("controls", 0u);
+  uint64_t unknown = r.status.drops[static_cast<int>(SampleResult::unknown_match)];
+  uint64_t rejected = r.status.drops[static_cast<int>(SampleResult::rejected)];
+  note("%llu samples and %llu JOINs under 3000 made-up ids: %llu unknown_match, %llu rejected, %llu controls "
+       "refused; %d hits after the bots joined",
+       static_cast<unsigned long long>(samples), static_cast<unsigned long long>(controls),
+       static_cast<unsigned long long>(unknown), static_cast<unsigned long long>(rejected),
+       static_cast<unsigned long long>(r.status.controls_refused), hits);
+  CHECK(samples >= 5000);
+  CHECK_MSG(hits >= 3, "the bots made %d hits among the made-up ids", hits);
+  CHECK_EQ(rejected, 0u);
+  CHECK(unknown <= samples);
+  CHECK(unknown >= samples * 9 / 10);
+  CHECK(r.status.controls_refused >= controls * 9 / 10);
+}
+
 // A match a client CREATEd and nobody joined goes after create_timeout: a
 // watcher that comes later is not handed its MatchInfo (the instance is
 // disposed), while the configured match stays.
@@ -658,6 +709,7 @@ TEST(desync) { in_case(case_desync); }
 TEST(pause) { in_case(case_pause); }
 TEST(flood) { in_case(case_flood); }
 TEST(key_flood) { in_case(case_key_flood); }
+TEST(junk_keys) { in_case(case_junk_keys); }
 TEST(create_expires) { in_case(case_create_expires); }
 TEST(late_join) { in_case(case_late_join); }
 TEST(lossy) { in_case(case_lossy); }

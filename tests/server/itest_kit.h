@@ -192,6 +192,12 @@ inline int hits_within(Tail &t, double t0, int want, double seconds, double *las
   return hits;
 }
 
+// racket hits in play within `seconds` of the first serve, up to `want` (0: no serve)
+inline int hits_after_serve_within(Tail &t, int want, double seconds) {
+  double t0 = first_serve(t), last = 0.0;
+  return t0 < 0.0 ? 0 : hits_within(t, t0, want, seconds, &last);
+}
+
 // A case, then no Fast DDS file left behind; every Process of the case is
 // stopped when it returns.
 inline void in_case(void (*fn)(const Env &)) {

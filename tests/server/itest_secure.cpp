@@ -96,11 +96,6 @@ json end_rally(const Env &env, Rally &r, Process &cap, const std::string &tag, S
   return wire_check(env, tag + "_scan", {"scan", path(env, tag + ".pcap"), path(env, tag + ".jsonl")});
 }
 
-int hits_after_serve(Tail &t, int want) {
-  double t0 = first_serve(t), last = 0.0;
-  return t0 < 0.0 ? 0 : hits_within(t, t0, want, 20.0, &last);
-}
-
 void case_secure(const Env &env) {
   Case c{env};
   std::string err, certs = path(env, "certs");
@@ -112,7 +107,7 @@ void case_secure(const Env &env) {
   {
     Process cap = capture(env, "open");
     Rally r = rally(c, "open", {}, {}, {}, {});
-    int hits = hits_after_serve(r.t, 3);
+    int hits = hits_after_serve_within(r.t, 3, 20.0);
     CHECK_MSG(hits >= 3, "open: %d hits", hits);
     json forged = wire_check(env, "open_forge", {"forge", path(env, "open.pcap"), env.dom()});
     usleep(500000);
@@ -132,7 +127,7 @@ void case_secure(const Env &env) {
   auto sec = [&](const char *who) { return std::vector<std::string>{"--secure", certs, "--identity", who}; };
   Process cap = capture(env, "secure");
   Rally r = rally(c, "secure", sec("server1"), sec("watch"), sec("m0-a"), sec("m0-b"));
-  int hits = hits_after_serve(r.t, 3);
+  int hits = hits_after_serve_within(r.t, 3, 20.0);
   CHECK_MSG(hits >= 3, "secure: %d hits", hits);
   // slot 0's holder, as the server announces it
   json info = wait_for(r.t, 5.0, [](const json &j) {

@@ -224,6 +224,15 @@ TEST(dds_notes_count_what_they_can_mean) {
   CHECK_EQ(s.totals.samples_in, kMaxLostPerNote + 5);
   CHECK_EQ(s.totals.controls_in, 73u + kMaxLostPerNote);
   CHECK_EQ(s.totals.controls_refused, 73u + kMaxLostPerNote);
+  // what the readers' door turned away: a sample's first two checks, and refused controls
+  r.port.notes = {{PortNote::door_unknown_match, {}, 7}, {PortNote::door_bad_slot, {}, 4},
+                  {PortNote::door_control, {}, 9}};
+  r.loop->step();
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::unknown_match)], 7u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::bad_slot)], 4u);
+  CHECK_EQ(s.totals.samples_in, kMaxLostPerNote + 5 + 7 + 4);
+  CHECK_EQ(s.totals.controls_in, 73u + kMaxLostPerNote + 9);
+  CHECK_EQ(s.totals.controls_refused, 73u + kMaxLostPerNote + 9);
 }
 
 // Percentiles keep at most kCap values, a uniform sample of all: a day of
@@ -320,6 +329,11 @@ TEST(a_create_schedules_the_new_match) {
   r.loop->step();
   CHECK_EQ(r.loop->stats().totals.controls_refused, 1u);
   CHECK_EQ(r.host.matches().size(), 2u);
+  // the port's door: told the configured match at the first wake-up, the
+  // created one with it after, and only when they change
+  CHECK_EQ(r.port.admitted.size(), 2u);
+  CHECK(r.port.admitted.front() == (std::vector<std::pair<uint32_t, int>>{{0, 2}}));
+  CHECK(r.port.admitted.back() == (std::vector<std::pair<uint32_t, int>>{{0, 2}, {8, 2}}));
 }
 
 TEST(another_server_for_our_match) {
