@@ -54,15 +54,6 @@ constexpr const char *kStatusProfile = "server_status";
 // as rejected, and a bot would miss its own match among many).
 constexpr int kClientRoom = 4096;
 
-// How many instances (keys) an endpoint must hold: the profile says keep
-// last N per instance; this says how many instances, and so max_samples.
-// A reader with an inbox takes every sample as it arrives (in the DDS
-// thread) into a queue of at most `inbox` samples, refusing (and counting
-// as rejected) what does not fit; take() then reads that queue. Fast DDS
-// 2.9 looks a new sample up through the reader's whole history, and
-// removes a taken one likewise, so a history that holds a frame's samples
-// costs O(samples^2) a frame; with an inbox it holds one or two
-// (docs/server.md, "Load").
 // A reader's door: it sees each arriving sample's CDR body (after the
 // 4-byte encapsulation) before DDS keeps it, and so before the sample's key
 // becomes an instance of the reader; false turns the sample away. Called
@@ -74,6 +65,15 @@ class Door {
   virtual bool admit(const uint8_t *body, size_t size, bool little_endian) const = 0;
 };
 
+// How many instances (keys) an endpoint must hold: the profile says keep
+// last N per instance; this says how many instances, and so max_samples.
+// A reader with an inbox takes every sample as it arrives (in the DDS
+// thread) into a queue of at most `inbox` samples, refusing (and counting
+// as rejected) what does not fit; take() then reads that queue. Fast DDS
+// 2.9 looks a new sample up through the reader's whole history, and
+// removes a taken one likewise, so a history that holds a frame's samples
+// costs O(samples^2) a frame; with an inbox it holds one or two
+// (docs/server.md, "Load").
 struct Sizing {
   int instances = 1;
   int inbox = 0;          // samples; 0: samples wait in the DDS reader until taken
