@@ -99,6 +99,8 @@ set_tests_properties(demo_secure_certs PROPERTIES FIXTURES_SETUP demo_secure_cer
 ball_dds_domain(demo_secure domain)
 add_test(NAME demo_secure
   COMMAND ball-demo --secure ${CMAKE_CURRENT_BINARY_DIR}/demo_secure_certs --domain ${domain} --duration 12)
+# (under ./run asan with Fast DDS 2.9's own new-delete-type mismatch waived, as ball_itest does)
 set_tests_properties(demo_secure PROPERTIES FIXTURES_REQUIRED demo_secure_certs LABELS dds TIMEOUT 100
   PASS_REGULAR_EXPRESSION "summary: match 0: [1-9][0-9]* hits.*ball-demo: done"
-  FAIL_REGULAR_EXPRESSION "FAILED")
+  FAIL_REGULAR_EXPRESSION "FAILED"
+  ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
