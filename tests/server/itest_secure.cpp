@@ -2,8 +2,9 @@
 // show"): the same rally first on an open domain, then on a secure one, each
 // under a loopback capture (tcpdump). On the open domain the capture holds
 // the ball's positions in plaintext and a datagram forged from a captured
-// racket sample reaches the server; on the secure one the capture holds none
-// of them, the same forgery under a real player's GUID prefix is dropped, a
+// racket sample reaches the server, as a LEAVE forged from a player's JOIN
+// frees its slot; on the secure one the capture holds none of them, the same
+// forgeries under a real player's GUID prefix are dropped, a
 // participant without a certificate hears nothing and reaches no match, and a
 // player certified for match 1 cannot write into match 0 (refused by DDS in
 // the partition match/0, counted `not_permitted` from its own).
@@ -85,6 +86,16 @@ Rally rally(Case &c, const std::string &tag, const std::vector<std::string> &ser
   return r;
 }
 
+// slot 0's holder (its GUID prefix, hex) as the server announces it ("" and a failed check: none)
+std::string slot0_holder(Tail &t) {
+  json info = wait_for(t, 5.0, [](const json &j) {
+    return is_type(j, "match_info") && j.at("slots").at(0).at("held").get<bool>();
+  });
+  std::string owner = info.is_null() ? "" : info.at("slots").at(0).at("owner").get<std::string>();
+  CHECK_MSG(owner.size() == 24, "no holder of slot 0 announced");
+  return owner;
+}
+
 // Stops the rally's programs, the server last (its report in *rep), then the
 // capture TAG.pcap; what wire_check.py finds of TAG.jsonl's positions in it.
 json end_rally(const Env &env, Rally &r, Process &cap, const std::string &tag, ServerReport *rep) {
@@ -110,17 +121,25 @@ void case_secure(const Env &env) {
     int hits = hits_after_serve_within(r.t, 3, 20.0);
     CHECK_MSG(hits >= 3, "open: %d hits", hits);
     json forged = wire_check(env, "open_forge", {"forge", path(env, "open.pcap"), env.dom()});
+    // a LEAVE of slot 0 forged from its holder's own JOIN frees the slot (the match pauses)
+    std::string holder = slot0_holder(r.t);
+    size_t from = r.t.lines.size();
+    wire_check(env, "open_leave", {"forge", path(env, "open.pcap"), env.dom(), "--leave", "--sender", holder});
+    bool paused = !wait_for(r.t, 3.0, [](const json &j) { return is_event(j, EventKind::pause); }, &from).is_null();
     usleep(500000);
     ServerReport rep;
     json scan = end_rally(env, r, cap, "open", &rep);
-    note("open: %d hits; %s of %s positions in plaintext; forged racket samples counted unknown_match: %llu", hits,
+    note("open: %d hits; %s of %s positions in plaintext; forged racket samples counted unknown_match: %llu; "
+         "a forged LEAVE %s",
+         hits,
          scan.value("positions_found", json(0)).dump().c_str(), scan.value("positions", json(0)).dump().c_str(),
-         static_cast<unsigned long long>(drops(rep, SampleResult::unknown_match)));
+         static_cast<unsigned long long>(drops(rep, SampleResult::unknown_match)), paused ? "paused it" : "did nothing");
     // the checks below can fail: in the open, positions and forgeries get through
     CHECK(scan.value("positions", 0) >= 50);
     CHECK(scan.value("positions_found", 0) >= scan.value("positions", 0) * 9 / 10);
     CHECK(forged.value("forged", 0) >= 1);
     CHECK(drops(rep, SampleResult::unknown_match) >= 1);
+    CHECK_MSG(paused, "open: a forged LEAVE under the holder's prefix did not pause the match");
   }
 
   // ---- the secure domain ----
@@ -129,12 +148,7 @@ void case_secure(const Env &env) {
   Rally r = rally(c, "secure", sec("server1"), sec("watch"), sec("m0-a"), sec("m0-b"));
   int hits = hits_after_serve_within(r.t, 3, 20.0);
   CHECK_MSG(hits >= 3, "secure: %d hits", hits);
-  // slot 0's holder, as the server announces it
-  json info = wait_for(r.t, 5.0, [](const json &j) {
-    return is_type(j, "match_info") && j.at("slots").at(0).at("held").get<bool>();
-  });
-  std::string owner = info.is_null() ? "" : info.at("slots").at(0).at("owner").get<std::string>();
-  CHECK_MSG(owner.size() == 24, "no holder of slot 0 announced");
+  std::string owner = slot0_holder(r.t);
 
   // a stranger without a certificate, and a player of match 1, both writing into match 0
   auto intruder = [&](const std::string &name, std::vector<std::string> extra) {
@@ -155,13 +169,19 @@ void case_secure(const Env &env) {
   CHECK_MSG(rc == 1 && err.find("permissions do not grant it in partition match/0") != std::string::npos,
             "a writer of m1-a in match/0: status %d: %s", rc, err.c_str());
   json forged = wire_check(env, "secure_forge", {"forge", path(env, "open.pcap"), env.dom(), "--prefix", owner});
+  size_t leave_from = r.t.lines.size();
+  wire_check(env, "secure_leave", {"forge", path(env, "open.pcap"), env.dom(), "--leave", "--prefix", owner});
   CHECK_EQ(stranger.wait(15.0), 0);
   CHECK_EQ(player1.wait(15.0), 0);
-  // the rally went on through it all
+  // the rally went on through it all, never paused by the forged LEAVE
   size_t from = r.t.lines.size();
   int later = 0;
   while (later < 2 && !wait_for(r.t, 10.0, is_hit, &from).is_null()) later++;
   CHECK_MSG(later >= 2, "%d hits after the intruders", later);
+  r.t.poll();
+  size_t pauses = 0;
+  for (size_t i = leave_from; i < r.t.lines.size(); ++i) pauses += is_event(r.t.lines[i], EventKind::pause);
+  CHECK_MSG(pauses == 0, "secure: %zu pauses after the forged LEAVE", pauses);
   ServerReport rep;
   json scan = end_rally(env, r, cap, "secure", &rep);
   json st = json::parse(file_text(path(env, "stranger.json")), nullptr, false);

@@ -8,12 +8,14 @@ with scapy (Debian's python3-scapy); prints one JSON object.
       positions of a watcher's record (each as the 8 little-endian bytes of
       its double, as CDR puts it on the wire)
 
-  wire_check.py forge OPEN_PCAP DOMAIN [--prefix HEX] [--match ID] [--count N]
+  wire_check.py forge OPEN_PCAP DOMAIN [--prefix HEX] [--match ID] [--count N] [--leave] [--sender HEX]
       takes a plaintext racket sample (RacketSample, docs/protocol.md) from a
       capture of an open domain, rewrites its match id (default 999999) and
       its sequence numbers, puts the participant GUID prefix HEX (default:
       the writer's own) into the RTPS header and sends it N times to every
-      user unicast port of DOMAIN's first 8 participants on 127.0.0.1
+      user unicast port of DOMAIN's first 8 participants on 127.0.0.1; with
+      --leave a control (MatchControl) instead, made a LEAVE of slot 0; with
+      --sender only from the datagrams of that participant
 """
 import argparse
 import json
@@ -27,6 +29,8 @@ TOPICS = ["ball/ball_state", "ball/racket_samples", "ball/match_control", "ball/
 RTPS_HEADER = 20          # "RTPS", version, vendor, GUID prefix (12)
 DATA = 0x15               # the DATA submessage id
 RACKET_PAYLOAD = 4 + 72   # encapsulation + RacketSample in XCDR1 (docs/protocol.md)
+CONTROL_PAYLOAD = 4 + 68  # encapsulation + MatchControl
+CONTROL_LEAVE = 2         # ControlKind (idl/ball.idl)
 
 
 def udp_payloads(pcap):
@@ -55,9 +59,10 @@ def scan(args):
     }
 
 
-def racket_samples(datagram):
+def racket_samples(datagram, size=RACKET_PAYLOAD):
     """(offset of the serialized payload, offset of writerSN) of every DATA
-    submessage of the datagram whose payload is a RacketSample's size."""
+    submessage of the datagram whose payload is `size` bytes (a
+    RacketSample's, or a MatchControl's)."""
     out = []
     if len(datagram) < RTPS_HEADER or datagram[:4] != b"RTPS":
         return out
@@ -71,7 +76,7 @@ def racket_samples(datagram):
         if sid == DATA and not flags & 0x02:  # no inline QoS
             (to_qos,) = struct.unpack(endian + "H", datagram[body + 2:body + 4])
             payload = body + 4 + to_qos
-            if end - payload == RACKET_PAYLOAD:
+            if end - payload == size:
                 out.append((payload, body + 12))
         i = end
     return out
@@ -79,8 +84,11 @@ def racket_samples(datagram):
 
 def forge(args):
     found = None
+    size = CONTROL_PAYLOAD if args.leave else RACKET_PAYLOAD
     for datagram, port in udp_payloads(args.pcap):
-        samples = racket_samples(datagram)
+        if args.sender and datagram[8:20].hex() != args.sender:
+            continue
+        samples = racket_samples(datagram, size)
         if samples:
             found = (bytearray(datagram), samples)
     if found is None:
@@ -90,10 +98,15 @@ def forge(args):
     if args.prefix:
         d[8:20] = bytes.fromhex(args.prefix)
     for payload, sn in samples:
-        # the writer's sequence number and the stream's seq far ahead: never a duplicate
+        # the writer's sequence number ahead: never a duplicate (a control's the
+        # next one: its reliable reader takes it at once, without a gap)
         high, low = struct.unpack("<iI", d[sn:sn + 8])
-        low += 50
+        low += 1 if args.leave else 50
         d[sn:sn + 8] = struct.pack("<iI", high + (low >> 32), low & 0xFFFFFFFF)
+        if args.leave:  # MatchControl: match_id, seq, kind, player: slot 0 given up
+            d[payload + 12:payload + 16] = struct.pack("<I", CONTROL_LEAVE)
+            d[payload + 16:payload + 18] = struct.pack("<h", 0)
+            continue
         d[payload + 4:payload + 8] = struct.pack("<I", args.match)
         (seq,) = struct.unpack("<I", d[payload + 12:payload + 16])
         d[payload + 12:payload + 16] = struct.pack("<I", (seq + 100000) & 0xFFFFFFFF)
@@ -118,6 +131,8 @@ def main():
     b.add_argument("--prefix", default="")
     b.add_argument("--match", type=int, default=999999)
     b.add_argument("--count", type=int, default=5)
+    b.add_argument("--leave", action="store_true", help="a control instead: LEAVE of slot 0")
+    b.add_argument("--sender", default="", help="only datagrams of this GUID prefix (hex)")
     args = ap.parse_args()
     out = scan(args) if args.verb == "scan" else forge(args)
     print(json.dumps(out))
