@@ -50,7 +50,8 @@ int main(int argc, char **argv) {
   if (!domain) return fail(kProgram, err);
   // under DDS Security a player writes in its match's partition only (docs/security.md)
   std::string partition = domain->secure() ? dds::match_partition(pp.match) : "";
-  auto port = dds::ClientEndpoints::open(*domain, {kMaxPlayers, 1, dds::kClientRoom, false, false, partition}, &err);
+  auto port = dds::ClientEndpoints::open(
+      *domain, {kMaxPlayers, 1, dds::kClientRoom, false, false, partition, chosen.bound()}, &err);
   if (!port) return fail(kProgram, err);
   PlayerGroup group({BotPlayer(sc, domain->id(), pp)});
   const BotPlayer &bot = group.bots()[0];
@@ -73,6 +74,8 @@ int main(int argc, char **argv) {
   }
   int left = stay ? 0 : group.leave(*port);
   BotReport r = group.report(0, domain->id());
+  r.untrusted = port->untrusted();
+  r.refused += r.untrusted;
   if (!quiet)
     std::printf("%s: match %u slot %d: %" PRIu64 " samples taken, %" PRIu64 " lost on the link, %" PRIu64
                 " written, %" PRIu64 " writes refused; %" PRIu64 " segments; %" PRIu64 " balls played (%" PRIu64

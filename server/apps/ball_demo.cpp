@@ -86,15 +86,17 @@ int main(int argc, char **argv) {
               kProgram, level.c_str(), bots.rate, bots.delay * 1e3, bots.miss, domain,
               secure.empty() ? "" : " under DDS Security", duration);
   // each program's identity on a secure domain (the names ./run certs makes)
+  // the clients take the server topics only from server 1 holding server1's certificate
   auto as = [&](std::vector<std::string> args, const char *identity) {
     if (!secure.empty()) args.insert(args.end(), {"--secure", secure, "--identity", identity});
+    if (!secure.empty() && std::string(identity) != "server1") args.insert(args.end(), {"--servers", "1=server1"});
     return args;
   };
   std::fflush(stdout);
   int rc = 0;
   {
     Process server = Process::start(as({bin + "/ball-server", "--domain", dom, "--level", level, "--scene", scene,
-                                        "--startup-wait", "0", "--duration", fmt(duration + 20.0), "--stats-json",
+                                        "--server-id", "1", "--startup-wait", "0", "--duration", fmt(duration + 20.0), "--stats-json",
                                         dir + "/server.json"},
                                        "server1"),
                                     dir + "/server.log", dir + "/server.err");

@@ -112,8 +112,9 @@ int main(int argc, char **argv) {
   for (int i = 0; i < BALL_CAMERA_PRESET_COUNT; ++i) cameras.push_back(ball_camera_preset_name(static_cast<ball_camera_preset>(i)));
   std::string servers;
   cli.add_option("--match", ws.match, "watch this match only (default: all)");
-  cli.add_option("--servers", servers, "use the server topics only from these server ids, comma-separated "
-                                       "(default: any; the record keeps everything received)");
+  cli.add_option("--servers", servers, "use the server topics only from these server ids, comma-separated; "
+                                       "ID=IDENTITY: only from the holder of that certificate (--secure) "
+                                       "(default: any; the record keeps everything else received)");
   cli.add_option("--fps", ws.fps, "frames per second of the watcher's own ball")->capture_default_str()->check(CLI::Range(1.0, 1000.0));
   cli.add_option("--duration", duration, "stop after S real seconds (0: until SIGINT/SIGTERM)")->check(CLI::Range(0.0, 1e9));
   cli.add_option("--until-hits", until_hits, "stop once this many racket hits were seen in play")->check(CLI::Range(0, 1000000));
@@ -143,7 +144,8 @@ int main(int argc, char **argv) {
                                   dds_opt.discovery_server, "ball-watch", &err,
                                   {dds_opt.security, dds_opt.identity});
   if (!domain) return fail(kProgram, err);
-  auto port = dds::ClientEndpoints::open(*domain, {0, 0, dds::kClientRoom, true, true, ""}, &err);
+  auto port =
+      dds::ClientEndpoints::open(*domain, {0, 0, dds::kClientRoom, true, true, "", ws.servers.bound()}, &err);
   if (!port) return fail(kProgram, err);
   OutputFile rec;
   if (!record.empty() && !rec.open(record)) return fail(kProgram, rec.error());
@@ -174,6 +176,7 @@ int main(int argc, char **argv) {
     if (!(err = drain(w, rec, snap, quiet, start)).empty()) return fail(kProgram, err);
   }
   WatchSummary sum = w.summary(mono_now() - start);
+  sum.untrusted = port->untrusted();
   w.output().records.push_back({{"type", "summary"}, {"summary", sum}});
   if (!quiet)
     for (const auto &line : summary_lines(sum)) std::printf("%s\n", line.c_str());

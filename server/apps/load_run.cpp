@@ -81,7 +81,7 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
                                   o.dds.discovery_server, "ball-load", err, {o.dds.security, o.dds.identity});
   if (!domain) return false;
   int room = std::max(o.first_match + o.matches, dds::kClientRoom);
-  auto dds_port = dds::ClientEndpoints::open(*domain, {o.matches * 2, o.matches, room, false, true, ""}, err);
+  auto dds_port = dds::ClientEndpoints::open(*domain, {o.matches * 2, o.matches, room, false, true, "", {}}, err);
   if (!dds_port) return false;
   CountingPort port(*dds_port);
   std::vector<BotPlayer> bots;

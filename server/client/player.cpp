@@ -29,7 +29,9 @@ const std::vector<Field<PlayerParams>> &player_fields() {
       {"lead", &P::lead, closed(0.0, 2.0), "s", "on the stroke line before contact", "--lead",
        "from rate, delay, jitter, loss"},
       {"seed", &P::seed, whole(0, INT64_MAX), "", "seed of every random draw", "--seed"},
-      {"servers", &P::servers, {}, "", "take the server topics only from these server ids, comma-separated",
+      {"servers", &P::servers, {}, "",
+       "take the server topics only from these server ids, comma-separated; ID=IDENTITY: only from the holder of "
+       "that certificate (--secure)",
        "--servers", "any"},
   };
   return table;

@@ -4,6 +4,8 @@
 // the same cores from a Match.
 #pragma once
 
+#include <cstdint>
+
 #include "types.h"
 
 namespace ballsrv {
@@ -22,6 +24,9 @@ class ClientPort {
   [[nodiscard]] virtual bool write(const ControlIn &control) = 0;
   // a server's segments, events and match info reach this client from now on
   virtual bool hears_server() const = 0;
+  // samples refused because they claimed a server id bound to a
+  // certificate their writer does not hold (ServerChoice, trust.h)
+  virtual uint64_t untrusted() const { return 0; }
 };
 
 }  // namespace ballsrv

@@ -12,19 +12,38 @@ bool ServerChoice::accepts(uint32_t server_id) const {
   return ids.empty() || std::find(ids.begin(), ids.end(), server_id) != ids.end();
 }
 
+std::vector<std::pair<uint32_t, std::string>> ServerChoice::bound() const {
+  std::vector<std::pair<uint32_t, std::string>> b;
+  for (size_t i = 0; i < ids.size() && i < identities.size(); ++i)
+    if (!identities[i].empty()) b.emplace_back(ids[i], identities[i]);
+  return b;
+}
+
+namespace {
+// an identity's name: a file name in the security folder, never a path
+bool identity_name(const std::string &n) {
+  return !n.empty() && n[0] != '.' &&
+         n.find_first_not_of("ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_.") == std::string::npos;
+}
+}  // namespace
+
 bool ServerChoice::parse(const std::string &text, ServerChoice *out, std::string *err) {
   ServerChoice c;
   size_t i = 0;
   while (i < text.size()) {
     size_t j = text.find(',', i);
     std::string item = text.substr(i, j == std::string::npos ? std::string::npos : j - i);
+    size_t eq = item.find('=');
+    std::string id = item.substr(0, eq), name = eq == std::string::npos ? "" : item.substr(eq + 1);
     char *end = nullptr;
-    unsigned long long v = std::strtoull(item.c_str(), &end, 10);
-    if (item.empty() || item.find_first_not_of("0123456789") != std::string::npos || v > UINT32_MAX) {
-      *err = "servers \"" + text + "\": not a comma-separated list of server ids";
+    unsigned long long v = std::strtoull(id.c_str(), &end, 10);
+    if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos || v > UINT32_MAX ||
+        (eq != std::string::npos && !identity_name(name))) {
+      *err = "servers \"" + text + "\": not a comma-separated list of server ids, each ID or ID=IDENTITY";
       return false;
     }
     c.ids.push_back(static_cast<uint32_t>(v));
+    c.identities.push_back(name);
     if (j == std::string::npos) break;
     i = j + 1;
   }

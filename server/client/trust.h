@@ -7,17 +7,25 @@
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "types.h"
 
 namespace ballsrv {
 
-// The servers a client chose, from "1,2" ("": any server).
+// The servers a client chose, from "1,2" ("": any server). Under DDS
+// Security an id may name the identity whose certificate its server holds,
+// "1=server1": samples claiming that id from any other participant are
+// refused (docs/security.md, "A server's certificate").
 struct ServerChoice {
-  std::vector<uint32_t> ids;  // empty: any
+  std::vector<uint32_t> ids;           // empty: any
+  std::vector<std::string> identities;  // identities[i]: the certificate of ids[i] ("": any)
   bool accepts(uint32_t server_id) const;
-  // false with a sentence in err unless a comma-separated list of ids.
+  // (id, identity) for each id bound to a certificate
+  std::vector<std::pair<uint32_t, std::string>> bound() const;
+  // false with a sentence in err unless a comma-separated list of ID or
+  // ID=NAME (NAME: letters, digits, '-', '_', '.', not starting with '.').
   static bool parse(const std::string &text, ServerChoice *out, std::string *err);
 };
 

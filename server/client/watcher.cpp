@@ -309,6 +309,12 @@ std::vector<std::string> summary_lines(const WatchSummary &s) {
                 "p50 %.1f ms, p99 %.1f ms over %" PRIu64 " hits",
                 s.latency_p50 * 1e3, s.latency_p99 * 1e3, s.latency_count);
   out.push_back(buf);
+  if (s.untrusted > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "summary: %" PRIu64 " server samples refused: their writer lacks the certificate of their server id",
+                  s.untrusted);
+    out.push_back(buf);
+  }
   return out;
 }
 

@@ -5,6 +5,14 @@ namespace dds {
 
 std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNeeds &n, std::string *err) {
   std::unique_ptr<ClientEndpoints> p(new ClientEndpoints());
+  for (const auto &b : n.server_certs) {
+    SubjectKey key{};
+    if (!d.subject_key(b.second, &key, err)) {
+      *err = "server " + std::to_string(b.first) + "=" + b.second + ": " + *err;
+      return nullptr;
+    }
+    p->bound_[b.first] = key;
+  }
   if (n.players > 0) {
     p->samples_ = d.writer<RacketSampleIn>(kRacketTopic, kRacketProfile, {n.players, 0, n.partition}, err);
     p->controls_ = d.writer<ControlIn>(kControlTopic, kControlProfile, {n.controls, 0, n.partition}, err);

@@ -2,8 +2,11 @@
 // the load generator or a watcher needs on a Domain.
 #pragma once
 
+#include <map>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "domain.h"
 #include "load.h"
@@ -19,6 +22,10 @@ struct ClientNeeds {
   bool events = false;    // reads ball/events
   bool status = false;    // reads ball/server_status
   std::string partition;  // its writers' DDS partition: under DDS Security its match's (match_partition)
+  // under DDS Security, server ids bound to the identity whose certificate
+  // their server holds (ServerChoice::bound): their samples from any other
+  // participant are refused and counted (untrusted)
+  std::vector<std::pair<uint32_t, std::string>> server_certs;
 };
 
 // The size of one sample of every topic (load.h).
@@ -29,11 +36,12 @@ class ClientEndpoints : public ClientPort {
   // nullptr with err when an endpoint cannot be made
   static std::unique_ptr<ClientEndpoints> open(Domain &domain, const ClientNeeds &needs, std::string *err);
 
-  bool take(MatchInfoOut *info) override { return infos_.take(info, nullptr); }
-  bool take(SegmentOut *segment) override { return segments_.take(segment, nullptr); }
-  bool take(StateOut *state) override { return states_.take(state, nullptr); }
-  bool take(EventOut *event) override { return events_.take(event, nullptr); }
-  bool take(StatusOut *status) override { return status_.take(status, nullptr); }
+  bool take(MatchInfoOut *info) override { return take_trusted(infos_, info); }
+  bool take(SegmentOut *segment) override { return take_trusted(segments_, segment); }
+  bool take(StateOut *state) override { return take_trusted(states_, state); }
+  bool take(EventOut *event) override { return take_trusted(events_, event); }
+  bool take(StatusOut *status) override { return take_trusted(status_, status); }
+  uint64_t untrusted() const override { return untrusted_; }
   bool write(const RacketSampleIn &sample) override { return samples_.write(sample); }
   bool write(const ControlIn &control) override { return controls_.write(control); }
   bool hears_server() const override {
@@ -42,6 +50,19 @@ class ClientEndpoints : public ClientPort {
 
  private:
   ClientEndpoints() = default;
+  // the next sample whose server id, if bound to a certificate, came from its holder
+  template <class T>
+  bool take_trusted(Reader<T> &r, T *out) {
+    SampleMeta meta;
+    while (r.take(out, &meta)) {
+      auto it = bound_.find(out->server_id);
+      if (it == bound_.end() || prefix_fits(meta.from, it->second)) return true;
+      untrusted_++;
+    }
+    return false;
+  }
+  std::map<uint32_t, SubjectKey> bound_;
+  uint64_t untrusted_ = 0;
   Writer<RacketSampleIn> samples_;
   Writer<ControlIn> controls_;
   Reader<SegmentOut> segments_;

@@ -19,6 +19,9 @@
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/common/InstanceHandle.h>
 
+#include <openssl/evp.h>
+#include <openssl/pem.h>
+#include <openssl/x509.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -108,6 +111,13 @@ bool readable(const std::string &path) {
   return static_cast<bool>(f);
 }
 
+// Fast DDS wants the security files as file:// URIs of absolute paths.
+std::string absolute(const std::string &dir) {
+  if (dir.empty() || dir[0] == '/') return dir;
+  char cwd[4096];
+  return getcwd(cwd, sizeof cwd) ? std::string(cwd) + "/" + dir : dir;
+}
+
 // The DDS Security properties of a participant (docs/security.md), or false
 // with the file that is missing.
 bool use_security(const Security &sec, fdds::DomainParticipantQos *qos, std::string *err) {
@@ -115,11 +125,7 @@ bool use_security(const Security &sec, fdds::DomainParticipantQos *qos, std::str
     *err = "--secure " + sec.dir + " needs --identity NAME (NAME.pem and NAME.key in that folder)";
     return false;
   }
-  std::string d = sec.dir;
-  if (!d.empty() && d[0] != '/') {
-    char cwd[4096];
-    if (getcwd(cwd, sizeof cwd)) d = std::string(cwd) + "/" + d;
-  }
+  std::string d = absolute(sec.dir);
   const std::string files[] = {"ca.pem", sec.identity + ".pem", sec.identity + ".key", "governance.p7s",
                                "permissions.p7s"};
   for (const auto &f : files)
@@ -432,6 +438,7 @@ std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_f
   d->impl_ = std::make_unique<Impl>();
   d->domain_id_ = domain_id;
   d->secure_ = !security.dir.empty();
+  d->security_dir_ = absolute(security.dir);
   d->impl_->participant = factory->create_participant(domain_id, qos, &d->impl_->publications,
                                                       fdds::StatusMask::none());
   if (!d->impl_->participant) {
@@ -491,6 +498,42 @@ Domain::~Domain() {
 }
 
 ParticipantId Domain::id() const { return prefix_of(impl_->participant->guid()); }
+
+// PKI-DH's adjusted participant key (DDS Security 1.1, 9.3.3): bit 0 of
+// the prefix is 1, bits 1..47 are bits 0..46 of the subject name's SHA-256.
+bool prefix_fits(const ParticipantId &p, const SubjectKey &key) {
+  for (int i = 0; i < 6; ++i) {
+    uint8_t b = static_cast<uint8_t>((p[i] << 1) | (i < 5 ? p[i + 1] >> 7 : 0));
+    if (b != key[i]) return false;
+  }
+  return (p[0] & 0x80) != 0;
+}
+
+bool Domain::subject_key(const std::string &identity, SubjectKey *out, std::string *err) const {
+  if (!secure_) {
+    *err = "the certificate of " + identity + " binds a server only under DDS Security (--secure DIR)";
+    return false;
+  }
+  std::string file = security_dir_ + "/" + identity + ".pem";
+  FILE *f = std::fopen(file.c_str(), "r");
+  if (!f) {
+    *err = "DDS Security: " + file + ": " + std::strerror(errno);
+    return false;
+  }
+  X509 *cert = PEM_read_X509(f, nullptr, nullptr, nullptr);
+  std::fclose(f);
+  unsigned char md[EVP_MAX_MD_SIZE];
+  unsigned int length = 0;
+  bool ok = cert && X509_NAME_digest(X509_get_subject_name(cert), EVP_sha256(), md, &length) && length >= 6;
+  X509_free(cert);
+  if (!ok) {
+    *err = "DDS Security: " + file + ": not a PEM certificate";
+    return false;
+  }
+  md[5] &= 0xFE;
+  std::copy(md, md + 6, out->begin());
+  return true;
+}
 
 bool Domain::writes_in(const std::array<uint8_t, 16> &writer, const std::string &partition) const {
   std::lock_guard<std::mutex> lock(impl_->publications.mutex);

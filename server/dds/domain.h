@@ -96,6 +96,15 @@ struct Security {
   std::string identity;  // NAME: NAME.pem and NAME.key in dir
 };
 
+// Under DDS Security's PKI-DH the first 47 bits of a participant's GUID
+// prefix are those of the SHA-256 of its certificate's subject name, and
+// authentication refuses a participant whose prefix does not fit the
+// certificate it proves to hold: so the prefix of a sample's writer on a
+// secure domain says whose certificate wrote it (docs/security.md, "A
+// server's certificate"). A SubjectKey is those 47 bits (the last one 0).
+using SubjectKey = std::array<uint8_t, 6>;
+bool prefix_fits(const ParticipantId &prefix, const SubjectKey &key);
+
 // What DDS says about a sample besides its data.
 struct SampleMeta {
   ParticipantId from{};      // the writer's participant GUID prefix
@@ -198,6 +207,10 @@ class Domain {
   ParticipantId id() const;
   int domain_id() const { return domain_id_; }
   bool secure() const { return secure_; }
+  // The SubjectKey of identity NAME (NAME.pem in the security folder);
+  // false with a sentence in err (an open domain, a missing or unreadable
+  // certificate).
+  bool subject_key(const std::string &identity, SubjectKey *out, std::string *err) const;
   // Whether the discovered remote writer `writer` writes in `partition`
   // (DDS Security has checked its permissions for every partition it names).
   bool writes_in(const std::array<uint8_t, 16> &writer, const std::string &partition) const;
@@ -222,6 +235,7 @@ class Domain {
   std::unique_ptr<Impl> impl_;
   int domain_id_ = 0;
   bool secure_ = false;
+  std::string security_dir_;  // absolute
 };
 
 }  // namespace dds

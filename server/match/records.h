@@ -125,9 +125,10 @@ struct WatchSummary {
   // its segment received here / written by the server
   double latency_p50 = 0.0, latency_p99 = 0.0, latency_server_p50 = 0.0, latency_server_p99 = 0.0;
   uint64_t latency_count = 0;
+  uint64_t untrusted = 0;  // server samples refused: their writer lacks the certificate bound to their server id
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WatchSummary, seconds, first_segment_after, matches, servers, latency_p50,
-                                   latency_p99, latency_server_p50, latency_server_p99, latency_count)
+                                   latency_p99, latency_server_p50, latency_server_p99, latency_count, untrusted)
 
 // ---- ball-server --stats-json ----------------------------------------------
 
@@ -172,10 +173,11 @@ struct BotReport {
   uint64_t samples = 0, lost = 0, written = 0, write_failures = 0, segments = 0;
   uint64_t plans = 0, late = 0, missed_on_purpose = 0;
   uint64_t refused = 0;     // server samples not taken (trust.h)
+  uint64_t untrusted = 0;   // of them, from a writer without the certificate bound to their server id
   std::string participant;  // hex GUID prefix
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BotReport, match, slot, samples, lost, written, write_failures, segments, plans,
-                                   late, missed_on_purpose, refused, participant)
+                                   late, missed_on_purpose, refused, untrusted, participant)
 
 struct LoadRow {  // one point (match count, state rate) of one round of the load benchmark
   int matches = 0, bots = 0;

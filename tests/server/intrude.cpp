@@ -8,7 +8,11 @@
 // heard: a stranger hears nothing, a player of another match is refused by
 // the server as `not_permitted`. With --junk N it cycles through N made-up
 // match ids from --match on, a JOIN and a sample for each: they must not
-// fill the server's readers.
+// fill the server's readers. With --as-server ID it is a server instead
+// (under DDS Security one certified as a server, but not as server ID): it
+// writes no samples, and every 0.2 s writes a copy of the newest MatchInfo
+// it heard, as match --match of server ID; a client that bound ID to
+// another certificate must refuse every copy.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -38,6 +42,9 @@ int main(int argc, char **argv) {
   bool wait_match = false;
   uint32_t junk = 0;
   cli.add_option("--junk", junk, "write under this many match ids from --match on, in turn (made-up ids)");
+  long as_server = -1;
+  cli.add_option("--as-server", as_server, "write MatchInfo copies as this server id instead of samples")
+      ->check(CLI::Range(0L, static_cast<long>(UINT32_MAX)));
   cli.add_flag("--wait-match", wait_match, "send only once a reader matched both writers (all of it then arrives)");
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
@@ -48,16 +55,25 @@ int main(int argc, char **argv) {
                              dds_opt.discovery_server, kProgram, &err, {dds_opt.security, dds_opt.identity});
   if (!d) return fail(kProgram, err);
   int keys = static_cast<int>(std::max<uint32_t>(1, junk));
-  auto samples = d->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {keys, 0, partition}, &err);
+  dds::Writer<RacketSampleIn> samples;
   dds::Writer<ControlIn> controls;
-  if (samples.valid())
-    controls = d->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {keys, 0, partition}, &err);
-  if (!samples.valid() || !controls.valid()) return fail(kProgram, err);
+  dds::Writer<MatchInfoOut> forged;
+  if (as_server >= 0) {
+    forged = d->writer<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {16}, &err);
+    if (!forged.valid()) return fail(kProgram, err);
+  } else {
+    samples = d->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {keys, 0, partition}, &err);
+    if (samples.valid())
+      controls = d->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {keys, 0, partition}, &err);
+    if (!samples.valid() || !controls.valid()) return fail(kProgram, err);
+  }
   auto infos = d->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {dds::kClientRoom}, &err);
   auto states = d->reader<StateOut>(dds::kStateTopic, dds::kStateProfile, {dds::kClientRoom}, &err);
   if (!infos.valid() || !states.valid()) return fail(kProgram, err);
 
-  long sent_samples = 0, sent_controls = 0, refused = 0, heard_infos = 0, heard_states = 0;
+  long sent_samples = 0, sent_controls = 0, sent_infos = 0, refused = 0, heard_infos = 0, heard_states = 0;
+  MatchInfoOut newest;  // the newest MatchInfo heard
+  bool heard_info = false;
   uint32_t seq = 0, control_seq = 0;
   double sim = 0.0;  // the newest sim time heard (0: none)
   const double start = mono_now();
@@ -65,11 +81,25 @@ int main(int argc, char **argv) {
   while (!stop_requested() && mono_now() - start < duration) {
     double now = mono_now();
     MatchInfoOut in;
-    while (infos.take(&in, nullptr)) heard_infos++;
+    while (infos.take(&in, nullptr)) {
+      heard_infos++;
+      if (in.match_id != match) newest = in, heard_info = true;
+    }
     StateOut st;
     while (states.take(&st, nullptr)) {
       heard_states++;
       if (st.match_id == match) sim = st.sim_time;
+    }
+    if (forged.valid()) {  // a server: copies of what it heard, as --as-server's match --match
+      if (heard_info) {
+        MatchInfoOut f = newest;
+        f.match_id = match;
+        f.server_id = static_cast<uint32_t>(as_server);
+        if (forged.write(f)) sent_infos++;
+        else refused++;
+      }
+      sleep_until(now + 0.2);
+      continue;
     }
     if (wait_match && (samples.matched() < 1 || controls.matched() < 1)) {
       next_sample = next_join = now + 0.01;
@@ -101,7 +131,8 @@ int main(int argc, char **argv) {
     }
     sleep_until(std::min(next_sample, next_join));
   }
-  nlohmann::json j = {{"samples", sent_samples}, {"controls", sent_controls}, {"write_failures", refused},
+  nlohmann::json j = {{"samples", sent_samples}, {"controls", sent_controls}, {"infos", sent_infos},
+                      {"write_failures", refused},
                       {"heard_infos", heard_infos}, {"heard_states", heard_states},
                       {"participant", hex(d->id())}};
   if (!out_json.empty() && !write_file(out_json, j.dump(1), &err)) return fail(kProgram, err);

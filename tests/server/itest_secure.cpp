@@ -7,7 +7,11 @@
 // forgeries under a real player's GUID prefix are dropped, a
 // participant without a certificate hears nothing and reaches no match, and a
 // player certified for match 1 cannot write into match 0 (refused by DDS in
-// the partition match/0, counted `not_permitted` from its own).
+// the partition match/0, counted `not_permitted` from its own). A
+// certified server claiming another's server id reaches a client that chose
+// by id only, never one that bound the id to that server's certificate.
+#include <set>
+
 #include "itest_kit.h"
 
 using check::note;
@@ -114,6 +118,12 @@ void case_secure(const Env &env) {
   CHECK_MSG(rc == 0, "certs.sh: status %d: %s", rc, err.c_str());
   if (rc != 0) return;
 
+  // a server id bound to a certificate means nothing on an open domain: refused at start
+  rc = run_to_end(env, {env.bin + "/ball-watch", "--domain", env.dom(), "--duration", "2", "--servers", "1=server1"},
+                  "bound_open", &err);
+  CHECK_MSG(rc == 1 && err.find("only under DDS Security") != std::string::npos, "--servers 1=server1 open: %d: %s",
+            rc, err.c_str());
+
   // ---- the open domain: what an eavesdropper and a forger get there ----
   {
     Process cap = capture(env, "open");
@@ -145,7 +155,13 @@ void case_secure(const Env &env) {
   // ---- the secure domain ----
   auto sec = [&](const char *who) { return std::vector<std::string>{"--secure", certs, "--identity", who}; };
   Process cap = capture(env, "secure");
-  Rally r = rally(c, "secure", sec("server1"), sec("watch"), sec("m0-a"), sec("m0-b"));
+  // the clients take the server topics only from server 1 holding server1's certificate
+  auto bound = [&](const char *who) {
+    std::vector<std::string> a = sec(who);
+    a.insert(a.end(), {"--servers", "1=server1"});
+    return a;
+  };
+  Rally r = rally(c, "secure", sec("server1"), bound("watch"), bound("m0-a"), bound("m0-b"));
   int hits = hits_after_serve_within(r.t, 3, 20.0);
   CHECK_MSG(hits >= 3, "secure: %d hits", hits);
   std::string owner = slot0_holder(r.t);
@@ -161,6 +177,23 @@ void case_secure(const Env &env) {
   std::vector<std::string> cross = sec("m1-a");
   cross.insert(cross.end(), {"--partition", "match/1", "--wait-match"});
   Process player1 = intruder("player1", cross);
+  // a certified server (server3) claiming server id 1 for a match 7 of its own, and two watchers:
+  // one that takes server id 1 from anyone certified, one that bound it to server1's certificate
+  std::vector<std::string> hostile = sec("server3");
+  hostile.insert(hostile.end(), {"--as-server", "1", "--match", "7"});
+  std::vector<std::string> h = {env.bin + "/ball_intrude", "--domain", env.dom(), "--duration", "5", "--out",
+                                path(env, "hostile.json")};
+  h.insert(h.end(), hostile.begin(), hostile.end());
+  Process hostile_server = program(env, "hostile", h);
+  auto watch = [&](const std::string &name, std::vector<std::string> who) {
+    std::vector<std::string> a = {env.bin + "/ball-watch", "--domain", env.dom(), "--duration", "6", "--quiet",
+                                  "--summary-json", path(env, name + ".json")};
+    a.insert(a.end(), who.begin(), who.end());
+    return program(env, name, a);
+  };
+  std::vector<std::string> by_id = sec("watch");
+  by_id.insert(by_id.end(), {"--servers", "1"});
+  Process watch_id = watch("watch_by_id", by_id), watch_cert = watch("watch_by_cert", bound("watch"));
   // the player of match 1 cannot even make a writer in match 0's partition
   std::vector<std::string> into0 = sec("m1-a");
   into0.insert(into0.end(), {"--partition", "match/0", "--duration", "1"});
@@ -173,6 +206,34 @@ void case_secure(const Env &env) {
   wire_check(env, "secure_leave", {"forge", path(env, "open.pcap"), env.dom(), "--leave", "--prefix", owner});
   CHECK_EQ(stranger.wait(15.0), 0);
   CHECK_EQ(player1.wait(15.0), 0);
+  CHECK_EQ(hostile_server.wait(15.0), 0);
+  CHECK_EQ(watch_id.wait(15.0), 0);
+  CHECK_EQ(watch_cert.wait(15.0), 0);
+  {
+    json hs = json::parse(file_text(path(env, "hostile.json")), nullptr, false);
+    json wi = json::parse(file_text(path(env, "watch_by_id.json")), nullptr, false);
+    json wc = json::parse(file_text(path(env, "watch_by_cert.json")), nullptr, false);
+    auto matches = [](const json &w) {
+      std::set<uint32_t> ids;
+      if (w.is_object())
+        for (const auto &m : w.value("matches", json::array())) ids.insert(m.value("match", 0u));
+      return ids;
+    };
+    std::set<uint32_t> by_id_seen = matches(wi), by_cert_seen = matches(wc);
+    long forged_infos = hs.is_object() ? hs.value("infos", 0L) : 0L;
+    uint64_t untrusted = wc.is_object() ? wc.value("untrusted", uint64_t{0}) : 0;
+    note("a certified server3 claiming server 1 sent %ld MatchInfo for match 7: the watcher by id saw matches %s, "
+         "the watcher bound to server1's certificate %s and refused %llu samples",
+         forged_infos, json(by_id_seen).dump().c_str(), json(by_cert_seen).dump().c_str(),
+         static_cast<unsigned long long>(untrusted));
+    CHECK(forged_infos >= 10);
+    // the attack is real for a client that chose by id only ...
+    CHECK(by_id_seen.count(7) == 1 && by_id_seen.count(0) == 1);
+    CHECK_EQ(wi.value("untrusted", uint64_t{1}), 0u);
+    // ... and refused, every copy it received, by one that bound the id to the certificate
+    CHECK(by_cert_seen.count(7) == 0 && by_cert_seen.count(0) == 1);
+    CHECK(untrusted >= 1 && untrusted <= static_cast<uint64_t>(forged_infos));
+  }
   // the rally went on through it all, never paused by the forged LEAVE
   size_t from = r.t.lines.size();
   int later = 0;

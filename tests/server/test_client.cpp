@@ -176,6 +176,16 @@ TEST(a_bot_takes_nothing_that_does_not_fit) {
   CHECK(ServerChoice::parse("", &any, &err) && any.accepts(77));
   CHECK(ServerChoice::parse("1,2", &two, &err) && two.accepts(2) && !two.accepts(3));
   CHECK(!ServerChoice::parse("1,x", &two, &err) && err.find("server ids") != std::string::npos);
+  // an id bound to a certificate's identity: a name, never a path
+  ServerChoice bound;
+  CHECK(ServerChoice::parse("1=server1,2,7=srv-7.b", &bound, &err) && bound.accepts(7) && bound.accepts(2));
+  auto b = bound.bound();
+  CHECK_EQ(b.size(), 2u);
+  CHECK(b[0].first == 1u && b[0].second == "server1" && b[1].first == 7u && b[1].second == "srv-7.b");
+  CHECK(two.bound().empty());
+  for (const char *text : {"1=", "1=../ca", "1=a/b", "=server1", "1=.hidden", "1=server1=x"})
+    CHECK_MSG(!ServerChoice::parse(text, &two, &err), "\"%s\" taken", text);
+  CHECK(two.accepts(2) && !two.accepts(3));  // a refused text leaves the choice as it was
 }
 
 namespace {

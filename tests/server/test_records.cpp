@@ -161,12 +161,14 @@ TEST(reports_come_back) {
   wm.max_error = 1e-300;
   w.matches = {wm};
   w.servers = {r.status};
+  w.untrusted = 12;
   WatchSummary wb = round_trip(w);
   CHECK(same(wb, w));
   CHECK_EQ(wb.matches[0].max_error, 1e-300);
   CHECK_EQ(wb.servers[0].samples_in, 371u);
+  CHECK_EQ(wb.untrusted, 12u);
 
-  BotReport b{2, 1, 300, 60, 240, 1, 55, 8, 1, 0, 3, hex(participant(7))};
+  BotReport b{2, 1, 300, 60, 240, 1, 55, 8, 1, 0, 3, 2, hex(participant(7))};
   CHECK(same(round_trip(b), b));
   LoadRow l;
   l.matches = 100;
