@@ -41,6 +41,8 @@ int main(int argc, char **argv) {
   cli.add_option("--data", o.data_dir, "write gnuplot's data (load.dat) into DIR");
   cli.add_option("--window-start", o.window_start, "(a bot process's) server s at which measuring starts");
   cli.add_option("--part-json", o.part_json, "(a bot process's) write what it measured to FILE, print nothing");
+  cli.add_option("--server-identity", o.server_identity,
+                 "with --sweep and --secure: the identity of the ball-server it starts")->capture_default_str();
   add_dds_options(cli, &o.dds);
   CLI11_PARSE(cli, argc, argv);
   bot_opt.apply(&o.bot);

@@ -81,7 +81,13 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
                                   o.dds.discovery_server, "ball-load", err, {o.dds.security, o.dds.identity});
   if (!domain) return false;
   int room = std::max(o.first_match + o.matches, dds::kClientRoom);
-  auto dds_port = dds::ClientEndpoints::open(*domain, {o.matches * 2, o.matches, room, false, true, "", {}}, err);
+  // under DDS Security its writers are in every match's partition it plays (an identity granted
+  // match/*, as ./run certs makes `load`; docs/security.md)
+  std::string partitions;
+  for (int m = o.first_match; domain->secure() && m < o.first_match + o.matches; ++m)
+    partitions += (partitions.empty() ? "" : ";") + dds::match_partition(static_cast<uint32_t>(m));
+  auto dds_port =
+      dds::ClientEndpoints::open(*domain, {o.matches * 2, o.matches, room, false, true, partitions, {}}, err);
   if (!dds_port) return false;
   CountingPort port(*dds_port);
   std::vector<BotPlayer> bots;
@@ -166,7 +172,9 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
     std::vector<std::string> args = {program_dir() + "/ball-server", "--matches", std::to_string(matches),
                                      "--frame-rate", std::to_string(o.frame_rate), "--state-rate",
                                      std::to_string(state_rate), "--startup-wait", "0", "--quiet"};
-    for (const std::string &a : dds_arguments(o.dds)) args.push_back(a);  // the server on our participant profile
+    DdsOptions as_server = o.dds;  // the server on our participant profile, as a server under DDS Security
+    if (!as_server.security.empty()) as_server.identity = o.server_identity;
+    for (const std::string &a : dds_arguments(as_server)) args.push_back(a);
     if (o.server_priority > 0) args.insert(args.end(), {"--realtime-priority", std::to_string(o.server_priority)});
     server = Process::start(args, dir + "/server.out", dir + "/server.err");
   }
@@ -235,9 +243,6 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
 
 int run_load(const LoadOptions &o) {
   std::string err;
-  if (!o.dds.security.empty())  // one participant plays every match: no single match partition fits it
-    return fail(kProgram, "ball-load plays many matches from one participant and runs on an open domain; "
-                          "under DDS Security a player writes in its own match only (docs/security.md)");
   if (!o.part_json.empty()) {  // a bot process: its part, to the file
     bool written = false;
     bool ok = drive(o, {}, [&](const LoadPart &p) {

@@ -31,7 +31,8 @@ struct LoadOptions {
   std::string json_out;      // the rows and points as JSON
   std::string data_dir;      // gnuplot's data (load.dat)
   std::string part_json;     // a bot process's part (LoadPart) to this file, nothing printed
-  DdsOptions dds;
+  DdsOptions dds;            // under DDS Security its --identity must be granted every match/* (`load`)
+  std::string server_identity = "server1";  // with a sweep under DDS Security: the ball-server's identity
 };
 
 // Runs what the options say; the exit status.

@@ -33,6 +33,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <iterator>
 #include <thread>
 #include <algorithm>
 #include <map>
@@ -188,6 +189,7 @@ struct Reader<T>::Notes : public fdds::DataReaderListener {
   };
   size_t inbox_cap = 0;
   std::vector<Item> inbox;       // filled by the DDS thread, under mutex
+  std::vector<Item> overflow;    // what found the inbox full (meta.rejected), at most inbox_cap / 4 + 1
   std::vector<Item> taken;       // the loop's: swapped with inbox when read through
   size_t next = 0;               // of taken, the next to hand out
 
@@ -201,8 +203,12 @@ struct Reader<T>::Notes : public fdds::DataReaderListener {
       Item it{T{}, meta_of(info)};
       from_idl(wire, &it.sample);
       std::lock_guard<std::mutex> lock(mutex);
-      if (inbox.size() < inbox_cap) inbox.push_back(std::move(it));
-      else if (!notes.empty() && notes.back().kind == StatusNote::rejected) notes.back().count++;
+      if (inbox.size() < inbox_cap) {
+        inbox.push_back(std::move(it));
+      } else if (overflow.size() <= inbox_cap / 4) {
+        it.meta.rejected = true;
+        overflow.push_back(std::move(it));
+      } else if (!notes.empty() && notes.back().kind == StatusNote::rejected) notes.back().count++;
       else notes.push_back(StatusNote{StatusNote::rejected, ParticipantId{}, 1});
     }
   }
@@ -212,6 +218,9 @@ struct Reader<T>::Notes : public fdds::DataReaderListener {
       next = 0;
       std::lock_guard<std::mutex> lock(mutex);
       taken.swap(inbox);
+      // those that found it full arrived after all of it
+      std::move(overflow.begin(), overflow.end(), std::back_inserter(taken));
+      overflow.clear();
     }
     if (next == taken.size()) return false;
     *sample = std::move(taken[next].sample);

@@ -73,7 +73,10 @@ class Door {
 // 2.9 looks a new sample up through the reader's whole history, and
 // removes a taken one likewise, so a history that holds a frame's samples
 // costs O(samples^2) a frame; with an inbox it holds one or two
-// (docs/server.md, "Load").
+// (docs/server.md, "Load"). Samples that find the inbox full are still
+// handed out after it, marked `rejected`, up to a quarter of its size more
+// (so that the loop counts each where it belongs, its stream included);
+// beyond that they are a `rejected` note only.
 struct Sizing {
   int instances = 1;
   int inbox = 0;          // samples; 0: samples wait in the DDS reader until taken
@@ -111,6 +114,7 @@ struct SampleMeta {
   std::array<uint8_t, 16> writer{};  // the writer's whole GUID
   double source_time = 0.0;  // writer's realtime clock at write, s since 1970
   double reception_time = 0.0;
+  bool rejected = false;     // the inbox was full: handed out only to be counted (Sizing)
 };
 
 // Something the DDS threads noticed about a reader's writers; the owning

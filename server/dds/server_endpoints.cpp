@@ -160,6 +160,7 @@ bool ServerEndpoints::take_sample(RacketSampleIn *sample) {
   if (!samples_.take(sample, &meta)) return false;
   sample->from = meta.from;
   sample->source_time = meta.source_time;
+  sample->rejected = meta.rejected;
   sample->permitted = !domain_.secure() || domain_.writes_in(meta.writer, match_partition(sample->match_id));
   return true;
 }

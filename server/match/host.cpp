@@ -109,10 +109,14 @@ int Host::max_players() const {
   return n;
 }
 
-SampleResult Host::on_sample(const RacketSampleIn &sample, double now) {
+SampleResult Host::on_sample(const RacketSampleIn &sample, double now, uint64_t *lost) {
   Match *m = find(sample.match_id);
   if (!m) return SampleResult::unknown_match;
-  return m->on_sample(sample, now);
+  return m->on_sample(sample, now, lost);
+}
+
+void Host::on_rejected(const RacketSampleIn &sample, uint64_t *lost) {
+  if (Match *m = find(sample.match_id)) m->on_rejected(sample, lost);
 }
 
 Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match **match) {

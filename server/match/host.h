@@ -45,7 +45,8 @@ class Host {
   void remove(uint32_t id);
 
   // Routes a racket sample (followed matches take them too, to stay warm).
-  SampleResult on_sample(const RacketSampleIn &sample, double now);
+  SampleResult on_sample(const RacketSampleIn &sample, double now, uint64_t *lost = nullptr);  // Match::on_sample
+  void on_rejected(const RacketSampleIn &sample, uint64_t *lost);                            // Match::on_rejected
   // Routes one control message; *match gets the match it concerned (nullptr
   // when none: an unknown match, or a CREATE refused; those are only counted;
   // a followed match's controls are its owner's: nullptr, Reason::none).

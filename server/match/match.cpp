@@ -304,11 +304,34 @@ void Match::serve(MatchOutput *out) {
 
 // ---- samples --------------------------------------------------------------
 
-SampleResult Match::on_sample(const RacketSampleIn &s, double now) {
+uint64_t Match::stream_gap(Slot &slot, uint32_t seq) {
+  if (!slot.has_seen) {
+    slot.has_seen = true;
+    slot.seen_seq = seq;
+    return 0;
+  }
+  // serial-number arithmetic: behind, the same, or further than a stream goes: no gap
+  int32_t ahead = static_cast<int32_t>(seq - slot.seen_seq);
+  if (ahead <= 0 || ahead > kMaxSeqJump) return 0;
+  slot.seen_seq = seq;
+  return static_cast<uint64_t>(ahead - 1);
+}
+
+void Match::on_rejected(const RacketSampleIn &s, uint64_t *lost) {
+  if (s.player < 0 || s.player >= config_.players) return;
+  Slot &slot = slots_[s.player];
+  if (!slot.held || slot.owner != s.from) return;
+  *lost += stream_gap(slot, s.seq);
+}
+
+SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *lost) {
   if (s.player < 0 || s.player >= config_.players) return SampleResult::bad_slot;
   Slot &slot = slots_[s.player];
   if (!slot.held) return SampleResult::not_joined;
   if (slot.owner != s.from) return SampleResult::not_owner;
+  // the holder's stream: seqs it skipped are samples lost on the way
+  uint64_t gap = stream_gap(slot, s.seq);
+  if (lost) *lost += gap;
   if (!std::isfinite(s.capture_time) || !ball_v3_finite(s.center) || !ball_v3_finite(s.normal))
     return SampleResult::nonfinite;
   double n = ball_v3_norm(s.normal);
@@ -401,6 +424,7 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       if (s.held && s.owner == c.from) {  // a repeated join: the holder's stream starts anew
         s.alive = true;
         s.has_seq = false;
+        s.has_seen = false;
         s.has_prev = false;
         return Reason::none;
       }

@@ -46,8 +46,14 @@ class Match {
   // the step and the rules.
   void frame(double now, MatchOutput *out);
 
-  // A racket sample; never changes the ball. `now` is when it arrived.
-  SampleResult on_sample(const RacketSampleIn &sample, double now);
+  // A racket sample; never changes the ball. `now` is when it arrived. A
+  // sample of a slot's holder also moves the holder's stream on: *lost (if
+  // given) gets the seqs it skipped, samples that never arrived (at most
+  // kMaxSeqJump - 1; docs/protocol.md, `lost`).
+  SampleResult on_sample(const RacketSampleIn &sample, double now, uint64_t *lost = nullptr);
+  // A sample the reader had no room for (RacketSampleIn::rejected): it
+  // only moves its holder's stream on, so that it is not counted lost too.
+  void on_rejected(const RacketSampleIn &sample, uint64_t *lost);
 
   // A control message; refusals come out as a REFUSED event and the reason.
   Reason on_control(const ControlIn &control, double now, MatchOutput *out);
@@ -100,7 +106,9 @@ class Match {
     double last_seen = -1e300; // real s of its newest well-formed sample
     uint32_t samples = 0;
     bool has_seq = false;
-    uint32_t last_seq = 0;
+    uint32_t last_seq = 0;     // the newest accepted (or idle) sample's
+    bool has_seen = false;
+    uint32_t seen_seq = 0;     // the newest of the holder's samples that arrived, whatever became of it
     SampleRef ref;             // the newest accepted sample
     bool has_prev = false;     // prev_*: the newest sample that passed every check (accepted or idle)
     double prev_time = 0.0;    // sim s: its capture time
@@ -108,6 +116,8 @@ class Match {
     double asked_time_base = 0.0;    // the time base its holder asked for (0: none): a change needs every holder's
   };
 
+  // the holder's sample `seq` arrived: the seqs it skipped since the newest that did, if any
+  static uint64_t stream_gap(Slot &slot, uint32_t seq);
   void emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason = Reason::none,
             double value = 0.0);
   void emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref);

@@ -386,15 +386,16 @@ void ServerLoop::take_notes(double t0) {
         stats_.deadline_missed += n.count;
         break;
       case PortNote::rejected:
-      case PortNote::lost: {
-        // refused by the reader or lost on the link: counted in and dropped, so that
-        // samples_in = samples_ok + idle + every drop (docs/protocol.md)
-        SampleResult why = n.kind == PortNote::rejected ? SampleResult::rejected : SampleResult::lost;
-        uint64_t count = n.kind == PortNote::lost ? std::min(n.count, kMaxLostPerNote) : n.count;
-        stats_.totals.drops[static_cast<int>(why)] += count;
-        stats_.totals.samples_in += count;
+        // refused by the reader past its room for rejected samples: counted in and dropped,
+        // so that samples_in = samples_ok + idle + every drop (docs/protocol.md)
+        stats_.totals.drops[static_cast<int>(SampleResult::rejected)] += n.count;
+        stats_.totals.samples_in += n.count;
         break;
-      }
+      case PortNote::lost:
+        // DDS's own count of a writer's sequence gaps: kept apart, since `lost` comes from the
+        // holders' own seqs (take_samples), and one forged datagram makes a gap of 2^31
+        stats_.dds_lost += std::min(n.count, kMaxLostPerNote);
+        break;
       case PortNote::door_unknown_match:
       case PortNote::door_bad_slot: {
         // turned away at the door: the first two checks of a sample (docs/protocol.md)
@@ -431,10 +432,20 @@ void ServerLoop::take_samples(double now) {
   RacketSampleIn sample;
   while (port_.take_sample(&sample)) {
     stats_.totals.samples_in++;
-    SampleResult r = sample.permitted ? host_.on_sample(sample, now) : SampleResult::not_permitted;
+    // the seqs a holder's stream skipped never arrived: counted in and lost (docs/protocol.md)
+    uint64_t lost = 0;
+    SampleResult r = SampleResult::not_permitted;
+    if (sample.rejected) {
+      r = SampleResult::rejected;
+      if (sample.permitted) host_.on_rejected(sample, &lost);
+    } else if (sample.permitted) {
+      r = host_.on_sample(sample, now, &lost);
+    }
     if (r == SampleResult::accepted) stats_.totals.samples_ok++;
     else if (r == SampleResult::idle) stats_.samples_idle++;
     else stats_.totals.drops[static_cast<int>(r)]++;
+    stats_.totals.drops[static_cast<int>(SampleResult::lost)] += lost;
+    stats_.totals.samples_in += lost;
   }
 }
 
@@ -612,6 +623,7 @@ ServerReport ServerLoop::report() const {
   r.late_max = stats_.late_max;
   r.deadline_missed = stats_.deadline_missed;
   r.writers_lost = stats_.writers_lost;
+  r.dds_lost = stats_.dds_lost;
   r.conflicts = stats_.conflicts;
   r.takeovers = stats_.takeovers;
   r.yields = stats_.yields;

@@ -123,6 +123,7 @@ struct LoopStats {
   uint64_t write_failures = 0;  // writes the port refused (every kind, the status too)
   uint64_t skipped = 0;         // frames skipped after a stall
   uint64_t deadline_missed = 0, writers_lost = 0;
+  uint64_t dds_lost = 0;        // DDS's own count of gaps in the racket writers' sequences (at most 1000 a note)
   uint64_t conflicts = 0;       // MatchInfo of one of our matches from another server
   uint64_t takeovers = 0;       // followed matches taken over
   uint64_t yields = 0;          // matches given up to a server that outranks this one

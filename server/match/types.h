@@ -169,13 +169,14 @@ bool parse_name(const std::string &name, E *out);
 struct RacketSampleIn {
   uint32_t match_id = 0;      // the match
   int player = 0;             // the slot, [0, players)
-  uint32_t seq = 0;           // per (match, player) stream: larger than every earlier one
+  uint32_t seq = 0;           // per (match, player) stream: one more than the one written before
   double capture_time = 0.0;  // sim s: when the pose was taken, as the client maps its clock
   ball_vec3 center{0, 0, 0};  // m: the disc centre
   ball_vec3 normal{1, 0, 0};  // the disc normal, any length in [1e-6, 1e6] (normalised by libball)
   ParticipantId from{};       // the sender: its writer's participant GUID prefix (filled in by the DDS layer)
   double source_time = 0.0;   // server s: the writer's DDS source timestamp (0: unknown)
   bool permitted = true;      // false: under DDS Security, written outside the match's partition (DDS layer)
+  bool rejected = false;      // true: the reader had no room for it; it counts only as `rejected` (DDS layer)
 };
 
 // client -> server: a control message (MatchControl).
@@ -191,6 +192,7 @@ struct ControlIn {
   ParticipantId from{};       // the sender (filled in by the DDS layer)
   bool valid = true;          // false: an enum out of range or a scene name without its NUL on the wire
   bool permitted = true;      // false: under DDS Security, written outside the match's partition (DDS layer)
+  bool rejected = false;      // true: the reader had no room for it; it counts only as `rejected` (DDS layer)
 };
 
 // The newest sample of a racket when it hit the ball, for latency.

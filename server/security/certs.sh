@@ -8,14 +8,15 @@
 # Writes into DIR:
 #   ca.pem ca.key                 the CA: identity CA and permissions CA both
 #   NAME.pem NAME.key             an identity each: server1 server2 server3 (servers), watch
-#                                 (a watcher), and for every match m in 0..MATCHES-1 the players
+#                                 (a watcher), load (the load generator, a player of every
+#                                 match), and for every match m in 0..MATCHES-1 the players
 #                                 m<m>-a and m<m>-b (default MATCHES 2)
 #   governance.xml governance.p7s the domain's rules: nobody unauthenticated, everything encrypted
 #   permissions.xml permissions.p7s
 #                                 a grant per identity: servers write the server topics and read
 #                                 the players' in every match partition; a player writes racket
-#                                 samples and controls only in its match's partition match/<m>;
-#                                 a watcher only reads
+#                                 samples and controls only in its match's partition match/<m>
+#                                 (load: in every match/*); a watcher only reads
 # A real deployment makes its own CA and keeps ca.key off the hosts (docs/security.md).
 set -euo pipefail
 dir=${1:?usage: certs.sh DIR [MATCHES]}
@@ -35,7 +36,7 @@ if [ ! -f ca.pem ]; then
     -addext basicConstraints=critical,CA:TRUE -addext keyUsage=critical,keyCertSign,cRLSign,digitalSignature
 fi
 
-identities=(server1 server2 server3 watch)
+identities=(server1 server2 server3 watch load)
 for ((m = 0; m < matches; m++)); do identities+=("m$m-a" "m$m-b"); done
 
 for name in "${identities[@]}"; do
@@ -94,6 +95,7 @@ grant() {  # NAME RULES
     grant "$name" "<allow_rule>$domains<publish><topics>$server_topics</topics></publish><subscribe><topics>$server_topics</topics></subscribe><subscribe><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></subscribe></allow_rule>"
   done
   grant watch "<allow_rule>$domains<subscribe><topics>$server_topics</topics></subscribe></allow_rule>"
+  grant load "<allow_rule>$domains<publish><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></publish><subscribe><topics>$server_topics</topics></subscribe></allow_rule>"
   for ((m = 0; m < matches; m++)); do
     for p in a b; do
       grant "m$m-$p" "<allow_rule>$domains<publish><topics>$player_topics</topics><partitions><partition>match/$m</partition></partitions></publish><subscribe><topics>$server_topics</topics></subscribe></allow_rule>"

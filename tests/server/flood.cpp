@@ -145,11 +145,13 @@ int main(int argc, char **argv) {
       SampleResult kind = kKinds[flood_index % 10];
       RacketSampleIn s = parked(0, sim);
       bool from_b = false;
+      // a sample that is not of A's slot-0 stream leaves that stream's seq as it was (a skipped
+      // seq is a sample lost on the way, docs/protocol.md)
       switch (kind) {
-        case SampleResult::unknown_match: s.match_id = 999; break;
-        case SampleResult::bad_slot: s.player = 7; break;
-        case SampleResult::not_joined: s.match_id = 1; break;
-        case SampleResult::not_owner: from_b = true; break;
+        case SampleResult::unknown_match: s.match_id = 999; seq[0]--; break;
+        case SampleResult::bad_slot: s.player = 7; seq[0]--; break;
+        case SampleResult::not_joined: s.match_id = 1; seq[0]--; break;
+        case SampleResult::not_owner: from_b = true; seq[0]--; break;
         case SampleResult::nonfinite: s.center.x = std::nan(""); break;
         case SampleResult::zero_normal: s.normal = ball_v3(0, 0, 0); break;
         case SampleResult::out_of_range: s.center.y = 1e4; break;

@@ -54,9 +54,47 @@ void rally_with(const Env &env, const std::vector<std::string> &bot_args, int wa
 
 void case_rally(const Env &env) { rally_with(env, {"--rate", "15"}, 10, "15 Hz"); }
 
-// two bots at 6 Hz with 100 ms added delay and 20 % loss still rally
+// two bots at 6 Hz with 100 ms added delay and 20 % loss still rally, and
+// the server's `lost` is the samples the bots' links lost: found by the
+// gaps in each holder's seqs, every one once (but those lost before the
+// first or after the last sample that arrived)
 void case_lossy(const Env &env) {
-  rally_with(env, {"--rate", "6", "--delay", "0.1", "--loss", "0.2"}, 5, "6 Hz, 100 ms, 20 % loss");
+  Case c{env};
+  std::vector<std::string> args = {"--rate", "6", "--delay", "0.1", "--loss", "0.2"};
+  std::string bot_stats[2] = {path(env, "bot0.json"), path(env, "bot1.json")};
+  auto bot = [&](int slot) {
+    std::vector<std::string> a = args;
+    a.insert(a.end(), {"--stats-json", bot_stats[slot]});
+    return c.bot(slot, a);
+  };
+  Server server = c.server();
+  Process w = ready_watcher(c, path(env, "watch.jsonl"), {});
+  Process b0 = bot(0), b1 = bot(1);
+  Tail t(path(env, "watch.jsonl"));
+  double t0 = first_serve(t), last = 0.0;
+  if (t0 < 0.0) return;
+  int hits = hits_within(t, t0, 5, 30.0, &last);
+  note("6 Hz, 100 ms, 20 %% loss: %d racket hits in %.1f s after the first serve", hits, last - t0);
+  CHECK_MSG(hits >= 5, "%d hits in 30 s, want 5", hits);
+  usleep(8 * 1000000);  // about 100 samples more
+  CHECK_EQ(b0.stop(5.0), 0);
+  CHECK_EQ(b1.stop(5.0), 0);
+  ServerReport r = stop_server(server, path(env, "server.json"));
+  uint64_t link_lost = 0, written = 0;
+  for (const auto &f : bot_stats) {
+    json j = json::parse(file_text(f), nullptr, false);
+    CHECK_MSG(j.is_object(), "no bot report %s", f.c_str());
+    if (!j.is_object()) return;
+    link_lost += j.value("lost", uint64_t{0});
+    written += j.value("written", uint64_t{0});
+  }
+  uint64_t lost = r.status.drops[static_cast<int>(SampleResult::lost)];
+  note("the bots' links lost %llu of their samples (%llu written); the server counted %llu lost, DDS %llu",
+       static_cast<unsigned long long>(link_lost), static_cast<unsigned long long>(written),
+       static_cast<unsigned long long>(lost), static_cast<unsigned long long>(r.dds_lost));
+  CHECK(link_lost >= 15);
+  CHECK_MSG(lost <= link_lost && lost + 16 >= link_lost, "server lost %llu, the links %llu",
+            static_cast<unsigned long long>(lost), static_cast<unsigned long long>(link_lost));
 }
 
 // the ball evaluated from segments matches the server's ball states

@@ -156,6 +156,22 @@ inline Process ready_watcher(Case &c, const std::string &record, const std::vect
   return w;
 }
 
+// Stops the server (SIGTERM, status 0) and reads its --stats-json `stats`
+// (a failed check and an empty report when it cannot).
+inline ServerReport stop_server(Server &server, const std::string &stats) {
+  int rc = server.p.stop(5.0);
+  server.p = Process();
+  CHECK_MSG(rc == 0, "the server's exit status %d", rc);
+  ServerReport r;
+  try {
+    std::ifstream f(stats);
+    r = json::parse(f).get<ServerReport>();
+  } catch (const std::exception &e) {
+    CHECK_MSG(false, "the server's report %s: %s", stats.c_str(), e.what());
+  }
+  return r;
+}
+
 // A server, a watcher recording to `record` and two bots with the same
 // options, started in that order (a braced list is evaluated left to right);
 // the server, declared first, is stopped last.

@@ -54,20 +54,6 @@ json wire_check(const Env &env, const std::string &name, std::vector<std::string
 }
 
 // the server's report at its end (a failed check when unreadable)
-ServerReport stop_server(Server &server, const std::string &stats) {  // Case::server's --stats-json
-  int rc = server.p.stop(5.0);
-  server.p = Process();
-  CHECK_MSG(rc == 0, "the server's exit status %d", rc);
-  ServerReport r;
-  try {
-    std::ifstream f(stats);
-    r = json::parse(f).get<ServerReport>();
-  } catch (const std::exception &e) {
-    CHECK_MSG(false, "the server's report %s: %s", stats.c_str(), e.what());
-  }
-  return r;
-}
-
 uint64_t drops(const ServerReport &r, SampleResult why) { return r.status.drops[static_cast<int>(why)]; }
 
 // A server, a ready watcher and two bots at 15 Hz, each with its DDS
@@ -282,6 +268,41 @@ void case_secure(const Env &env) {
   CHECK(rep.status.controls_refused >= static_cast<uint64_t>(p1_controls) * 8 / 10);
 }
 
+// ball-load under DDS Security: its one participant, as `load` (granted
+// every match/*), writes in the partitions of every match it plays, and a
+// sweep starts its server as server1; a player's identity cannot do it.
+void case_load_secure(const Env &env) {
+  std::string err, certs = path(env, "certs");
+  int rc = run_to_end(env, {"/bin/bash", env.source + "/server/security/certs.sh", certs, "1"}, "certs", &err);
+  CHECK_MSG(rc == 0, "certs.sh: status %d: %s", rc, err.c_str());
+  if (rc != 0) return;
+  std::string out = path(env, "load.json");
+  auto load = [&](const char *identity, const std::string &json_out) {
+    std::vector<std::string> a = {env.bin + "/ball-load", "--domain", env.dom(), "--sweep", "3", "--warmup", "5",
+                                  "--duration", "4", "--secure", certs, "--identity", identity};
+    if (!json_out.empty()) a.insert(a.end(), {"--json", json_out});
+    return a;
+  };
+  rc = run_to_end(env, load("load", out), "load", &err);
+  CHECK_MSG(rc == 0, "ball-load --secure as load: status %d: %s", rc, err.c_str());
+  json j = json::parse(file_text(out), nullptr, false);
+  CHECK_MSG(j.is_object() && j.value("rows", json::array()).size() == 1, "no row in %s", out.c_str());
+  if (!j.is_object() || j.value("rows", json::array()).size() != 1) return;
+  LoadRow row = j.at("rows").at(0).get<LoadRow>();
+  note("ball-load under DDS Security, 3 matches: ready %s, %.1f samples/s, %llu hits, %llu write failures",
+       row.ready ? "yes" : "no", row.samples_per_s, static_cast<unsigned long long>(row.hits),
+       static_cast<unsigned long long>(row.write_failures));
+  CHECK(row.ready);  // every slot joined: the server took its controls from all three partitions
+  CHECK(row.hits >= 3);
+  CHECK_EQ(row.write_failures, 0u);
+  // a player's identity is granted its own match only
+  rc = run_to_end(env, load("m0-a", ""), "load_as_player", &err);
+  CHECK_MSG(rc == 1 && err.find("permissions do not grant it in partition match/0;match/1;match/2") !=
+                           std::string::npos,
+            "ball-load as m0-a: status %d: %s", rc, err.c_str());
+}
+
 }  // namespace
 
 TEST(secure) { itest::in_case(case_secure); }
+TEST(load_secure) { itest::in_case(case_load_secure); }

@@ -181,23 +181,39 @@ TEST(samples_and_notes_balance_the_books) {
   good.match_id = 0;
   good.capture_time = r.host.find(0)->sim().time;
   good.from = A;
-  RacketSampleIn stranger = good, nowhere = good, second = good;
+  RacketSampleIn stranger = good, nowhere = good, second = good, third = good, full = good;
   stranger.from = C;
   nowhere.match_id = 99;
   second.seq = good.seq + 1;
   second.capture_time += 0.001;
-  r.port.samples = {good, stranger, nowhere, good, second};
+  third.seq = good.seq + 4;  // two of the holder's seqs never arrived: lost
+  third.capture_time += 0.002;
+  full.seq = good.seq + 5;   // found the reader full: rejected, and not lost as well
+  full.rejected = true;
+  r.port.samples = {good, stranger, nowhere, good, second, third, full};
+  // DDS's own gap count is kept apart (the stream's seqs count `lost`)
   r.port.notes = {{PortNote::rejected, {}, 3}, {PortNote::lost, {}, 2}, {PortNote::deadline_missed, {}, 1}};
   r.loop->step();
   const LoopStats &s = r.loop->stats();
-  CHECK_EQ(s.totals.samples_in, 5u + 3u + 2u);
-  CHECK_EQ(s.totals.samples_ok, 2u);
+  CHECK_EQ(s.totals.samples_in, 7u + 3u + 2u);
+  CHECK_EQ(s.totals.samples_ok, 3u);
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::not_owner)], 1u);
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::unknown_match)], 1u);
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::duplicate)], 1u);
-  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::rejected)], 3u);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::rejected)], 3u + 1u);
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::lost)], 2u);
+  CHECK_EQ(s.dds_lost, 2u);
   CHECK_EQ(s.deadline_missed, 1u);
+  // the holder's next one after the rejected: no gap
+  RacketSampleIn next = full;
+  next.rejected = false;
+  next.seq = full.seq + 1;
+  next.capture_time = third.capture_time + 0.001;
+  r.port.samples = {next};
+  r.port.notes.clear();
+  r.loop->step();
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::lost)], 2u);
+  CHECK_EQ(s.totals.samples_ok, 4u);
   uint64_t dropped = 0;
   for (int i = 0; i < kDropReasons; ++i) dropped += s.totals.drops[i];
   CHECK_EQ(s.totals.samples_in, s.totals.samples_ok + s.samples_idle + dropped);
@@ -210,18 +226,19 @@ TEST(samples_and_notes_balance_the_books) {
 }
 
 // Counters that do not lie: a gap DDS reports in one writer's sequence
-// numbers counts at most kMaxLostPerNote (one forged datagram made it
-// 2^31 - 1), controls DDS refused or lost are in and refused, and the books
-// still balance.
+// numbers is kept apart from the drops and counts at most kMaxLostPerNote
+// (one forged datagram made it 2^31 - 1), controls DDS refused or lost are
+// in and refused, and the books still balance.
 TEST(dds_notes_count_what_they_can_mean) {
   Rig r({60.0});
   r.port.notes = {{PortNote::lost, {}, 2147483647ull}, {PortNote::rejected, {}, 5},
                   {PortNote::control_rejected, {}, 73}, {PortNote::control_lost, {}, 1ull << 40}};
   r.loop->step();
   const LoopStats &s = r.loop->stats();
-  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::lost)], kMaxLostPerNote);
+  CHECK_EQ(s.dds_lost, kMaxLostPerNote);
+  CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::lost)], 0u);
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::rejected)], 5u);
-  CHECK_EQ(s.totals.samples_in, kMaxLostPerNote + 5);
+  CHECK_EQ(s.totals.samples_in, 5u);
   CHECK_EQ(s.totals.controls_in, 73u + kMaxLostPerNote);
   CHECK_EQ(s.totals.controls_refused, 73u + kMaxLostPerNote);
   // what the readers' door turned away: a sample's first two checks, and refused controls
@@ -230,7 +247,7 @@ TEST(dds_notes_count_what_they_can_mean) {
   r.loop->step();
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::unknown_match)], 7u);
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::bad_slot)], 4u);
-  CHECK_EQ(s.totals.samples_in, kMaxLostPerNote + 5 + 7 + 4);
+  CHECK_EQ(s.totals.samples_in, 5u + 7 + 4);
   CHECK_EQ(s.totals.controls_in, 73u + kMaxLostPerNote + 9);
   CHECK_EQ(s.totals.controls_refused, 73u + kMaxLostPerNote + 9);
 }

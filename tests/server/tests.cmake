@@ -10,7 +10,7 @@ foreach(name test_match test_bot test_client test_records test_server_loop test_
              test_placement)
   add_executable(${name} ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp)
   target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
-  target_link_libraries(${name} PRIVATE ball_client)
+  target_link_libraries(${name} PRIVATE ball_client ball_kit_headers)
   target_compile_options(${name} PRIVATE ${BALL_CXX_WARNINGS})
   add_test(NAME ${name} COMMAND ${name})
   set_tests_properties(${name} PROPERTIES LABELS server TIMEOUT 120)
@@ -81,7 +81,7 @@ find_program(BALL_FASTDDS fastdds)
 find_program(BALL_TCPDUMP tcpdump PATHS /usr/bin /usr/sbin)
 find_program(BALL_ITEST_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
 set(BALL_ITEST_CASES rally desync pause flood key_flood junk_keys create_expires late_join lossy server_cli busy snapshots discovery
-  failover standby_killed primary_back claim secure)
+  failover standby_killed primary_back claim secure load_secure)
 foreach(case ${BALL_ITEST_CASES})
   ball_dds_domain(dds_${case} domain)
   add_test(NAME dds_${case}
