@@ -1,6 +1,8 @@
 #include "server_endpoints.h"
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <unordered_map>
 
@@ -11,10 +13,12 @@ namespace dds {
 
 // The door of the racket and control readers (domain.h): only the samples
 // of the matches the server has, and their slots, become instances of the
-// readers; a control for another match only if it is a CREATE. Made-up
-// match ids then cannot fill the readers' instances and starve the real
-// ones (docs/protocol.md, "What the server does with a racket sample").
-// What it turns away is counted here and handed on as door notes.
+// readers; a control for another match only if it is a CREATE, the server
+// takes CREATEs, and the door's CREATE rate has room. Made-up match ids
+// then cannot fill the readers' instances and starve the real ones
+// (docs/protocol.md, "What the server does with a racket sample"), not
+// even as CREATEs. What it turns away is counted here and handed on as
+// door notes.
 class MatchDoor : public Door {
  public:
   explicit MatchDoor(bool controls) : controls_(controls) {}
@@ -26,7 +30,8 @@ class MatchDoor : public Door {
     if (!in) return true;  // nothing said yet
     auto it = in->find(id);
     if (controls_) {
-      if (it != in->end() || u32(body + 8, le) == static_cast<uint32_t>(balldds::CONTROL_CREATE)) return true;
+      if (it != in->end() || (u32(body + 8, le) == static_cast<uint32_t>(balldds::CONTROL_CREATE) && may_create()))
+        return true;
       turned_away_[0]++;
       return false;
     }
@@ -39,10 +44,11 @@ class MatchDoor : public Door {
     turned_away_[1]++;
     return false;
   }
-  void set(const std::vector<std::pair<uint32_t, int>> &matches) {
+  void set(const std::vector<std::pair<uint32_t, int>> &matches, bool creates) {
     auto in = std::make_shared<Admitted>(matches.begin(), matches.end());
     std::lock_guard<std::mutex> lock(mutex_);
     admitted_ = std::move(in);
+    creates_ = creates;
   }
   // turned away since the last call: [0] unknown match (controls: all), [1] bad slot
   void take(uint64_t out[2]) {
@@ -59,15 +65,31 @@ class MatchDoor : public Door {
     std::lock_guard<std::mutex> lock(mutex_);
     return admitted_;
   }
+  // A CREATE may come in: the server takes them, and a token of the CREATE
+  // rate is left (kCreatesPerSecond, as many at once), so that CREATEs under
+  // made-up ids hold at most that many of the reader's instances between
+  // two wake-ups, whoever sends them.
+  bool may_create() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    if (!creates_) return false;
+    double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    tokens_ = std::min(kCreatesPerSecond, tokens_ + (now - refilled_) * kCreatesPerSecond);
+    refilled_ = now;
+    if (tokens_ < 1.0) return false;
+    tokens_ -= 1.0;
+    return true;
+  }
   bool controls_;
   mutable std::mutex mutex_;
   std::shared_ptr<const Admitted> admitted_;
+  bool creates_ = true;
+  mutable double tokens_ = kCreatesPerSecond, refilled_ = 0.0;
   mutable std::atomic<uint64_t> turned_away_[2] = {{0}, {0}};
 };
 
-void ServerEndpoints::admit(const std::vector<std::pair<uint32_t, int>> &matches) {
-  sample_door_->set(matches);
-  control_door_->set(matches);
+void ServerEndpoints::admit(const std::vector<std::pair<uint32_t, int>> &matches, bool creates) {
+  sample_door_->set(matches, creates);
+  control_door_->set(matches, creates);
 }
 
 std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, int players, const char *role,

@@ -11,6 +11,12 @@
 namespace ballsrv {
 namespace dds {
 
+// CREATEs for a match the server does not have that the control reader's
+// door lets in, per second and at once, from everyone together
+// (docs/protocol.md, "Control messages"): more would let made-up ids fill
+// the reader's spare instances between two wake-ups.
+constexpr double kCreatesPerSecond = 20.0;
+
 class ServerEndpoints : public ServerPort {
  public:
   // Endpoints sized for `matches` x `players` (Fast DDS allows 10
@@ -24,7 +30,7 @@ class ServerEndpoints : public ServerPort {
   void take_notes(std::vector<PortNote> *out) override;
   bool take_sample(RacketSampleIn *sample) override;
   bool take_control(ControlIn *control) override;
-  void admit(const std::vector<std::pair<uint32_t, int>> &matches) override;
+  void admit(const std::vector<std::pair<uint32_t, int>> &matches, bool creates) override;
   bool take_other_info(MatchInfoOut *info, ParticipantId *from) override;
   bool take_other_segment(SegmentOut *segment, ParticipantId *from) override;
   bool take_other_status(StatusOut *status, ParticipantId *from) override;

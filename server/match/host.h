@@ -22,6 +22,7 @@ class Host {
   // One participant may have at most `n` matches it created standing (a
   // stranger's CREATEs must not fill max_matches for good).
   void set_max_creates(uint32_t n) { max_creates_ = n; }
+  bool allows_create() const { return allow_create_; }
   // The participant that created match `id` (zeros: configured, or unknown).
   ParticipantId creator(uint32_t id) const;
 

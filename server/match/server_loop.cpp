@@ -411,6 +411,7 @@ void ServerLoop::take_notes(double t0) {
         uint64_t count = n.kind == PortNote::control_lost ? std::min(n.count, kMaxLostPerNote) : n.count;
         stats_.totals.controls_in += count;
         stats_.totals.controls_refused += count;
+        if (n.kind == PortNote::door_control) stats_.controls_at_door += count;
         break;
       }
     }
@@ -425,7 +426,7 @@ void ServerLoop::admit_hosted() {
   if (admitted_once_ && admitted_now_ == admitted_) return;
   admitted_.swap(admitted_now_);
   admitted_once_ = true;
-  port_.admit(admitted_);
+  port_.admit(admitted_, host_.allows_create());
 }
 
 void ServerLoop::take_samples(double now) {
@@ -624,6 +625,7 @@ ServerReport ServerLoop::report() const {
   r.deadline_missed = stats_.deadline_missed;
   r.writers_lost = stats_.writers_lost;
   r.dds_lost = stats_.dds_lost;
+  r.controls_at_door = stats_.controls_at_door;
   r.conflicts = stats_.conflicts;
   r.takeovers = stats_.takeovers;
   r.yields = stats_.yields;

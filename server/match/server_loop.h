@@ -61,11 +61,16 @@ class ServerPort {
   virtual void take_notes(std::vector<PortNote> *out) = 0;  // appends what was noticed since the last call
   virtual bool take_sample(RacketSampleIn *sample) = 0;     // false: none left; from and source_time filled in
   virtual bool take_control(ControlIn *control) = 0;        // false: none left; from filled in
-  // The matches (id, player slots) whose samples and controls come in: the
-  // port may turn the others away before they cost it anything (a sample
-  // for another match or slot, a control but CREATE for another match),
-  // counted as door notes. Until the first call it lets everything in.
-  virtual void admit(const std::vector<std::pair<uint32_t, int>> &matches) { (void)matches; }
+  // The matches (id, player slots) whose samples and controls come in, and
+  // whether CREATEs do (the host allows them): the port may turn the others
+  // away before they cost it anything (a sample for another match or slot,
+  // a control for another match, a CREATE when none may come or past the
+  // door's rate), counted as door notes. Until the first call it lets
+  // everything in.
+  virtual void admit(const std::vector<std::pair<uint32_t, int>> &matches, bool creates) {
+    (void)matches;
+    (void)creates;
+  }
   // MatchInfo, segments and status written by other servers (our own are
   // skipped); false: none left
   virtual bool take_other_info(MatchInfoOut *info, ParticipantId *from) = 0;
@@ -124,6 +129,7 @@ struct LoopStats {
   uint64_t skipped = 0;         // frames skipped after a stall
   uint64_t deadline_missed = 0, writers_lost = 0;
   uint64_t dds_lost = 0;        // DDS's own count of gaps in the racket writers' sequences (at most 1000 a note)
+  uint64_t controls_at_door = 0;  // controls the control reader's door turned away (in controls_refused too)
   uint64_t conflicts = 0;       // MatchInfo of one of our matches from another server
   uint64_t takeovers = 0;       // followed matches taken over
   uint64_t yields = 0;          // matches given up to a server that outranks this one

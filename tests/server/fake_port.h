@@ -54,7 +54,11 @@ struct FakePort : ServerPort {
     notes.clear();
   }
   std::vector<std::vector<std::pair<uint32_t, int>>> admitted;  // every admit call's matches
-  void admit(const std::vector<std::pair<uint32_t, int>> &m) override { admitted.push_back(m); }
+  std::vector<bool> admitted_creates;                             // and whether CREATEs come in
+  void admit(const std::vector<std::pair<uint32_t, int>> &m, bool creates) override {
+    admitted.push_back(m);
+    admitted_creates.push_back(creates);
+  }
   bool take_sample(RacketSampleIn *s) override { return pop(samples, s); }
   bool take_control(ControlIn *c) override { return pop(controls, c); }
   bool take_other_info(MatchInfoOut *info, ParticipantId *from) override { return pop_from(others, info, from); }

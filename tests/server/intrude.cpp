@@ -8,7 +8,8 @@
 // heard: a stranger hears nothing, a player of another match is refused by
 // the server as `not_permitted`. With --junk N it cycles through N made-up
 // match ids from --match on, a JOIN and a sample for each: they must not
-// fill the server's readers. With --as-server ID it is a server instead
+// fill the server's readers (with --create its controls are CREATEs: a
+// server takes a few, at its door's rate). With --as-server ID it is a server instead
 // (under DDS Security one certified as a server, but not as server ID): it
 // writes no samples, and every 0.2 s writes a copy of the newest MatchInfo
 // it heard, as match --match of server ID; a client that bound ID to
@@ -45,6 +46,8 @@ int main(int argc, char **argv) {
   long as_server = -1;
   cli.add_option("--as-server", as_server, "write MatchInfo copies as this server id instead of samples")
       ->check(CLI::Range(0L, static_cast<long>(UINT32_MAX)));
+  bool create = false;
+  cli.add_flag("--create", create, "its controls are CREATEs (scene tennis) instead of JOINs");
   cli.add_flag("--wait-match", wait_match, "send only once a reader matched both writers (all of it then arrives)");
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
@@ -111,8 +114,9 @@ int main(int argc, char **argv) {
       ControlIn c;
       c.match_id = id;
       c.seq = ++control_seq;
-      c.kind = ControlKind::join;
+      c.kind = create ? ControlKind::create : ControlKind::join;
       c.player = 0;
+      c.scene = "tennis";
       if (controls.write(c)) sent_controls++;
       else refused++;
       next_join = now + 0.5;

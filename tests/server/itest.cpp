@@ -376,6 +376,11 @@ void case_junk_keys(const Env &env) {
   Process junk = Process::start({env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "1000", "--junk", "3000",
                                  "--rate", "500", "--duration", "16", "--out", junk_out},
                                 path(env, "junk.out"), path(env, "junk.err"));
+  // and CREATEs under 3000 made-up ids of their own, 200 a second
+  std::string creates_out = path(env, "creates.json");
+  Process creates = Process::start({env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "5000", "--junk",
+                                    "3000", "--create", "--rate", "200", "--duration", "16", "--out", creates_out},
+                                   path(env, "creates.out"), path(env, "creates.err"));
   usleep(4000000);  // 2000 made-up ids so far: 27 times the readers' room for strangers
   std::string rec = path(env, "watch.jsonl");
   Process w = ready_watcher(c, rec, {});
@@ -383,6 +388,7 @@ void case_junk_keys(const Env &env) {
   Tail t(rec);
   int hits = hits_after_serve_within(t, 3, 20.0);
   CHECK_EQ(junk.wait(30.0), 0);
+  CHECK_EQ(creates.wait(30.0), 0);
   b0.stop();
   b1.stop();
   w.stop();
@@ -399,7 +405,11 @@ void case_junk_keys(const Env &env) {
     CHECK_MSG(false, "the counters: %s", e.what());
     return;
   }
-  uint64_t samples = sent.value("samples", 0u), controls = sent.value("controls", 0u);
+  json created_sent = json::parse(file_text(creates_out), nullptr, false);
+  uint64_t create_controls = created_sent.is_object() ? created_sent.value("controls", 0u) : 0u;
+  // (samples: both intruders write a racket sample with every control)
+  uint64_t samples = sent.value("samples", 0u) + (created_sent.is_object() ? created_sent.value("samples", 0u) : 0u);
+  uint64_t controls = sent.value("controls", 0u);
   uint64_t unknown = r.status.drops[static_cast<int>(SampleResult::unknown_match)];
   uint64_t rejected = r.status.drops[static_cast<int>(SampleResult::rejected)];
   note("%llu samples and %llu JOINs under 3000 made-up ids: %llu unknown_match, %llu rejected, %llu controls "
@@ -413,6 +423,18 @@ void case_junk_keys(const Env &env) {
   CHECK(unknown <= samples);
   CHECK(unknown >= samples * 9 / 10);
   CHECK(r.status.controls_refused >= controls * 9 / 10);
+  // the CREATEs: every one counted, most turned away at the door (20 a second pass it), and the
+  // host took max_creates (2) of those that passed: the configured match and two created ones
+  note("%llu CREATEs under made-up ids: %llu controls in, %llu refused in all; %zu matches at the end",
+       static_cast<unsigned long long>(create_controls), static_cast<unsigned long long>(r.status.controls_in),
+       static_cast<unsigned long long>(r.status.controls_refused), r.matches.size());
+  CHECK(create_controls >= 2000);
+  CHECK(r.status.controls_in <= controls + create_controls + 200);  // + the bots' own
+  CHECK(r.status.controls_refused >= (controls + create_controls) * 9 / 10);
+  CHECK_EQ(r.matches.size(), 3u);
+  // the door let in at most 20 CREATEs a second (16 s) and the made-up JOINs not at all
+  note("turned away at the door: %llu controls", static_cast<unsigned long long>(r.controls_at_door));
+  CHECK(r.controls_at_door + 20u * 17u >= controls * 9 / 10 + create_controls);
 }
 
 // A match a client CREATEd and nobody joined goes after create_timeout: a

@@ -133,6 +133,8 @@ TEST(reports_come_back) {
   r.late_max = 0.081;
   r.latency_p99 = 0.0309;
   r.latency_count = 48;
+  r.dds_lost = 6;
+  r.controls_at_door = 11;
   MatchReport m;
   m.id = 9;
   m.state = MatchState::playing;
@@ -145,6 +147,8 @@ TEST(reports_come_back) {
   CHECK(same(back, r));
   CHECK_EQ(back.status.drops[static_cast<int>(SampleResult::stale)], 3u);
   CHECK_EQ(back.matches[0].sim_hash, 0xfedcba9876543210ull);
+  CHECK_EQ(back.dds_lost, 6u);
+  CHECK_EQ(back.controls_at_door, 11u);
   CHECK_EQ(back.status.matches, 2u);  // the list's
   CHECK_EQ(back.status.playing, 1u);
   // the books a test checks: drops by every reason's name

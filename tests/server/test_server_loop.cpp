@@ -250,6 +250,7 @@ TEST(dds_notes_count_what_they_can_mean) {
   CHECK_EQ(s.totals.samples_in, 5u + 7 + 4);
   CHECK_EQ(s.totals.controls_in, 73u + kMaxLostPerNote + 9);
   CHECK_EQ(s.totals.controls_refused, 73u + kMaxLostPerNote + 9);
+  CHECK_EQ(s.controls_at_door, 9u);
 }
 
 // Percentiles keep at most kCap values, a uniform sample of all: a day of
@@ -351,6 +352,7 @@ TEST(a_create_schedules_the_new_match) {
   CHECK_EQ(r.port.admitted.size(), 2u);
   CHECK(r.port.admitted.front() == (std::vector<std::pair<uint32_t, int>>{{0, 2}}));
   CHECK(r.port.admitted.back() == (std::vector<std::pair<uint32_t, int>>{{0, 2}, {8, 2}}));
+  CHECK(r.port.admitted_creates.back());
 }
 
 TEST(another_server_for_our_match) {
