@@ -225,7 +225,7 @@ void from_json(const json &j, MatchReport &m) {
   X("samples_idle", r.samples_idle) X("infos_out", r.infos_out) X("write_failures", r.write_failures)   \
   X("skipped_frames", r.skipped_frames) X("late_p99_median", r.late_p99_median)                         \
   X("late_p99_max", r.late_p99_max) X("late_max", r.late_max) X("deadline_missed", r.deadline_missed)   \
-  X("writers_lost", r.writers_lost) X("dds_lost", r.dds_lost) X("controls_at_door", r.controls_at_door) X("conflicts", r.conflicts) X("latency_p50", r.latency_p50)         \
+  X("writers_lost", r.writers_lost) X("dds_lost", r.dds_lost) X("controls_at_door", r.controls_at_door) X("others_refused", r.others_refused) X("conflicts", r.conflicts) X("latency_p50", r.latency_p50)         \
   X("latency_p99", r.latency_p99) X("latency_count", r.latency_count) X("matches", r.matches)           \
   X("takeovers", r.takeovers) X("yields", r.yields) X("claims", r.claims)                               \
   X("follow_failures", r.follow_failures) X("following", r.following) X("created_expired", r.created_expired)

@@ -157,6 +157,7 @@ struct ServerReport {
   uint64_t deadline_missed = 0, writers_lost = 0, conflicts = 0;
   uint64_t dds_lost = 0;  // DDS's own count of racket samples lost (not in drops: `lost` is the holders' seq gaps)
   uint64_t controls_at_door = 0;  // of controls_refused, turned away at the control reader's door
+  uint64_t others_refused = 0;    // other participants' MatchInfo no server writes (trust.h, usable_info)
   uint64_t takeovers = 0, yields = 0, claims = 0, follow_failures = 0;  // among the servers of a domain
   uint64_t created_expired = 0;  // created matches removed: nobody held a slot for create_timeout
   uint32_t following = 0;       // matches followed at the end

@@ -1,5 +1,7 @@
 #include "server_loop.h"
 
+#include "trust.h"
+
 #include <cinttypes>
 #include <algorithm>
 #include <cmath>
@@ -14,8 +16,13 @@ bool ServerLoop::find_owner(double seconds, const std::function<bool()> &stop, M
   double until = clock_.mono() + seconds;
   ParticipantId from;
   while (clock_.mono() < until && !stop()) {
-    while (port_.take_other_info(other, &from))
+    while (port_.take_other_info(other, &from)) {
+      if (!usable_info(*other)) {  // no server's (other_info): it makes nobody busy
+        stats_.others_refused++;
+        continue;
+      }
       if (host_.find(other->match_id)) return true;
+    }
     clock_.sleep_until(clock_.mono() + 0.05);
   }
   return false;
@@ -168,6 +175,12 @@ void ServerLoop::take_others() {
 }
 
 void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from) {
+  // a MatchInfo no server could have written (numbers out of range) is not
+  // another server's: nobody yields to it, follows it or counts it an owner
+  if (!usable_info(info)) {
+    stats_.others_refused++;
+    return;
+  }
   owners_[info.match_id] = {from, -1.0};
   if (scheduled(info.match_id)) {
     // our own reader took another server's sample for a match we step: DDS
@@ -626,6 +639,7 @@ ServerReport ServerLoop::report() const {
   r.writers_lost = stats_.writers_lost;
   r.dds_lost = stats_.dds_lost;
   r.controls_at_door = stats_.controls_at_door;
+  r.others_refused = stats_.others_refused;
   r.conflicts = stats_.conflicts;
   r.takeovers = stats_.takeovers;
   r.yields = stats_.yields;

@@ -131,6 +131,7 @@ struct LoopStats {
   uint64_t dds_lost = 0;        // DDS's own count of gaps in the racket writers' sequences (at most 1000 a note)
   uint64_t controls_at_door = 0;  // controls the control reader's door turned away (in controls_refused too)
   uint64_t conflicts = 0;       // MatchInfo of one of our matches from another server
+  uint64_t others_refused = 0;  // MatchInfo from other participants whose numbers no server writes (usable_info)
   uint64_t takeovers = 0;       // followed matches taken over
   uint64_t yields = 0;          // matches given up to a server that outranks this one
   uint64_t claims = 0;          // matches claimed (configured or created)

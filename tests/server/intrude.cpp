@@ -9,7 +9,13 @@
 // the server as `not_permitted`. With --junk N it cycles through N made-up
 // match ids from --match on, a JOIN and a sample for each: they must not
 // fill the server's readers (with --create its controls are CREATEs: a
-// server takes a few, at its door's rate). With --as-server ID it is a server instead
+// server takes a few, at its door's rate). With --as-server ID --forge it
+// forges the server topics of match --match itself instead (the review's
+// findings, from writers as strong as --strength PROFILE of the QoS file
+// says): a MatchInfo with level 99, a segment with seq 0xFFFFFFFF and ball
+// states whose clock pairs are 10,000 s ahead, every 0.2 s; and, with
+// --decoy ID, a well-formed copy of the match's MatchInfo as match ID
+// whose scene is --scene-name (a path). With --as-server ID it is a server instead
 // (under DDS Security one certified as a server, but not as server ID): it
 // writes no samples, and every 0.2 s writes a copy of the newest MatchInfo
 // it heard, as match --match of server ID; a client that bound ID to
@@ -46,6 +52,14 @@ int main(int argc, char **argv) {
   long as_server = -1;
   cli.add_option("--as-server", as_server, "write MatchInfo copies as this server id instead of samples")
       ->check(CLI::Range(0L, static_cast<long>(UINT32_MAX)));
+  bool forge = false;
+  std::string strength, scene_name;
+  long decoy = -1;
+  cli.add_flag("--forge", forge, "with --as-server: forge match --match's own server topics");
+  cli.add_option("--strength", strength, "with --forge: the data_writer profile of the writers' ownership strength");
+  cli.add_option("--decoy", decoy, "with --forge: also a well-formed MatchInfo copy as this match id")
+      ->check(CLI::Range(0L, static_cast<long>(UINT32_MAX)));
+  cli.add_option("--scene-name", scene_name, "with --decoy: the scene it names");
   bool create = false;
   cli.add_flag("--create", create, "its controls are CREATEs (scene tennis) instead of JOINs");
   cli.add_flag("--wait-match", wait_match, "send only once a reader matched both writers (all of it then arrives)");
@@ -61,9 +75,16 @@ int main(int argc, char **argv) {
   dds::Writer<RacketSampleIn> samples;
   dds::Writer<ControlIn> controls;
   dds::Writer<MatchInfoOut> forged;
+  dds::Writer<SegmentOut> forged_segments;
+  dds::Writer<StateOut> forged_states;
+  const char *by = strength.empty() ? nullptr : strength.c_str();
   if (as_server >= 0) {
-    forged = d->writer<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {16}, &err);
-    if (!forged.valid()) return fail(kProgram, err);
+    forged = d->writer<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {16}, &err, by);
+    if (forged.valid() && forge)
+      forged_segments = d->writer<SegmentOut>(dds::kSegmentTopic, dds::kSegmentProfile, {16}, &err, by);
+    if (forged_segments.valid())
+      forged_states = d->writer<StateOut>(dds::kStateTopic, dds::kStateProfile, {16}, &err, by);
+    if (!forged.valid() || (forge && !forged_states.valid())) return fail(kProgram, err);
   } else {
     samples = d->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {keys, 0, partition}, &err);
     if (samples.valid())
@@ -86,12 +107,47 @@ int main(int argc, char **argv) {
     MatchInfoOut in;
     while (infos.take(&in, nullptr)) {
       heard_infos++;
-      if (in.match_id != match) newest = in, heard_info = true;
+      // --forge: the match's own, from its server (never our own forgeries back)
+      if (forge ? in.match_id == match && in.server_id != static_cast<uint32_t>(as_server) : in.match_id != match)
+        newest = in, heard_info = true;
     }
     StateOut st;
     while (states.take(&st, nullptr)) {
       heard_states++;
-      if (st.match_id == match) sim = st.sim_time;
+      if (st.match_id == match && st.server_id != static_cast<uint32_t>(as_server)) sim = st.sim_time;
+    }
+    if (forge) {  // the match's own topics, forged
+      if (heard_info) {
+        MatchInfoOut f = newest;
+        f.server_id = static_cast<uint32_t>(as_server);
+        f.level = 99;
+        bool ok = forged.write(f);
+        if (decoy >= 0) {
+          MatchInfoOut g = newest;
+          g.match_id = static_cast<uint32_t>(decoy);
+          g.server_id = static_cast<uint32_t>(as_server);
+          g.scene = scene_name;
+          ok = forged.write(g) && ok;
+        }
+        SegmentOut seg;
+        seg.match_id = match;
+        seg.server_id = static_cast<uint32_t>(as_server);
+        seg.seq = 0xFFFFFFFFu;
+        seg.segment.t0 = sim;
+        seg.segment.p0 = ball_v3(0.0, 5.0, 0.0);
+        ok = forged_segments.write(seg) && ok;
+        StateOut far;
+        far.match_id = match;
+        far.server_id = static_cast<uint32_t>(as_server);
+        far.sim_time = sim + 10000.0;
+        far.server_time = realtime_now();
+        far.segment_seq = 0xFFFFFFFFu;
+        ok = forged_states.write(far) && ok;
+        if (ok) sent_infos++;
+        else refused++;
+      }
+      sleep_until(now + 0.2);
+      continue;
     }
     if (forged.valid()) {  // a server: copies of what it heard, as --as-server's match --match
       if (heard_info) {

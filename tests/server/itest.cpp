@@ -437,6 +437,72 @@ void case_junk_keys(const Env &env) {
   CHECK(r.controls_at_door + 20u * 17u >= controls * 9 / 10 + create_controls);
 }
 
+// A participant posing as a server on an open domain, its writers stronger
+// than the real server's (ownership strength 1000 in a QoS file of its
+// own), forges match 0's own topics for 4 s: a MatchInfo with level 99, a
+// segment with seq 0xFFFFFFFF, ball states whose clock is 10,000 s ahead,
+// and a well-formed MatchInfo of a match 7 whose scene is a FIFO's path.
+// While it lasts the clients read only it (exclusive ownership), refuse
+// all of it and never exit; the server yields nothing to a MatchInfo no
+// server writes; once it is gone the rally goes on, the bots' clocks and
+// streams as they were, and the watcher never opened the FIFO.
+void case_forged_server(const Env &env) {
+  Case c{env};
+  std::string qos = path(env, "strong_qos.xml"), text = file_text(env.source + "/server/qos/ball_qos.xml");
+  const std::string primary = "<ownershipStrength><value>20</value></ownershipStrength>";
+  size_t at = text.find(primary);
+  CHECK_MSG(at != std::string::npos, "no primary strength in the QoS file");
+  if (at == std::string::npos) return;
+  text.replace(at, primary.size(), "<ownershipStrength><value>1000</value></ownershipStrength>");
+  std::string err;
+  CHECK(write_file(qos, text, &err));
+  struct Fifo {  // a FIFO a scene name points at: opening it for reading would hang
+    std::string path = "/tmp/ball-fifo-" + std::to_string(getpid());
+    Fifo() { mkfifo(path.c_str(), 0600); }
+    ~Fifo() { unlink(path.c_str()); }
+  } fifo;
+  std::string rec = path(env, "watch.jsonl"), stats[2] = {path(env, "bot0.json"), path(env, "bot1.json")};
+  Server server(c.server());
+  Process w = ready_watcher(c, rec, {"--snapshots", path(env, "snaps")});
+  Process b0 = c.bot(0, {"--rate", "15", "--stats-json", stats[0]});
+  Process b1 = c.bot(1, {"--rate", "15", "--stats-json", stats[1]});
+  Tail t(rec);
+  int before = hits_after_serve_within(t, 3, 20.0);
+  CHECK_MSG(before >= 3, "%d hits before the forger", before);
+  std::string forged_out = path(env, "forged.json");
+  Process forger = Process::start({env.bin + "/ball_intrude", "--domain", env.dom(), "--profile", qos, "--as-server",
+                                   "9", "--forge", "--match", "0", "--strength", "primary", "--decoy", "7",
+                                   "--scene-name", fifo.path, "--duration", "4", "--out", forged_out},
+                                  path(env, "forger.out"), path(env, "forger.err"));
+  CHECK_EQ(forger.wait(20.0), 0);
+  bool alive = b0.running() && b1.running() && w.running();
+  size_t from = t.lines.size();
+  int after = 0;
+  while (after < 2 && !wait_for(t, 20.0, is_hit, &from).is_null()) after++;
+  CHECK_EQ(b0.stop(5.0), 0);
+  CHECK_EQ(b1.stop(5.0), 0);
+  CHECK_EQ(w.stop(5.0), 0);
+  ServerReport r = stop_server(server, path(env, "server.json"));
+  json f = json::parse(file_text(forged_out), nullptr, false);
+  long forged = f.is_object() ? f.value("infos", 0L) : 0L;
+  uint64_t refused[2] = {0, 0};
+  for (int i = 0; i < 2; ++i) {
+    json j = json::parse(file_text(stats[i]), nullptr, false);
+    refused[i] = j.is_object() ? j.value("refused", uint64_t{0}) : 0;
+  }
+  note("a forged server at strength 1000 wrote %ld rounds of forgeries for match 0; the bots refused %llu and %llu "
+       "server samples and went on (%d hits after); the server refused %llu MatchInfo, yielded %llu",
+       forged, static_cast<unsigned long long>(refused[0]), static_cast<unsigned long long>(refused[1]), after,
+       static_cast<unsigned long long>(r.others_refused), static_cast<unsigned long long>(r.yields));
+  CHECK(forged >= 10);
+  CHECK_MSG(alive, "a client ended under the forgeries");
+  CHECK_MSG(after >= 2, "%d hits after the forger left", after);
+  CHECK(refused[0] >= 10 && refused[1] >= 10);
+  CHECK(r.others_refused >= 10);
+  CHECK_EQ(r.yields, 0u);
+  CHECK_EQ(r.matches.size(), 1u);
+}
+
 // A match a client CREATEd and nobody joined goes after create_timeout: a
 // watcher that comes later is not handed its MatchInfo (the instance is
 // disposed), while the configured match stays.
@@ -770,6 +836,7 @@ TEST(pause) { in_case(case_pause); }
 TEST(flood) { in_case(case_flood); }
 TEST(key_flood) { in_case(case_key_flood); }
 TEST(junk_keys) { in_case(case_junk_keys); }
+TEST(forged_server) { in_case(case_forged_server); }
 TEST(create_expires) { in_case(case_create_expires); }
 TEST(late_join) { in_case(case_late_join); }
 TEST(lossy) { in_case(case_lossy); }

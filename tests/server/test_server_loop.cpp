@@ -357,7 +357,7 @@ TEST(a_create_schedules_the_new_match) {
 
 TEST(another_server_for_our_match) {
   Rig r({60.0});
-  MatchInfoOut theirs;
+  MatchInfoOut theirs = r.host.find(0)->info();  // a MatchInfo a server writes
   theirs.match_id = 99;  // not ours: no conflict
   theirs.server_id = 2;
   r.port.others.push_back({theirs, participant(9)});
@@ -366,9 +366,22 @@ TEST(another_server_for_our_match) {
   CHECK(!r.loop->find_owner(0.5, [] { return false; }, &other));
   CHECK(r.clock.now >= t0 + 0.5);  // it listened the whole wait
   theirs.match_id = 0;
+  MatchInfoOut busy = theirs;  // numbers no server writes: nobody's, the match is not busy
+  busy.players = 0;
+  r.port.others.push_back({busy, participant(9)});
+  CHECK(!r.loop->find_owner(0.2, [] { return false; }, &other));
+  CHECK_EQ(r.loop->stats().others_refused, 1u);
   r.port.others.push_back({theirs, participant(9)});
   CHECK(r.loop->find_owner(0.5, [] { return false; }, &other));
   CHECK_EQ(other.server_id, 2u);
+  // numbers no server writes (level 99): nobody's MatchInfo, however strong its writer
+  MatchInfoOut forged = theirs;
+  forged.level = 99;
+  r.port.others.push_back({forged, participant(8)});
+  r.loop->step();
+  CHECK_EQ(r.loop->stats().others_refused, 2u);
+  CHECK_EQ(r.loop->stats().yields, 0u);
+  CHECK(r.host.find(0) != nullptr);
   // while running: reported at the status, with the participant
   r.port.others.push_back({theirs, participant(9)});
   int seen = 0;

@@ -2,7 +2,8 @@
 // "Clients that trust no one"): samples of the servers it chose, MatchInfo
 // whose numbers are in their ranges, segment numbers that fit the stream,
 // scene names that are names, never paths. What it refuses it counts and
-// drops; it never exits on a value from the wire.
+// drops; it never exits on a value from the wire. A server takes another
+// server's MatchInfo by the same rule (usable_info).
 #pragma once
 
 #include <cstdint>
