@@ -38,6 +38,7 @@
 #include <algorithm>
 #include <map>
 #include <set>
+#include <unordered_map>
 
 #include "ball_wirePubSubTypes.h"
 #include "convert.h"
@@ -177,8 +178,19 @@ bool use_discovery_servers(const std::string &list, fdds::DomainParticipantQos *
 
 }  // namespace
 
+// The inbox's key of a sample (Sizing::inbox_per_key): a racket sample's
+// stream, (match, slot); one key for every other type.
+inline uint64_t inbox_key(const RacketSampleIn &s) {
+  return uint64_t{s.match_id} << 32 | static_cast<uint32_t>(s.player);
+}
+template <class T>
+uint64_t inbox_key(const T &) {
+  return 0;
+}
+
 // What the DDS threads tell the loop about a reader's writers, and the
 // reader's inbox (Sizing) when it has one.
+
 template <class T>
 struct Reader<T>::Notes : public fdds::DataReaderListener {
   std::mutex mutex;
@@ -188,6 +200,8 @@ struct Reader<T>::Notes : public fdds::DataReaderListener {
     SampleMeta meta;
   };
   size_t inbox_cap = 0;
+  size_t per_key_cap = 0;        // of one key (inbox_key); 0: none
+  std::unordered_map<uint64_t, size_t> waiting;  // per key, in the inbox now
   std::vector<Item> inbox;       // filled by the DDS thread, under mutex
   std::vector<Item> overflow;    // what found the inbox full (meta.rejected), at most inbox_cap / 4 + 1
   std::vector<Item> taken;       // the loop's: swapped with inbox when read through
@@ -203,7 +217,10 @@ struct Reader<T>::Notes : public fdds::DataReaderListener {
       Item it{T{}, meta_of(info)};
       from_idl(wire, &it.sample);
       std::lock_guard<std::mutex> lock(mutex);
-      if (inbox.size() < inbox_cap) {
+      size_t *mine = nullptr;
+      if (per_key_cap > 0) mine = &waiting[inbox_key(it.sample)];
+      if (inbox.size() < inbox_cap && (!mine || *mine < per_key_cap)) {
+        if (mine) ++*mine;
         inbox.push_back(std::move(it));
       } else if (overflow.size() <= inbox_cap / 4) {
         it.meta.rejected = true;
@@ -218,6 +235,7 @@ struct Reader<T>::Notes : public fdds::DataReaderListener {
       next = 0;
       std::lock_guard<std::mutex> lock(mutex);
       taken.swap(inbox);
+      waiting.clear();
       // those that found it full arrived after all of it
       std::move(overflow.begin(), overflow.end(), std::back_inserter(taken));
       overflow.clear();
@@ -614,6 +632,7 @@ Reader<T> Domain::reader(const char *topic_name, const char *profile, Sizing siz
   }
   auto notes = std::make_shared<typename Reader<T>::Notes>();
   notes->inbox_cap = static_cast<size_t>(std::max(0, sizing.inbox));
+  notes->per_key_cap = static_cast<size_t>(std::max(0, sizing.inbox_per_key));
   fdds::StatusMask mask = fdds::StatusMask::liveliness_changed() << fdds::StatusMask::subscription_matched()
                           << fdds::StatusMask::requested_deadline_missed() << fdds::StatusMask::sample_rejected()
                           << fdds::StatusMask::sample_lost();

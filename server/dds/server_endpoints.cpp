@@ -109,9 +109,9 @@ std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, i
   std::string from_players = d.secure() ? kAnyMatchPartition : "";
   p->sample_door_ = std::make_shared<MatchDoor>(false);
   p->control_door_ = std::make_shared<MatchDoor>(true);
-  p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile,
-                                         {sample_room, sample_room * kInboxPerSlot, from_players, p->sample_door_},
-                                         err);
+  Sizing racket{sample_room, sample_room * kInboxPerSlot, from_players, p->sample_door_};
+  racket.inbox_per_key = kInboxPerSlot;  // one slot's burst takes its own share only
+  p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, racket, err);
   p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile,
                                      {match_room + 64, 0, from_players, p->control_door_}, err);
   p->others_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room + 64}, err);

@@ -318,6 +318,7 @@ uint64_t Match::stream_gap(Slot &slot, uint32_t seq) {
 }
 
 void Match::on_rejected(const RacketSampleIn &s, uint64_t *lost) {
+  counters_.rejected++;
   if (s.player < 0 || s.player >= config_.players) return;
   Slot &slot = slots_[s.player];
   if (!slot.held || slot.owner != s.from) return;

@@ -357,7 +357,8 @@ inline SegmentOut current_segment(const MatchInfoOut &i) {
   X(lets)        /* rallies replayed */                                           \
   X(serves)      /* serves */                                                     \
   X(pauses)      /* pauses, every reason */                                       \
-  X(step_errors) /* frames ball_step refused (never seen; counted, not fatal) */
+  X(step_errors) /* frames ball_step refused (never seen; counted, not fatal) */  \
+  X(rejected)    /* racket samples that found their share of the reader's inbox full */
 struct MatchCounters {
 #define BALL_COUNTER(name) uint64_t name = 0;
   BALL_MATCH_COUNTERS(BALL_COUNTER)

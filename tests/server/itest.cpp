@@ -503,6 +503,42 @@ void case_forged_server(const Env &env) {
   CHECK_EQ(r.matches.size(), 1u);
 }
 
+// One slot's burst takes its own share of the server's racket inbox only:
+// a holder of match 0 writes 20,000 samples at once while two bots rally
+// in match 1; what did not fit is counted rejected, all of it match 0's.
+void case_inbox_share(const Env &env) {
+  Case c{env};
+  Server server(c.server({"--matches", "2"}));
+  std::string flood_out = path(env, "flood.json");
+  Process f = Process::start({env.bin + "/ball_flood", "--domain", env.dom(), "--burst", "20000", "--duration", "8",
+                              "--out", flood_out},
+                             path(env, "flood.out"), path(env, "flood.err"));
+  std::string rec = path(env, "watch.jsonl");
+  Process w = ready_watcher(c, rec, {"--match", "1"});
+  Process b0 = c.bot(0, {"--match", "1", "--rate", "30"}), b1 = c.bot(1, {"--match", "1", "--rate", "30"});
+  Tail t(rec);
+  int hits = hits_after_serve_within(t, 3, 20.0);
+  CHECK_EQ(f.wait(20.0), 0);
+  CHECK_EQ(b0.stop(5.0), 0);
+  CHECK_EQ(b1.stop(5.0), 0);
+  CHECK_EQ(w.stop(5.0), 0);
+  ServerReport r = stop_server(server, path(env, "server.json"));
+  json sent = json::parse(file_text(flood_out), nullptr, false);
+  uint64_t rejected = r.status.drops[static_cast<int>(SampleResult::rejected)], per_match[2] = {0, 0};
+  for (const auto &m : r.matches)
+    if (m.id < 2) per_match[m.id] = m.counters.rejected;
+  note("a burst of %ld samples in match 0's slot 0: %llu rejected (match 0: %llu, match 1: %llu), %llu lost; match 1: "
+       "%d hits",
+       sent.is_object() ? sent.value("burst", 0L) : 0L, static_cast<unsigned long long>(rejected),
+       static_cast<unsigned long long>(per_match[0]), static_cast<unsigned long long>(per_match[1]),
+       static_cast<unsigned long long>(r.status.drops[static_cast<int>(SampleResult::lost)]), hits);
+  CHECK(sent.is_object() && sent.value("burst", 0L) == 20000);
+  CHECK_MSG(hits >= 3, "match 1: %d hits", hits);
+  CHECK(per_match[0] >= 1);  // the burst overflowed its share
+  CHECK_EQ(per_match[1], 0u);
+  CHECK(rejected >= per_match[0]);  // (and what found no room at all, without its stream)
+}
+
 // A match a client CREATEd and nobody joined goes after create_timeout: a
 // watcher that comes later is not handed its MatchInfo (the instance is
 // disposed), while the configured match stays.
@@ -837,6 +873,7 @@ TEST(flood) { in_case(case_flood); }
 TEST(key_flood) { in_case(case_key_flood); }
 TEST(junk_keys) { in_case(case_junk_keys); }
 TEST(forged_server) { in_case(case_forged_server); }
+TEST(inbox_share) { in_case(case_inbox_share); }
 TEST(create_expires) { in_case(case_create_expires); }
 TEST(late_join) { in_case(case_late_join); }
 TEST(lossy) { in_case(case_lossy); }

@@ -319,7 +319,7 @@ TEST(lost_counts_each_skipped_seq_of_the_holder_once) {
     g.park[0] = false;
     CHECK(g.control(ControlKind::join, A, 0) == Reason::none);  // the stream starts anew
     g.seq[0] = 0xFFFFFF00u + static_cast<uint32_t>(seeded_below(&rng, 512));  // across the wrap
-    uint64_t lost = 0, arrived = 0, stranger_lost = 0;
+    uint64_t lost = 0, arrived = 0, stranger_lost = 0, rejected = 0;
     uint32_t first = 0, newest = 0;
     for (int i = 0; i < 400; ++i) {
       if (i % 8 == 0) g.run(0.02);
@@ -331,6 +331,7 @@ TEST(lost_counts_each_skipped_seq_of_the_holder_once) {
       arrived++;
       if (u < 0.4) {
         g.match.on_rejected(s, &lost);
+        rejected++;
         continue;
       }
       if (u < 0.5) s.center.y = 1e4;  // out_of_range, still of the stream
@@ -341,8 +342,10 @@ TEST(lost_counts_each_skipped_seq_of_the_holder_once) {
       x.seq = s.seq + static_cast<uint32_t>(seeded_below(&rng, 5000));
       CHECK(g.match.on_sample(x, g.now, &stranger_lost) == SampleResult::not_owner);
       g.match.on_rejected(x, &stranger_lost);
+      rejected++;
     }
     CHECK_EQ(stranger_lost, 0u);
+    CHECK_EQ(g.match.counters().rejected, rejected);  // the match's share of the server's rejected
     CHECK_MSG(lost + arrived == static_cast<uint64_t>(newest - first) + 1u,
               "seed %llu: %llu lost + %llu arrived, seqs %u..%u", static_cast<unsigned long long>(seed),
               static_cast<unsigned long long>(lost), static_cast<unsigned long long>(arrived), first, newest);
