@@ -179,12 +179,20 @@ bool use_discovery_servers(const std::string &list, fdds::DomainParticipantQos *
 }  // namespace
 
 // The inbox's key of a sample (Sizing::inbox_per_key): a racket sample's
-// stream, (match, slot); one key for every other type.
-inline uint64_t inbox_key(const RacketSampleIn &s) {
-  return uint64_t{s.match_id} << 32 | static_cast<uint32_t>(s.player);
+// stream, its writer's (match, slot), so that nobody's burst takes the
+// room of another writer's stream, the holder's under the same keys
+// included (FNV-1a of the writer GUID, match and slot); one key for every
+// other type.
+inline uint64_t inbox_key(const RacketSampleIn &s, const SampleMeta &m) {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&h](uint8_t b) { h = (h ^ b) * 1099511628211ull; };
+  for (uint8_t b : m.writer) mix(b);
+  for (int i = 0; i < 4; ++i) mix(static_cast<uint8_t>(s.match_id >> (8 * i)));
+  for (int i = 0; i < 4; ++i) mix(static_cast<uint8_t>(static_cast<uint32_t>(s.player) >> (8 * i)));
+  return h;
 }
 template <class T>
-uint64_t inbox_key(const T &) {
+uint64_t inbox_key(const T &, const SampleMeta &) {
   return 0;
 }
 
@@ -218,7 +226,7 @@ struct Reader<T>::Notes : public fdds::DataReaderListener {
       from_idl(wire, &it.sample);
       std::lock_guard<std::mutex> lock(mutex);
       size_t *mine = nullptr;
-      if (per_key_cap > 0) mine = &waiting[inbox_key(it.sample)];
+      if (per_key_cap > 0) mine = &waiting[inbox_key(it.sample, it.meta)];
       if (inbox.size() < inbox_cap && (!mine || *mine < per_key_cap)) {
         if (mine) ++*mine;
         inbox.push_back(std::move(it));

@@ -80,8 +80,8 @@ class Door {
 struct Sizing {
   int instances = 1;
   int inbox = 0;          // samples; 0: samples wait in the DDS reader until taken
-  int inbox_per_key = 0;  // samples of one key (a racket sample's match and slot) the inbox holds;
-                          // 0: no share (one stream's burst must not take the others' room)
+  int inbox_per_key = 0;  // samples of one stream (a racket sample's writer, match and slot) the inbox
+                          // holds; 0: no share (one stream's burst must not take the others' room)
   std::string partition;  // the endpoint's DDS partition ("": the default one); under DDS
                           // Security a player writes only in its match's, match/<id>
   std::shared_ptr<const Door> door;  // a reader's door (none: every sample DDS takes)

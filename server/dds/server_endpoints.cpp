@@ -110,7 +110,7 @@ std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, i
   p->sample_door_ = std::make_shared<MatchDoor>(false);
   p->control_door_ = std::make_shared<MatchDoor>(true);
   Sizing racket{sample_room, sample_room * kInboxPerSlot, from_players, p->sample_door_};
-  racket.inbox_per_key = kInboxPerSlot;  // one slot's burst takes its own share only
+  racket.inbox_per_key = kInboxPerSlot;  // one writer's burst in a slot takes its own share only
   p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, racket, err);
   p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile,
                                      {match_room + 64, 0, from_players, p->control_door_}, err);

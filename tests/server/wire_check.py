@@ -16,12 +16,20 @@ with scapy (Debian's python3-scapy); prints one JSON object.
       user unicast port of DOMAIN's first 8 participants on 127.0.0.1; with
       --leave a control (MatchControl) instead, made a LEAVE of slot 0; with
       --sender only from the datagrams of that participant
+
+  wire_check.py spdp PCAP DOMAIN [--count N] [--lease S] [--rate R]
+      takes a participant announcement (an SPDP DATA) from a capture of an
+      open domain and sends it again N times, R a second, each time under a
+      fresh made-up GUID prefix and with a lease of S seconds, to every
+      metatraffic unicast port of DOMAIN's first 8 participants on 127.0.0.1:
+      N participants that do not exist
 """
 import argparse
 import json
 import socket
 import struct
 import sys
+import time
 
 from scapy.all import UDP, rdpcap  # noqa: E402
 
@@ -119,6 +127,81 @@ def forge(args):
             "ports": ports, "sent": args.count * len(ports)}
 
 
+SPDP_WRITER = bytes([0x00, 0x01, 0x00, 0xC2])  # the builtin participant writer's entity id
+PID_LEASE = 0x0002
+
+
+def announcements(datagram):
+    """(offset of the serialized payload, its end) of every SPDP DATA of a datagram."""
+    out = []
+    if len(datagram) < RTPS_HEADER or datagram[:4] != b"RTPS":
+        return out
+    i = RTPS_HEADER
+    while i + 4 <= len(datagram):
+        sid, flags = datagram[i], datagram[i + 1]
+        endian = "<" if flags & 1 else ">"
+        (length,) = struct.unpack(endian + "H", datagram[i + 2:i + 4])
+        body = i + 4
+        end = len(datagram) if length == 0 else body + length
+        if sid == DATA and datagram[body + 8:body + 12] == SPDP_WRITER:
+            (to_qos,) = struct.unpack(endian + "H", datagram[body + 2:body + 4])
+            payload = body + 4 + to_qos
+            if flags & 0x02:  # inline QoS first: a parameter list up to its sentinel
+                q = payload
+                while q + 4 <= end:
+                    pid, plen = struct.unpack(endian + "HH", datagram[q:q + 4])
+                    q += 4 + plen
+                    if pid == 0x0001:
+                        break
+                payload = q
+            out.append((payload, end))
+        i = end
+    return out
+
+
+def set_lease(d, payload, end, seconds):
+    """Puts `seconds` into the announcement's PID_PARTICIPANT_LEASE_DURATION."""
+    endian = "<" if d[payload + 1] in (0x01, 0x03) else ">"  # PL_CDR_LE / CDR_LE
+    q = payload + 4
+    while q + 4 <= end:
+        pid, plen = struct.unpack(endian + "HH", d[q:q + 4])
+        if pid == 0x0001:
+            return False
+        if pid == PID_LEASE and plen >= 8:
+            d[q + 4:q + 12] = struct.pack(endian + "iI", seconds, 0)
+            return True
+        q += 4 + plen
+    return False
+
+
+def spdp(args):
+    template = None
+    for datagram, _ in udp_payloads(args.pcap):
+        found = announcements(datagram)
+        if found:
+            template = (bytearray(datagram), found[0])
+            break
+    if template is None:
+        return {"sent": 0, "error": "no participant announcement in " + args.pcap}
+    d, (payload, end) = template
+    if not set_lease(d, payload, end, args.lease):
+        return {"sent": 0, "error": "no lease in the announcement"}
+    prefix = bytes(d[8:20])
+    ports = [7400 + 250 * args.domain + 10 + 2 * p for p in range(8)]
+    s = socket.socket(socket.AF_INET, socket.SOCK_DGRAM)
+    start = time.monotonic()
+    for n in range(args.count):
+        fresh = bytes([0x01, 0x0F]) + struct.pack(">I", 0xBA110000 + n) + struct.pack(">IH", n * 2654435761 & 0xFFFFFFFF, 7)
+        out = bytes(d).replace(prefix, fresh)  # the header's, the GUID's and the key hash's
+        for port in ports:
+            s.sendto(out, ("127.0.0.1", port))
+        delay = start + (n + 1) / args.rate - time.monotonic()
+        if delay > 0:
+            time.sleep(delay)
+    return {"sent": args.count, "template_prefix": prefix.hex(), "seconds": round(time.monotonic() - start, 3),
+            "ports": ports}
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     sub = ap.add_subparsers(dest="verb", required=True)
@@ -133,8 +216,14 @@ def main():
     b.add_argument("--count", type=int, default=5)
     b.add_argument("--leave", action="store_true", help="a control instead: LEAVE of slot 0")
     b.add_argument("--sender", default="", help="only datagrams of this GUID prefix (hex)")
+    c = sub.add_parser("spdp")
+    c.add_argument("pcap")
+    c.add_argument("domain", type=int)
+    c.add_argument("--count", type=int, default=1000)
+    c.add_argument("--lease", type=int, default=3)
+    c.add_argument("--rate", type=float, default=1000.0)
     args = ap.parse_args()
-    out = scan(args) if args.verb == "scan" else forge(args)
+    out = {"scan": scan, "forge": forge, "spdp": spdp}[args.verb](args)
     print(json.dumps(out))
     return 0 if "error" not in out else 1
 
