@@ -67,13 +67,10 @@ def scan(args):
     }
 
 
-def racket_samples(datagram, size=RACKET_PAYLOAD):
-    """(offset of the serialized payload, offset of writerSN) of every DATA
-    submessage of the datagram whose payload is `size` bytes (a
-    RacketSample's, or a MatchControl's)."""
-    out = []
+def data_submessages(datagram):
+    """(flags, endian, body, end) of every DATA submessage of an RTPS datagram."""
     if len(datagram) < RTPS_HEADER or datagram[:4] != b"RTPS":
-        return out
+        return
     i = RTPS_HEADER
     while i + 4 <= len(datagram):
         sid, flags = datagram[i], datagram[i + 1]
@@ -81,12 +78,22 @@ def racket_samples(datagram, size=RACKET_PAYLOAD):
         (length,) = struct.unpack(endian + "H", datagram[i + 2:i + 4])
         body = i + 4
         end = len(datagram) if length == 0 else body + length
-        if sid == DATA and not flags & 0x02:  # no inline QoS
+        if sid == DATA:
+            yield flags, endian, body, end
+        i = end
+
+
+def racket_samples(datagram, size=RACKET_PAYLOAD):
+    """(offset of the serialized payload, offset of writerSN) of every DATA
+    submessage of the datagram whose payload is `size` bytes (a
+    RacketSample's, or a MatchControl's)."""
+    out = []
+    for flags, endian, body, end in data_submessages(datagram):
+        if not flags & 0x02:  # no inline QoS
             (to_qos,) = struct.unpack(endian + "H", datagram[body + 2:body + 4])
             payload = body + 4 + to_qos
             if end - payload == size:
                 out.append((payload, body + 12))
-        i = end
     return out
 
 
@@ -134,28 +141,20 @@ PID_LEASE = 0x0002
 def announcements(datagram):
     """(offset of the serialized payload, its end) of every SPDP DATA of a datagram."""
     out = []
-    if len(datagram) < RTPS_HEADER or datagram[:4] != b"RTPS":
-        return out
-    i = RTPS_HEADER
-    while i + 4 <= len(datagram):
-        sid, flags = datagram[i], datagram[i + 1]
-        endian = "<" if flags & 1 else ">"
-        (length,) = struct.unpack(endian + "H", datagram[i + 2:i + 4])
-        body = i + 4
-        end = len(datagram) if length == 0 else body + length
-        if sid == DATA and datagram[body + 8:body + 12] == SPDP_WRITER:
-            (to_qos,) = struct.unpack(endian + "H", datagram[body + 2:body + 4])
-            payload = body + 4 + to_qos
-            if flags & 0x02:  # inline QoS first: a parameter list up to its sentinel
-                q = payload
-                while q + 4 <= end:
-                    pid, plen = struct.unpack(endian + "HH", datagram[q:q + 4])
-                    q += 4 + plen
-                    if pid == 0x0001:
-                        break
-                payload = q
-            out.append((payload, end))
-        i = end
+    for flags, endian, body, end in data_submessages(datagram):
+        if datagram[body + 8:body + 12] != SPDP_WRITER:
+            continue
+        (to_qos,) = struct.unpack(endian + "H", datagram[body + 2:body + 4])
+        payload = body + 4 + to_qos
+        if flags & 0x02:  # inline QoS first: a parameter list up to its sentinel
+            q = payload
+            while q + 4 <= end:
+                pid, plen = struct.unpack(endian + "HH", datagram[q:q + 4])
+                q += 4 + plen
+                if pid == 0x0001:
+                    break
+            payload = q
+        out.append((payload, end))
     return out
 
 
