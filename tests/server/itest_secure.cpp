@@ -42,7 +42,7 @@ Process capture(const Env &env, const std::string &name) {
   return p;
 }
 
-// tests/server/wire_check.py's answer (null on failure, with a failed check)
+// tests/server/wire_check.py's answer (an empty object on failure, with a failed check)
 json wire_check(const Env &env, const std::string &name, std::vector<std::string> args) {
   args.insert(args.begin(), {env.python, env.source + "/tests/server/wire_check.py"});
   std::string err;
@@ -50,7 +50,7 @@ json wire_check(const Env &env, const std::string &name, std::vector<std::string
   CHECK_MSG(rc == 0, "wire_check.py %s: status %d: %s", args[2].c_str(), rc, err.c_str());
   json j = json::parse(file_text(path(env, name + ".out")), nullptr, false);
   CHECK_MSG(!j.is_discarded(), "wire_check.py %s printed no JSON", args[2].c_str());
-  return j.is_discarded() ? json() : j;
+  return j.is_discarded() || !j.is_object() ? json::object() : j;
 }
 
 // the server's report at its end (a failed check when unreadable)
@@ -302,6 +302,12 @@ void case_load_secure(const Env &env) {
             "ball-load as m0-a: status %d: %s", rc, err.c_str());
 }
 
+#ifdef __SANITIZE_ADDRESS__
+constexpr bool kSanitized = true;  // built for ./run asan, as the programs it runs
+#else
+constexpr bool kSanitized = false;
+#endif
+
 // the resident memory of process `pid` (kB; 0: unknown)
 long rss_kb(pid_t pid) {
   std::string status = file_text("/proc/" + std::to_string(pid) + "/status");
@@ -351,8 +357,9 @@ void case_discovery_flood(const Env &env) {
        flood.value("seconds", 0.0), before, after, during, found, mono_now() - flood_start);
   CHECK_EQ(flood.value("sent", 0), 3000);
   CHECK(before > 0 && after > 0);
-  // (64 places cost about 1 MB; with the 4096 of the shipped profile the same flood grew it by 13 MB)
-  CHECK_MSG(after - before < 6 * 1024, "the server grew by %ld kB", after - before);
+  // (64 places cost about 1 MB; with the 4096 of the shipped profile the same flood grew it by 13 MB;
+  // under AddressSanitizer freed memory waits in its quarantine and is not reused: 21 MB)
+  if (!kSanitized) CHECK_MSG(after - before < 6 * 1024, "the server grew by %ld kB", after - before);
   CHECK_MSG(during >= 1, "no hit after the flood began");
   CHECK_MSG(late.running(), "the late watcher ended");
   late.stop();
