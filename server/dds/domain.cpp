@@ -198,7 +198,6 @@ uint64_t inbox_key(const T &, const SampleMeta &) {
 
 // What the DDS threads tell the loop about a reader's writers, and the
 // reader's inbox (Sizing) when it has one.
-
 template <class T>
 struct Reader<T>::Notes : public fdds::DataReaderListener {
   std::mutex mutex;

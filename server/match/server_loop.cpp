@@ -17,11 +17,7 @@ bool ServerLoop::find_owner(double seconds, const std::function<bool()> &stop, M
   ParticipantId from;
   while (clock_.mono() < until && !stop()) {
     while (port_.take_other_info(other, &from)) {
-      if (!usable_info(*other)) {  // no server's (other_info): it makes nobody busy
-        stats_.others_refused++;
-        continue;
-      }
-      if (host_.find(other->match_id)) return true;
+      if (server_wrote(*other) && host_.find(other->match_id)) return true;
     }
     clock_.sleep_until(clock_.mono() + 0.05);
   }
@@ -174,13 +170,17 @@ void ServerLoop::take_others() {
   }
 }
 
+// A MatchInfo no server could have written (numbers out of range, as a
+// client judges them) is not another server's: nobody yields to it,
+// follows it, counts it an owner or is kept from starting by it; counted.
+bool ServerLoop::server_wrote(const MatchInfoOut &info) {
+  if (usable_info(info)) return true;
+  stats_.others_refused++;
+  return false;
+}
+
 void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from) {
-  // a MatchInfo no server could have written (numbers out of range) is not
-  // another server's: nobody yields to it, follows it or counts it an owner
-  if (!usable_info(info)) {
-    stats_.others_refused++;
-    return;
-  }
+  if (!server_wrote(info)) return;
   owners_[info.match_id] = {from, -1.0};
   if (scheduled(info.match_id)) {
     // our own reader took another server's sample for a match we step: DDS

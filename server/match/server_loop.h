@@ -186,6 +186,7 @@ class ServerLoop {
   void take_notes(double t0);
   void take_others();
   void admit_hosted();
+  bool server_wrote(const MatchInfoOut &info);  // false (and counted) for a MatchInfo no server writes
   void take_samples(double now);
   void take_controls(double now);
   void take_over(double t0, double now);
