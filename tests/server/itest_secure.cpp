@@ -26,11 +26,14 @@ Process program(const Env &env, const std::string &name, std::vector<std::string
 }
 
 // tcpdump on the loopback (as root: -Z keeps it so, to write into the work
-// folder), every UDP port of the case's domain, until stopped;
+// folder), every UDP datagram sent to a port of the case's domain, until
+// stopped (by destination only: another domain's participant may send from an
+// ephemeral port that falls in this range, and a deterministic rally of its
+// own carries the same ball positions);
 // the capture has begun when it returns (or a failed check says why not)
 Process capture(const Env &env, const std::string &name) {
   int base = 7400 + 250 * env.domain;  // RTPS: the domain's 250 ports
-  Process p = program(env, name, {env.tcpdump, "-i", "lo", "-U", "-Z", "root", "-w", path(env, name + ".pcap"), "udp", "portrange",
+  Process p = program(env, name, {env.tcpdump, "-i", "lo", "-U", "-Z", "root", "-w", path(env, name + ".pcap"), "udp", "and", "dst", "portrange",
                                   std::to_string(base) + "-" + std::to_string(base + 249)});
   double end = mono_now() + 10.0;
   while (file_text(path(env, name + ".err")).find("listening on") == std::string::npos && mono_now() < end &&
