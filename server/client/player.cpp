@@ -128,13 +128,21 @@ void BotPlayer::on_segment(const SegmentOut &seg, double real) {
   }
   newest_seq_ = seg.seq;
   counters_.segments++;
-  if (brain_ready_ && clock_.valid())
-    brain_.on_segment(seg.segment, seg.cause == Cause::serve, seg.cause_index, clock_.sim_now(real));
+  feed_.add(seg);
+  hand_over(real);
+}
+
+// The brain plays the segment in effect on the bot's clock (SegmentFeed).
+void BotPlayer::hand_over(double real) {
+  if (!brain_ready_ || !clock_.valid()) return;
+  double now = clock_.sim_now(real);
+  if (const SegmentOut *s = feed_.due(now)) brain_.on_segment(s->segment, s->cause == Cause::serve, s->cause_index, now);
 }
 
 void BotPlayer::tick(double mono, double real, std::vector<RacketSampleIn> *samples,
                      std::vector<ControlIn> *controls) {
   if (next_sample_ < 0.0) next_sample_ = next_join_ = mono;
+  hand_over(real);
   if (!joined_ && mono >= next_join_) {
     ControlIn c;
     c.match_id = p_.match;

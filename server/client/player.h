@@ -13,6 +13,7 @@
 #include "bot.h"
 #include "fields.h"
 #include "link.h"
+#include "segment_feed.h"
 #include "sim_clock.h"
 #include "trust.h"
 #include "types.h"
@@ -94,7 +95,9 @@ class BotPlayer {
   uint64_t model_hash_ = 0, server_hash_ = 0;
   int level_ = -1, players_ = 0;
   double extrapolation_ = -1.0, stale_ = -1.0;
+  SegmentFeed feed_;
   uint32_t newest_seq_ = 0, sample_seq_ = 0, control_seq_ = 0;
+  void hand_over(double real);
   double next_sample_ = -1.0, next_join_ = -1.0;
   std::string error_;
   PlayerCounters counters_;

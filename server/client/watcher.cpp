@@ -218,20 +218,13 @@ void Watcher::check_states() {
   }
 }
 
-// The segment in effect at sim time t: the newest with t0 <= t.
-const SegmentOut *Watcher::segment_at(const Watched &w, double t) const {
-  for (auto it = w.segments.rbegin(); it != w.segments.rend(); ++it)
-    if (it->second.segment.t0 <= t) return &it->second;
-  return nullptr;
-}
-
 void Watcher::frame(double real) {
   const double every = settings_.snapshot_every;
   for (auto &kv : matches_) {
     Watched &w = kv.second;
     if (!w.has_info || !w.clock.valid()) continue;
     double t = w.clock.sim_now(real);
-    const SegmentOut *sg = segment_at(w, t);
+    const SegmentOut *sg = segment_in_effect(w.segments, t);
     if (!sg) continue;
     ball_state b;
     if (ball_segment_eval(&w.info.model, &sg->segment, t, &b) != BALL_OK) continue;

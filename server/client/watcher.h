@@ -92,7 +92,7 @@ class Watcher {
     MatchInfoOut info;
     bool has_info = false;
     SimClock clock;
-    std::map<uint32_t, SegmentOut> segments;  // by seq, the newest kKeepSegments
+    Segments segments;                        // by seq, the newest kKeepSegments
     std::vector<StateOut> pending;            // states whose segment has not arrived yet
     WatchedMatchSummary tally;
     uint32_t last_event_seq = 0;
@@ -103,7 +103,6 @@ class Watcher {
   };
   bool wanted(uint32_t id) const { return settings_.match < 0 || id == static_cast<uint32_t>(settings_.match); }
   Watched &watched(uint32_t id);
-  const SegmentOut *segment_at(const Watched &w, double t) const;
   void say(uint32_t match, double sim_time, const std::string &text);
 
   WatcherSettings settings_;

@@ -160,6 +160,7 @@ balldds::Segment to_idl(const SegmentOut &in) {
   o.v0(v3(in.segment.v0));
   o.s0(v3(in.segment.s0));
   o.grounded(in.segment.grounded != 0);
+  o.sound(in.sound);
   o.server_time(in.server_time);
   o.model_hash(in.model_hash);
   o.sample_seq(in.sample.seq);
@@ -180,6 +181,7 @@ void from_idl(const balldds::Segment &in, SegmentOut *o) {
   o->segment.v0 = v3(in.v0());
   o->segment.s0 = v3(in.s0());
   o->segment.grounded = in.grounded() ? 1 : 0;
+  o->sound = in.sound();
   o->server_time = in.server_time();
   o->model_hash = in.model_hash();
   o->sample.seq = in.sample_seq();

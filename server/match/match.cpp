@@ -16,6 +16,24 @@ constexpr double kUnderFloor = 1.0;   // m under it: a swing's straight line thr
 constexpr double kOverNet = 1.0;      // m beyond the net a racket may reach
 constexpr int32_t kMaxSeqJump = 1000; // a holder's seq goes at most this far ahead of its previous (33 s at 30 Hz)
 constexpr double kFarAway = 30.0;     // m beyond the court: the ball has left it
+constexpr double kAheadHorizon = 10.0; // sim s: how far ahead a static contact is looked for (docs/protocol.md)
+
+// A decided point on the rules' state: the score, the next server, the serve
+// due serve_delay after the instant t it was decided.
+void settle(const Call &call, double t, double serve_delay, PlayState *p) {
+  if (call.winner >= 0) p->score[call.winner]++;
+  p->rally++;
+  p->serving_side = static_cast<int>(p->rally % 2);
+  p->serve_due = true;
+  p->serve_at = t + serve_delay;
+}
+
+bool same_v3(ball_vec3 a, ball_vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+bool same_segment(const ball_segment &a, const ball_segment &b) {
+  return a.t0 == b.t0 && same_v3(a.p0, b.p0) && same_v3(a.v0, b.v0) && same_v3(a.s0, b.s0) &&
+         a.grounded == b.grounded;
+}
 
 bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
 
@@ -57,20 +75,99 @@ void Match::emit(MatchOutput *out, EventKind kind, int index, double time, Reaso
   e.reason = reason;
   e.value = value;
   e.score = score_;
-  e.segment_seq = segment_seq_;
+  e.segment_seq = current_seq_;
   out->events.push_back(e);
 }
 
 void Match::emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref) {
   SegmentOut s;
   s.match_id = config_.id;
-  s.seq = ++segment_seq_;
+  s.seq = current_seq_ = ++segment_seq_;
   s.cause = segment_cause_ = cause;
   s.cause_index = segment_cause_index_ = index;
   s.segment = seg;
   s.model_hash = model_hash_;
   s.sample = ref;
   out->segments.push_back(s);
+  ahead_.valid = false;  // a segment written now supersedes the one written ahead (or is it, judged anew)
+}
+
+// ---- segments ahead of time (docs/protocol.md) ----------------------------
+
+void Match::write_ahead(MatchOutput *out) {
+  const ball_model &m = model();
+  if (ahead_.valid || m.scheme != BALL_SCHEME_EXACT ||
+      !(m.effects & (BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_WALLS)))
+    return;
+  // from the segment's start, as the step looks for its next contact
+  ball_prediction pr{};
+  pr.events = &ahead_.event;
+  pr.cap_events = 1;
+  double t0 = sim_.seg.t0;
+  if (ball_predict(&m, &sim_.seg, t0, t0 + kAheadHorizon, kAheadHorizon, &pr) != BALL_OK || pr.n_events < 1 ||
+      !(ahead_.event.time > sim_.time))
+    return;
+  const ball_event &ev = ahead_.event;
+  SegmentOut s;
+  s.match_id = config_.id;
+  s.seq = ++segment_seq_;
+  s.cause = ev.kind == BALL_EVENT_NET ? Cause::net : ev.kind == BALL_EVENT_WALL ? Cause::wall : Cause::floor;
+  s.cause_index = ev.kind == BALL_EVENT_WALL ? ev.index : -1;
+  s.segment = ev.segment;
+  s.sound = ev.sound != 0;
+  s.model_hash = model_hash_;
+  s.play = judged(ev);
+  out->segments.push_back(s);
+  ahead_.segment = s;
+  ahead_.valid = true;
+  counters_.ahead++;
+}
+
+bool Match::is_ahead(const ball_event &ev) const {
+  const ball_event &a = ahead_.event;
+  return ahead_.valid && ev.kind == a.kind && ev.index == a.index && ev.time == a.time &&
+         same_segment(ev.segment, a.segment);
+}
+
+PlayState Match::play_of(const Rally &r) const {
+  PlayState p;
+  p.score = score_;
+  p.serving_side = serving_side_;
+  p.rally = points_played_;
+  p.live = r.live();
+  p.striker = r.striker();
+  p.bounces = r.bounces();
+  p.bounce_side = r.bounce_side();
+  p.net = r.net();
+  p.rally_start = r.started();
+  p.serve_due = need_serve_;
+  p.serve_at = serve_at_;
+  p.event_seq = event_seq_;
+  return p;
+}
+
+Call Match::judge(Rally &r, const ball_event &ev) const {
+  switch (ev.kind) {
+    case BALL_EVENT_FLOOR:
+      return r.on_floor(side_of_point(ev.point), court_.inside(ev.point.x, ev.point.z), ev.segment.grounded != 0);
+    case BALL_EVENT_NET: return r.on_net();
+    case BALL_EVENT_WALL: return r.on_wall();
+    case BALL_EVENT_RACKET: return r.on_racket(Court::side_of_slot(ev.index));
+    default: return Call{};
+  }
+}
+
+PlayState Match::judged(const ball_event &ev) const {
+  Rally r = rally_;
+  uint32_t events = ev.sound ? 2u : 1u;  // the collision and its sound
+  Call call = r.live() ? judge(r, ev) : Call{};
+  PlayState p = play_of(r);
+  if (call.decided) {
+    settle(call, ev.time, config_.serve_delay, &p);
+    events++;  // the point
+  }
+  p.event_seq = event_seq_ + events;
+  return p;
 }
 
 void Match::set_state(MatchState s, MatchOutput *out) {
@@ -171,8 +268,9 @@ void Match::advance(double dt, bool with_state, MatchOutput *out) {
     bool far = b.position.x < court_.x_lo - kFarAway || b.position.x > court_.x_hi + kFarAway ||
                b.position.z < court_.z_lo - kFarAway || b.position.z > court_.z_hi + kFarAway;
     bool still = sim_.seg.grounded && ball_v3_norm(b.velocity) < 0.05;
-    apply(rally_.on_frame(far || still, sim_.time, config_.max_rally_time), out);
+    apply(rally_.on_frame(far || still, sim_.time, config_.max_rally_time), sim_.time, out);
   }
+  write_ahead(out);
 
   if (!with_state) return;
   state_accum_ += config_.state_rate / config_.frame_rate;
@@ -184,7 +282,7 @@ void Match::advance(double dt, bool with_state, MatchOutput *out) {
     s.frame = sim_.frame;
     s.sim_time = sim_.time;
     s.state = state_;
-    s.segment_seq = segment_seq_;
+    s.segment_seq = current_seq_;
     ball_sim_state(&sim_, &s.ball);
     s.sim_hash = ball_sim_hash(&sim_);
   }
@@ -209,7 +307,15 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
       break;
     case BALL_EVENT_KIND_COUNT: return;
   }
-  emit_segment(out, cause, index, ev.segment, ref);
+  // the contact written ahead, as foreseen: in effect now, not written again
+  bool foreseen = is_ahead(ev);
+  if (foreseen) {
+    current_seq_ = ahead_.segment.seq;
+    segment_cause_ = cause;
+    segment_cause_index_ = index;
+  } else {
+    emit_segment(out, cause, index, ev.segment, ref);
+  }
   EventOut e;
   e.match_id = config_.id;
   e.seq = ++event_seq_;
@@ -222,7 +328,7 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
   e.point = ev.point;
   e.velocity_in = ev.velocity_in;
   e.velocity_out = ev.velocity_out;
-  e.segment_seq = segment_seq_;
+  e.segment_seq = current_seq_;
   e.score = score_;
   out->events.push_back(e);
   if (e.sound) {
@@ -232,38 +338,38 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
     out->events.push_back(s);
   }
 
-  if (!rally_.live()) {
-    if (kind == EventKind::racket) counters_.dead_hits++;
-    return;
+  if (rally_.live()) {
+    if (kind == EventKind::floor) counters_.bounces++;
+    if (kind == EventKind::racket) counters_.hits++;
+    apply(judge(rally_, ev), ev.time, out);
+  } else if (kind == EventKind::racket) {
+    counters_.dead_hits++;
   }
-  switch (kind) {
-    case EventKind::floor:
-      counters_.bounces++;
-      apply(rally_.on_floor(e.side, court_.inside(ev.point.x, ev.point.z), ev.segment.grounded != 0), out);
-      break;
-    case EventKind::net: apply(rally_.on_net(), out); break;
-    case EventKind::wall: apply(rally_.on_wall(), out); break;
-    case EventKind::racket:
-      counters_.hits++;
-      apply(rally_.on_racket(Court::side_of_slot(index)), out);
-      break;
-    default: break;
+  if (!foreseen) return;
+  // judged otherwise than when it was written ahead: written again
+  PlayState now = play();
+  ahead_.valid = false;
+  if (!(now == ahead_.segment.play)) {
+    emit_segment(out, cause, index, ev.segment, ref);
+    out->segments.back().sound = e.sound;
+    counters_.ahead_corrected++;
   }
 }
 
-void Match::apply(const Call &call, MatchOutput *out) {
+void Match::apply(const Call &call, double t, MatchOutput *out) {
   if (!call.decided) return;
-  if (call.winner >= 0) {
-    score_[call.winner]++;
+  if (call.winner >= 0)
     counters_.points++;
-  } else {
+  else
     counters_.lets++;
-  }
-  points_played_++;
-  serving_side_ = static_cast<int>(points_played_ % 2);
-  need_serve_ = true;
-  serve_at_ = sim_.time + config_.serve_delay;
-  emit(out, EventKind::point, -1, sim_.time, call.reason);
+  PlayState p = play();
+  settle(call, t, config_.serve_delay, &p);
+  score_ = p.score;
+  points_played_ = p.rally;
+  serving_side_ = p.serving_side;
+  need_serve_ = p.serve_due;
+  serve_at_ = p.serve_at;
+  emit(out, EventKind::point, -1, t, call.reason);
   out->events.back().side = call.winner;
   out->info_changed = true;
 }
@@ -534,7 +640,7 @@ MatchInfoOut Match::info() const {
   i.play = play();
   i.pause_reason = state_ == MatchState::paused ? pause_reason_ : Reason::none;
   i.pause_slot = state_ == MatchState::paused ? pause_slot_ : -1;
-  i.segment_seq = segment_seq_;
+  i.segment_seq = current_seq_;
   i.segment_cause = segment_cause_;
   i.segment_cause_index = segment_cause_index_;
   i.segment = sim_.seg;
@@ -561,22 +667,7 @@ MatchInfoOut Match::info() const {
   return i;
 }
 
-PlayState Match::play() const {
-  PlayState p;
-  p.score = score_;
-  p.serving_side = serving_side_;
-  p.rally = points_played_;
-  p.live = rally_.live();
-  p.striker = rally_.striker();
-  p.bounces = rally_.bounces();
-  p.bounce_side = rally_.bounce_side();
-  p.net = rally_.net();
-  p.rally_start = rally_.started();
-  p.serve_due = need_serve_;
-  p.serve_at = serve_at_;
-  p.event_seq = event_seq_;
-  return p;
-}
+PlayState Match::play() const { return play_of(rally_); }
 
 // ---- another server's match -------------------------------------------------
 
@@ -644,8 +735,8 @@ bool Match::follow(const MatchInfoOut &info, std::string *err) {
   return true;
 }
 
-bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, double target, MatchOutput *out,
-                    std::string *err) {
+bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t newest_seq, double target,
+                    MatchOutput *out, std::string *err) {
   if (!follow(info, err)) return false;
   bool seg_newer = seg && seg->seq > info.segment_seq;
   const PlayState &p = seg_newer ? seg->play : info.play;
@@ -681,8 +772,11 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, double targ
   rally_.restore(p.live, p.striker, p.bounces, p.bounce_side, p.net, p.rally_start);
   need_serve_ = p.serve_due;
   serve_at_ = p.serve_at;
-  event_seq_ = p.event_seq;
-  segment_seq_ = std::max(seg ? seg->seq : 0u, info.segment_seq);
+  event_seq_ = std::max(p.event_seq, info.play.event_seq);  // a segment written ahead foresaw its own
+  current_seq_ = std::max(seg ? seg->seq : 0u, info.segment_seq);
+  // past every seq the owner wrote, ahead included: ours supersede its
+  segment_seq_ = std::max(current_seq_, newest_seq);
+  ahead_.valid = false;
   if (seg) {
     segment_cause_ = seg->cause;
     segment_cause_index_ = seg->cause_index;

@@ -82,7 +82,9 @@ class Match {
   // (the bounces and hits of the gap go to out with their own times), and
   // stops following. false with err (and the match still following) when
   // the segment cannot be the sim's (ball_sim_set_segment refused it).
-  bool restore(const MatchInfoOut &info, const SegmentOut *segment, double target, MatchOutput *out,
+  // newest_seq: the highest segment seq the owner wrote (one written ahead
+  // of its contact included), which this server's segments go on from.
+  bool restore(const MatchInfoOut &info, const SegmentOut *segment, uint32_t newest_seq, double target, MatchOutput *out,
                std::string *err);
   PlayState play() const;  // the rules' state now
 
@@ -117,12 +119,25 @@ class Match {
   };
 
   // the holder's sample `seq` arrived: the seqs it skipped since the newest that did, if any
+  // The segment of the next static contact, written before the contact
+  // (docs/protocol.md, "Segments ahead of time").
+  struct Ahead {
+    bool valid = false;
+    ball_event event{};  // the contact as libball predicts it
+    SegmentOut segment;  // as written
+  };
+
   static uint64_t stream_gap(Slot &slot, uint32_t seq);
+  void write_ahead(MatchOutput *out);
+  bool is_ahead(const ball_event &ev) const;  // ev is the contact written ahead, to the bit
+  PlayState judged(const ball_event &ev) const;  // the rules' state once ev is judged, nothing changed
+  Call judge(Rally &rally, const ball_event &ev) const;  // what the rules make of a collision
+  PlayState play_of(const Rally &rally) const;
   void emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason = Reason::none,
             double value = 0.0);
   void emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref);
   void handle_event(const ball_event &ev, MatchOutput *out);
-  void apply(const Call &call, MatchOutput *out);
+  void apply(const Call &call, double t, MatchOutput *out);  // a point decided at sim s t
   void serve(MatchOutput *out);
   void update_presence(double now, MatchOutput *out);
   void advance(double dt, bool with_state, MatchOutput *out);  // a frame's sim part: serve, step, rules
@@ -149,7 +164,9 @@ class Match {
   std::array<int, 2> score_{0, 0};
   int serving_side_ = 0;
   uint32_t points_played_ = 0;
-  uint32_t segment_seq_ = 0;
+  uint32_t segment_seq_ = 0;  // the newest segment written (one ahead included)
+  uint32_t current_seq_ = 0;  // the segment in effect: the sim's
+  Ahead ahead_;
   Cause segment_cause_ = Cause::serve;  // what started the current segment
   int segment_cause_index_ = -1;
   uint32_t event_seq_ = 0;

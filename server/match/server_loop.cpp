@@ -163,10 +163,9 @@ void ServerLoop::take_others() {
     }
     auto it = followed_.find(seg.match_id);
     if (it == followed_.end() || !(it->second.owner == from)) continue;
-    if (!it->second.has_segment || seg.seq > it->second.segment.seq) {
-      it->second.segment = seg;
-      it->second.has_segment = true;
-    }
+    Segments &kept = it->second.segments;
+    kept[seg.seq] = seg;
+    while (kept.size() > kFollowedSegments) kept.erase(kept.begin());
   }
 }
 
@@ -208,7 +207,7 @@ void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from)
   }
   Followed &f = it->second;
   if (f.owner != from || info.revision >= f.info.revision) f.info = info;
-  if (f.owner != from) f.has_segment = false;  // a new owner: its segments from now
+  if (f.owner != from) f.segments.clear();  // a new owner: its segments from now
   f.owner = from;
   f.lost_at = -1.0;
 }
@@ -293,20 +292,30 @@ void ServerLoop::take_over(double t0, double now) {
     // on the owner's sim clock, as its clients map it (protocol.md, "Time"),
     // to the frame before this server's first: that frame lands on the mapping
     const MatchInfoOut &info = f.info;
-    bool plays = info.state == MatchState::playing || (f.has_segment && f.segment.seq > info.segment_seq);
+    // a segment written after the info says the match played on (one
+    // written ahead of its contact may come before a pause's info)
+    bool plays = info.state == MatchState::playing;
+    uint32_t newest_seq = info.segment_seq;
+    for (const auto &kv : f.segments) {
+      plays = plays || (kv.first > info.segment_seq && kv.second.server_time > info.server_time);
+      newest_seq = std::max(newest_seq, kv.first);
+    }
     double first_real = s.clock.realtime_at(s.clock.deadline(s.k));
     double target = info.sim_time;
     if (plays) target += (first_real - m->frame_time() - info.server_time) * info.time_base;
-    if (f.has_segment) target = std::max(target, f.segment.segment.t0);
+    // never before a serve or a hit the owner wrote (those are never written ahead)
+    for (const auto &kv : f.segments)
+      if (kv.second.cause == Cause::serve || kv.second.cause == Cause::racket)
+        target = std::max(target, kv.second.segment.t0);
     if (info.segment_seq > 0) target = std::max(target, info.segment.t0);
-    // the newest segment: a Segment sample, or the one the MatchInfo carries
+    // the segment in effect at target (protocol.md: the highest seq whose t0
+    // is not after it): a Segment sample, or the one the MatchInfo carries
     SegmentOut from_info = current_segment(info);
-    const SegmentOut *seg = f.has_segment && f.segment.seq >= info.segment_seq ? &f.segment
-                            : info.segment_seq > 0                            ? &from_info
-                                                                              : nullptr;
+    const SegmentOut *seg = segment_in_effect(f.segments, target);
+    if (!seg || seg->seq < info.segment_seq) seg = info.segment_seq > 0 ? &from_info : nullptr;
     out_.clear();
     std::string err;
-    if (!m->restore(info, seg, target, &out_, &err)) {
+    if (!m->restore(info, seg, newest_seq, target, &out_, &err)) {
       stats_.follow_failures++;
       say("cannot take match " + std::to_string(it->first) + " over: " + err);
       host_.remove(it->first);

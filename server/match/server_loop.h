@@ -93,6 +93,9 @@ class ServerPort {
 // s: how often a standby with nothing of its own to step wakes to take
 // its followed matches' samples and notes
 constexpr double kFollowWake = 1.0 / 60.0;
+// segments a standby keeps of each followed match, the newest by seq: the
+// one in effect and those written ahead of their contact
+constexpr size_t kFollowedSegments = 8;
 // s between two assertions of the writers' liveliness: 4 per 1 s lease
 constexpr double kLivelinessPeriod = 0.25;
 // Samples one note of DDS may count as lost: DDS counts a gap in a writer's
@@ -215,8 +218,7 @@ class ServerLoop {
   // Another server's match this one follows (a standby).
   struct Followed {
     MatchInfoOut info;             // the owner's newest
-    SegmentOut segment;            // its newest (highest seq)
-    bool has_segment = false;
+    Segments segments;             // its newest few (kFollowedSegments; the newest may lie ahead)
     ParticipantId owner{};         // the owner's participant
     double lost_at = -1.0;         // mono s its writers lost their liveliness; -1: alive
   };

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 
 #include "ball/ball.h"
@@ -225,6 +226,14 @@ struct PlayState {
   uint32_t event_seq = 0;          // seq of the match's newest event
 };
 
+inline bool operator==(const PlayState &a, const PlayState &b) {
+  bool same = true;
+#define BALL_SAME_PLAY(f) same = same && a.f == b.f;
+  BALL_PLAY_FIELDS(BALL_SAME_PLAY)
+#undef BALL_SAME_PLAY
+  return same;
+}
+
 // server -> clients: a flight segment (Segment). Every server sample carries
 // the server's id and the server s of its publication; the loop fills them in.
 struct SegmentOut {
@@ -235,6 +244,7 @@ struct SegmentOut {
   Cause cause = Cause::serve; // what started it
   int cause_index = -1;       // WALL: the wall; RACKET: the racket (slot); SERVE: the serving slot; else -1
   ball_segment segment{};     // t0 sim s, p0 m, v0 m/s, s0 m/s, grounded (libball's ball_segment)
+  bool sound = false;         // its collision makes the paper's sound
   uint64_t model_hash = 0;    // ball_model_hash of the model that made it
   SampleRef sample;           // RACKET: the hitting racket's newest sample
   PlayState play;             // the rules' state once its collision is judged
@@ -330,6 +340,19 @@ struct MatchInfoOut {
   double racket_margin = 0.0;      // m: how far beyond its half a racket may be
 };
 
+// A reader's segments of one match, by seq.
+using Segments = std::map<uint32_t, SegmentOut>;
+
+// The segment in effect at sim time t (docs/protocol.md, "Evaluating the
+// ball from segments"): the highest seq whose t0 is not after t; nullptr:
+// none. One written ahead of its contact that a later seq superseded (a
+// hit before the contact) never is.
+inline const SegmentOut *segment_in_effect(const Segments &segments, double t) {
+  for (auto it = segments.rbegin(); it != segments.rend(); ++it)
+    if (it->second.segment.t0 <= t) return &it->second;
+  return nullptr;
+}
+
 // The current segment a MatchInfo carries, as a Segment (without its
 // racket sample and its rules' state), for a reader that has not got it.
 inline SegmentOut current_segment(const MatchInfoOut &i) {
@@ -358,7 +381,9 @@ inline SegmentOut current_segment(const MatchInfoOut &i) {
   X(serves)      /* serves */                                                     \
   X(pauses)      /* pauses, every reason */                                       \
   X(step_errors) /* frames ball_step refused (never seen; counted, not fatal) */  \
-  X(rejected)    /* racket samples that found their share of the reader's inbox full */
+  X(rejected)    /* racket samples that found their share of the reader's inbox full */     \
+  X(ahead)       /* segments of static contacts written before the contact */             \
+  X(ahead_corrected) /* of those, written again when the contact was stepped */
 struct MatchCounters {
 #define BALL_COUNTER(name) uint64_t name = 0;
   BALL_MATCH_COUNTERS(BALL_COUNTER)

@@ -5,6 +5,7 @@
 #include "bot.h"
 #include "game.h"
 #include "link.h"
+#include "segment_feed.h"
 
 namespace test {
 
@@ -21,6 +22,12 @@ struct RallyResult {
   uint64_t accepted = 0, drops = 0;
   uint64_t plans = 0, late = 0;
   int racket_segments_with_sample = 0, racket_segments = 0;
+  // what the match wrote, each segment with the sim time of the frame that wrote it
+  std::vector<SegmentOut> segments;
+  std::vector<double> written_at;
+  std::vector<EventOut> events;
+  std::vector<StateOut> states;
+  MatchCounters counters;
 };
 
 // Slot `slot`'s racket as its bot has it at sim time t, the slot's next
@@ -37,13 +44,11 @@ inline RacketSampleIn bot_sample(Game &g, BotBrain &brain, int slot, double t) {
   return s;
 }
 
-inline RallyResult play(ball_level level, const Net &net, double seconds, uint64_t seed = 1,
-                        double miss_rate = 0.0, double extrapolation = 0.25) {
-  MatchConfig c = default_config();
-  c.level = level;
-  c.extrapolation_time = extrapolation;
+inline RallyResult play(const MatchConfig &c, const Net &net, double seconds, uint64_t seed = 1,
+                        double miss_rate = 0.0) {
   Game g(c);
   BotBrain brain[2];
+  SegmentFeed feed;  // the segment in effect, for the bots
   Link<RacketSampleIn> link[2] = {Link<RacketSampleIn>({net.delay, net.jitter, net.loss}, seed * 2 + 1),
                                   Link<RacketSampleIn>({net.delay, net.jitter, net.loss}, seed * 2 + 2)};
   Rng noise(seed * 7 + 3);
@@ -81,11 +86,11 @@ inline RallyResult play(ball_level level, const Net &net, double seconds, uint64
     g.out.clear();
     g.match.frame(g.now, &g.out);
     g.keep();
-    if (!g.out.segments.empty()) {
-      const SegmentOut &s = g.out.segments.back();
+    r.written_at.insert(r.written_at.end(), g.out.segments.size(), g.match.sim().time);
+    for (const SegmentOut &s : g.out.segments) feed.add(s);
+    if (const SegmentOut *s = feed.due(g.match.sim().time))
       for (int i = 0; i < 2; ++i)
-        brain[i].on_segment(s.segment, s.cause == Cause::serve, s.cause_index, g.match.sim().time);
-    }
+        brain[i].on_segment(s->segment, s->cause == Cause::serve, s->cause_index, g.match.sim().time);
     g.now += g.match.frame_time();
   }
   for (const auto &s : g.segments) {
@@ -97,11 +102,23 @@ inline RallyResult play(ball_level level, const Net &net, double seconds, uint64
   r.bounces = g.match.counters().bounces;
   r.points = g.match.counters().points;
   r.serves = g.match.counters().serves;
+  r.segments = g.segments;
+  r.events = g.events;
+  r.states = g.states;
+  r.counters = g.match.counters();
   for (int i = 0; i < 2; ++i) {
     r.plans += brain[i].counters().plans;
     r.late += brain[i].counters().late;
   }
   return r;
+}
+
+inline RallyResult play(ball_level level, const Net &net, double seconds, uint64_t seed = 1,
+                        double miss_rate = 0.0, double extrapolation = 0.25) {
+  MatchConfig c = default_config();
+  c.level = level;
+  c.extrapolation_time = extrapolation;
+  return play(c, net, seconds, seed, miss_rate);
 }
 
 }  // namespace test

@@ -120,6 +120,7 @@ TEST(a_racket_parked_off_the_court_wins_nothing_at_easy) {
   c.level = BALL_LEVEL_EASY;
   Game g(c);
   BotBrain honest;
+  SegmentFeed feed;  // the segment in effect, for the bot
   BotParams p;
   p.slot = 0;
   p.lead = bot_lead(15.0, 0.0, 0.0, 0.0);
@@ -147,10 +148,9 @@ TEST(a_racket_parked_off_the_court_wins_nothing_at_easy) {
     g.out.clear();
     g.match.frame(g.now, &g.out);
     g.keep();
-    if (!g.out.segments.empty()) {
-      const SegmentOut &s = g.out.segments.back();
-      honest.on_segment(s.segment, s.cause == Cause::serve, s.cause_index, g.match.sim().time);
-    }
+    for (const SegmentOut &s : g.out.segments) feed.add(s);
+    if (const SegmentOut *s = feed.due(g.match.sim().time))
+      honest.on_segment(s->segment, s->cause == Cause::serve, s->cause_index, g.match.sim().time);
     g.now += g.match.frame_time();
   }
   int out_after_honest = 0, won[2] = {0, 0};

@@ -70,10 +70,14 @@ Outcome run(const Trial &tr) {
     p.seed = tr.seed * 11 + i;
     brain[i].init(a.match.model(), a.match.court(), p);
   }
-  // what the standby holds: the newest info and segment the owner published
+  // what the standby holds: the newest info and the segments the owner
+  // published (the newest may lie ahead of its contact)
   MatchInfoOut info = a.match.info();
+  Segments published;
   SegmentOut seg;
   bool have_seg = false;
+  SegmentFeed feed;  // the segment in effect, for the bots
+  uint32_t newest_published = 0;
   std::string err;
   CHECK_MSG(b.match.follow(info, &err), "follow: %s", err.c_str());
   int next_info = 0;
@@ -96,7 +100,12 @@ Outcome run(const Trial &tr) {
       // the take-over: from what the owner published up to its death, on to
       // the owner's sim time now (the end of its previous frame)
       MatchOutput out;
-      o.restored = b.match.restore(info, have_seg ? &seg : nullptr, a.match.sim().time, &out, &o.err);
+      const SegmentOut *in_effect = segment_in_effect(published, a.match.sim().time);
+      have_seg = in_effect && in_effect->seq >= info.segment_seq;
+      if (have_seg) seg = *in_effect;
+      newest_published = published.empty() ? info.segment_seq : std::max(info.segment_seq, published.rbegin()->first);
+      o.restored = b.match.restore(info, have_seg ? &seg : nullptr, newest_published, a.match.sim().time, &out,
+                                   &o.err);
       if (!o.restored) return o;
       o.catch_up_segments = out.segments.size();
       b_segs.insert(b_segs.end(), out.segments.begin(), out.segments.end());
@@ -111,17 +120,15 @@ Outcome run(const Trial &tr) {
       b_segs.insert(b_segs.end(), out.segments.begin(), out.segments.end());
       b_events.insert(b_events.end(), out.events.begin(), out.events.end());
     }
-    if (!a.out.segments.empty()) {
-      const SegmentOut &s = a.out.segments.back();
+    // the bots play the segment in effect (protocol.md), as ball-bot does
+    for (const SegmentOut &s : a.out.segments) feed.add(s);
+    if (const SegmentOut *now = feed.due(a.match.sim().time)) {
       for (int i = 0; i < 2; ++i)
-        brain[i].on_segment(s.segment, s.cause == Cause::serve, s.cause_index, a.match.sim().time);
+        brain[i].on_segment(now->segment, now->cause == Cause::serve, now->cause_index, a.match.sim().time);
     }
     // the owner publishes until it dies: segments, then an info on a change or once a second
     if (k <= tr.death) {
-      for (; a_seg_seen < a.segments.size(); ++a_seg_seen) {
-        seg = a.segments[a_seg_seen];
-        have_seg = true;
-      }
+      for (; a_seg_seen < a.segments.size(); ++a_seg_seen) published[a.segments[a_seg_seen].seq] = a.segments[a_seg_seen];
       if (a.out.info_changed || k >= next_info) {
         info = a.match.info();
         info.server_time = a.now;
@@ -134,8 +141,13 @@ Outcome run(const Trial &tr) {
   // The standby knows every racket sample of the gap at once when it takes
   // over, where the owner knew each as it came: where a racket hit (its
   // estimate of a racket) is involved they may differ, as they would on the
-  // wire. Up to the first racket segment of either, the streams are the same.
-  uint32_t last_known = have_seg ? seg.seq : 0;
+  // wire. Up to the first racket segment of either, the streams are the same:
+  // the standby's seqs go on from the newest the owner wrote, its segments
+  // are the owner's from the one after the segment it restored from (the
+  // owner's segment written ahead of its contact, written again).
+  uint32_t last_known = newest_published;
+  uint32_t restored_seq = have_seg ? seg.seq : info.segment_seq;
+  while (a_seg_seen > 0 && a.segments[a_seg_seen - 1].seq > restored_seq) --a_seg_seen;
   uint32_t last_event = std::max(have_seg ? seg.play.event_seq : 0u, info.play.event_seq);
   for (size_t n = 0; n < b_segs.size(); ++n) {
     const SegmentOut &s = b_segs[n];
@@ -145,9 +157,8 @@ Outcome run(const Trial &tr) {
       o.mismatches++;
       break;
     }
-    size_t i = a_seg_seen;
-    while (i < a.segments.size() && a.segments[i].seq != s.seq) ++i;
-    if (i == a.segments.size() || a.segments[i].cause == Cause::racket || s.cause == Cause::racket) break;
+    size_t i = a_seg_seen + n;
+    if (i >= a.segments.size() || a.segments[i].cause == Cause::racket || s.cause == Cause::racket) break;
     const SegmentOut &r = a.segments[i];
     double dp = std::fmax(ball_v3_max_diff(r.segment.p0, s.segment.p0), ball_v3_max_diff(r.segment.v0, s.segment.v0));
     o.worst_p0 = std::fmax(o.worst_p0, dp);
@@ -284,14 +295,17 @@ TEST(what_does_not_fit_is_refused_and_changes_nothing) {
     if (k == 2) s.segment.t0 = info.sim_time + 5;  // after the time it is restored at
     s.seq = info.segment_seq + 1;
     err.clear();
-    CHECK_MSG(!b.match.restore(info, &s, info.sim_time, &out, &err), "bad segment %d restored", k);
+    CHECK_MSG(!b.match.restore(info, &s, s.seq, info.sim_time, &out, &err), "bad segment %d restored", k);
     CHECK_MSG(err.find("segment") != std::string::npos, "%s", err.c_str());
     CHECK(b.match.following());
     CHECK(out.segments.empty() && out.events.empty());
   }
   CHECK_EQ(ball_sim_hash(&b.match.sim()), before);
-  // the newest one is restored, and the match is the owner's
-  CHECK(b.match.restore(info, &a.segments.back(), a.match.sim().time, &out, &err));
+  // the one in effect is restored, and the match is the owner's
+  Segments all;
+  for (const SegmentOut &s : a.segments) all[s.seq] = s;
+  CHECK(b.match.restore(info, segment_in_effect(all, a.match.sim().time), all.rbegin()->first, a.match.sim().time,
+                        &out, &err));
   CHECK(!b.match.following());
   CHECK(b.match.play().score == a.match.play().score);
 }
