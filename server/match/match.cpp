@@ -270,7 +270,12 @@ void Match::advance(double dt, bool with_state, MatchOutput *out) {
     bool still = sim_.seg.grounded && ball_v3_norm(b.velocity) < 0.05;
     apply(rally_.on_frame(far || still, sim_.time, config_.max_rally_time), sim_.time, out);
   }
+  bool had_ahead = ahead_.valid;
   write_ahead(out);
+  // a contact stepped as foreseen with none written ahead after it: only a
+  // MatchInfo tells a standby that this server stepped it (docs/protocol.md)
+  if (stepped_ahead_ && !(ahead_.valid && !had_ahead)) out->info_changed = true;
+  stepped_ahead_ = false;
 
   if (!with_state) return;
   state_accum_ += config_.state_rate / config_.frame_rate;
@@ -346,12 +351,15 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
     counters_.dead_hits++;
   }
   if (!foreseen) return;
-  // judged otherwise than when it was written ahead: written again
+  // judged otherwise than when it was written ahead: written again (and the
+  // MatchInfo, which tells a standby it was stepped)
   PlayState now = play();
   ahead_.valid = false;
+  stepped_ahead_ = true;
   if (!(now == ahead_.segment.play)) {
     emit_segment(out, cause, index, ev.segment, ref);
     out->segments.back().sound = e.sound;
+    out->info_changed = true;
     counters_.ahead_corrected++;
   }
 }

@@ -167,6 +167,7 @@ class Match {
   uint32_t segment_seq_ = 0;  // the newest segment written (one ahead included)
   uint32_t current_seq_ = 0;  // the segment in effect: the sim's
   Ahead ahead_;
+  bool stepped_ahead_ = false;  // this frame stepped a contact written ahead
   Cause segment_cause_ = Cause::serve;  // what started the current segment
   int segment_cause_index_ = -1;
   uint32_t event_seq_ = 0;

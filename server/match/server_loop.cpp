@@ -278,6 +278,22 @@ bool ServerLoop::may_create(const ControlIn &c) {
 
 // ---- take-overs --------------------------------------------------------------
 
+const SegmentOut *stepped_segment(const Segments &segments, const MatchInfoOut &info, double target) {
+  for (auto it = segments.rbegin(); it != segments.rend(); ++it) {
+    const SegmentOut &c = it->second;
+    if (c.seq < info.segment_seq) break;  // the info's own is newer
+    if (c.segment.t0 > target) continue;
+    bool superseded = false, followed = false;
+    for (auto later = it.base(); later != segments.end(); ++later) {
+      superseded = superseded || later->second.segment.t0 <= c.segment.t0;
+      followed = followed || later->second.segment.t0 > c.segment.t0;
+    }
+    if (superseded) continue;  // never in effect
+    if (c.cause == Cause::serve || c.cause == Cause::racket || c.seq == info.segment_seq || followed) return &c;
+  }
+  return nullptr;
+}
+
 void ServerLoop::take_over(double t0, double now) {
   for (auto it = followed_.begin(); it != followed_.end();) {
     Followed &f = it->second;
@@ -311,8 +327,8 @@ void ServerLoop::take_over(double t0, double now) {
     // the segment in effect at target (protocol.md: the highest seq whose t0
     // is not after it): a Segment sample, or the one the MatchInfo carries
     SegmentOut from_info = current_segment(info);
-    const SegmentOut *seg = segment_in_effect(f.segments, target);
-    if (!seg || seg->seq < info.segment_seq) seg = info.segment_seq > 0 ? &from_info : nullptr;
+    const SegmentOut *seg = stepped_segment(f.segments, info, target);
+    if (!seg) seg = info.segment_seq > 0 ? &from_info : nullptr;
     out_.clear();
     std::string err;
     if (!m->restore(info, seg, newest_seq, target, &out_, &err)) {

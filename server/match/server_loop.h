@@ -103,6 +103,16 @@ constexpr double kLivelinessPeriod = 0.25;
 // beyond this is a restart or a forgery, not that many samples).
 constexpr uint64_t kMaxLostPerNote = 1000;
 
+// The segment a standby restores an owner's match from (docs/protocol.md,
+// "Several servers"): of the owner's segments, the newest in effect at sim
+// time `target` that the owner is known to have stepped through: a serve or
+// a racket hit (written at their instant), one the MatchInfo names, or one a
+// later segment starting after it follows (the owner wrote that one once it
+// had stepped past). A contact written ahead that the owner may not have
+// reached is not: the standby steps it again, its events included.
+// nullptr: none newer than the MatchInfo's own segment.
+const SegmentOut *stepped_segment(const Segments &segments, const MatchInfoOut &info, double target);
+
 struct LoopSettings {
   uint32_t server_id = 1;        // in every sample written
   double status_interval = 1.0;  // real s between status writes

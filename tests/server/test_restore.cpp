@@ -13,6 +13,7 @@
 
 #include "check.hpp"
 #include "rally.h"
+#include "server_loop.h"
 
 using namespace ballsrv;
 using namespace test;
@@ -100,9 +101,9 @@ Outcome run(const Trial &tr) {
       // the take-over: from what the owner published up to its death, on to
       // the owner's sim time now (the end of its previous frame)
       MatchOutput out;
-      const SegmentOut *in_effect = segment_in_effect(published, a.match.sim().time);
-      have_seg = in_effect && in_effect->seq >= info.segment_seq;
-      if (have_seg) seg = *in_effect;
+      const SegmentOut *stepped = stepped_segment(published, info, a.match.sim().time);
+      have_seg = stepped != nullptr;
+      if (have_seg) seg = *stepped;
       newest_published = published.empty() ? info.segment_seq : std::max(info.segment_seq, published.rbegin()->first);
       o.restored = b.match.restore(info, have_seg ? &seg : nullptr, newest_published, a.match.sim().time, &out,
                                    &o.err);
@@ -304,8 +305,8 @@ TEST(what_does_not_fit_is_refused_and_changes_nothing) {
   // the one in effect is restored, and the match is the owner's
   Segments all;
   for (const SegmentOut &s : a.segments) all[s.seq] = s;
-  CHECK(b.match.restore(info, segment_in_effect(all, a.match.sim().time), all.rbegin()->first, a.match.sim().time,
-                        &out, &err));
+  CHECK(b.match.restore(info, stepped_segment(all, info, a.match.sim().time), all.rbegin()->first,
+                        a.match.sim().time, &out, &err));
   CHECK(!b.match.following());
   CHECK(b.match.play().score == a.match.play().score);
 }
