@@ -12,6 +12,7 @@ namespace {
 
 constexpr size_t kKeepSegments = 256;  // per match, for states that arrive late
 constexpr size_t kMaxPending = 4096;   // states waiting for a segment that never comes: counted and forgotten
+constexpr double kLeadSettle = 1.0;    // sim s after a contact by which a hit that superseded it has come
 constexpr double kTrailSeconds = 1.0;  // sim s of trail and of event markers
 constexpr size_t kTrailPoints = 2048;
 constexpr size_t kMarkers = 64;
@@ -139,6 +140,34 @@ void Watcher::on_segment(const SegmentOut &seg, double real) {
     latency_.add(real - seg.sample.source_time);
     latency_server_.add(seg.server_time - seg.sample.source_time);
   }
+  // contacts written ahead: a later seq that starts no later supersedes them
+  for (auto it = w.leads.begin(); it != w.leads.end();) {
+    if (it->first < seg.seq && it->second.first >= seg.segment.t0) {
+      bounces_superseded_++;
+      it = w.leads.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  bool contact = seg.cause == Cause::floor || seg.cause == Cause::net || seg.cause == Cause::wall;
+  if (contact && w.clock.valid() && w.info.time_base > 0.0 && w.leads.size() < kKeepSegments)
+    w.leads[seg.seq] = {seg.segment.t0, (seg.segment.t0 - w.clock.sim_now(real)) / w.info.time_base};
+}
+
+// The contacts whose time has passed by kLeadSettle: they happened (a hit
+// that superseded one would have come by then); their leads are counted.
+void Watcher::settle_leads(Watched &w, double real) {
+  if (!w.clock.valid()) return;
+  double now = w.clock.sim_now(real);
+  for (auto it = w.leads.begin(); it != w.leads.end();) {
+    if (it->second.first > now - kLeadSettle) {
+      ++it;
+      continue;
+    }
+    bounce_lead_.add(it->second.second);
+    (it->second.second > 0.0 ? bounces_ahead_ : bounces_late_)++;
+    it = w.leads.erase(it);
+  }
 }
 
 void Watcher::on_event(const EventOut &e, double real) {
@@ -223,6 +252,7 @@ void Watcher::frame(double real) {
   for (auto &kv : matches_) {
     Watched &w = kv.second;
     if (!w.has_info || !w.clock.valid()) continue;
+    settle_leads(w, real);
     double t = w.clock.sim_now(real);
     const SegmentOut *sg = segment_in_effect(w.segments, t);
     if (!sg) continue;
@@ -275,6 +305,11 @@ WatchSummary Watcher::summary(double seconds) const {
   s.latency_server_p50 = latency_server_.quantile(0.5);
   s.latency_server_p99 = latency_server_.quantile(0.99);
   s.latency_count = latency_.size();
+  s.bounces_ahead = bounces_ahead_;
+  s.bounces_late = bounces_late_;
+  s.bounces_superseded = bounces_superseded_;
+  s.bounce_lead_p1 = bounce_lead_.quantile(0.01);
+  s.bounce_lead_p50 = bounce_lead_.quantile(0.5);
   return s;
 }
 
@@ -302,6 +337,14 @@ std::vector<std::string> summary_lines(const WatchSummary &s) {
                 "p50 %.1f ms, p99 %.1f ms over %" PRIu64 " hits",
                 s.latency_p50 * 1e3, s.latency_p99 * 1e3, s.latency_count);
   out.push_back(buf);
+  uint64_t bounces = s.bounces_ahead + s.bounces_late;
+  if (bounces > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "summary: contacts written ahead: %" PRIu64 " of %" PRIu64
+                  " received before they happen (lead p1 %.0f ms, p50 %.0f ms), %" PRIu64 " superseded by a hit",
+                  s.bounces_ahead, bounces, s.bounce_lead_p1 * 1e3, s.bounce_lead_p50 * 1e3, s.bounces_superseded);
+    out.push_back(buf);
+  }
   if (s.untrusted > 0) {
     std::snprintf(buf, sizeof buf,
                   "summary: %" PRIu64 " server samples refused: their writer lacks the certificate of their server id",

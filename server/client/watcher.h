@@ -100,15 +100,21 @@ class Watcher {
     std::deque<std::pair<double, ball_vec3>> trail;
     std::deque<ball_event> recent;
     double next_snapshot = -1.0;
+    // floor, net and wall segments received, not yet happened or superseded:
+    // seq -> (t0 sim s, lead at reception real s)
+    std::map<uint32_t, std::pair<double, double>> leads;
   };
   bool wanted(uint32_t id) const { return settings_.match < 0 || id == static_cast<uint32_t>(settings_.match); }
   Watched &watched(uint32_t id);
+  void settle_leads(Watched &w, double real);
   void say(uint32_t match, double sim_time, const std::string &text);
 
   WatcherSettings settings_;
   std::map<uint32_t, Watched> matches_;
   std::map<uint32_t, StatusOut> servers_;
   Percentiles latency_, latency_server_;  // a hit's newest sample written -> its segment received / written
+  Percentiles bounce_lead_;               // real s from a contact's segment received to its t0 (< 0: late)
+  uint64_t bounces_ahead_ = 0, bounces_late_ = 0, bounces_superseded_ = 0;
   double start_real_ = 0.0, first_segment_after_ = -1.0;
   uint64_t hits_ = 0;
   bool ready_ = false;

@@ -126,9 +126,17 @@ struct WatchSummary {
   double latency_p50 = 0.0, latency_p99 = 0.0, latency_server_p50 = 0.0, latency_server_p99 = 0.0;
   uint64_t latency_count = 0;
   uint64_t untrusted = 0;  // server samples refused: their writer lacks the certificate bound to their server id
+  // floor, net and wall contacts that happened (docs/protocol.md, "Segments
+  // ahead of time"): their segment received before (ahead) or after (late)
+  // the contact on this watcher's clock, and the lead (real s, contact time
+  // minus reception) at its 1st percentile and median; superseded: received
+  // and then superseded by a hit, never in effect
+  uint64_t bounces_ahead = 0, bounces_late = 0, bounces_superseded = 0;
+  double bounce_lead_p1 = 0.0, bounce_lead_p50 = 0.0;
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WatchSummary, seconds, first_segment_after, matches, servers, latency_p50,
-                                   latency_p99, latency_server_p50, latency_server_p99, latency_count, untrusted)
+                                   latency_p99, latency_server_p50, latency_server_p99, latency_count, untrusted,
+                                   bounces_ahead, bounces_late, bounces_superseded, bounce_lead_p1, bounce_lead_p50)
 
 // ---- ball-server --stats-json ----------------------------------------------
 

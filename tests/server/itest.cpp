@@ -125,6 +125,15 @@ void case_desync(const Env &env) {
   CHECK_MSG(m.states_checked >= 400, "only %llu states checked", (unsigned long long)m.states_checked);
   CHECK_MSG(m.max_error <= 1e-9, "max error %.3g m", m.max_error);
   CHECK_MSG(m.segments >= 8, "only %u segments", m.segments);
+  // contacts written ahead (docs/protocol.md): received before they happen
+  uint64_t contacts = s.bounces_ahead + s.bounces_late;
+  note("watcher: %llu of %llu contacts received before they happened (lead p1 %.0f ms, p50 %.0f ms), %llu "
+       "superseded by a hit",
+       (unsigned long long)s.bounces_ahead, (unsigned long long)contacts, s.bounce_lead_p1 * 1e3,
+       s.bounce_lead_p50 * 1e3, (unsigned long long)s.bounces_superseded);
+  CHECK_MSG(contacts >= 5, "only %llu contacts", (unsigned long long)contacts);
+  CHECK(s.bounces_ahead * 100 >= contacts * 99);
+  CHECK(s.bounce_lead_p1 > 0.0);
   // and again here, from the record, with libball and the scene's own model
   ball_scene scene;
   ball_scene_default(&scene);
