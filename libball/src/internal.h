@@ -3,6 +3,7 @@
 #define BALL_INTERNAL_H
 
 #include <math.h>
+#include <string.h>
 
 #include "ball/ball.h"
 #include "ball/vec3.h"
@@ -82,6 +83,16 @@ static inline void ball__drag_terms(double b, double k, double t, double *d, dou
   }
 }
 
+/* 1 when each of v's numbers is +0 or -0: by their bits (a NaN is not
+ * zero), one test instead of three comparisons. */
+static inline int ball__zero3(const ball_vec3 *v) {
+  uint64_t x, y, z;
+  memcpy(&x, &v->x, sizeof x);
+  memcpy(&y, &v->y, sizeof y);
+  memcpy(&z, &v->z, sizeof z);
+  return ((x | y | z) << 1) == 0;
+}
+
 /* eq 3 and eq 4 at tau = t - t0 on seg, from the drag terms d, f of
  * ball__drag_terms at tau; g gravity, sdamp sDamp (0: no spin). No checks. */
 static inline void ball__state_at(double g, double sdamp, const ball_segment *seg, double tau, double d,
@@ -98,7 +109,7 @@ static inline void ball__state_at(double g, double sdamp, const ball_segment *se
     out->position.y = seg->p0.y + seg->v0.y * tau - 0.5 * g * tau * tau;
     out->velocity.y = seg->v0.y - g * tau;
   }
-  if (sdamp != 0.0 && (seg->s0.x != 0.0 || seg->s0.y != 0.0 || seg->s0.z != 0.0))
+  if (sdamp != 0.0 && !ball__zero3(&seg->s0))
     out->spin = ball_v3_scale(seg->s0, sdamp / (sdamp + tau)); /* eq 4 */
   else
     out->spin = ball_v3(0.0, 0.0, 0.0);
