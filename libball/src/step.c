@@ -582,8 +582,11 @@ static inline void march_state(const ball__flight *fl, const ball_segment *seg, 
                         double t_next, ball_state *s) {
   double tau = t_next - seg->t0;
   if (fl->k != 0.0 && mr->left > 0) {
-    /* TwoSum: t + dt = t_next + err exactly; the frame is h = dt - err */
-    double bb = t_next - t, err = (t - (t_next - bb)) + (dt - bb), de = err * fl->k;
+    /* t + dt = t_next + err exactly (Fast2Sum while |t| >= dt, else
+     * TwoSum); the frame is h = dt - err */
+    double bb = t_next - t, err = dt - bb, de;
+    if (!(fabs(t) >= dt)) err = (t - (t_next - bb)) + err;
+    de = err * fl->k;
     if (fabs(de) <= MARCH_DELTA_MAX) {
       double fh = mr->fdt + mr->fdt * de, dh = mr->ddt - mr->fdt * err;
       mr->d += mr->f * dh; /* eq 3: D(tau + h) = D(tau) + F(tau) D(h) */
