@@ -95,6 +95,7 @@ int bench_rally_run(const bench_run *rn, ball_detect detect, int rounds, long pa
 typedef struct bench_predict_result {
   bench_stat predict; /* us per ball_predict over 6 s at 120 Hz */
   bench_stat steps;   /* us per 720 ball_step of the same path */
+  bench_stat expm1;   /* ns per expm1 call, measured in the same rounds (the unit of the targets) */
   int contacts;       /* contacts on the path */
 } bench_predict_result;
 

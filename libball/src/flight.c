@@ -78,14 +78,22 @@ int ball__plane_tau(double b, double x0, double v, double target, double tau_fro
 }
 
 /* t and every number of seg finite: x - x is 0 for a finite x and NaN for
- * an infinite or NaN one, so one comparison of the sum decides (no branch
- * per value on the evaluation's hot path). */
-static inline int finite_at(const ball_segment *s, double t) {
+ * an infinite or NaN one, so one comparison of the sum decides. */
+static int finite_each(const ball_segment *s, double t) {
   double z = ((t - t) + (s->t0 - s->t0)) +
              ((s->p0.x - s->p0.x) + (s->p0.y - s->p0.y) + (s->p0.z - s->p0.z)) +
              ((s->v0.x - s->v0.x) + (s->v0.y - s->v0.y) + (s->v0.z - s->v0.z)) +
              ((s->s0.x - s->s0.x) + (s->s0.y - s->s0.y) + (s->s0.z - s->s0.z));
   return z == 0.0;
+}
+
+/* The same, at half the operations on the evaluation's hot path: an
+ * infinity or a NaN among the numbers makes their sum one, which no later
+ * term turns finite again; a finite sum says they all are. Only a sum that
+ * overflows (numbers near DBL_MAX) asks finite_each. */
+static inline int finite_at(const ball_segment *s, double t) {
+  double z = ((t + s->t0) + (s->p0.x + s->p0.y + s->p0.z)) + ((s->v0.x + s->v0.y + s->v0.z) + (s->s0.x + s->s0.y + s->s0.z));
+  return z - z == 0.0 || finite_each(s, t);
 }
 
 static inline ball_status check_args(const ball_model *m, const ball_segment *seg, double t) {
@@ -97,10 +105,17 @@ static inline ball_status check_args(const ball_model *m, const ball_segment *se
 
 ball_status ball_segment_eval(const ball_model *m, const ball_segment *seg, double t,
                               ball_state *out) {
-  ball_status st = check_args(m, seg, t);
-  if (st != BALL_OK) return st;
+  double b, k, d, f;
+  if (!m || !seg) return BALL_EINVAL;
+  /* eq 3's transcendental first, on numbers not yet checked (a NaN costs
+   * nothing): the segment and the rest of the model are read after the
+   * call, so that only t and b are held across it */
+  ball__drag_of(m, &b, &k);
+  ball__drag_terms(b, k, t - seg->t0, &d, &f);
+  if (!finite_at(seg, t)) return BALL_ENONFINITE;
+  if (t < seg->t0) return BALL_ERANGE;
   if (!out) return BALL_EINVAL;
-  ball__eval(m, seg, t, out);
+  ball__state_at(m->gravity, ball__sdamp_of(m), seg, t - seg->t0, d, f, out);
   return BALL_OK;
 }
 

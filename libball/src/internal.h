@@ -3,6 +3,7 @@
 #define BALL_INTERNAL_H
 
 #include <math.h>
+#include <string.h>
 
 #include "ball/ball.h"
 #include "ball/vec3.h"
@@ -39,11 +40,25 @@ typedef struct ball__flight {
   double g;      /* gravity */
   double sdamp;  /* sDamp of eq 4; 0 without spin */
 } ball__flight;
+/* b and k = 1/b of a model (eq 2): +Inf and 0 without drag. */
+static inline void ball__drag_of(const ball_model *m, double *b, double *k) {
+  if (!ball__has(m, BALL_EFFECT_DRAG) || m->air_friction == 0.0) {
+    *b = INFINITY;
+    *k = 0.0;
+  } else {
+    /* k first: an evaluation waits for it (expm1(-t k)), for b only at its end */
+    *k = m->air_friction / m->mass;
+    *b = m->mass / m->air_friction; /* eq 2: b = m / beta; may overflow to +Inf */
+    if (isinf(*b)) *k = 0.0;
+  }
+}
+static inline double ball__sdamp_of(const ball_model *m) {
+  return ball__has(m, BALL_EFFECT_SPIN) ? m->spin_damping : 0.0;
+}
 static inline void ball__flight_of(const ball_model *m, ball__flight *f) {
-  f->b = ball__drag_b(m);
-  f->k = isinf(f->b) ? 0.0 : m->air_friction / m->mass; /* independent of b: the divisions overlap */
+  ball__drag_of(m, &f->b, &f->k);
   f->g = m->gravity;
-  f->sdamp = ball__has(m, BALL_EFFECT_SPIN) ? m->spin_damping : 0.0;
+  f->sdamp = ball__sdamp_of(m);
 }
 
 /* eq 3 for both horizontal terms at once: *d = b (1 - e^(-t/b)) and
@@ -68,13 +83,20 @@ static inline void ball__drag_terms(double b, double k, double t, double *d, dou
   }
 }
 
-/* State at sim time t on seg, no argument checks (eq 3, 4), from the
- * constants b, k = 1/b, g, sDamp (0: no spin). Inline: it is the hot path
- * of a step, a prediction, the swept test and ball_flight_eval. */
-static inline void ball__eval_c(double b, double k, double g, double sdamp, const ball_segment *seg,
-                                double t, ball_state *out) {
-  double tau = t - seg->t0, d, f;
-  ball__drag_terms(b, k, tau, &d, &f);
+/* 1 when each of v's numbers is +0 or -0: by their bits (a NaN is not
+ * zero), one test instead of three comparisons. */
+static inline int ball__zero3(const ball_vec3 *v) {
+  uint64_t x, y, z;
+  memcpy(&x, &v->x, sizeof x);
+  memcpy(&y, &v->y, sizeof y);
+  memcpy(&z, &v->z, sizeof z);
+  return ((x | y | z) << 1) == 0;
+}
+
+/* eq 3 and eq 4 at tau = t - t0 on seg, from the drag terms d, f of
+ * ball__drag_terms at tau; g gravity, sdamp sDamp (0: no spin). No checks. */
+static inline void ball__state_at(double g, double sdamp, const ball_segment *seg, double tau, double d,
+                                  double f, ball_state *out) {
   /* eq 3: horizontal with drag, vertical under gravity alone */
   out->position.x = seg->p0.x + seg->v0.x * d;
   out->position.z = seg->p0.z + seg->v0.z * d;
@@ -87,10 +109,22 @@ static inline void ball__eval_c(double b, double k, double g, double sdamp, cons
     out->position.y = seg->p0.y + seg->v0.y * tau - 0.5 * g * tau * tau;
     out->velocity.y = seg->v0.y - g * tau;
   }
-  if (sdamp != 0.0 && (seg->s0.x != 0.0 || seg->s0.y != 0.0 || seg->s0.z != 0.0))
+  if (sdamp != 0.0 && !ball__zero3(&seg->s0))
     out->spin = ball_v3_scale(seg->s0, sdamp / (sdamp + tau)); /* eq 4 */
   else
     out->spin = ball_v3(0.0, 0.0, 0.0);
+}
+
+/* State at sim time t on seg, no argument checks (eq 3, 4), from the
+ * constants b, k = 1/b, g, sDamp (0: no spin). Inline: it is the hot path
+ * of a step, a prediction, the swept test and ball_flight_eval. The
+ * transcendental call comes first, before anything of seg but t0 is read:
+ * nothing else is live across it (no registers to save and restore). */
+static inline void ball__eval_c(double b, double k, double g, double sdamp, const ball_segment *seg,
+                                double t, ball_state *out) {
+  double tau = t - seg->t0, d, f;
+  ball__drag_terms(b, k, tau, &d, &f);
+  ball__state_at(g, sdamp, seg, tau, d, f, out);
 }
 
 static inline void ball__eval_f(const ball__flight *fl, const ball_segment *seg, double t,

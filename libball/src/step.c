@@ -302,8 +302,17 @@ static int segment_finite(const ball_segment *seg) {
          ball_v3_finite(seg->s0);
 }
 
-static int state_finite(const ball_state *s) {
+static int state_finite_each(const ball_state *s) {
   return ball_v3_finite(s->position) && ball_v3_finite(s->velocity) && ball_v3_finite(s->spin);
+}
+
+/* Every number of s finite: their sum is (an infinity or a NaN stays in
+ * it); only a sum that overflows asks each (a check per state of a
+ * prediction, at half the operations). */
+static inline int state_finite(const ball_state *s) {
+  double z = (s->position.x + s->position.y + s->position.z) + (s->velocity.x + s->velocity.y + s->velocity.z) +
+             (s->spin.x + s->spin.y + s->spin.z);
+  return z - z == 0.0 || state_finite_each(s);
 }
 
 static ball_status check_state(const ball_model *m, const ball_state *state) {
@@ -543,6 +552,56 @@ ball_status ball_step(ball_sim *sim, double dt, ball_event *events, int cap, int
 
 /* ---- prediction ---- */
 
+/* States between two re-anchorings of the recurrence to the closed form
+ * (docs/model.md, "Prediction": the error bound and its proof). */
+#define MARCH_ANCHOR 32
+/* Above this |delta / b| the first-order correction of a frame's rounding
+ * (march_state) would err by more than an ulp: re-anchor instead. */
+#define MARCH_DELTA_MAX 1e-8
+
+/* The drag terms of eq 3 stepped at the prediction's fixed rate. With
+ * D(tau) = b (1 - e^(-tau/b)) and F(tau) = e^(-tau/b), eq 3 gives
+ *   F(tau + h) = F(tau) F(h),   D(tau + h) = D(tau) + F(tau) D(h),
+ * so each state costs a few multiplications instead of an expm1. h is the
+ * frame the clock really advanced, dt - delta with delta the rounding of
+ * t + dt (exact, by TwoSum): F(h) = F(dt) (1 + delta / b) and
+ * D(h) = D(dt) - F(dt) delta to first order, exact to an ulp while
+ * |delta / b| <= MARCH_DELTA_MAX. */
+typedef struct march {
+  double fdt, ddt; /* F(dt), D(dt) */
+  double f, d;     /* F, D at the last state's tau on the segment */
+  double sdamp;    /* sDamp for eq 4 on the segment; 0 also when its spin is zero (a test less a state) */
+  int left;        /* states before the next anchor; 0: anchor at the next one */
+} march;
+
+/* The state at t_next = t + dt (as the clock sums it) on seg, the last
+ * state having been at t: by the recurrence, or the closed form (eq 3) when
+ * an anchor is due. Height, vertical speed and spin are always the closed
+ * form's (ball__state_at), to the bit. */
+static inline void march_state(const ball__flight *fl, const ball_segment *seg, march *mr, double t, double dt,
+                        double t_next, ball_state *s) {
+  double tau = t_next - seg->t0;
+  if (fl->k != 0.0 && mr->left > 0) {
+    /* t + dt = t_next + err exactly (Fast2Sum while |t| >= dt, else
+     * TwoSum); the frame is h = dt - err */
+    double bb = t_next - t, err = dt - bb, de;
+    if (!(fabs(t) >= dt)) err = (t - (t_next - bb)) + err;
+    de = err * fl->k;
+    if (fabs(de) <= MARCH_DELTA_MAX) {
+      double fh = mr->fdt + mr->fdt * de, dh = mr->ddt - mr->fdt * err;
+      mr->d += mr->f * dh; /* eq 3: D(tau + h) = D(tau) + F(tau) D(h) */
+      mr->f *= fh;         /* eq 3: F(tau + h) = F(tau) F(h) */
+      mr->left--;
+      ball__state_at(fl->g, mr->sdamp, seg, tau, mr->d, mr->f, s);
+      return;
+    }
+  }
+  ball__drag_terms(fl->b, fl->k, tau, &mr->d, &mr->f);
+  mr->left = MARCH_ANCHOR;
+  mr->sdamp = ball__zero3(&seg->s0) ? 0.0 : fl->sdamp;
+  ball__state_at(fl->g, mr->sdamp, seg, tau, mr->d, mr->f, s);
+}
+
 ball_status ball_predict(const ball_model *m, const ball_segment *seg_in, double t_from,
                          double t_end, double dt, ball_prediction *out) {
   ball_segment seg;
@@ -550,6 +609,7 @@ ball_status ball_predict(const ball_model *m, const ball_segment *seg_in, double
   ball_state s;
   ball_status st;
   ball__flight fl;
+  march mr;
   unsigned long missed = 0;
   sink k;
   double t;
@@ -571,30 +631,36 @@ ball_status ball_predict(const ball_model *m, const ball_segment *seg_in, double
   out->n_states = 0;
   t = t_from;
   ball__flight_of(m, &fl);
-  ball__eval_f(&fl, &seg, t, &s);
+  ball__drag_terms(fl.b, fl.k, dt, &mr.ddt, &mr.fdt); /* eq 3 over one frame */
+  mr.left = 0;
+  march_state(&fl, &seg, &mr, t, 0.0, t, &s); /* an anchor: the closed form at t_from */
   if (!state_finite(&s)) return BALL_ERANGE;
   if (out->cap_states > 0) out->states[out->n_states++] = s;
   /* frames of dt as ball_step takes them (the clock summed, not k dt), the
    * last one cut at t_end */
   while (t < t_end) {
     double t_next = t + dt;
-    int grid = 1;
-    if (!(t_next <= t_end)) {
-      t_next = t_end;
-      grid = 0;
-    }
+    ball_state *at = &s; /* the state is written where it is kept, when it is */
+    if (!(t_next <= t_end)) t_next = t_end; /* the cut frame: no state kept */
+    else if (out->n_states < out->cap_states) at = &out->states[out->n_states];
     if (t_next == t) break; /* dt below the clock's resolution */
     /* most frames have no contact: the cached next one is later, and the
-     * ball is not below the floor by rounding (exact_advance's last rule) */
+     * ball is not below the floor by rounding (exact_advance's last rule,
+     * which reads the height and the vertical speed: march_state gives
+     * those to the bit) */
     if (!next.valid) find_next(m, &fl, &seg, t, &next);
-    ball__eval_f(&fl, &seg, t_next, &s);
+    march_state(&fl, &seg, &mr, t, dt, t_next, at);
     if (!(next.time > t_next) ||
-        (next.which == WHICH_FLOOR && s.position.y < ball__floor_y(m) && s.velocity.y <= 0.0)) {
-      exact_advance(m, &fl, &seg, &next, t, t_next, &k, &s);
+        (next.which == WHICH_FLOOR && at->position.y < ball__floor_y(m) && at->velocity.y <= 0.0)) {
+      exact_advance(m, &fl, &seg, &next, t, t_next, &k, at);
       if (!segment_finite(&seg)) return BALL_ERANGE;
+      mr.left = 0; /* a new segment (or a contact at its end): the next state anchors */
+    } else if (!state_finite(at)) {
+      ball__eval_f(&fl, &seg, t_next, at); /* an overflow is decided by the closed form, as ball_step does */
+      mr.left = 0;
     }
-    if (!state_finite(&s)) return BALL_ERANGE;
-    if (grid && out->n_states < out->cap_states) out->states[out->n_states++] = s;
+    if (!state_finite(at)) return BALL_ERANGE;
+    if (at != &s) out->n_states++;
     t = t_next;
   }
   out->n_events = k.n;

@@ -1,11 +1,13 @@
 /* ball_bench: what users run, in nanoseconds (docs/benchmarks.md).
  *
- *   eval     ball_segment_eval with drag and spin, against one bare expm1
+ *   eval     ball_segment_eval and ball_flight_eval with drag and spin, against
+ *            one bare expm1 (the targets' unit)
  *   rally    a whole frame (the racket samples that arrived, pushed, then
  *            ball_step) of each rally scene with the sphere, disc and swept
  *            tests: median and worst frame, and the mean of the best round
  *   predict  ball_predict: 6 s of a bouncing ball at 120 Hz (what a bot asks
- *            every frame), against stepping the same 720 frames
+ *            every frame), against stepping the same 720 frames and in expm1
+ *            calls timed in the same rounds
  *   walls    a frame in a box of 0..16 walls: the cost of one wall
  *   rackets  a frame with 0..4 rackets that get samples: the cost of one racket
  *   effects  each effect on, off in the mask, and removed from the model
@@ -70,7 +72,8 @@ static void bench_eval(const opts *o) {
   printf("%-28s %9.2f %9.2f\n", "one expm1 (the floor)", b.min, b.median);
   printf("%-28s %9.2f %9.2f\n", "segment_eval / lean", a.min / c.min, a.median / c.median);
   printf("%-28s %9.2f %9.2f\n", "flight_eval / lean", d.min / c.min, d.median / c.median);
-  printf("%-28s %9.2f %9.2f\n", "eval / expm1", a.min / b.min, a.median / b.median);
+  printf("%-28s %9.2f %9.2f\n", "segment_eval / expm1", a.min / b.min, a.median / b.median);
+  printf("%-28s %9.2f %9.2f\n", "flight_eval / expm1", d.min / b.min, d.median / b.median);
   printf("%-28s %9.2f %9.2f\n", "ball_segment_eval @ref", at_ref(a.min), at_ref(a.median));
   printf("%-28s %9.2f %9.2f\n", "ball_flight_eval @ref", at_ref(d.min), at_ref(d.median));
 }
@@ -121,6 +124,8 @@ static void bench_predict(const opts *o) {
   printf("%-28s %9.2f %9.2f\n", "720 x ball_step", b.min, b.median);
   printf("%-28s %9.3f %9.3f\n", "predict / steps", a.min / b.min, a.median / b.median);
   printf("%-28s %9.2f %9.2f\n", "ball_predict @ref", at_ref(a.min), at_ref(a.median));
+  printf("%-28s %9.2f %9.2f\n", "one expm1 (ns)", p.expm1.min, p.expm1.median);
+  printf("%-28s %9.0f %9.0f\n", "predict / expm1", 1e3 * a.min / p.expm1.min, 1e3 * a.median / p.expm1.median);
 }
 
 /* ---- walls and rackets: cost per obstacle ---- */

@@ -132,4 +132,46 @@ static inline double core_energy(const ball_model *m, ball_vec3 v, double y) {
 typedef seeded_rng core_rng;
 static inline double core_uniform(core_rng *r, double lo, double hi) { return seeded_uniform(r, lo, hi); }
 
+/* How far a state of ball_predict is from ball_step's at time t, seg being
+ * the segment ball_step had in effect then, in units of ball.h's bound: the
+ * largest over x and z of |dx| / (|P0x| + |V0x| (t - t0)) and
+ * |dvx| / |V0x| (0 for numbers equal to the bit, +Inf for any difference
+ * where the scale is 0); +Inf when the height, the vertical speed or the
+ * spin differ at all (ball.h promises those to the bit). */
+static inline double core_predict_error_axis(double got, double want, double scale) {
+  if (memcmp(&got, &want, sizeof got) == 0) return 0.0;
+  if (!(scale > 0.0)) return INFINITY;
+  return fabs(got - want) / scale;
+}
+static inline double core_predict_error(const ball_state *got, const ball_state *want, const ball_segment *seg,
+                                        double t) {
+  double tau = t - seg->t0, e, worst = 0.0;
+  if (memcmp(&got->position.y, &want->position.y, sizeof got->position.y) != 0 ||
+      memcmp(&got->velocity.y, &want->velocity.y, sizeof got->velocity.y) != 0 ||
+      memcmp(&got->spin, &want->spin, sizeof got->spin) != 0)
+    return INFINITY;
+  e = core_predict_error_axis(got->position.x, want->position.x, fabs(seg->p0.x) + fabs(seg->v0.x) * tau);
+  worst = e > worst ? e : worst;
+  e = core_predict_error_axis(got->position.z, want->position.z, fabs(seg->p0.z) + fabs(seg->v0.z) * tau);
+  worst = e > worst ? e : worst;
+  e = core_predict_error_axis(got->velocity.x, want->velocity.x, fabs(seg->v0.x));
+  worst = e > worst ? e : worst;
+  e = core_predict_error_axis(got->velocity.z, want->velocity.z, fabs(seg->v0.z));
+  return e > worst ? e : worst;
+}
+
+/* Every field of two events equal to the bit. */
+static inline int core_event_same(const ball_event *a, const ball_event *b) {
+  return a->kind == b->kind && a->index == b->index && a->sound == b->sound &&
+         memcmp(&a->time, &b->time, sizeof a->time) == 0 && memcmp(&a->point, &b->point, sizeof a->point) == 0 &&
+         memcmp(&a->velocity_in, &b->velocity_in, sizeof a->velocity_in) == 0 &&
+         memcmp(&a->velocity_out, &b->velocity_out, sizeof a->velocity_out) == 0 &&
+         memcmp(&a->spin_out, &b->spin_out, sizeof a->spin_out) == 0 &&
+         memcmp(&a->segment.t0, &b->segment.t0, sizeof a->segment.t0) == 0 &&
+         memcmp(&a->segment.p0, &b->segment.p0, sizeof a->segment.p0) == 0 &&
+         memcmp(&a->segment.v0, &b->segment.v0, sizeof a->segment.v0) == 0 &&
+         memcmp(&a->segment.s0, &b->segment.s0, sizeof a->segment.s0) == 0 &&
+         a->segment.grounded == b->segment.grounded;
+}
+
 #endif /* BALL_TESTS_CORE_COMMON_H */

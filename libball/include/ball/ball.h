@@ -527,12 +527,24 @@ typedef struct ball_prediction {
   ball_segment end;    /* out: the segment in effect at t_end */
 } ball_prediction;
 
+/* How close ball_predict's states are to ball_step's (below), relative. */
+#define BALL_PREDICT_REL_ERROR 1e-12
+
 /* The ball's path from seg (in effect at t_from >= seg->t0) to t_end with
  * static obstacles only (no rackets), event-driven: contacts in closed form
  * (the exact scheme, whatever model->scheme says), then states at the fixed
- * rate 1 / dt. Gives the states and events that ball_step gives at frames of
- * dt in the exact scheme. The model is checked on every call (a bot may pass
- * any model); no allocation. */
+ * rate 1 / dt. Gives the events and the end segment that ball_step gives at
+ * frames of dt in the exact scheme, to the bit, and its states within a
+ * bound: eq 3's horizontal terms are stepped from state to state by a
+ * recurrence (a few multiplications instead of an expm1), re-anchored to
+ * the closed form every 32 states and at every contact (docs/model.md,
+ * "Prediction"). A state's height, vertical speed and spin are ball_step's
+ * to the bit; along x (and z), with P0, V0, t0 the segment in effect at the
+ * state's time t,
+ *   |x - x_step| <= BALL_PREDICT_REL_ERROR (|P0x| + |V0x| (t - t0)),
+ *   |vx - vx_step| <= BALL_PREDICT_REL_ERROR |V0x|.
+ * The model is checked on every call (a bot may pass any model); no
+ * allocation. */
 BALL_API ball_status ball_predict(const ball_model *model, const ball_segment *seg, double t_from,
                                   double t_end, double dt, ball_prediction *out);
 
