@@ -215,6 +215,27 @@ int ball__sphere_test(ball_vec3 p, ball_vec3 r, double d_coll);
  * ball centre at contact carried to the racket's current pose. */
 int ball__disc_test(ball_vec3 p_old, ball_vec3 p, ball_vec3 r_old, ball_vec3 r, ball_vec3 n,
                     double disc_radius, double ball_radius, double *s, ball_vec3 *q);
+/* Below this speed the racket counts as still: the velocity normal mode falls
+ * back to the real normal. */
+#define BALL__STILL_SPEED 1e-3 /* m/s */
+/* The normal the disc (velocity mode) and swept tests read from a pose: the
+ * real one, or the velocity's direction (the real one while still). */
+ball_vec3 ball__racket_test_normal(const ball_model *m, const ball_racket_pose *pose);
+/* The racket stage's test of racket i alone, for one step from sim->time to
+ * t on sim->seg with no static contact in between (the tracks, the previous
+ * pose and position as the stage reads them; the sleep counter not read):
+ * 1 on a hit, with the time the step's event would carry and the stage's
+ * key (earliest / nearest wins); 0 otherwise. */
+int ball__racket_test_at(const ball_model *m, const ball__flight *fl, const ball_sim *sim, int i, double t,
+                         double *t_hit, double *key);
+/* The end of the window a racket query may search from sim->time: the
+ * largest time <= t_end such that no step from sim to a time in
+ * (sim->time, it] meets the floor, the net or a wall (step.c). Exact scheme:
+ * just before the next contact (sim->next, or found as a step finds it);
+ * sampled: just before the centre falls below the floor or comes within the
+ * ball's radius of a net's or wall's plane (a bound: the chord test may meet
+ * the rectangle later or never). sim->time when the window is empty. */
+double ball__static_window(const ball_sim *sim, const ball__flight *fl, double t_end);
 /* A track's pose at t without checks (interpolation, eq 15 past the newest). */
 void ball__racket_pose(const ball_model *m, const ball_racket_track *tr, double t,
                        ball_racket_pose *out);

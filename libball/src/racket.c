@@ -5,10 +5,6 @@
 
 #include "internal.h"
 
-/* Below this speed the racket counts as still: the velocity normal mode falls
- * back to the real normal. */
-#define STILL_SPEED 1e-3 /* m/s */
-
 /* ---- tracks ---- */
 
 static ball_vec3 nlerp(ball_vec3 a, ball_vec3 b, double u) {
@@ -232,17 +228,18 @@ typedef struct racket_hit {
 
 /* The normal the disc and swept tests use: the real one, or the velocity's
  * direction (the real one while the racket is still). */
-static ball_vec3 test_normal(const ball_model *m, const ball_racket_pose *pose) {
+ball_vec3 ball__racket_test_normal(const ball_model *m, const ball_racket_pose *pose) {
   double sp = ball_v3_norm(pose->velocity);
-  if (m->normal_mode == BALL_NORMAL_VELOCITY && sp >= STILL_SPEED)
+  if (m->normal_mode == BALL_NORMAL_VELOCITY && sp >= BALL__STILL_SPEED)
     return ball_v3_scale(pose->velocity, 1.0 / sp);
   return pose->normal;
 }
 
+/* Racket i's test over the frame (t_prev, t] (the sim's previous position
+ * and segment; the ball at t: *s_end). */
 static int test_racket(const ball_model *m, const ball__flight *fl, const ball_sim *sim, int i,
-                       double t_prev, const ball_state *s_end, const ball_racket_pose *old,
+                       double t_prev, double t, const ball_state *s_end, const ball_racket_pose *old,
                        const ball_racket_pose *now, racket_hit *h) {
-  double t = sim->time;
   const ball_state *s = s_end;
   h->pose = now;
   if (m->detect == BALL_DETECT_SPHERE) {
@@ -250,14 +247,14 @@ static int test_racket(const ball_model *m, const ball__flight *fl, const ball_s
     h->key = ball_v3_norm(ball_v3_sub(s->position, now->center));
     h->t = t;
     h->q = s->position; /* the paper: the ball position is the collision point */
-    h->face = ball__racket_face_normal(test_normal(m, now),
+    h->face = ball__racket_face_normal(ball__racket_test_normal(m, now),
                                        ball_v3_sub(sim->prev_position, old->center));
     return 1;
   }
   if (m->detect == BALL_DETECT_DISC) {
     double sfrac;
     /* the disc at R_old with its normal then, or along the racket's velocity now */
-    ball_vec3 n = m->normal_mode == BALL_NORMAL_REAL ? old->normal : test_normal(m, now);
+    ball_vec3 n = m->normal_mode == BALL_NORMAL_REAL ? old->normal : ball__racket_test_normal(m, now);
     if (!ball__disc_test(sim->prev_position, s->position, old->center, now->center, n,
                          m->rackets[i].radius, m->radius, &sfrac, &h->q))
       return 0;
@@ -293,8 +290,8 @@ static int test_racket(const ball_model *m, const ball__flight *fl, const ball_s
     }
     /* far from each other (nearly every frame): no probe at all */
     if (ball__swept_cannot_touch(&mo)) return 0;
-    mo.n0 = test_normal(m, old);
-    mo.n1 = test_normal(m, now);
+    mo.n0 = ball__racket_test_normal(m, old);
+    mo.n1 = ball__racket_test_normal(m, now);
     if (!ball__swept_toi(&mo, &th, &h->q, &h->face)) return 0;
     h->key = th;
     h->t = th;
@@ -380,7 +377,7 @@ int ball__racket_stage(const ball_model *m, const ball__flight *fl, ball_sim *si
         old = &tr->prev_pose;
       else if (estimate(m, sim, i, t_prev, &estimated) == BALL_OK)
         old = &estimated;
-      if (test_racket(m, fl, sim, i, t_prev, s_end, old, &now[i], &hits[i]) &&
+      if (test_racket(m, fl, sim, i, t_prev, t, s_end, old, &now[i], &hits[i]) &&
           (best < 0 || hits[i].key < hits[best].key))
         best = i;
     }
@@ -394,4 +391,25 @@ int ball__racket_stage(const ball_model *m, const ball__flight *fl, ball_sim *si
     if (ok[i] > 0) sim->tracks[i].prev_pose = now[i];
   }
   return hit;
+}
+
+int ball__racket_test_at(const ball_model *m, const ball__flight *fl, const ball_sim *sim, int i, double t,
+                         double *t_hit, double *key) {
+  ball_racket_pose now, estimated;
+  const ball_racket_pose *old = &now;
+  const ball_racket_track *tr = &sim->tracks[i];
+  ball_state s;
+  racket_hit h;
+  /* what ball__racket_stage does for racket i with t_prev = sim->time */
+  if (estimate(m, sim, i, t, &now) != BALL_OK || !(ball_v3_finite(now.center) && ball_v3_finite(now.velocity)))
+    return 0;
+  if (tr->has_prev)
+    old = &tr->prev_pose;
+  else if (estimate(m, sim, i, sim->time, &estimated) == BALL_OK)
+    old = &estimated;
+  ball__eval_f(fl, &sim->seg, t, &s);
+  if (!test_racket(m, fl, sim, i, sim->time, t, &s, old, &now, &h)) return 0;
+  if (t_hit) *t_hit = h.t;
+  if (key) *key = h.key;
+  return 1;
 }

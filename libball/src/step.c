@@ -550,6 +550,72 @@ ball_status ball_step(ball_sim *sim, double dt, ball_event *events, int cap, int
   return BALL_OK;
 }
 
+/* ---- the window of a racket query (internal.h) ---- */
+
+/* The latest time in (lo, hi] where `below` is false, `below` being true at
+ * hi and false from lo up to some point (a ball sinking through the floor):
+ * bisection to adjacent doubles. */
+static double last_above(const ball_model *m, const ball__flight *fl, const ball_segment *seg, double lo,
+                         double hi, int need_falling) {
+  int it;
+  for (it = 0; it < 200; it++) {
+    double mid = lo + 0.5 * (hi - lo);
+    ball_state s;
+    if (!(mid > lo && mid < hi)) break;
+    ball__eval_f(fl, seg, mid, &s);
+    if (s.position.y < ball__floor_y(m) && (!need_falling || s.velocity.y <= 0.0))
+      hi = mid;
+    else
+      lo = mid;
+  }
+  return lo;
+}
+
+double ball__static_window(const ball_sim *sim, const ball__flight *fl, double t_end) {
+  const ball_model *m = &sim->model;
+  const ball_segment *seg = &sim->seg;
+  double t0 = sim->time, hi = t_end;
+  ball_state s;
+  if (m->scheme == BALL_SCHEME_EXACT) {
+    ball_contact c = sim->next;
+    if (!c.valid) find_next(m, fl, seg, t0, &c); /* what the step would find, not kept */
+    if (c.time <= hi) hi = nextafter(c.time, -INFINITY);
+    if (!(hi > t0)) return t0;
+    /* exact_advance's rule: a floor root rounded past the frame's end with
+     * the ball already below the floor there is a contact now */
+    ball__eval_f(fl, seg, hi, &s);
+    if (c.which == WHICH_FLOOR && s.position.y < ball__floor_y(m) && s.velocity.y <= 0.0)
+      hi = last_above(m, fl, seg, t0, hi, 1);
+    return hi;
+  }
+  /* sampled: the floor below the centre at the frame's end (Fig. 1) */
+  if (ball__has(m, BALL_EFFECT_FLOOR) && !seg->grounded) {
+    double r1, r2;
+    if (ball__height_roots(m->gravity, seg->p0.y, seg->v0.y, ball__floor_y(m), &r1, &r2) && seg->t0 + r2 <= hi)
+      hi = seg->t0 + r2;
+    ball__eval_f(fl, seg, hi, &s);
+    if (s.position.y < ball__floor_y(m)) hi = last_above(m, fl, seg, t0, hi, 0);
+  }
+  /* a net's or wall's plane: the chord P_old -> P covers the coordinates
+   * between its ends, which move one way (drag never turns the ball), so it
+   * cannot reach the rectangle grown by r before the centre comes within r
+   * of the plane */
+  {
+    int i, n = ball__has(m, BALL_EFFECT_WALLS) ? m->n_walls : 0;
+    int net = ball__has(m, BALL_EFFECT_NET) && m->has_net;
+    for (i = net ? -1 : 0; i < n; i++) {
+      const ball_plane *pl = i < 0 ? &m->net : &m->walls[i];
+      double x = ball_v3_axis(sim->prev_position, pl->axis), d = pl->position - x, tau;
+      if (fabs(d) <= m->radius) return t0; /* at the plane already: nothing is searched */
+      if (ball__plane_tau(fl->b, ball_v3_axis(seg->p0, pl->axis), ball_v3_axis(seg->v0, pl->axis),
+                          d > 0.0 ? pl->position - m->radius : pl->position + m->radius, t0 - seg->t0, &tau) &&
+          seg->t0 + tau <= hi)
+        hi = nextafter(seg->t0 + tau, -INFINITY);
+    }
+  }
+  return hi > t0 ? hi : t0;
+}
+
 /* ---- prediction ---- */
 
 /* States between two re-anchorings of the recurrence to the closed form

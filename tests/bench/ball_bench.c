@@ -11,6 +11,8 @@
  *   walls    a frame in a box of 0..16 walls: the cost of one wall
  *   rackets  a frame with 0..4 rackets that get samples: the cost of one racket
  *   effects  each effect on, off in the mask, and removed from the model
+ *   contact  ball_racket_first_contact over 0.3 s from sims caught before a
+ *            stroke (kit/swings.h at 10 Hz), per test, against one expm1
  *
  * Every number is the min and the median over several rounds of one run on
  * one machine; ratios compare numbers of the same run. Not a timed test:
@@ -28,6 +30,7 @@
 #include "ball/scene.h"
 #include "ball/vec3.h"
 #include "bench_kit.h"
+#include "swings.h"
 
 #define MAX_ROUNDS BENCH_MAX_ROUNDS
 
@@ -49,6 +52,7 @@ static int section(const opts *o, const char *name) { return !o->only || strcmp(
 
 /* the lean evaluation of this run (bench_kit.h: the yardstick) */
 static double g_lean_ns = BENCH_REF_LEAN_NS;
+static double g_expm1_ns = 0.0; /* one expm1 of this run (eval) */
 static double at_ref(double ns) { return ns * BENCH_REF_LEAN_NS / g_lean_ns; }
 
 /* ---- eval ---- */
@@ -68,6 +72,7 @@ static void bench_eval(const opts *o) {
   printf("%-28s %9.2f %9.2f\n", "ball_segment_eval", a.min, a.median);
   printf("%-28s %9.2f %9.2f\n", "ball_flight_eval", d.min, d.median);
   g_lean_ns = c.median;
+  g_expm1_ns = b.median;
   printf("%-28s %9.2f %9.2f\n", "lean (1/b given, no checks)", c.min, c.median);
   printf("%-28s %9.2f %9.2f\n", "one expm1 (the floor)", b.min, b.median);
   printf("%-28s %9.2f %9.2f\n", "segment_eval / lean", a.min / c.min, a.median / c.median);
@@ -242,10 +247,64 @@ static void bench_effects(const opts *o) {
   }
 }
 
+/* ---- contact: when a racket will first meet the ball ---- */
+
+#define CONTACT_SIMS 64
+
+static void bench_contact(const opts *o) {
+  static const ball_detect detects[] = {BALL_DETECT_SPHERE, BALL_DETECT_DISC, BALL_DETECT_SWEPT};
+  static ball_sim sims[CONTACT_SIMS];
+  int R = rounds_of(o), d, r, k;
+  long passes = work(o, 20);
+  printf("\n## contact: ball_racket_first_contact over 0.3 s, %d sims caught 0.1-0.3 s before a stroke "
+         "(10 Hz swings), %ld passes x %d rounds\n", CONTACT_SIMS, passes, R);
+  printf("%-7s %5s %9s %9s %12s\n", "detect", "hits", "min ns", "median ns", "median/expm1");
+  for (d = 0; d < 3; d++) {
+    seeded_rng rng = seeded_stream(4242, (uint64_t)d);
+    double t[MAX_ROUNDS];
+    bench_stat s;
+    int hits = 0;
+    for (k = 0; k < CONTACT_SIMS; k++) {
+      ball_model m;
+      swing sw;
+      ball_state st;
+      double t_catch;
+      int j;
+      swing_model(&m, detects[d]);
+      m.extrapolation_time = 0.1;
+      swing_make(&m, &rng, 0.1, &sw);
+      t_catch = seeded_uniform(&rng, 0.3, 0.5);
+      st.position = sw.seg.p0;
+      st.velocity = sw.seg.v0;
+      st.spin = sw.seg.s0;
+      ball_sim_init(&sims[k], &m);
+      ball_sim_set_state(&sims[k], &st);
+      for (j = 0; j < sw.n && sw.s[j].t <= t_catch; j++) {
+        ball_racket_push(&sims[k], 0, &sw.s[j]);
+        ball_step(&sims[k], sw.s[j].t - sims[k].time, NULL, 0, NULL);
+      }
+    }
+    for (r = 0; r < R; r++) {
+      double t0 = bench_now();
+      long p;
+      hits = 0;
+      for (p = 0; p < passes; p++)
+        for (k = 0; k < CONTACT_SIMS; k++) {
+          ball_racket_contact c;
+          hits += ball_racket_first_contact(&sims[k], 0, sims[k].time + 0.3, &c) == BALL_OK;
+        }
+      t[r] = 1e9 * (bench_now() - t0) / (double)(passes * CONTACT_SIMS);
+    }
+    s = bench_stats(t, R);
+    printf("%-7s %5d %9.1f %9.1f %12.1f\n", ball_detect_name(detects[d]), hits / (int)passes, s.min, s.median,
+           s.median / g_expm1_ns);
+  }
+}
+
 static void usage(FILE *f) {
   fprintf(f,
           "usage: ball_bench [--rounds N] [--scale X] [--smoke] [--only SECTION] [--scenes DIR]\n"
-          "  sections: eval, rally, predict, walls, rackets, effects (docs/benchmarks.md)\n"
+          "  sections: eval, rally, predict, walls, rackets, effects, contact (docs/benchmarks.md)\n"
           "  --rounds N   rounds per measurement, min and median reported (default 11, at most %d)\n"
           "  --scale X    work per round relative to the default (default 1)\n"
           "  --smoke      a few iterations of everything, to check the program runs\n"
@@ -305,5 +364,6 @@ int main(int argc, char **argv) {
   if (section(&o, "walls")) bench_walls(&o);
   if (section(&o, "rackets")) bench_rackets(&o);
   if (section(&o, "effects")) bench_effects(&o);
+  if (section(&o, "contact")) bench_contact(&o);
   return 0;
 }

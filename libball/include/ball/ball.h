@@ -505,6 +505,50 @@ BALL_API ball_status ball_racket_clear(ball_sim *sim, int racket);
 BALL_API ball_status ball_racket_estimate(const ball_sim *sim, int racket, double t,
                                           ball_racket_pose *out);
 
+/* When a racket will first meet the ball (beyond the paper; docs/rackets.md,
+ * "First contact"): for a server that steps at frame deadlines but wants to
+ * wake between them at the instant a hit happens. */
+typedef struct ball_racket_contact {
+  int racket;       /* the racket the step reports; -1 from the _any query when none */
+  double step_to;   /* s: the earliest frame end t: ball_step(sim, t - sim->time, ...) reports the
+                       hit; +Inf when none */
+  double time;      /* s: the time that step's event carries: step_to for the sphere and disc tests,
+                       the time of impact (sim->time <= time <= step_to) for the swept test */
+  double searched;  /* s: the search covered (sim->time, searched]: step_to on a hit; else t_end, or
+                       less where a static contact or the work bound cut it (step there, ask again) */
+} ball_racket_contact;
+
+/* The earliest frame end t in (sim->time, t_end] at which ONE ball_step of
+ * dt = t - sim->time, from the sim as it is, finds a hit of racket `racket`
+ * with the model's detection test (sphere, disc in either normal mode,
+ * swept), the racket estimated as ball_racket_estimate gives it
+ * (interpolated, eq 15 past the newest sample, capped by
+ * extrapolation_time): found to adjacent doubles by the step's own test, so
+ * stepping to out->step_to reports that hit and stepping to any earlier
+ * time does not. Other rackets are not considered (the _any query does).
+ * Reads the sim only. The ball follows its current segment: if a floor,
+ * net or wall contact would come first, the search ends just before it
+ * (out->searched). A ball already touching gives the first double after
+ * sim->time. Bounded work, no allocation (docs/rackets.md gives the cost).
+ * BALL_ENOTFOUND: no hit in the window (out->searched says how far it
+ * looked), also when the track has no samples, the rackets effect is off,
+ * or the racket tests sleep (sim->sleep > 0 counts STEPS: the next step
+ * tests nothing, however long it is; step the frames and ask again).
+ * BALL_ESTALE: the track is stale at sim->time, as ball_racket_estimate.
+ * out is written with these two and BALL_OK. BALL_EINVAL for NULL or a
+ * racket the model does not have, BALL_ENONFINITE for a NaN or infinite
+ * t_end (or sim state), BALL_ERANGE for t_end before sim->time or a step the
+ * stepper would refuse; then out is unchanged. */
+BALL_API ball_status ball_racket_first_contact(const ball_sim *sim, int racket, double t_end,
+                                               ball_racket_contact *out);
+
+/* The same over every racket: the earliest frame end at which one step
+ * reports a racket hit, and the racket it reports (the stage's rule when
+ * several pass in that step: earliest time of impact or nearest).
+ * BALL_ENOTFOUND (out->racket -1) when none does. */
+BALL_API ball_status ball_racket_first_contact_any(const ball_sim *sim, double t_end,
+                                                   ball_racket_contact *out);
+
 /* A portable hash of the sim's state (clock, frame, segment, previous
  * position, sleep counter, racket samples, and ball_model_hash of the sim's
  * model; not the warning counters), to detect desync between peers: equal on

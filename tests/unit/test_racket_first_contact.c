@@ -1,0 +1,439 @@
+/* ball_racket_first_contact and _any: the earliest frame end at which one
+ * ball_step from the sim as it is reports a racket hit, against stepping.
+ * Seeded swings (kit/swings.h) at 10 Hz under each game level preset and
+ * the swept test in both normal modes, each sim caught at a random time
+ * before, during or after the stroke, sometimes with a newer sample than
+ * its last frame saw (R_old off the new track). For every answer: one step
+ * to it reports the hit at the time the query says, one step to the double
+ * before (and to 1 ns before) reports none, and a reference by single
+ * steps on a grid of frame ends, bisected, finds the same frame end. */
+#include <float.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+
+#include <cmocka.h>
+
+#include "core_common.h"
+#include "swings.h"
+
+#define WINDOW 0.3      /* s searched from the sim's time */
+#define GRID 1500       /* reference frame ends over the window */
+#define CASES 200       /* swings per configuration */
+#define AGREE 1e-12     /* s: query against stepping */
+
+typedef struct config {
+  const char *name;
+  ball_level level;   /* the preset the model starts from */
+  int swept;          /* 1: the preset's normal mode with the swept test */
+} config;
+
+static const config configs[] = {
+    {"easy (sphere)", BALL_LEVEL_EASY, 0},
+    {"mid (disc, velocity normal)", BALL_LEVEL_MID, 0},
+    {"advanced (disc, real normal)", BALL_LEVEL_ADVANCED, 0},
+    {"swept, real normal", BALL_LEVEL_ADVANCED, 1},
+    {"swept, velocity normal", BALL_LEVEL_MID, 1},
+};
+
+static void config_model(ball_model *m, const config *c, seeded_rng *r) {
+  swing_model(m, BALL_DETECT_DISC);
+  assert_ok(ball_model_set_level(m, c->level));
+  if (c->swept) m->detect = BALL_DETECT_SWEPT;
+  m->extrapolation_time = 0.1; /* eq 15 bridges the 10 Hz gap */
+  m->stale_time = 1.0;
+  m->history = 3;
+  m->scheme = seeded_uniform(r, 0, 1) < 0.5 ? BALL_SCHEME_EXACT : BALL_SCHEME_SAMPLED;
+  if (seeded_uniform(r, 0, 1) < 0.5) m->effects |= BALL_EFFECT_FLOOR; /* a floor the search must know of */
+  m->floor_level = -10.0; /* below the swing's start (eq 3 run back from the stroke) */
+}
+
+/* A seeded case of configuration c: its model and a swing at 10 Hz. */
+static void case_of(const config *c, seeded_rng *r, ball_model *m, swing *sw) {
+  config_model(m, c, r);
+  swing_make(m, r, 0.1, sw);
+}
+
+/* One step of a copy to frame end t: 1 if it reports a hit of `racket`
+ * (-1: any racket), its racket and time in *which, *time. */
+static int step_hits(const ball_sim *sim, double t, int racket, int *which, double *time) {
+  ball_sim copy = *sim;
+  ball_event ev[STEPS_FRAME_CAP];
+  int n, k;
+  assert_ok(ball_step(&copy, t - sim->time, ev, STEPS_FRAME_CAP, &n));
+  for (k = 0; k < n; k++)
+    if (ev[k].kind == BALL_EVENT_RACKET && (racket < 0 || ev[k].index == racket)) {
+      if (which) *which = ev[k].index;
+      if (time) *time = ev[k].time;
+      return 1;
+    }
+  return 0;
+}
+
+/* The first frame end in (lo, hi] where one step hits, hi hitting:
+ * bisection on single steps; then, since the swept test's answer need not
+ * be monotone in the frame end (a contact that begins inside the frame),
+ * earlier frame ends 1e-15 s, 2e-15 s, ... back are tried and an earlier
+ * hit bisected again. */
+static double reference_edge(const ball_sim *sim, int racket, double lo, double hi) {
+  double t0 = sim->time, d;
+  int again = 1;
+  while (again) {
+    again = 0;
+    for (;;) {
+      double mid = t0 + ((lo + 0.5 * (hi - lo)) - t0);
+      if (!(mid > lo && mid < hi)) break;
+      if (step_hits(sim, mid, racket, NULL, NULL))
+        hi = mid;
+      else
+        lo = mid;
+    }
+    for (d = 1e-15; hi - d > lo; d *= 1.7)
+      if (step_hits(sim, hi - d, racket, NULL, NULL)) {
+        hi = t0 + ((hi - d) - t0);
+        again = 1;
+        break;
+      }
+  }
+  return hi;
+}
+
+/* The reference: single steps to GRID frame ends over (t0, until], the
+ * first that hits bisected back (single steps again) to adjacent doubles;
+ * -1 if none. */
+static double reference(const ball_sim *sim, double until, int racket) {
+  double t0 = sim->time, lo = t0, hi = -1.0;
+  int j;
+  for (j = 1; j <= GRID; j++) {
+    double t = t0 + (until - t0) * j / GRID;
+    if (j == GRID) t = until;
+    if (t <= t0) continue;
+    if (step_hits(sim, t, racket, NULL, NULL)) {
+      hi = t;
+      break;
+    }
+    lo = t;
+  }
+  if (hi < 0.0) return -1.0;
+  return reference_edge(sim, racket, lo, hi);
+}
+
+/* A sim on swing sw caught at time t_catch: the samples up to it pushed,
+ * a frame stepped at each, the last frame cut at t_catch; with `newer`, the
+ * next sample too (time past t_catch: R_old is then off the new track).
+ * Returns 0 if the catch missed (the run was refused). */
+static void catch_sim(const ball_model *m, const swing *sw, double t_catch, int newer, ball_sim *sim) {
+  ball_state st;
+  ball_event ev[STEPS_FRAME_CAP];
+  int k, n;
+  st.position = sw->seg.p0;
+  st.velocity = sw->seg.v0;
+  st.spin = sw->seg.s0;
+  assert_ok(ball_sim_init(sim, m));
+  assert_ok(ball_sim_set_state(sim, &st));
+  assert_ok(ball_racket_push(sim, 0, &sw->s[0]));
+  for (k = 1; k < sw->n && sw->s[k].t <= t_catch; k++) {
+    assert_ok(ball_racket_push(sim, 0, &sw->s[k]));
+    assert_ok(ball_step(sim, sw->s[k].t - sim->time, ev, STEPS_FRAME_CAP, &n));
+  }
+  if (t_catch > sim->time) assert_ok(ball_step(sim, t_catch - sim->time, ev, STEPS_FRAME_CAP, &n));
+  if (newer && k < sw->n) assert_ok(ball_racket_push(sim, 0, &sw->s[k]));
+}
+
+/* What every answer must satisfy against stepping; returns |query - reference|. */
+static double check_answer(const ball_sim *sim, ball_status st, const ball_racket_contact *c, int racket,
+                           int *grid_missed) {
+  double ref, t_ev = 0.0;
+  int which = -1;
+  if (st == BALL_OK) {
+    double before = nextafter(c->step_to, -INFINITY);
+    assert_true(c->step_to > sim->time && c->step_to <= sim->time + WINDOW);
+    assert_true(c->searched == c->step_to);
+    /* (a) one step to it reports the hit, at the query's time */
+    assert_true(step_hits(sim, c->step_to, racket, &which, &t_ev));
+    assert_int_equal(which, c->racket);
+    assert_near(t_ev, c->time, AGREE);
+    if (sim->model.detect != BALL_DETECT_SWEPT) assert_near(c->time, c->step_to, AGREE);
+    assert_true(c->time >= sim->time - AGREE && c->time <= c->step_to + AGREE);
+    /* (b) one step to any earlier frame end reports none */
+    if (before > sim->time) assert_false(step_hits(sim, before, racket, NULL, NULL));
+    if (c->step_to - 1e-9 > sim->time)
+      assert_false(step_hits(sim, c->step_to - 1e-9, racket, NULL, NULL));
+  } else {
+    assert_int_equal(st, BALL_ENOTFOUND);
+    assert_true(c->searched >= sim->time && c->searched <= sim->time + WINDOW);
+    assert_true(isinf(c->step_to));
+  }
+  /* (c) the reference over what the query searched */
+  ref = reference(sim, st == BALL_OK ? sim->time + WINDOW : c->searched, racket);
+  if (st == BALL_OK && ref >= 0.0 && ref > c->searched) ref = -1.0; /* past a static contact */
+  if (st != BALL_OK) {
+    if (ref >= 0.0 && ref <= c->searched)
+      fail_msg("query: none through %.17g; stepping: a hit at %.17g (t0 %.17g)", c->searched, ref, sim->time);
+    return 0.0;
+  }
+  if (ref < 0.0 || ref > c->step_to + AGREE) {
+    /* the query found a hit the grid stepped over: (a) and (b) vouch for it */
+    (*grid_missed)++;
+    return 0.0;
+  }
+  if (!(fabs(ref - c->step_to) <= AGREE))
+    fail_msg("query %.17g, stepping %.17g (off by %.3g s; t0 %.17g)", c->step_to, ref, fabs(ref - c->step_to),
+             sim->time);
+  return fabs(ref - c->step_to);
+}
+
+static void first_contact_is_where_one_step_first_hits(void **state) {
+  size_t ci;
+  (void)state;
+  for (ci = 0; ci < sizeof configs / sizeof configs[0]; ci++) {
+    seeded_rng r = seeded_stream(20261202, ci);
+    int k, found = 0, none = 0, asleep = 0, missed = 0, tests = 0;
+    double worst = 0.0;
+    for (k = 0; k < CASES; k++) {
+      ball_model m;
+      swing sw;
+      ball_sim sim, before;
+      ball_racket_contact c;
+      ball_status st;
+      uint64_t h;
+      double t_catch;
+      int newer;
+      case_of(&configs[ci], &r, &m, &sw);
+      t_catch = seeded_uniform(&r, 0.3, 0.7);
+      newer = seeded_uniform(&r, 0, 1) < 0.5;
+      catch_sim(&m, &sw, t_catch, newer, &sim);
+      before = sim;
+      h = ball_sim_hash(&sim);
+      st = ball_racket_first_contact(&sim, 0, sim.time + WINDOW, &c);
+      /* read only */
+      assert_memory_equal(&sim, &before, sizeof sim);
+      assert_true(ball_sim_hash(&sim) == h);
+      if (sim.sleep > 0) { /* caught just after a hit: the next step tests nothing */
+        assert_int_equal(st, BALL_ENOTFOUND);
+        assert_true(c.searched == sim.time + WINDOW);
+        asleep++;
+        continue;
+      }
+      worst = fmax(worst, check_answer(&sim, st, &c, 0, &missed));
+      found += st == BALL_OK;
+      none += st != BALL_OK;
+      tests++;
+    }
+    print_message("%-30s %3d found, %3d none, %2d asleep, %d the grid stepped over; worst |query - stepping| "
+                  "%.3g s\n", configs[ci].name, found, none, asleep, missed, worst);
+    /* the cases must exercise both answers */
+    assert_true(found >= CASES / 10);
+    assert_true(none >= 3);
+    assert_true(missed <= tests / 20);
+  }
+}
+
+/* Two rackets: the second gets the first's samples moved by a random
+ * offset; the _any query gives the frame end and the racket the step
+ * reports. */
+static void any_racket_is_what_the_step_reports(void **state) {
+  size_t ci;
+  (void)state;
+  for (ci = 0; ci < sizeof configs / sizeof configs[0]; ci++) {
+    seeded_rng r = seeded_stream(77, ci);
+    int k, found = 0, seconds = 0, missed = 0;
+    for (k = 0; k < CASES; k++) {
+      ball_model m;
+      swing sw;
+      ball_sim sim, before;
+      ball_racket_contact c, one;
+      ball_status st;
+      ball_vec3 off = swing_rnd3(&r, -0.3, 0.3);
+      int j;
+      case_of(&configs[ci], &r, &m, &sw);
+      m.n_rackets = 2;
+      m.rackets[1] = m.rackets[0];
+      catch_sim(&m, &sw, seeded_uniform(&r, 0.25, 0.7), 0, &sim);
+      for (j = 0; j < sw.n && sw.s[j].t <= sim.time; j++) {
+        ball_racket_sample s = sw.s[j];
+        s.center = ball_v3_add(s.center, off);
+        assert_ok(ball_racket_push(&sim, 1, &s));
+      }
+      if (sim.sleep > 0) continue;
+      before = sim;
+      st = ball_racket_first_contact_any(&sim, sim.time + WINDOW, &c);
+      assert_memory_equal(&sim, &before, sizeof sim);
+      check_answer(&sim, st, &c, -1, &missed);
+      if (st != BALL_OK) {
+        assert_int_equal(c.racket, -1);
+        continue;
+      }
+      found++;
+      seconds += c.racket == 1;
+      /* never later than either racket's own first contact */
+      for (j = 0; j < 2; j++)
+        if (ball_racket_first_contact(&sim, j, sim.time + WINDOW, &one) == BALL_OK)
+          assert_true(c.step_to <= one.step_to);
+    }
+    print_message("%-30s %3d found, %2d of them racket 1\n", configs[ci].name, found, seconds);
+    assert_true(found >= CASES / 40);
+    assert_true(seconds > 0);
+    assert_true(missed <= found / 10 + 1);
+  }
+}
+
+/* A racket 5 m away: nothing in the window, searched through t_end. */
+static void no_hit_when_the_racket_stays_away(void **state) {
+  size_t ci;
+  (void)state;
+  for (ci = 0; ci < sizeof configs / sizeof configs[0]; ci++) {
+    seeded_rng r = seeded_stream(5, ci);
+    int k;
+    for (k = 0; k < 20; k++) {
+      ball_model m;
+      swing sw;
+      ball_sim sim;
+      ball_racket_contact c;
+      int j;
+      case_of(&configs[ci], &r, &m, &sw);
+      for (j = 0; j < sw.n; j++) sw.s[j].center.z += 5.0;
+      catch_sim(&m, &sw, seeded_uniform(&r, 0.25, 0.8), k % 2, &sim);
+      assert_int_equal(ball_racket_first_contact(&sim, 0, sim.time + WINDOW, &c), BALL_ENOTFOUND);
+      assert_true(c.searched == sim.time + WINDOW);
+      assert_true(isinf(c.step_to) && c.racket == 0);
+      assert_true(reference(&sim, sim.time + WINDOW, 0) < 0.0);
+    }
+  }
+}
+
+/* A ball falling onto the floor under a racket it reaches only after the
+ * bounce: the search stops just before the bounce, in both schemes, and
+ * stepping there and asking again finds the hit. */
+static void search_stops_before_a_static_contact(void **state) {
+  int scheme;
+  (void)state;
+  for (scheme = 0; scheme < BALL_SCHEME_COUNT; scheme++) {
+    ball_model m;
+    ball_sim sim;
+    ball_racket_contact c;
+    ball_event ev[STEPS_FRAME_CAP];
+    double t_floor = sqrt(2.0 * 1.0 / 9.81); /* from 1 m, no drag vertically */
+    int n;
+    swing_model(&m, BALL_DETECT_SPHERE);
+    assert_ok(ball_model_set_level(&m, BALL_LEVEL_EASY));
+    m.effects |= BALL_EFFECT_FLOOR;
+    m.radius = 0.0;
+    m.floor_level = 0.0;
+    m.floor_damping = 0.9;
+    m.scheme = (ball_scheme)scheme;
+    m.initial_position = ball_v3(0, 1, 0);
+    m.initial_velocity = ball_v3(0, 0, 0);
+    assert_ok(ball_sim_init(&sim, &m));
+    /* a racket 2 m aside until the bounce, then coming over the rising
+     * ball: it reaches it (d_COLL 0.3 m) near t = 0.97 s, after the bounce */
+    assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {2.0, 0.5, 0}, {1, 0, 0}}));
+    assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){0.45, {2.0, 0.5, 0}, {1, 0, 0}}));
+    assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){1.0, {0.0, 0.5, 0}, {1, 0, 0}}));
+    assert_int_equal(ball_racket_first_contact(&sim, 0, 1.0, &c), BALL_ENOTFOUND);
+    assert_near(c.searched, t_floor, 1e-12);
+    /* no step to a time in (0, searched] meets the floor */
+    {
+      ball_sim copy = sim;
+      assert_ok(ball_step(&copy, c.searched, ev, STEPS_FRAME_CAP, &n));
+      assert_int_equal(n, 0);
+    }
+    /* the server steps there (the bounce comes in its next step) and asks again */
+    assert_ok(ball_step(&sim, c.searched - sim.time, ev, STEPS_FRAME_CAP, &n));
+    assert_ok(ball_step(&sim, 1e-6, ev, STEPS_FRAME_CAP, &n));
+    assert_int_equal(n, 1);
+    assert_int_equal(ev[0].kind, BALL_EVENT_FLOOR);
+    assert_ok(ball_racket_first_contact(&sim, 0, 2.0, &c));
+    assert_true(step_hits(&sim, c.step_to, 0, NULL, NULL));
+    assert_false(step_hits(&sim, nextafter(c.step_to, -INFINITY), 0, NULL, NULL));
+  }
+}
+
+/* Sleep counts steps: after a hit, every query answers BALL_ENOTFOUND
+ * until sleep_frames steps (of any length) have been taken. */
+static void sleep_counts_steps_not_seconds(void **state) {
+  ball_model m;
+  ball_sim sim;
+  ball_racket_contact c;
+  ball_event ev[STEPS_FRAME_CAP];
+  int n, f;
+  (void)state;
+  swing_model(&m, BALL_DETECT_SPHERE);
+  assert_ok(ball_model_set_level(&m, BALL_LEVEL_EASY));
+  m.collision_distance = 1.0;
+  m.response = BALL_RESPONSE_RACKET;
+  m.v_min = 0.5;
+  m.initial_position = ball_v3(0, 1, 0);
+  assert_ok(ball_sim_init(&sim, &m));
+  assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
+  /* touching already: the first double after 0 */
+  assert_ok(ball_racket_first_contact(&sim, 0, 1.0, &c));
+  assert_true(c.step_to == nextafter(0.0, 1.0));
+  assert_ok(ball_step(&sim, 0.05, ev, STEPS_FRAME_CAP, &n));
+  assert_int_equal(n, 1);
+  for (f = 0; f < m.sleep_frames; f++) {
+    assert_int_equal(sim.sleep, m.sleep_frames - f);
+    assert_int_equal(ball_racket_first_contact(&sim, 0, sim.time + 10.0, &c), BALL_ENOTFOUND);
+    assert_true(c.searched == sim.time + 10.0);
+    assert_ok(ball_step(&sim, f == 0 ? 1e-6 : 0.02 * f, ev, STEPS_FRAME_CAP, &n)); /* irregular frames */
+    assert_int_equal(n, 0);
+  }
+  assert_int_equal(sim.sleep, 0);
+  assert_ok(ball_racket_first_contact(&sim, 0, sim.time + 10.0, &c));
+  assert_true(step_hits(&sim, c.step_to, 0, NULL, NULL));
+}
+
+/* Bad input: a status, out and the sim unchanged. */
+static void bad_input_changes_nothing(void **state) {
+  ball_model m;
+  ball_sim sim, before;
+  ball_racket_contact c, sentinel;
+  (void)state;
+  swing_model(&m, BALL_DETECT_DISC);
+  assert_ok(ball_sim_init(&sim, &m));
+  assert_int_equal(ball_racket_first_contact(&sim, 0, 1.0, &c), BALL_ENOTFOUND); /* no samples */
+  assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {0.3, 1, 0}, {1, 0, 0}}));
+  assert_ok(ball_step(&sim, 0.5, NULL, 0, NULL));
+  memset(&sentinel, 0x5a, sizeof sentinel);
+  c = sentinel;
+  before = sim;
+  assert_int_equal(ball_racket_first_contact(NULL, 0, 1.0, &c), BALL_EINVAL);
+  assert_int_equal(ball_racket_first_contact(&sim, 0, 1.0, NULL), BALL_EINVAL);
+  assert_int_equal(ball_racket_first_contact(&sim, -1, 1.0, &c), BALL_EINVAL);
+  assert_int_equal(ball_racket_first_contact(&sim, 1, 1.0, &c), BALL_EINVAL); /* n_rackets is 1 */
+  assert_int_equal(ball_racket_first_contact(&sim, BALL_MAX_RACKETS, 1.0, &c), BALL_EINVAL);
+  assert_int_equal(ball_racket_first_contact(&sim, 0, NAN, &c), BALL_ENONFINITE);
+  assert_int_equal(ball_racket_first_contact(&sim, 0, INFINITY, &c), BALL_ENONFINITE);
+  assert_int_equal(ball_racket_first_contact(&sim, 0, -INFINITY, &c), BALL_ENONFINITE);
+  assert_int_equal(ball_racket_first_contact(&sim, 0, 0.25, &c), BALL_ERANGE); /* before sim->time */
+  assert_int_equal(ball_racket_first_contact(&sim, 0, nextafter(0.5, 0.0), &c), BALL_ERANGE);
+  assert_int_equal(ball_racket_first_contact_any(NULL, 1.0, &c), BALL_EINVAL);
+  assert_int_equal(ball_racket_first_contact_any(&sim, 1.0, NULL), BALL_EINVAL);
+  assert_int_equal(ball_racket_first_contact_any(&sim, NAN, &c), BALL_ENONFINITE);
+  assert_int_equal(ball_racket_first_contact_any(&sim, 0.1, &c), BALL_ERANGE);
+  assert_memory_equal(&c, &sentinel, sizeof c);
+  assert_memory_equal(&sim, &before, sizeof sim);
+  /* an empty window: nothing to find */
+  assert_int_equal(ball_racket_first_contact(&sim, 0, 0.5, &c), BALL_ENOTFOUND);
+  assert_true(c.searched == 0.5);
+  /* stale at sim->time, as ball_racket_estimate: BALL_ESTALE */
+  assert_ok(ball_step(&sim, m.stale_time + 1.0, NULL, 0, NULL));
+  before = sim;
+  assert_int_equal(ball_racket_first_contact(&sim, 0, sim.time + 1.0, &c), BALL_ESTALE);
+  assert_int_equal(ball_racket_estimate(&sim, 0, sim.time, &(ball_racket_pose){{0, 0, 0}, {0, 0, 0}, {0, 0, 0}}),
+                   BALL_ESTALE);
+  assert_memory_equal(&sim, &before, sizeof sim);
+}
+
+int main(void) {
+  const struct CMUnitTest tests[] = {
+      cmocka_unit_test(first_contact_is_where_one_step_first_hits),
+      cmocka_unit_test(any_racket_is_what_the_step_reports),
+      cmocka_unit_test(no_hit_when_the_racket_stays_away),
+      cmocka_unit_test(search_stops_before_a_static_contact),
+      cmocka_unit_test(sleep_counts_steps_not_seconds),
+      cmocka_unit_test(bad_input_changes_nothing),
+  };
+  return cmocka_run_group_tests(tests, NULL, NULL);
+}
