@@ -38,6 +38,8 @@ void FieldOptions<S>::add(CLI::App &app, const std::vector<Field<S>> &table, con
           } else if constexpr (std::is_same_v<M, int S::*> || std::is_same_v<M, uint32_t S::*> ||
                                std::is_same_v<M, uint64_t S::*>) {
             e.option = app.add_option(f.option, e.integer, help)->check(CLI::Range(f.bounds.ilo, f.bounds.ihi));
+          } else if constexpr (std::is_same_v<M, bool S::*>) {
+            e.option = app.add_option(f.option, e.flag, help)->type_name("BOOL");  // true/false, 1/0, on/off
           } else if constexpr (std::is_same_v<M, ball_level S::*>) {
             e.option = app.add_option(f.option, e.text, help)->check(CLI::Validator(
                 [](std::string &v) -> std::string {
@@ -79,6 +81,8 @@ void FieldOptions<S>::apply(S *s) const {
           } else if constexpr (std::is_same_v<M, int S::*> || std::is_same_v<M, uint32_t S::*> ||
                                std::is_same_v<M, uint64_t S::*>) {
             s->*m = static_cast<std::remove_reference_t<decltype(s->*m)>>(e.integer);
+          } else if constexpr (std::is_same_v<M, bool S::*>) {
+            s->*m = e.flag;
           } else if constexpr (std::is_same_v<M, ball_level S::*>) {
             parse_level(e.text, &(s->*m));
           } else if constexpr (std::is_same_v<M, std::string S::*>) {

@@ -36,6 +36,7 @@ class FieldOptions {
     CLI::Option *option = nullptr;
     double real = 0.0;
     long long integer = 0;
+    bool flag = false;
     std::string text;
   };
   std::deque<Entry> entries_;  // stable addresses: CLI11 writes into them

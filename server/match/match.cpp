@@ -242,8 +242,46 @@ void Match::update_presence(double now, MatchOutput *out) {
 
 void Match::frame(double now, MatchOutput *out) {
   update_presence(now, out);
-  if (state_ != MatchState::playing) return;
-  advance(frame_time() * config_.time_base, true, out);
+  if (state_ != MatchState::playing) {
+    next_hit_ = HUGE_VAL;
+    return;
+  }
+  // the rest of the frame that hits began
+  advance(std::max(0.0, frame_time() * config_.time_base - partial_), true, out);
+  partial_ = 0.0;
+  find_hit();
+}
+
+// ---- racket hits at their instant ----------------------------------------
+
+void Match::find_hit() {
+  next_hit_ = HUGE_VAL;
+  const ball_model &m = model();
+  if (!config_.hit_instant || state_ != MatchState::playing || following_ || need_serve_ ||
+      !(m.effects & BALL_EFFECT_RACKETS) || m.n_rackets == 0 || sim_.sleep > 0)
+    return;
+  double end = sim_.time - partial_ + frame_time() * config_.time_base;  // the frame's end
+  ball_racket_contact c;
+  if (end > sim_.time && ball_racket_first_contact_any(&sim_, end, &c) == BALL_OK && c.racket >= 0 &&
+      c.step_to < end)
+    next_hit_ = c.step_to;
+}
+
+double Match::hit_after() const {
+  if (!std::isfinite(next_hit_)) return HUGE_VAL;
+  return (next_hit_ - (sim_.time - partial_)) / config_.time_base;
+}
+
+void Match::step_to_hit(MatchOutput *out) {
+  double dt = next_hit_ - sim_.time;
+  if (state_ != MatchState::playing || !(dt > 0.0) || !std::isfinite(dt)) {
+    next_hit_ = HUGE_VAL;
+    return;
+  }
+  advance(dt, false, out);
+  partial_ += dt;
+  counters_.hit_steps++;
+  find_hit();
 }
 
 void Match::advance(double dt, bool with_state, MatchOutput *out) {
@@ -511,6 +549,7 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
   slot.ref.seq = s.seq;
   slot.ref.source_time = s.source_time;
   slot.ref.capture_time = s.capture_time;
+  find_hit();  // the track moved: the hit it meets may too
   return SampleResult::accepted;
 }
 

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -54,6 +55,16 @@ class Match {
   // A sample the reader had no room for (RacketSampleIn::rejected): it
   // only moves its holder's stream on, so that it is not counted lost too.
   void on_rejected(const RacketSampleIn &sample, uint64_t *lost);
+
+  // Racket hits at their instant (docs/server.md, "Hits at their instant"):
+  // the real s after the last frame's deadline at which the first contact
+  // of a racket's track with the ball comes (ball_racket_first_contact_any),
+  // when it comes before the next frame's end; +Inf: none. Found again after
+  // every frame, accepted sample and hit.
+  double hit_after() const;
+  // Steps the match to that instant (a partial frame, no ball state): the
+  // level's own test finds the hit then; the next frame steps the rest.
+  void step_to_hit(MatchOutput *out);
 
   // A control message; refusals come out as a REFUSED event and the reason.
   Reason on_control(const ControlIn &control, double now, MatchOutput *out);
@@ -143,6 +154,7 @@ class Match {
   void advance(double dt, bool with_state, MatchOutput *out);  // a frame's sim part: serve, step, rules
   double clock_now() const { return following_ ? follow_time_ : sim_.time; }  // sim s the sample checks use
   void set_level(ball_level level, std::string *err);
+  void find_hit();  // next_hit_ from the tracks as they are
   bool all_present() const;
   bool holds_slot(const ParticipantId &who) const;
   void set_state(MatchState s, MatchOutput *out);
@@ -168,6 +180,8 @@ class Match {
   uint32_t current_seq_ = 0;  // the segment in effect: the sim's
   Ahead ahead_;
   bool stepped_ahead_ = false;  // this frame stepped a contact written ahead
+  double next_hit_ = HUGE_VAL;  // sim s of the next racket hit before the frame's end
+  double partial_ = 0.0;        // sim s of the current frame already stepped to hits
   Cause segment_cause_ = Cause::serve;  // what started the current segment
   int segment_cause_index_ = -1;
   uint32_t event_seq_ = 0;

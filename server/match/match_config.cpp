@@ -55,6 +55,10 @@ const std::vector<Field<MatchConfig>> &match_fields() {
        "a racket centre beyond its player's half (its baseline or sidelines) by more, over the net by more than "
        "1 m, or more than 1 m under the floor, is refused (`out_of_range`)",
        "--racket-margin"},
+      {"hit_instant", &M::hit_instant, {}, "",
+       "step the match to a racket hit's instant between frames, found from the rackets' tracks (docs/server.md, "
+       "\"Hits at their instant\"); false: hits are found at frame ends only",
+       "--hit-instant"},
       {"court_x_lo", &M::court_x_lo, closed(-BALL_MAX_COORD, BALL_MAX_COORD), "m",
        "where the court starts; it spans x in [court_x_lo, 2 net_x - court_x_lo], z over the net", "--court-x-lo"},
       {"seed", &M::seed, whole(0, INT64_MAX), "", "the serves' placement", "--seed", "1 (+ index with `--matches`)"},

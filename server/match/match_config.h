@@ -30,6 +30,7 @@ struct MatchConfig {
   double serve_v_up = 4.0;            // m/s: vertical launch speed of a serve
   double max_racket_speed = 50.0;     // m/s: a racket implied faster between two samples is refused
   double racket_margin = 8.0;         // m: how far beyond its own half (sidelines, baseline) a racket may be
+  bool hit_instant = true;            // step to a racket hit's instant between frames (false: frame-locked)
   double court_x_lo = 0.0;            // m: where the court starts (Court)
   uint64_t seed = 1;                  // serve placement
 };

@@ -553,11 +553,28 @@ void ServerLoop::run_due_frames(double t0, double now) {
 }
 
 
+double ServerLoop::hit_due(const Scheduled &s) const {
+  return s.k == 0 ? HUGE_VAL : s.clock.deadline(s.k - 1) + s.match->hit_after();
+}
+
+void ServerLoop::run_due_hits(double t0, double now) {
+  for (auto &s : sched_) {
+    double at = hit_due(s);
+    if (at > t0 + 1e-6 || t0 < s.firm_at) continue;
+    out_.clear();
+    s.match->step_to_hit(&out_);
+    publish(out_, s, now);
+    if (out_.info_changed) publish_info(s);
+    stats_.hit_wakes++;
+    stats_.hit_late.add(t0 - at);
+  }
+}
+
 double ServerLoop::next_wake() const {
   double wake = next_status_;
   bool often = false;  // frames come often enough to assert the liveliness on time
   for (const auto &s : sched_) {
-    wake = std::min(wake, s.clock.deadline(s.k));
+    wake = std::min({wake, s.clock.deadline(s.k), hit_due(s)});
     often = often || s.clock.period() <= kLivelinessPeriod;
   }
   if (!often) wake = std::min(wake, next_assert_);
@@ -589,6 +606,7 @@ bool ServerLoop::wake() {
   take_samples(now);
   take_controls(now);
   take_over(t0, now);
+  run_due_hits(t0, now);
   run_due_frames(t0, now);
   double t1 = clock_.mono();
   stats_.frame_time.add(t1 - t0);

@@ -15,6 +15,9 @@
 //   take over      a followed match whose owner's writers lost their
 //                  liveliness a grace ago, when this server is its
 //                  successor: restored (Match::restore) and scheduled
+//   run due hits   each match whose next racket hit's instant has come
+//                  (Match::hit_after, from its last frame's deadline) steps
+//                  to it and publishes the hit at once
 //   run due frames each match whose deadline has come steps one frame and
 //                  publishes what it produced; a match more than
 //                  max_behind frames late (the machine stalled) skips to
@@ -151,6 +154,8 @@ struct LoopStats {
   uint64_t follow_failures = 0; // another server's matches this one could not follow or restore
   uint64_t liveliness_failures = 0;  // liveliness assertions the port refused
   uint64_t created_expired = 0;  // created matches removed: nobody held a slot for create_timeout
+  uint64_t hit_wakes = 0;        // partial frames stepped to a racket hit's instant
+  Percentiles hit_late;          // real s such a step began after the hit's instant, over the run
   Percentiles frame_time;       // real s of work per wake-up, this status period
   Percentiles late;             // real s a frame started after its deadline, this status period
   Percentiles late_p99;         // each period's p99 of that, over the run
@@ -203,6 +208,7 @@ class ServerLoop {
   void take_samples(double now);
   void take_controls(double now);
   void take_over(double t0, double now);
+  void run_due_hits(double t0, double now);  // matches whose racket hit's instant has come step to it
   void run_due_frames(double t0, double now);
 
   double next_wake() const;  // mono s
@@ -237,6 +243,7 @@ class ServerLoop {
     bool alive = true;
   };
   Scheduled schedule(Match *m);
+  double hit_due(const Scheduled &s) const;  // mono s of its next racket hit's instant; +Inf: none
   Scheduled *scheduled(uint32_t id);
   ServerView own_view() const;
   std::vector<ServerView> views() const;  // the live servers heard of, and this one

@@ -383,7 +383,8 @@ inline SegmentOut current_segment(const MatchInfoOut &i) {
   X(step_errors) /* frames ball_step refused (never seen; counted, not fatal) */  \
   X(rejected)    /* racket samples that found their share of the reader's inbox full */     \
   X(ahead)       /* segments of static contacts written before the contact */             \
-  X(ahead_corrected) /* of those, written again when the contact was stepped */
+  X(ahead_corrected) /* of those, written again when the contact was stepped */                \
+  X(hit_steps)   /* partial frames stepped to a racket hit's instant */
 struct MatchCounters {
 #define BALL_COUNTER(name) uint64_t name = 0;
   BALL_MATCH_COUNTERS(BALL_COUNTER)

@@ -83,6 +83,14 @@ inline RallyResult play(const MatchConfig &c, const Net &net, double seconds, ui
         else if (res != SampleResult::idle) r.drops++;
       });
     }
+    // as the server loop does: a racket hit's instant before the frame's end is stepped to first
+    if (g.match.hit_after() < g.match.frame_time()) {
+      g.out.clear();
+      g.match.step_to_hit(&g.out);
+      g.keep();
+      r.written_at.insert(r.written_at.end(), g.out.segments.size(), g.match.sim().time);
+      for (const SegmentOut &s : g.out.segments) feed.add(s);
+    }
     g.out.clear();
     g.match.frame(g.now, &g.out);
     g.keep();
