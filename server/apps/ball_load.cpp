@@ -33,6 +33,9 @@ int main(int argc, char **argv) {
                  "with --sweep: the servers' --realtime-priority (SCHED_FIFO; root); 0: the normal scheduler")
       ->check(CLI::Range(0, 99))
       ->capture_default_str();
+  cli.add_option("--server-args", o.server_args,
+                 "with --sweep: more arguments for every ball-server, comma-separated (--hit-instant,false)")
+      ->delimiter(',')->allow_extra_args(false);
   cli.add_option("--state-rate", o.state_rates, "with --sweep: the server's ball state rates, each a point")
       ->delimiter(',')->capture_default_str();
   cli.add_option("--rounds", o.rounds, "with --sweep: times every point is measured (interleaved)")

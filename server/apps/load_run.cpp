@@ -124,8 +124,10 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       counts_before = port.counts();
       if (at_window) at_window();
     }
-    bool ok = group.tick(port, now, real, [&](const SegmentOut &seg, double recv) {
+    bool ok = group.tick(port, now, real, [&](const SegmentOut &seg, double tick) {
       if (!measuring || seg.cause != Cause::racket || !seg.sample.valid) return;
+      // when DDS received it, not this tick's time (ticks are kTick apart)
+      double recv = seg.received > 0.0 ? seg.received : tick;
       part.latency.push_back(recv - seg.sample.source_time);
       const MatchInfoOut *info = port.info(seg.match_id);
       // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one)
@@ -176,6 +178,7 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
     if (!as_server.security.empty()) as_server.identity = o.server_identity;
     for (const std::string &a : dds_arguments(as_server)) args.push_back(a);
     if (o.server_priority > 0) args.insert(args.end(), {"--realtime-priority", std::to_string(o.server_priority)});
+    args.insert(args.end(), o.server_args.begin(), o.server_args.end());
     server = Process::start(args, dir + "/server.out", dir + "/server.err");
   }
   std::vector<LoadPart> parts;

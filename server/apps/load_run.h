@@ -27,6 +27,7 @@ struct LoadOptions {
   std::vector<double> state_rates{10.0};  // Hz, with a sweep: each point at each rate
   double frame_rate = 60.0;  // Hz, with a sweep
   int server_priority = 0;   // with a sweep: the servers' --realtime-priority (0: the normal scheduler)
+  std::vector<std::string> server_args;  // with a sweep: more arguments for every ball-server it starts
   int rounds = 1;            // with a sweep: every point measured this many times, interleaved
   std::string json_out;      // the rows and points as JSON
   std::string data_dir;      // gnuplot's data (load.dat)

@@ -2,6 +2,7 @@
 // the load generator or a watcher needs on a Domain.
 #pragma once
 
+#include <type_traits>
 #include <map>
 #include <memory>
 #include <string>
@@ -56,7 +57,10 @@ class ClientEndpoints : public ClientPort {
     SampleMeta meta;
     while (r.take(out, &meta)) {
       auto it = bound_.find(out->server_id);
-      if (it == bound_.end() || prefix_fits(meta.from, it->second)) return true;
+      if (it == bound_.end() || prefix_fits(meta.from, it->second)) {
+        if constexpr (std::is_same_v<T, SegmentOut>) out->received = meta.reception_time;
+        return true;
+      }
       untrusted_++;
     }
     return false;

@@ -261,10 +261,41 @@ void Match::find_hit() {
       !(m.effects & BALL_EFFECT_RACKETS) || m.n_rackets == 0 || sim_.sleep > 0)
     return;
   double end = sim_.time - partial_ + frame_time() * config_.time_base;  // the frame's end
+  counters_.hit_looks++;
+  if (!(end > sim_.time) || !may_hit(end)) return;
+  counters_.hit_queries++;
   ball_racket_contact c;
-  if (end > sim_.time && ball_racket_first_contact_any(&sim_, end, &c) == BALL_OK && c.racket >= 0 &&
-      c.step_to < end)
+  if (ball_racket_first_contact_any(&sim_, end, &c) == BALL_OK && c.racket >= 0 && c.step_to < end)
     next_hit_ = c.step_to;
+}
+
+// Whether any racket can meet the ball before sim s `end` at all: a bound
+// that spares the query on nearly every frame (the ball is far from every
+// racket). Over (now, end] the ball on its segment moves at most
+// |v| T + g T^2 / 2, and a racket's track, piecewise linear (interpolated,
+// then extrapolated by eq 15 and held), no farther from where it is now
+// than its farthest corner: the samples in the window and its end. A
+// racket reaches the ball only if they come within its test's reach.
+bool Match::may_hit(double end) const {
+  const ball_model &m = model();
+  ball_state b;
+  if (ball_sim_state(&sim_, &b) != BALL_OK) return true;
+  double T = end - sim_.time;
+  double ball_moves = ball_v3_norm(b.velocity) * T + 0.5 * m.gravity * T * T;
+  for (int i = 0; i < m.n_rackets; ++i) {
+    ball_racket_pose now, last;
+    if (ball_racket_estimate(&sim_, i, sim_.time, &now) != BALL_OK ||
+        ball_racket_estimate(&sim_, i, end, &last) != BALL_OK)
+      continue;  // no track or stale: the step tests it not at all
+    double racket_moves = ball_v3_dist(last.center, now.center);
+    const ball_racket_track &tr = sim_.tracks[i];
+    for (int k = 0; k < tr.count; ++k)
+      if (tr.samples[k].t > sim_.time && tr.samples[k].t < end)
+        racket_moves = std::max(racket_moves, ball_v3_dist(tr.samples[k].center, now.center));
+    double reach = m.detect == BALL_DETECT_SPHERE ? m.collision_distance : m.rackets[i].radius + m.radius;
+    if (ball_v3_dist(b.position, now.center) - reach <= ball_moves + racket_moves + 1e-9) return true;
+  }
+  return false;
 }
 
 double Match::hit_after() const {

@@ -155,6 +155,7 @@ class Match {
   double clock_now() const { return following_ ? follow_time_ : sim_.time; }  // sim s the sample checks use
   void set_level(ball_level level, std::string *err);
   void find_hit();  // next_hit_ from the tracks as they are
+  bool may_hit(double end) const;  // a racket can come within reach of the ball before sim s end
   bool all_present() const;
   bool holds_slot(const ParticipantId &who) const;
   void set_state(MatchState s, MatchOutput *out);

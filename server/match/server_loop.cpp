@@ -548,7 +548,12 @@ void ServerLoop::run_due_frames(double t0, double now) {
       s.next_info = t0 + settings_.info_interval;
     }
     // an overrun: the frame was done only after the next one was due
-    if (clock_.mono() > s.clock.deadline(s.k)) stats_.totals.overruns++;
+    double t = clock_.mono();
+    if (t > s.clock.deadline(s.k)) stats_.totals.overruns++;
+    // a hit whose instant came while the frames of many matches were done
+    // waits for one match's frame, not for all of them
+    earliest_hit_ = std::min(earliest_hit_, hit_due(s));
+    if (t >= earliest_hit_) run_due_hits(t, now);
   }
 }
 
@@ -558,15 +563,19 @@ double ServerLoop::hit_due(const Scheduled &s) const {
 }
 
 void ServerLoop::run_due_hits(double t0, double now) {
+  earliest_hit_ = HUGE_VAL;
   for (auto &s : sched_) {
     double at = hit_due(s);
-    if (at > t0 + 1e-6 || t0 < s.firm_at) continue;
-    out_.clear();
-    s.match->step_to_hit(&out_);
-    publish(out_, s, now);
-    if (out_.info_changed) publish_info(s);
-    stats_.hit_wakes++;
-    stats_.hit_late.add(t0 - at);
+    if (at <= t0 + 1e-6 && t0 >= s.firm_at) {
+      MatchOutput out;  // (out_ may hold a frame's output being published)
+      s.match->step_to_hit(&out);
+      publish(out, s, now);
+      if (out.info_changed) publish_info(s);
+      stats_.hit_wakes++;
+      stats_.hit_late.add(t0 - at);
+      at = hit_due(s);
+    }
+    earliest_hit_ = std::min(earliest_hit_, at);
   }
 }
 
@@ -606,7 +615,7 @@ bool ServerLoop::wake() {
   take_samples(now);
   take_controls(now);
   take_over(t0, now);
-  run_due_hits(t0, now);
+  run_due_hits(t0, now);  // (also finds the earliest hit after the samples moved the tracks)
   run_due_frames(t0, now);
   double t1 = clock_.mono();
   stats_.frame_time.add(t1 - t0);
@@ -693,6 +702,9 @@ ServerReport ServerLoop::report() const {
   r.latency_p50 = stats_.latency_all.quantile(0.5);
   r.latency_p99 = stats_.latency_all.quantile(0.99);
   r.latency_count = stats_.latency_all.size();
+  r.hit_wakes = stats_.hit_wakes;
+  r.hit_late_p50 = stats_.hit_late.quantile(0.5);
+  r.hit_late_p99 = stats_.hit_late.quantile(0.99);
   for (const auto &sc : sched_) {
     const Match *m = sc.match;
     MatchReport mr;

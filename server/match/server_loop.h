@@ -30,6 +30,7 @@
 // time through a Clock: the tests drive the loop with fakes of both.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -281,6 +282,7 @@ class ServerLoop {
   std::vector<MatchConfig> candidates_;  // a claimant's configured matches not (yet) its own
   uint32_t claimed_ = 0;
   double next_assert_ = 0.0;  // mono s of the next liveliness assertion
+  double earliest_hit_ = HUGE_VAL;  // mono s of the earliest hit_due of the scheduled matches
   void keep_alive(double t0);
   void expire_created(double t0);
 };

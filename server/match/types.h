@@ -248,6 +248,7 @@ struct SegmentOut {
   uint64_t model_hash = 0;    // ball_model_hash of the model that made it
   SampleRef sample;           // RACKET: the hitting racket's newest sample
   PlayState play;             // the rules' state once its collision is judged
+  double received = 0.0;      // a reader's: realtime s its DDS reader received it (0: unknown); not on the wire
 };
 
 // server -> clients: a collision or a match event (Event).
@@ -384,7 +385,9 @@ inline SegmentOut current_segment(const MatchInfoOut &i) {
   X(rejected)    /* racket samples that found their share of the reader's inbox full */     \
   X(ahead)       /* segments of static contacts written before the contact */             \
   X(ahead_corrected) /* of those, written again when the contact was stepped */                \
-  X(hit_steps)   /* partial frames stepped to a racket hit's instant */
+  X(hit_steps)   /* partial frames stepped to a racket hit's instant */                  \
+  X(hit_looks)   /* times the next hit was looked for (after frames, samples, hits) */   \
+  X(hit_queries) /* of those, first-contact queries made (the rest: no racket within reach) */
 struct MatchCounters {
 #define BALL_COUNTER(name) uint64_t name = 0;
   BALL_MATCH_COUNTERS(BALL_COUNTER)

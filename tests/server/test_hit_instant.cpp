@@ -17,7 +17,7 @@ namespace {
 
 struct Hits {
   size_t segments = 0, on_boundary = 0, at_writing = 0, event_time = 0;
-  uint64_t hits = 0, steps = 0;
+  uint64_t hits = 0, steps = 0, looks = 0, queries = 0;
 };
 
 Hits rally_hits(bool instant) {
@@ -33,6 +33,8 @@ Hits rally_hits(bool instant) {
       RallyResult r = play(c, net, 30.0, seed);
       h.hits += r.counters.hits;
       h.steps += r.counters.hit_steps;
+      h.looks += r.counters.hit_looks;
+      h.queries += r.counters.hit_queries;
       for (size_t i = 0; i < r.segments.size(); ++i) {
         const SegmentOut &s = r.segments[i];
         if (s.cause != Cause::racket) continue;
@@ -54,9 +56,10 @@ Hits rally_hits(bool instant) {
 TEST(racket_segments_start_at_the_hits_instant) {
   Hits off = rally_hits(false), on = rally_hits(true);
   note("frame-locked: %zu racket segments, %zu on a frame boundary; at the instant: %zu racket segments (%llu "
-       "partial steps), %zu on a frame boundary, %zu written at their t0, %zu events at their segment's t0",
+       "partial steps), %zu on a frame boundary, %zu written at their t0, %zu events at their segment's t0; "
+       "%llu looks for the next hit, %llu queries",
        off.segments, off.on_boundary, on.segments, (unsigned long long)on.steps, on.on_boundary, on.at_writing,
-       on.event_time);
+       on.event_time, (unsigned long long)on.looks, (unsigned long long)on.queries);
   CHECK(off.segments >= 200);
   CHECK_EQ(off.on_boundary, off.segments);  // the test can tell
   CHECK_EQ(off.event_time, off.segments);
