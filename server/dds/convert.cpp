@@ -161,6 +161,7 @@ balldds::Segment to_idl(const SegmentOut &in) {
   o.s0(v3(in.segment.s0));
   o.grounded(in.segment.grounded != 0);
   o.sound(in.sound);
+  o.correction(in.correction);
   o.server_time(in.server_time);
   o.model_hash(in.model_hash);
   o.sample_seq(in.sample.seq);
@@ -182,6 +183,7 @@ void from_idl(const balldds::Segment &in, SegmentOut *o) {
   o->segment.s0 = v3(in.s0());
   o->segment.grounded = in.grounded() ? 1 : 0;
   o->sound = in.sound();
+  o->correction = in.correction();
   o->server_time = in.server_time();
   o->model_hash = in.model_hash();
   o->sample.seq = in.sample_seq();

@@ -88,8 +88,20 @@ void Match::emit_segment(MatchOutput *out, Cause cause, int index, const ball_se
   s.segment = seg;
   s.model_hash = model_hash_;
   s.sample = ref;
+  s.correction = correcting_;
   out->segments.push_back(s);
   ahead_.valid = false;  // a segment written now supersedes the one written ahead (or is it, judged anew)
+  took_effect(s);
+}
+
+void Match::took_effect(const SegmentOut &s) {
+  history_.push_back(s);
+  // what a rewind may need: the segments in effect over the window (and the one before it)
+  double keep_from = sim_.time - config_.rewind_window - 1.0;
+  size_t drop = 0;
+  while (drop + 1 < history_.size() && (history_[drop + 1].segment.t0 < keep_from || history_.size() - drop > 64))
+    ++drop;
+  history_.erase(history_.begin(), history_.begin() + static_cast<long>(drop));
 }
 
 // ---- segments ahead of time (docs/protocol.md) ----------------------------
@@ -115,6 +127,7 @@ void Match::write_ahead(MatchOutput *out) {
   s.cause_index = ev.kind == BALL_EVENT_WALL ? ev.index : -1;
   s.segment = ev.segment;
   s.sound = ev.sound != 0;
+  s.correction = correcting_;
   s.model_hash = model_hash_;
   s.play = judged(ev);
   out->segments.push_back(s);
@@ -276,21 +289,21 @@ void Match::find_hit() {
 // then extrapolated by eq 15 and held), no farther from where it is now
 // than its farthest corner: the samples in the window and its end. A
 // racket reaches the ball only if they come within its test's reach.
-bool Match::may_hit(double end) const {
-  const ball_model &m = model();
+bool Match::may_hit(const ball_sim &sim, double end) const {
+  const ball_model &m = *ball_sim_model(&sim);
   ball_state b;
-  if (ball_sim_state(&sim_, &b) != BALL_OK) return true;
-  double T = end - sim_.time;
+  if (ball_sim_state(&sim, &b) != BALL_OK) return true;
+  double T = end - sim.time;
   double ball_moves = ball_v3_norm(b.velocity) * T + 0.5 * m.gravity * T * T;
   for (int i = 0; i < m.n_rackets; ++i) {
     ball_racket_pose now, last;
-    if (ball_racket_estimate(&sim_, i, sim_.time, &now) != BALL_OK ||
-        ball_racket_estimate(&sim_, i, end, &last) != BALL_OK)
+    if (ball_racket_estimate(&sim, i, sim.time, &now) != BALL_OK ||
+        ball_racket_estimate(&sim, i, end, &last) != BALL_OK)
       continue;  // no track or stale: the step tests it not at all
     double racket_moves = ball_v3_dist(last.center, now.center);
-    const ball_racket_track &tr = sim_.tracks[i];
+    const ball_racket_track &tr = sim.tracks[i];
     for (int k = 0; k < tr.count; ++k)
-      if (tr.samples[k].t > sim_.time && tr.samples[k].t < end)
+      if (tr.samples[k].t > sim.time && tr.samples[k].t < end)
         racket_moves = std::max(racket_moves, ball_v3_dist(tr.samples[k].center, now.center));
     double reach = m.detect == BALL_DETECT_SPHERE ? m.collision_distance : m.rackets[i].radius + m.radius;
     if (ball_v3_dist(b.position, now.center) - reach <= ball_moves + racket_moves + 1e-9) return true;
@@ -301,6 +314,79 @@ bool Match::may_hit(double end) const {
 double Match::hit_after() const {
   if (!std::isfinite(next_hit_)) return HUGE_VAL;
   return (next_hit_ - (sim_.time - partial_)) / config_.time_base;
+}
+
+// ---- lag compensation -------------------------------------------------------
+
+void Match::compensate(MatchOutput *out) {
+  std::vector<std::pair<int, double>> late;
+  late.swap(late_);
+  for (const auto &l : late) rewind(l.first, l.second, out);  // at most one rewind per sample
+  find_hit();
+}
+
+void Match::rewind(int slot, double from, MatchOutput *out) {
+  const double now = sim_.time;
+  if (state_ != MatchState::playing || !rally_.live() || history_.empty()) return;
+  // back no further than the window, the sample before this one, the last hit or the serve
+  double t_a = std::max(from, now - config_.rewind_window);
+  const SegmentOut *at = nullptr;
+  for (const SegmentOut &h : history_) {
+    if (h.cause == Cause::serve || h.cause == Cause::racket) t_a = std::max(t_a, h.segment.t0);
+    if (h.segment.t0 <= t_a) at = &h;
+  }
+  if (!at || !(t_a < now)) return;
+  counters_.late_tested++;
+  // the ball where it was at t_a, the tracks as they are now (the late sample in them)
+  ball_sim then = sim_;
+  if (ball_sim_set_segment(&then, &at->segment, t_a) != BALL_OK) return;
+  for (int i = 0; i < model().n_rackets; ++i) then.tracks[i].has_prev = 0;  // R_old: the track at t_a
+  // frame by frame up to now: where the racket meets it first (a frame the
+  // bound rules out costs no query; the query stops before a bounce, the
+  // step goes through it)
+  const double dt = frame_time() * config_.time_base;
+  double hit = HUGE_VAL;
+  while (then.time < now) {
+    double end = std::min(now, then.time + dt);
+    ball_racket_contact c{};
+    if (may_hit(then, end) && ball_racket_first_contact(&then, slot, end, &c) == BALL_OK && c.step_to <= end) {
+      hit = c.step_to;
+      break;
+    }
+    ball_sim before = then;
+    int n = 0;
+    if (ball_step(&then, end - then.time, step_events_.data(), static_cast<int>(step_events_.size()), &n) != BALL_OK)
+      return;
+    bool racket = false;
+    for (int k = 0; k < n && !racket; ++k) {
+      if (step_events_[k].kind != BALL_EVENT_RACKET) continue;
+      if (step_events_[k].index != slot) return;  // another racket got there first
+      racket = true;
+    }
+    if (racket) {  // after a bounce inside the frame: the step's own test found it at the frame's end
+      then = before;
+      hit = end;
+      break;
+    }
+  }
+  if (!std::isfinite(hit)) return;
+  // the rules as they were at the hit (the segment in effect then, judged)
+  PlayState p = at->play;
+  for (const SegmentOut &h : history_)
+    if (h.segment.t0 <= hit) p = h.play;
+  if (!p.live) return;
+  set_rules(p);
+  // (the events' numbers go on)
+  // the old path after the hit is not history any more
+  while (!history_.empty() && history_.back().segment.t0 > hit) history_.pop_back();
+  // to the hit, then on to the present: what that gives is written as corrections
+  sim_ = then;
+  correcting_ = true;
+  advance(hit - sim_.time, false, out);
+  while (sim_.time < now - 1e-12) advance(std::min(dt, now - sim_.time), false, out);
+  correcting_ = false;
+  counters_.rewinds++;
+  out->info_changed = true;
 }
 
 void Match::step_to_hit(MatchOutput *out) {
@@ -329,6 +415,7 @@ void Match::advance(double dt, bool with_state, MatchOutput *out) {
     handle_event(step_events_[i], out);
     // each segment carries the rules' state once its collision is judged
     for (size_t k = first; k < out->segments.size(); ++k) out->segments[k].play = play();
+    if (!history_.empty()) history_.back().play = play();
   }
 
   if (rally_.live()) {
@@ -387,6 +474,7 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
     current_seq_ = ahead_.segment.seq;
     segment_cause_ = cause;
     segment_cause_index_ = index;
+    took_effect(ahead_.segment);
   } else {
     emit_segment(out, cause, index, ev.segment, ref);
   }
@@ -475,6 +563,7 @@ void Match::serve(MatchOutput *out) {
   need_serve_ = false;
   counters_.serves++;
   emit_segment(out, Cause::serve, slot, sim_.seg, SampleRef{});
+  history_.back().play = play();
   emit(out, EventKind::serve, slot, sim_.time);
   EventOut &e = out->events.back();
   e.side = side;
@@ -570,6 +659,7 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
     case BALL_EINVAL: return SampleResult::bad_slot;
     default: return SampleResult::out_of_range;  // ENONFINITE/ERANGE: an implied infinite velocity
   }
+  double from = slot.has_prev ? slot.prev_time : -HUGE_VAL;  // a late sample tells the track from here on
   slot.has_seq = true;
   slot.last_seq = s.seq;
   slot.has_prev = true;
@@ -581,6 +671,10 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
   slot.ref.source_time = s.source_time;
   slot.ref.capture_time = s.capture_time;
   find_hit();  // the track moved: the hit it meets may too
+  // captured in the past of the sim clock, within the window: tested where the ball was then
+  if (config_.rewind_window > 0.0 && s.capture_time < sim_.time && s.capture_time >= sim_.time - config_.rewind_window &&
+      rally_.live() && late_.size() < 64)
+    late_.push_back({s.player, from});
   return SampleResult::accepted;
 }
 
@@ -747,6 +841,15 @@ MatchInfoOut Match::info() const {
 
 PlayState Match::play() const { return play_of(rally_); }
 
+void Match::set_rules(const PlayState &p) {
+  score_ = p.score;
+  serving_side_ = p.serving_side;
+  points_played_ = p.rally;
+  rally_.restore(p.live, p.striker, p.bounces, p.bounce_side, p.net, p.rally_start);
+  need_serve_ = p.serve_due;
+  serve_at_ = p.serve_at;
+}
+
 // ---- another server's match -------------------------------------------------
 
 void Match::set_level(ball_level level, std::string *err) {
@@ -844,12 +947,7 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t ne
     }
     sim_ = trial;
   }
-  score_ = p.score;
-  serving_side_ = p.serving_side;
-  points_played_ = p.rally;
-  rally_.restore(p.live, p.striker, p.bounces, p.bounce_side, p.net, p.rally_start);
-  need_serve_ = p.serve_due;
-  serve_at_ = p.serve_at;
+  set_rules(p);
   event_seq_ = std::max(p.event_seq, info.play.event_seq);  // a segment written ahead foresaw its own
   current_seq_ = std::max(seg ? seg->seq : 0u, info.segment_seq);
   // past every seq the owner wrote, ahead included: ours supersede its

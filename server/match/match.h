@@ -66,6 +66,15 @@ class Match {
   // level's own test finds the hit then; the next frame steps the rest.
   void step_to_hit(MatchOutput *out);
 
+  // Lag compensation (docs/server.md, "Lag compensation"): accepted racket
+  // samples captured in the past of the sim clock wait here; compensate
+  // tests each against the ball where it was (at most rewind_window back,
+  // never before the last hit or serve, never once the point is decided)
+  // and on a hit goes back to it, applies the response and steps on to the
+  // present: its segments come out marked as corrections.
+  bool has_late() const { return !late_.empty(); }
+  void compensate(MatchOutput *out);
+
   // A control message; refusals come out as a REFUSED event and the reason.
   Reason on_control(const ControlIn &control, double now, MatchOutput *out);
 
@@ -144,6 +153,7 @@ class Match {
   PlayState judged(const ball_event &ev) const;  // the rules' state once ev is judged, nothing changed
   Call judge(Rally &rally, const ball_event &ev) const;  // what the rules make of a collision
   PlayState play_of(const Rally &rally) const;
+  void set_rules(const PlayState &p);  // the rules' state as p says (not the event numbers)
   void emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason = Reason::none,
             double value = 0.0);
   void emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref);
@@ -155,7 +165,10 @@ class Match {
   double clock_now() const { return following_ ? follow_time_ : sim_.time; }  // sim s the sample checks use
   void set_level(ball_level level, std::string *err);
   void find_hit();  // next_hit_ from the tracks as they are
-  bool may_hit(double end) const;  // a racket can come within reach of the ball before sim s end
+  bool may_hit(double end) const { return may_hit(sim_, end); }
+  bool may_hit(const ball_sim &sim, double end) const;  // a racket can come within reach of the ball before sim s end
+  void took_effect(const SegmentOut &s);  // a segment is in effect now: into the history
+  void rewind(int slot, double from, MatchOutput *out);
   bool all_present() const;
   bool holds_slot(const ParticipantId &who) const;
   void set_state(MatchState s, MatchOutput *out);
@@ -183,6 +196,9 @@ class Match {
   bool stepped_ahead_ = false;  // this frame stepped a contact written ahead
   double next_hit_ = HUGE_VAL;  // sim s of the next racket hit before the frame's end
   double partial_ = 0.0;        // sim s of the current frame already stepped to hits
+  std::vector<SegmentOut> history_;  // the segments in effect over the rewind window, oldest first (play: judged)
+  std::vector<std::pair<int, double>> late_;  // (slot, its previous sample's capture time) of late samples
+  bool correcting_ = false;     // segments written now are corrections
   Cause segment_cause_ = Cause::serve;  // what started the current segment
   int segment_cause_index_ = -1;
   uint32_t event_seq_ = 0;

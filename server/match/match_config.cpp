@@ -59,6 +59,10 @@ const std::vector<Field<MatchConfig>> &match_fields() {
        "step the match to a racket hit's instant between frames, found from the rackets' tracks (docs/server.md, "
        "\"Hits at their instant\"); false: hits are found at frame ends only",
        "--hit-instant"},
+      {"rewind_window", &M::rewind_window, closed(0.0, 2.0), "s",
+       "lag compensation: how far back (sim s) a late racket sample is tested against the ball where it was, "
+       "and a hit found so rewinds the match to it (docs/server.md, \"Lag compensation\"); 0: off",
+       "--rewind-window"},
       {"court_x_lo", &M::court_x_lo, closed(-BALL_MAX_COORD, BALL_MAX_COORD), "m",
        "where the court starts; it spans x in [court_x_lo, 2 net_x - court_x_lo], z over the net", "--court-x-lo"},
       {"seed", &M::seed, whole(0, INT64_MAX), "", "the serves' placement", "--seed", "1 (+ index with `--matches`)"},

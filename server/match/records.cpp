@@ -49,7 +49,7 @@ std::string record_type(const json &line) {
 #define BALL_SEGMENT_KEYS(X, s)                                                                        \
   X("match", s.match_id) X("server", s.server_id) X("seq", s.seq) X("cause", s.cause)                  \
   X("index", s.cause_index) X("t0", s.segment.t0) X("p0", s.segment.p0) X("v0", s.segment.v0)          \
-  X("s0", s.segment.s0) X("sound", s.sound) X("server_time", s.server_time) X("model_hash", s.model_hash)                  \
+  X("s0", s.segment.s0) X("sound", s.sound) X("correction", s.correction) X("server_time", s.server_time) X("model_hash", s.model_hash)                  \
   X("sample_seq", s.sample.seq) X("sample_source_time", s.sample.source_time)                          \
   X("sample_capture_time", s.sample.capture_time) X("play", s.play)
 

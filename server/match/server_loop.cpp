@@ -565,6 +565,12 @@ double ServerLoop::hit_due(const Scheduled &s) const {
 void ServerLoop::run_due_hits(double t0, double now) {
   earliest_hit_ = HUGE_VAL;
   for (auto &s : sched_) {
+    if (s.match->has_late()) {  // late samples: a hit found where the ball was rewinds the match
+      MatchOutput out;
+      s.match->compensate(&out);
+      publish(out, s, now);
+      if (out.info_changed) publish_info(s);
+    }
     double at = hit_due(s);
     if (at <= t0 + 1e-6 && t0 >= s.firm_at) {
       MatchOutput out;  // (out_ may hold a frame's output being published)

@@ -15,7 +15,9 @@
 //   take over      a followed match whose owner's writers lost their
 //                  liveliness a grace ago, when this server is its
 //                  successor: restored (Match::restore) and scheduled
-//   run due hits   each match whose next racket hit's instant has come
+//   run due hits   each match with late racket samples tests them where the
+//                  ball was (lag compensation: a hit found rewinds it), and
+//                  each match whose next racket hit's instant has come
 //                  (Match::hit_after, from its last frame's deadline) steps
 //                  to it and publishes the hit at once
 //   run due frames each match whose deadline has come steps one frame and

@@ -245,6 +245,7 @@ struct SegmentOut {
   int cause_index = -1;       // WALL: the wall; RACKET: the racket (slot); SERVE: the serving slot; else -1
   ball_segment segment{};     // t0 sim s, p0 m, v0 m/s, s0 m/s, grounded (libball's ball_segment)
   bool sound = false;         // its collision makes the paper's sound
+  bool correction = false;    // written by a rewind for a late racket sample (docs/protocol.md, "Corrections")
   uint64_t model_hash = 0;    // ball_model_hash of the model that made it
   SampleRef sample;           // RACKET: the hitting racket's newest sample
   PlayState play;             // the rules' state once its collision is judged
@@ -387,7 +388,9 @@ inline SegmentOut current_segment(const MatchInfoOut &i) {
   X(ahead_corrected) /* of those, written again when the contact was stepped */                \
   X(hit_steps)   /* partial frames stepped to a racket hit's instant */                  \
   X(hit_looks)   /* times the next hit was looked for (after frames, samples, hits) */   \
-  X(hit_queries) /* of those, first-contact queries made (the rest: no racket within reach) */
+  X(hit_queries) /* of those, first-contact queries made (the rest: no racket within reach) */ \
+  X(late_tested) /* late racket samples tested against the ball where it was (rewind_window) */ \
+  X(rewinds)     /* of those, hits found late: the match went back to the hit and on again */
 struct MatchCounters {
 #define BALL_COUNTER(name) uint64_t name = 0;
   BALL_MATCH_COUNTERS(BALL_COUNTER)

@@ -15,7 +15,11 @@ struct Net {
   double jitter = 0.0;  // s
   double loss = 0.0;
   double noise = 0.0;   // m
+  // the bots' swing: ahead of the delay (bot_lead with it), or as people
+  // swing, unaware of it: the stroke line's last kLateSwing s only
+  bool plan_ahead = true;
 };
+constexpr double kLateSwing = 0.12;  // s: a late swinger's stroke (a person's swing lasts about 0.1 s)
 
 struct RallyResult {
   uint64_t hits = 0, bounces = 0, points = 0, serves = 0;
@@ -27,6 +31,7 @@ struct RallyResult {
   std::vector<double> written_at;
   std::vector<EventOut> events;
   std::vector<StateOut> states;
+  std::vector<size_t> segments_before;  // each state's: how many segments were written before it
   MatchCounters counters;
 };
 
@@ -47,6 +52,7 @@ inline RacketSampleIn bot_sample(Game &g, BotBrain &brain, int slot, double t) {
 inline RallyResult play(const MatchConfig &c, const Net &net, double seconds, uint64_t seed = 1,
                         double miss_rate = 0.0) {
   Game g(c);
+  std::vector<size_t> segments_before;
   BotBrain brain[2];
   SegmentFeed feed;  // the segment in effect, for the bots
   Link<RacketSampleIn> link[2] = {Link<RacketSampleIn>({net.delay, net.jitter, net.loss}, seed * 2 + 1),
@@ -59,7 +65,7 @@ inline RallyResult play(const MatchConfig &c, const Net &net, double seconds, ui
     g.park[i] = false;
     BotParams p;
     p.slot = i;
-    p.lead = bot_lead(net.rate, net.delay, net.jitter, net.loss);
+    p.lead = net.plan_ahead ? bot_lead(net.rate, net.delay, net.jitter, net.loss) : kLateSwing;
     p.miss_rate = miss_rate;
     p.seed = seed * 11 + i;
     brain[i].init(g.match.model(), g.match.court(), p);
@@ -83,7 +89,15 @@ inline RallyResult play(const MatchConfig &c, const Net &net, double seconds, ui
         else if (res != SampleResult::idle) r.drops++;
       });
     }
-    // as the server loop does: a racket hit's instant before the frame's end is stepped to first
+    // as the server loop does: late samples tested where the ball was, then a
+    // racket hit's instant before the frame's end is stepped to first
+    if (g.match.has_late()) {
+      g.out.clear();
+      g.match.compensate(&g.out);
+      g.keep();
+      r.written_at.insert(r.written_at.end(), g.out.segments.size(), g.match.sim().time);
+      for (const SegmentOut &s : g.out.segments) feed.add(s);
+    }
     if (g.match.hit_after() < g.match.frame_time()) {
       g.out.clear();
       g.match.step_to_hit(&g.out);
@@ -94,6 +108,7 @@ inline RallyResult play(const MatchConfig &c, const Net &net, double seconds, ui
     g.out.clear();
     g.match.frame(g.now, &g.out);
     g.keep();
+    if (g.out.has_state) segments_before.push_back(g.segments.size());
     r.written_at.insert(r.written_at.end(), g.out.segments.size(), g.match.sim().time);
     for (const SegmentOut &s : g.out.segments) feed.add(s);
     if (const SegmentOut *s = feed.due(g.match.sim().time))
@@ -113,6 +128,7 @@ inline RallyResult play(const MatchConfig &c, const Net &net, double seconds, ui
   r.segments = g.segments;
   r.events = g.events;
   r.states = g.states;
+  r.segments_before = segments_before;
   r.counters = g.match.counters();
   for (int i = 0; i < 2; ++i) {
     r.plans += brain[i].counters().plans;

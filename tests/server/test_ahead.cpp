@@ -26,8 +26,10 @@ struct Tally {
 
 // The checks on what a match wrote (written_at: the sim time of the frame
 // that wrote each segment, or empty); every invariant counted, not only the first.
+// segments_before: each state's count of segments written before it (empty: all were).
 void check_output(const std::vector<SegmentOut> &segments, const std::vector<double> &written_at,
-                  const std::vector<EventOut> &events, const std::vector<StateOut> &states, Tally *t) {
+                  const std::vector<EventOut> &events, const std::vector<StateOut> &states,
+                  const std::vector<size_t> &segments_before, Tally *t) {
   Segments all;
   for (const SegmentOut &s : segments) all[s.seq] = s;
   for (size_t i = 0; i < segments.size(); ++i) {
@@ -49,12 +51,17 @@ void check_output(const std::vector<SegmentOut> &segments, const std::vector<dou
   MatchConfig c = default_config();
   Game g(c);
   m = &g.match.model();
-  for (const StateOut &st : states) {
-    const SegmentOut *e = segment_in_effect(all, st.sim_time);
+  for (size_t n = 0; n < states.size(); ++n) {
+    const StateOut &st = states[n];
+    // what a client had when the state was written (a later correction may rewrite that time)
+    Segments known;
+    size_t upto = n < segments_before.size() ? segments_before[n] : segments.size();
+    for (size_t k = 0; k < upto; ++k) known[segments[k].seq] = segments[k];
+    const SegmentOut *e = segment_in_effect(known, st.sim_time);
     t->states++;
     // a serve starts at the instant of the frame before it: there the ball is on both
-    if (e && e->seq != st.segment_seq && e->segment.t0 == st.sim_time && all.count(st.segment_seq))
-      e = &all[st.segment_seq];
+    if (e && e->seq != st.segment_seq && e->segment.t0 == st.sim_time && known.count(st.segment_seq))
+      e = &known[st.segment_seq];
     if (!e || e->seq != st.segment_seq) {
       t->wrong_seq++;
       continue;
@@ -95,7 +102,7 @@ TEST(static_contacts_are_written_before_they_happen) {
       Net net;
       net.noise = 0.002;
       RallyResult r = play(c, net, 30.0, seed);
-      check_output(r.segments, r.written_at, r.events, r.states, &t);
+      check_output(r.segments, r.written_at, r.events, r.states, r.segments_before, &t);
       corrected += r.counters.ahead_corrected;
       written_ahead += r.counters.ahead;
     }
@@ -133,7 +140,7 @@ TEST(a_contact_judged_otherwise_is_written_again) {
     g.join(0, participant(1));
     g.join(1, participant(2));
     g.run(20.0);
-    check_output(g.segments, {}, g.events, g.states, &t);
+    check_output(g.segments, {}, g.events, g.states, {}, &t);
     corrected += g.match.counters().ahead_corrected;
   }
   note("%llu contacts written again; %zu states within %.3g m, %d on another segment; %d events naming another "

@@ -28,6 +28,7 @@ Hits rally_hits(bool instant) {
       c.level = static_cast<ball_level>(level);
       c.seed = seed;
       c.hit_instant = instant;
+      c.rewind_window = 0.0;  // (late samples' hits: test_lag)
       Net net;
       net.noise = 0.002;
       RallyResult r = play(c, net, 30.0, seed);

@@ -6,7 +6,7 @@ if(NOT TARGET ball_match)
 endif()
 include(${PROJECT_SOURCE_DIR}/cmake/dds_domains.cmake)
 
-foreach(name test_match test_ahead test_hit_instant test_bot test_client test_records test_server_loop test_watcher test_load test_restore
+foreach(name test_match test_ahead test_hit_instant test_lag test_bot test_client test_records test_server_loop test_watcher test_load test_restore
              test_placement)
   add_executable(${name} ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp)
   target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
@@ -15,6 +15,14 @@ foreach(name test_match test_ahead test_hit_instant test_bot test_client test_re
   add_test(NAME ${name} COMMAND ${name})
   set_tests_properties(${name} PROPERTIES LABELS server TIMEOUT 120)
 endforeach()
+
+# the lag compensation study (./run lag-study; docs/server.md, "Lag compensation"), and its smoke run
+add_executable(ball_lag_study ${CMAKE_CURRENT_LIST_DIR}/lag_study.cpp)
+target_include_directories(ball_lag_study PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
+target_link_libraries(ball_lag_study PRIVATE ball_app ball_kit_headers)
+target_compile_options(ball_lag_study PRIVATE ${BALL_CXX_WARNINGS})
+add_test(NAME ball_lag_study_smoke COMMAND ball_lag_study --seeds 1 --seconds 5)
+set_tests_properties(ball_lag_study_smoke PROPERTIES LABELS server TIMEOUT 120)
 
 # ---- the networked cases: ball_itest drives the real programs ----------------
 add_executable(test_config ${CMAKE_CURRENT_LIST_DIR}/test_config.cpp)
