@@ -157,6 +157,55 @@ void case_desync(const Env &env) {
   }
   note("driver: %d states re-evaluated from the record, max error %.3g m", checked, worst);
   CHECK_MSG(checked >= 400 && worst <= 1e-9, "%d states, max error %.3g m", checked, worst);
+  // racket hits stepped at their instant: their segments start between frames
+  int hits = 0, on_grid = 0;
+  for (const auto &j : t.lines)
+    if (is_type(j, "segment") && j.get<SegmentOut>().cause == Cause::racket) {
+      double frames = j.get<SegmentOut>().segment.t0 * 60.0;  // frames of 1/60 s from 0 (time base 1)
+      hits++;
+      on_grid += std::fabs(frames - std::round(frames)) < 1e-6;
+    }
+  note("%d racket segments, %d on a frame boundary", hits, on_grid);
+  CHECK(hits >= 5 && on_grid * 5 <= hits);
+}
+
+// bots that swing late (the stroke's last 0.12 s, whatever the delay)
+// behind 150 ms: without lag compensation they miss nearly every ball;
+// with it the server finds their hits where the ball was, rewinds, and
+// the clients' ball stays the server's
+void case_lag(const Env &env) {
+  Case c{env};
+  std::string sum = path(env, "watch.json");
+  Play p{c.server({"--level", "mid"}), ready_watcher(c, path(env, "watch.jsonl"), {"--summary-json", sum}),
+         c.bot(0, {"--rate", "15", "--delay", "0.15", "--lead", "0.12"}),
+         c.bot(1, {"--rate", "15", "--delay", "0.15", "--lead", "0.12"}), Tail(path(env, "watch.jsonl"))};
+  double t0 = first_serve(p.t), last = 0.0;
+  if (t0 < 0.0) return;
+  int hits = hits_within(p.t, t0, 6, 30.0, &last);
+  p.b0.stop();
+  p.b1.stop();
+  p.w.stop();
+  ServerReport r = stop_server(p.server, path(env, "server.json"));
+  uint64_t rewinds = 0, tested = 0;
+  for (const auto &m : r.matches) rewinds += m.counters.rewinds, tested += m.counters.late_tested;
+  p.t.poll();
+  int corrections = 0;
+  for (const auto &j : p.t.lines)
+    if (is_type(j, "segment") && j.get<SegmentOut>().correction) corrections++;
+  WatchSummary w;
+  try {
+    w = json::parse(file_text(sum)).get<WatchSummary>();
+  } catch (const std::exception &e) {
+    CHECK_MSG(false, "no summary in %s: %s", sum.c_str(), e.what());
+  }
+  double desync = w.matches.empty() ? 1.0 : w.matches[0].max_error;
+  note("150 ms, late swings: %d hits in %.1f s, %llu late samples tested, %llu rewinds, %d correction segments, "
+       "desync %.3g m",
+       hits, last - t0, (unsigned long long)tested, (unsigned long long)rewinds, corrections, desync);
+  CHECK_MSG(hits >= 6, "%d hits in 30 s", hits);
+  CHECK(rewinds >= 3);
+  CHECK(corrections >= static_cast<int>(rewinds));
+  CHECK(desync <= 1e-9);
 }
 
 // a killed bot pauses its match within 2 player timeouts; a new bot resumes it
@@ -868,6 +917,7 @@ TEST(inbox_share) { in_case(case_inbox_share); }
 TEST(create_expires) { in_case(case_create_expires); }
 TEST(late_join) { in_case(case_late_join); }
 TEST(lossy) { in_case(case_lossy); }
+TEST(lag) { in_case(case_lag); }
 TEST(server_cli) { in_case(case_server_cli); }
 TEST(busy) { in_case(case_busy); }
 TEST(snapshots) { in_case(case_snapshots); }
