@@ -39,6 +39,35 @@ bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
 
 }  // namespace
 
+// Over (now, end] the ball on its segment moves at most |v| T + g T^2 / 2,
+// and a racket's track, piecewise linear (interpolated, then extrapolated
+// by eq 15 and held), no farther from where it is now than its farthest
+// corner: the samples in the window and its end. The disc and swept tests
+// measure from the pose of the previous step (R_old), which a sample that
+// came since may have moved off the track: twice that gap is added. A
+// racket reaches the ball only if they come within its test's reach.
+bool racket_may_reach(const ball_sim &sim, double end) {
+  const ball_model &m = *ball_sim_model(&sim);
+  ball_state b;
+  if (ball_sim_state(&sim, &b) != BALL_OK) return true;
+  double T = end - sim.time;
+  double ball_moves = ball_v3_norm(b.velocity) * T + 0.5 * m.gravity * T * T;
+  for (int i = 0; i < m.n_rackets; ++i) {
+    ball_racket_pose now, last;
+    if (ball_racket_estimate(&sim, i, sim.time, &now) != BALL_OK) continue;  // no track, or stale: never tested
+    if (ball_racket_estimate(&sim, i, end, &last) != BALL_OK) return true;   // stale within the window: ask
+    double racket_moves = ball_v3_dist(last.center, now.center);
+    if (sim.tracks[i].has_prev) racket_moves += 2.0 * ball_v3_dist(sim.tracks[i].prev_pose.center, now.center);
+    const ball_racket_track &tr = sim.tracks[i];
+    for (int k = 0; k < tr.count; ++k)
+      if (tr.samples[k].t > sim.time && tr.samples[k].t < end)
+        racket_moves = std::max(racket_moves, ball_v3_dist(tr.samples[k].center, now.center));
+    double reach = m.detect == BALL_DETECT_SPHERE ? m.collision_distance : m.rackets[i].radius + m.radius;
+    if (ball_v3_dist(b.position, now.center) - reach <= ball_moves + racket_moves + 1e-9) return true;
+  }
+  return false;
+}
+
 bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string *err) {
   if (!check_match_config(config, err)) return false;
   config_ = config;
@@ -282,34 +311,6 @@ void Match::find_hit() {
     next_hit_ = c.step_to;
 }
 
-// Whether any racket can meet the ball before sim s `end` at all: a bound
-// that spares the query on nearly every frame (the ball is far from every
-// racket). Over (now, end] the ball on its segment moves at most
-// |v| T + g T^2 / 2, and a racket's track, piecewise linear (interpolated,
-// then extrapolated by eq 15 and held), no farther from where it is now
-// than its farthest corner: the samples in the window and its end. A
-// racket reaches the ball only if they come within its test's reach.
-bool Match::may_hit(const ball_sim &sim, double end) const {
-  const ball_model &m = *ball_sim_model(&sim);
-  ball_state b;
-  if (ball_sim_state(&sim, &b) != BALL_OK) return true;
-  double T = end - sim.time;
-  double ball_moves = ball_v3_norm(b.velocity) * T + 0.5 * m.gravity * T * T;
-  for (int i = 0; i < m.n_rackets; ++i) {
-    ball_racket_pose now, last;
-    if (ball_racket_estimate(&sim, i, sim.time, &now) != BALL_OK ||
-        ball_racket_estimate(&sim, i, end, &last) != BALL_OK)
-      continue;  // no track or stale: the step tests it not at all
-    double racket_moves = ball_v3_dist(last.center, now.center);
-    const ball_racket_track &tr = sim.tracks[i];
-    for (int k = 0; k < tr.count; ++k)
-      if (tr.samples[k].t > sim.time && tr.samples[k].t < end)
-        racket_moves = std::max(racket_moves, ball_v3_dist(tr.samples[k].center, now.center));
-    double reach = m.detect == BALL_DETECT_SPHERE ? m.collision_distance : m.rackets[i].radius + m.radius;
-    if (ball_v3_dist(b.position, now.center) - reach <= ball_moves + racket_moves + 1e-9) return true;
-  }
-  return false;
-}
 
 double Match::hit_after() const {
   if (!std::isfinite(next_hit_)) return HUGE_VAL;
@@ -349,7 +350,7 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
   while (then.time < now) {
     double end = std::min(now, then.time + dt);
     ball_racket_contact c{};
-    if (may_hit(then, end) && ball_racket_first_contact(&then, slot, end, &c) == BALL_OK && c.step_to <= end) {
+    if (racket_may_reach(then, end) && ball_racket_first_contact(&then, slot, end, &c) == BALL_OK && c.step_to <= end) {
       hit = c.step_to;
       break;
     }
@@ -673,7 +674,7 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
   find_hit();  // the track moved: the hit it meets may too
   // captured in the past of the sim clock, within the window: tested where the ball was then
   if (config_.rewind_window > 0.0 && s.capture_time < sim_.time && s.capture_time >= sim_.time - config_.rewind_window &&
-      rally_.live() && late_.size() < 64)
+      rally_.live() && !following_ && late_.size() < 64)
     late_.push_back({s.player, from});
   return SampleResult::accepted;
 }
