@@ -86,6 +86,7 @@ bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string
   }
   model_hash_ = ball_model_hash(ball_sim_model(&sim_));
   step_events_.assign(BALL_MAX_CONTACTS + BALL_MAX_RACKETS + 8, ball_event{});
+  late_from_.fill(NAN);
   state_ = MatchState::waiting;
   need_serve_ = true;
   serve_at_ = sim_.time;
@@ -320,9 +321,11 @@ double Match::hit_after() const {
 // ---- lag compensation -------------------------------------------------------
 
 void Match::compensate(MatchOutput *out) {
-  std::vector<std::pair<int, double>> late;
-  late.swap(late_);
-  for (const auto &l : late) rewind(l.first, l.second, out);  // at most one rewind per sample
+  std::array<double, kMaxPlayers> late = late_from_;
+  late_from_.fill(NAN);
+  has_late_ = false;
+  for (int i = 0; i < config_.players; ++i)  // at most one rewind per sample: one per slot
+    if (!std::isnan(late[i])) rewind(i, late[i], out);
   find_hit();
 }
 
@@ -674,8 +677,11 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
   find_hit();  // the track moved: the hit it meets may too
   // captured in the past of the sim clock, within the window: tested where the ball was then
   if (config_.rewind_window > 0.0 && s.capture_time < sim_.time && s.capture_time >= sim_.time - config_.rewind_window &&
-      rally_.live() && !following_ && late_.size() < 64)
-    late_.push_back({s.player, from});
+      rally_.live() && !following_) {
+    double &f = late_from_[s.player];
+    f = std::isnan(f) ? from : std::min(f, from);
+    has_late_ = true;
+  }
   return SampleResult::accepted;
 }
 

@@ -78,7 +78,7 @@ class Match {
   // never before the last hit or serve, never once the point is decided)
   // and on a hit goes back to it, applies the response and steps on to the
   // present: its segments come out marked as corrections.
-  bool has_late() const { return !late_.empty(); }
+  bool has_late() const { return has_late_; }
   void compensate(MatchOutput *out);
 
   // A control message; refusals come out as a REFUSED event and the reason.
@@ -202,7 +202,11 @@ class Match {
   double next_hit_ = HUGE_VAL;  // sim s of the next racket hit before the frame's end
   double partial_ = 0.0;        // sim s of the current frame already stepped to hits
   std::vector<SegmentOut> history_;  // the segments in effect over the rewind window, oldest first (play: judged)
-  std::vector<std::pair<int, double>> late_;  // (slot, its previous sample's capture time) of late samples
+  // per slot, the capture time of the sample before its first late one
+  // waiting (-Inf: none before it; NaN: none waiting): the late samples of
+  // a slot are tested together, so a flood of them costs one test a wake-up
+  std::array<double, kMaxPlayers> late_from_{};
+  bool has_late_ = false;
   bool correcting_ = false;     // segments written now are corrections
   Cause segment_cause_ = Cause::serve;  // what started the current segment
   int segment_cause_index_ = -1;

@@ -110,4 +110,30 @@ TEST(outside_the_window_nothing_is_rewound) {
   CHECK_EQ(l.corrections, 0u);
 }
 
+// A flood of late samples of one slot between two wake-ups costs one test
+// of that slot, not one per sample (a hostile player cannot buy work).
+TEST(a_flood_of_late_samples_is_tested_once_a_slot) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  g.run(0.5);  // served: the rally is on
+  CHECK(g.match.play().live);
+  uint64_t before = g.match.counters().late_tested;
+  double now = g.match.sim().time;
+  int accepted = 0;
+  for (int k = 0; k < 200; ++k) {
+    RacketSampleIn s = g.parked_sample(1);
+    s.capture_time = now - 0.09 + 0.0004 * k;  // in the past (after the newest parked one), inside the window
+    accepted += g.match.on_sample(s, g.now) == SampleResult::accepted;
+  }
+  CHECK(g.match.has_late());
+  MatchOutput out;
+  g.match.compensate(&out);
+  note("%d late samples accepted, %llu tested", accepted,
+       (unsigned long long)(g.match.counters().late_tested - before));
+  CHECK(accepted >= 100);
+  CHECK_EQ(g.match.counters().late_tested - before, 1u);
+  CHECK(!g.match.has_late());
+}
+
 int main(int argc, char **argv) { return check::run(argc, argv); }
