@@ -299,6 +299,7 @@ void Match::frame(double now, MatchOutput *out) {
 
 void Match::find_hit() {
   next_hit_ = HUGE_VAL;
+  hit_stale_ = false;
   const ball_model &m = model();
   if (!config_.hit_instant || state_ != MatchState::playing || following_ || need_serve_ ||
       !(m.effects & BALL_EFFECT_RACKETS) || m.n_rackets == 0 || sim_.sleep > 0)
@@ -313,7 +314,8 @@ void Match::find_hit() {
 }
 
 
-double Match::hit_after() const {
+double Match::hit_after() {
+  if (hit_stale_) find_hit();
   if (!std::isfinite(next_hit_)) return HUGE_VAL;
   return (next_hit_ - (sim_.time - partial_)) / config_.time_base;
 }
@@ -394,6 +396,7 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
 }
 
 void Match::step_to_hit(MatchOutput *out) {
+  if (hit_stale_) find_hit();
   double dt = next_hit_ - sim_.time;
   if (state_ != MatchState::playing || !(dt > 0.0) || !std::isfinite(dt)) {
     next_hit_ = HUGE_VAL;
@@ -674,7 +677,7 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
   slot.ref.seq = s.seq;
   slot.ref.source_time = s.source_time;
   slot.ref.capture_time = s.capture_time;
-  find_hit();  // the track moved: the hit it meets may too
+  hit_stale_ = true;  // the track moved: the hit it meets may too (looked for once, when asked)
   // captured in the past of the sim clock, within the window: tested where the ball was then
   if (config_.rewind_window > 0.0 && s.capture_time < sim_.time && s.capture_time >= sim_.time - config_.rewind_window &&
       rally_.live() && !following_) {

@@ -66,8 +66,8 @@ class Match {
   // the real s after the last frame's deadline at which the first contact
   // of a racket's track with the ball comes (ball_racket_first_contact_any),
   // when it comes before the next frame's end; +Inf: none. Found again after
-  // every frame, accepted sample and hit.
-  double hit_after() const;
+  // every frame and hit, and when asked after samples came (once for all of them).
+  double hit_after();
   // Steps the match to that instant (a partial frame, no ball state): the
   // level's own test finds the hit then; the next frame steps the rest.
   void step_to_hit(MatchOutput *out);
@@ -200,6 +200,7 @@ class Match {
   Ahead ahead_;
   bool stepped_ahead_ = false;  // this frame stepped a contact written ahead
   double next_hit_ = HUGE_VAL;  // sim s of the next racket hit before the frame's end
+  bool hit_stale_ = false;      // samples came since next_hit_ was found: look again when asked
   double partial_ = 0.0;        // sim s of the current frame already stepped to hits
   std::vector<SegmentOut> history_;  // the segments in effect over the rewind window, oldest first (play: judged)
   // per slot, the capture time of the sample before its first late one
