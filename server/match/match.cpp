@@ -109,7 +109,8 @@ void Match::emit(MatchOutput *out, EventKind kind, int index, double time, Reaso
   out->events.push_back(e);
 }
 
-void Match::emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref) {
+void Match::emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref,
+                         bool sound) {
   SegmentOut s;
   s.match_id = config_.id;
   s.seq = current_seq_ = ++segment_seq_;
@@ -118,6 +119,7 @@ void Match::emit_segment(MatchOutput *out, Cause cause, int index, const ball_se
   s.segment = seg;
   s.model_hash = model_hash_;
   s.sample = ref;
+  s.sound = sound;
   s.correction = correcting_;
   out->segments.push_back(s);
   ahead_.valid = false;  // a segment written now supersedes the one written ahead (or is it, judged anew)
@@ -483,7 +485,7 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
     segment_cause_index_ = index;
     took_effect(ahead_.segment);
   } else {
-    emit_segment(out, cause, index, ev.segment, ref);
+    emit_segment(out, cause, index, ev.segment, ref, ev.sound != 0);
   }
   EventOut e;
   e.match_id = config_.id;
@@ -521,8 +523,7 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
   ahead_.valid = false;
   stepped_ahead_ = true;
   if (!(now == ahead_.segment.play)) {
-    emit_segment(out, cause, index, ev.segment, ref);
-    out->segments.back().sound = e.sound;
+    emit_segment(out, cause, index, ev.segment, ref, ev.sound != 0);
     out->info_changed = true;
     counters_.ahead_corrected++;
   }
@@ -569,7 +570,7 @@ void Match::serve(MatchOutput *out) {
   rally_.start(side, sim_.time);
   need_serve_ = false;
   counters_.serves++;
-  emit_segment(out, Cause::serve, slot, sim_.seg, SampleRef{});
+  emit_segment(out, Cause::serve, slot, sim_.seg, SampleRef{}, false);
   history_.back().play = play();
   emit(out, EventKind::serve, slot, sim_.time);
   EventOut &e = out->events.back();

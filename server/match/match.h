@@ -162,7 +162,8 @@ class Match {
   void set_rules(const PlayState &p);  // the rules' state as p says (not the event numbers)
   void emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason = Reason::none,
             double value = 0.0);
-  void emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref);
+  // a segment starts now (sound: its collision makes the paper's sound)
+  void emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref, bool sound);
   void handle_event(const ball_event &ev, MatchOutput *out);
   void apply(const Call &call, double t, MatchOutput *out);  // a point decided at sim s t
   void serve(MatchOutput *out);
