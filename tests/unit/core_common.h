@@ -160,6 +160,17 @@ static inline double core_predict_error(const ball_state *got, const ball_state 
   return e > worst ? e : worst;
 }
 
+/* One frame of dt of the sim against a prediction's state at its end: the
+ * sim stepped (its events into ev, BALL_MAX_CONTACTS of room, their count
+ * into *n, its state into *stepped), and core_predict_error of the
+ * prediction against it. */
+static inline double core_step_against(ball_sim *sim, double dt, const ball_state *predicted, ball_event *ev,
+                                       int *n, ball_state *stepped) {
+  assert_ok(ball_step(sim, dt, ev, BALL_MAX_CONTACTS, n));
+  assert_ok(ball_sim_state(sim, stepped));
+  return core_predict_error(predicted, stepped, &sim->seg, sim->time);
+}
+
 /* Every field of two events equal to the bit. */
 static inline int core_event_same(const ball_event *a, const ball_event *b) {
   return a->kind == b->kind && a->index == b->index && a->sound == b->sound &&
