@@ -7,6 +7,9 @@
 #define MARGIN 2.0             /* m of floor around the court and the obstacles */
 #define MIN_HALF_SIZE 3.0      /* m: the floor is at least 6 m each way */
 #define COURT_RATIO (23.77 / 10.97)  /* a doubles tennis court: length / width */
+#define LINE_WIDTH 0.08       /* court lines, m */
+#define GRID_STEP 1.0         /* the grid without a court, m */
+#define GRID_WIDTH 0.025      /* its lines, m */
 #define PI 3.14159265358979323846
 
 static const char *const preset_names[BALL_CAMERA_PRESET_COUNT] = {"side", "top", "behind0", "behind1"};
@@ -69,6 +72,47 @@ void view_arena_of(const ball_model *m, view_arena *a) {
     if (a->hi[i] < c + MIN_HALF_SIZE) a->hi[i] = c + MIN_HALF_SIZE;
   }
   if (!m->has_net) a->long_axis = (a->hi[1] - a->lo[1]) > (a->hi[0] - a->lo[0]) ? 1 : 0;
+}
+
+/* A line from (a0, b) to (a1, b) along axis (0: x, 1: z), w wide, as a floor rectangle. */
+static void floor_line(ball_floor_layout *f, int axis, double a0, double a1, double b, double w) {
+  double *r = f->lines[f->n_lines++];
+  if (axis == 0) {
+    r[0] = a0, r[1] = b - 0.5 * w, r[2] = a1, r[3] = b + 0.5 * w;
+  } else {
+    r[0] = b - 0.5 * w, r[1] = a0, r[2] = b + 0.5 * w, r[3] = a1;
+  }
+}
+
+ball_status ball_floor_layout_of(const ball_model *m, ball_floor_layout *out) {
+  view_arena a;
+  ball_floor_layout f;
+  if (!m || !out) return BALL_EINVAL;
+  view_arena_of(m, &a);
+  memset(&f, 0, sizeof f);
+  f.level = m->floor_level;
+  f.ground[0] = a.lo[0], f.ground[1] = a.lo[1], f.ground[2] = a.hi[0], f.ground[3] = a.hi[1];
+  f.grid_step = GRID_STEP;
+  f.grid_width = GRID_WIDTH;
+  if (a.has_court) {
+    /* a tennis court scaled to the net: the outer lines, the centre line
+     * between the service lines, the service lines 6.40 m of 11.885 m from the net */
+    int L = m->net.axis == 0 ? 0 : 1, W = 1 - L;
+    double net = m->net.position, half = a.court_hi[L] - net;
+    double service = half * 6.40 / 11.885, mid = 0.5 * (a.court_lo[W] + a.court_hi[W]);
+    double lw = LINE_WIDTH;
+    f.has_court = 1;
+    f.court[0] = a.court_lo[0], f.court[1] = a.court_lo[1], f.court[2] = a.court_hi[0], f.court[3] = a.court_hi[1];
+    floor_line(&f, L, a.court_lo[L], a.court_hi[L], a.court_lo[W] + 0.5 * lw, lw);
+    floor_line(&f, L, a.court_lo[L], a.court_hi[L], a.court_hi[W] - 0.5 * lw, lw);
+    floor_line(&f, W, a.court_lo[W], a.court_hi[W], a.court_lo[L] + 0.5 * lw, lw);
+    floor_line(&f, W, a.court_lo[W], a.court_hi[W], a.court_hi[L] - 0.5 * lw, lw);
+    floor_line(&f, W, a.court_lo[W], a.court_hi[W], net - service, lw);
+    floor_line(&f, W, a.court_lo[W], a.court_hi[W], net + service, lw);
+    floor_line(&f, L, net - service, net + service, mid, lw);
+  }
+  *out = f;
+  return BALL_OK;
 }
 
 ball_status ball_camera_from_preset(const ball_model *model, ball_camera_preset preset, double aspect,

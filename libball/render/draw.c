@@ -15,8 +15,6 @@
 #define MIN_BALL_PIXELS 2.0   /* least ball radius, output pixels */
 #define MIN_MARKER_PIXELS 5.0 /* least marker radius, output pixels */
 #define MARKER_RADIUS 0.25    /* m */
-#define LINE_WIDTH 0.08       /* court lines, m */
-#define GRID_WIDTH 0.025      /* the 1 m grid, m */
 #define PI 3.14159265358979323846
 
 struct ball_renderer {
@@ -118,12 +116,6 @@ static void floor_rect(double x0, double z0, double x1, double z1, double y) {
   glEnd();
 }
 
-/* A line on the floor from (a0, b) to (a1, b) along axis (0: x, 1: z), w wide. */
-static void floor_line(int axis, double a0, double a1, double b, double w, double y) {
-  if (axis == 0) floor_rect(a0, b - 0.5 * w, a1, b + 0.5 * w, y);
-  else floor_rect(b - 0.5 * w, a0, b + 0.5 * w, a1, y);
-}
-
 /* A net or wall rectangle; its normal along the plane's axis. */
 static void plane_rect(const ball_plane *p, double bottom, double top) {
   glBegin(GL_QUADS);
@@ -203,32 +195,22 @@ static double world_size(const ball_camera *cam, int height, ball_vec3 p, double
 
 /* ---- the picture -------------------------------------------------------- */
 
-static void draw_floor(const ball_model *m, const view_arena *a) {
-  double y = m->floor_level;
+static void draw_floor(const ball_model *m) {
+  ball_floor_layout f;
+  int i;
+  ball_floor_layout_of(m, &f);
   colour(GROUND, 1.0f);
-  floor_rect(a->lo[0], a->lo[1], a->hi[0], a->hi[1], y);
-  if (a->has_court) {
-    /* a tennis court scaled to the net: the outer lines, the centre line
-     * between the service lines, the service lines 6.40 m of 11.885 m from the net */
-    int L = m->net.axis == 0 ? 0 : 1, W = 1 - L;
-    double net = m->net.position, half = a->court_hi[L] - net;
-    double service = half * 6.40 / 11.885, mid = 0.5 * (a->court_lo[W] + a->court_hi[W]);
-    double lw = LINE_WIDTH;
+  floor_rect(f.ground[0], f.ground[1], f.ground[2], f.ground[3], f.level);
+  if (f.has_court) {
     colour(COURT, 1.0f);
-    floor_rect(a->court_lo[0], a->court_lo[1], a->court_hi[0], a->court_hi[1], y);
+    floor_rect(f.court[0], f.court[1], f.court[2], f.court[3], f.level);
     colour(LINE, 1.0f);
-    floor_line(L, a->court_lo[L], a->court_hi[L], a->court_lo[W] + 0.5 * lw, lw, y);
-    floor_line(L, a->court_lo[L], a->court_hi[L], a->court_hi[W] - 0.5 * lw, lw, y);
-    floor_line(W, a->court_lo[W], a->court_hi[W], a->court_lo[L] + 0.5 * lw, lw, y);
-    floor_line(W, a->court_lo[W], a->court_hi[W], a->court_hi[L] - 0.5 * lw, lw, y);
-    floor_line(W, a->court_lo[W], a->court_hi[W], net - service, lw, y);
-    floor_line(W, a->court_lo[W], a->court_hi[W], net + service, lw, y);
-    floor_line(L, net - service, net + service, mid, lw, y);
+    for (i = 0; i < f.n_lines; ++i) floor_rect(f.lines[i][0], f.lines[i][1], f.lines[i][2], f.lines[i][3], f.level);
   } else {
-    double g;
+    double g, h = 0.5 * f.grid_width;
     colour(GRID, 1.0f);
-    for (g = ceil(a->lo[0]); g <= a->hi[0]; g += 1.0) floor_line(1, a->lo[1], a->hi[1], g, GRID_WIDTH, y);
-    for (g = ceil(a->lo[1]); g <= a->hi[1]; g += 1.0) floor_line(0, a->lo[0], a->hi[0], g, GRID_WIDTH, y);
+    for (g = ceil(f.ground[0]); g <= f.ground[2]; g += f.grid_step) floor_rect(g - h, f.ground[1], g + h, f.ground[3], f.level);
+    for (g = ceil(f.ground[1]); g <= f.ground[3]; g += f.grid_step) floor_rect(f.ground[0], g - h, f.ground[2], g + h, f.level);
   }
 }
 
@@ -299,7 +281,6 @@ ball_status ball_render_draw(ball_renderer *r, const ball_model *m, const ball_c
   static const GLfloat light_ambient[4] = {0.0f, 0.0f, 0.0f, 1.0f};
   static const GLfloat scene_ambient[4] = {0.40f, 0.40f, 0.40f, 1.0f};
   double view[16], proj[16], ball_r;
-  view_arena a;
   ball_status st;
   int i;
 
@@ -308,7 +289,6 @@ ball_status ball_render_draw(ball_renderer *r, const ball_model *m, const ball_c
   if (!view_matrix(cam, view)) return BALL_ERANGE;
   view_projection(cam, (double)r->width / r->height, proj);
   if (!OSMesaMakeCurrent(r->ctx, r->big, GL_UNSIGNED_BYTE, r->big_w, r->big_h)) return BALL_ENOMEM;
-  view_arena_of(m, &a);
 
   glViewport(0, 0, r->big_w, r->big_h);
   glClearColor(SKY[0], SKY[1], SKY[2], 1.0f);
@@ -336,7 +316,7 @@ ball_status ball_render_draw(ball_renderer *r, const ball_model *m, const ball_c
    * covers the floor wherever the two overlap (and nothing z-fights). */
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_LIGHTING);
-  draw_floor(m, &a);
+  draw_floor(m);
   ball_r = world_size(cam, r->height, f->ball, MIN_BALL_PIXELS);
   if (ball_r < m->radius) ball_r = m->radius;
   glEnable(GL_BLEND);

@@ -171,6 +171,55 @@ static void test_presets_frame_the_court(void **state) {
   assert_null(ball_camera_preset_name(BALL_CAMERA_PRESET_COUNT));
 }
 
+/* The floor layout is what is drawn: the default court's lines where a
+ * tennis court has them (the baseline at x = 0, the service lines 6.40 m
+ * from the net), each line's middle white from the top camera and the court
+ * between two lines blue; a model without a net gets the 1 m grid. */
+static void test_floor_layout_drawn(void **state) {
+  ball_model m;
+  ball_camera c;
+  ball_floor_layout f;
+  ball_frame fr = ball_only(ball_v3(-50.0, 0.5, -50.0)); /* the ball off the picture */
+  const unsigned char *rgb;
+  int i, found_baseline = 0, found_service = 0;
+  (void)state;
+  ball_model_default(&m);
+  assert_int_equal(ball_floor_layout_of(NULL, &f), BALL_EINVAL);
+  assert_ok(ball_floor_layout_of(&m, &f));
+  assert_int_equal(f.has_court, 1);
+  assert_int_equal(f.n_lines, 7);
+  assert_near(f.level, m.floor_level, 0.0);
+  for (i = 0; i < f.n_lines; ++i) {
+    double xm = 0.5 * (f.lines[i][0] + f.lines[i][2]);
+    if (fabs(xm - 0.04) < 1e-12) found_baseline = 1; /* 0.08 m wide, inside the court */
+    if (fabs(xm - (m.net.position - 6.40 * (23.77 / 2.0) / 11.885)) < 1e-9) found_service = 1;
+  }
+  assert_true(found_baseline && found_service);
+  assert_ok(ball_camera_from_preset(&m, BALL_CAMERA_TOP, (double)W / H, &c));
+  rgb = draw(&m, &c, &fr);
+  for (i = 0; i < f.n_lines; ++i) {
+    ball_vec3 mid = ball_v3(0.5 * (f.lines[i][0] + f.lines[i][2]), f.level, 0.5 * (f.lines[i][1] + f.lines[i][3]));
+    double px, py;
+    const unsigned char *p;
+    assert_ok(ball_camera_project(&c, W, H, mid, &px, &py, NULL));
+    p = rgb + 3 * ((size_t)py * W + (size_t)px);
+    assert_true(p[0] > 100); /* the line's white, under a pixel wide: at least half of it over the court's 56 red */
+  }
+  {
+    double px, py;
+    const unsigned char *p;
+    assert_ok(ball_camera_project(&c, W, H, ball_v3(3.0, f.level, 3.0), &px, &py, NULL));
+    p = rgb + 3 * ((size_t)py * W + (size_t)px);
+    assert_true(p[2] > p[0] + 60); /* the court's blue */
+  }
+  m.has_net = 0;
+  assert_ok(ball_floor_layout_of(&m, &f));
+  assert_int_equal(f.has_court, 0);
+  assert_int_equal(f.n_lines, 0);
+  assert_near(f.grid_step, 1.0, 0.0);
+  assert_true(f.ground[0] < f.ground[2] && f.ground[1] < f.ground[3]);
+}
+
 /* Cameras by name: presets, the scene's own first; unknown names refused. */
 static void test_camera_find(void **state) {
   ball_scene s;
@@ -485,6 +534,7 @@ int main(void) {
       cmocka_unit_test(test_ball_drawn_where_projected),
       cmocka_unit_test(test_point_ball_visible),
       cmocka_unit_test(test_presets_frame_the_court),
+      cmocka_unit_test(test_floor_layout_drawn),
       cmocka_unit_test(test_camera_find),
       cmocka_unit_test(test_racket_oriented),
       cmocka_unit_test(test_markers_at_events),

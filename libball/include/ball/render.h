@@ -63,6 +63,28 @@ BALL_API ball_status ball_camera_find(const ball_scene *scene, const char *name,
 BALL_API ball_status ball_camera_project(const ball_camera *cam, int width, int height, ball_vec3 p, double *px,
                                          double *py, double *depth);
 
+/* ---- the floor ----------------------------------------------------------- */
+
+#define BALL_FLOOR_MAX_LINES 8  /* court lines */
+
+/* The floor every picture of a model shows (the table "What is drawn" of
+ * docs/render.md): a ground quad over the scene's area; with a net, a court
+ * (a tennis court scaled to the net's width) and its lines; without one, a
+ * grid. Rectangles are {x0, z0, x1, z1} on the floor plane, m. For a client
+ * that draws the court itself (the spectator page) as the renderer does. */
+typedef struct ball_floor_layout {
+  double level;                               /* y of the floor, m */
+  double ground[4];                           /* the floor quad */
+  int has_court;                              /* 1: court and lines; 0: the grid */
+  double court[4];                            /* the court quad (has_court) */
+  int n_lines;                                /* [0, BALL_FLOOR_MAX_LINES] */
+  double lines[BALL_FLOOR_MAX_LINES][4];      /* court lines, each a thin rectangle */
+  double grid_step, grid_width;               /* the grid (no court): lines every grid_step m, this wide */
+} ball_floor_layout;
+
+/* The floor of a model as ball_render_draw draws it. BALL_EINVAL for NULL. */
+BALL_API ball_status ball_floor_layout_of(const ball_model *model, ball_floor_layout *out);
+
 /* ---- frames from plain data ------------------------------------------------ */
 
 typedef struct ball_render_racket {
