@@ -1,5 +1,7 @@
 #include "common.h"
 
+#include "court.h"
+
 #include <pthread.h>
 #include <sched.h>
 #include <cstring>
@@ -89,6 +91,22 @@ std::string scenes_dir() {
 #endif
 }
 
+std::string find_page_dir() {
+  if (const char *env = std::getenv("BALL_WEB_DIR")) return env;
+  std::string installed = program_dir() + "/../share/libball/web";
+  if (readable(installed + "/index.html")) return installed;
+#ifdef BALL_WEB_BUILD
+  return BALL_WEB_BUILD;
+#else
+  return "web";
+#endif
+}
+
+std::string find_three_dir() {
+  if (const char *env = std::getenv("BALL_THREE_DIR")) return env;
+  return "/usr/share/javascript/three";  // Debian's libjs-three (./run setup)
+}
+
 void add_dds_options(CLI::App &app, DdsOptions *o) {
   app.add_option("--domain", o->domain,
                  "DDS domain id, [0, " + std::to_string(kMaxDomain) + "] (default " + std::to_string(o->domain) + ")");
@@ -139,6 +157,19 @@ bool set_realtime_priority(int priority, std::string *err) {
   if (rc == 0) return true;
   *err = "realtime priority " + std::to_string(priority) + " (SCHED_FIFO): " + std::strerror(rc);
   return false;
+}
+
+ball_model court_model(const MatchInfoOut &info) {
+  ball_scene scene;
+  std::string err;
+  if (!plain_scene_name(info.scene) || !load_scene(info.scene, &scene, &err)) ball_scene_default(&scene);
+  ball_model model;
+  Court court;
+  if (!match_model_of(scene, info, &model, &court, &err)) model = scene.model;  // the scene's court at least
+#define BALL_COURT_FLIGHT(f) model.f = info.model.f;
+  BALL_FLIGHT_FIELDS(BALL_COURT_FLIGHT)
+#undef BALL_COURT_FLIGHT
+  return model;
 }
 
 bool load_scene(const std::string &what, ball_scene *scene, std::string *err) {

@@ -73,6 +73,15 @@ std::string level_names();  // "easy, mid, advanced or custom": the game levels,
 // slash is libball's scenes/NAME.yaml, else a file. false with the loader's
 // "file:line:column: field: message" in err.
 bool load_scene(const std::string &what, ball_scene *scene, std::string *err);
+// The model a watcher draws a match with: the court (net, walls, rackets) of
+// the scene its MatchInfo names, when that is a plain name of a scene found
+// here, else libball's default; the flight fields as the MatchInfo states them.
+ball_model court_model(const MatchInfoOut &info);
+// The spectator page's files: $BALL_WEB_DIR, else the copy installed beside
+// the program (../share/libball/web), else the build tree's server/web/page.
+std::string find_page_dir();
+// three.js for the page: $BALL_THREE_DIR, else Debian's libjs-three.
+std::string find_three_dir();
 
 
 // Output files, every write checked: a failure says "cannot write PATH:

@@ -69,15 +69,9 @@ void BotPlayer::on_info(const MatchInfoOut &in, double real) {
   // the model the server steps, rebuilt when the match's setup changes
   if (in.level != level_ || in.players != players_ || in.model.extrapolation_time != extrapolation_ ||
       in.model.stale_time != stale_) {
-    ModelSetup setup;
-    setup.players = in.players;
-    setup.level = static_cast<ball_level>(in.level);
-    setup.extrapolation_time = in.model.extrapolation_time;
-    setup.stale_time = in.model.stale_time;
     Court court;
     ball_model model;
-    if (!court_from_model(scene_.model, in.court_x[0], &court, &error_) ||
-        !build_match_model(scene_, court, setup, &model, &error_)) {
+    if (!match_model_of(scene_, in, &model, &court, &error_)) {
       counters_.refused++;
       return;
     }

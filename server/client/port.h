@@ -19,6 +19,8 @@ class ClientPort {
   virtual bool take(StateOut *state) = 0;
   virtual bool take(EventOut *event) = 0;
   virtual bool take(StatusOut *status) = 0;
+  // the players' racket samples, read only (a watcher draws the rackets); `from` filled in
+  virtual bool take(RacketSampleIn *) { return false; }
   // false: the write was refused (the caller counts it)
   [[nodiscard]] virtual bool write(const RacketSampleIn &sample) = 0;
   [[nodiscard]] virtual bool write(const ControlIn &control) = 0;

@@ -16,6 +16,7 @@ constexpr double kLeadSettle = 1.0;    // sim s after a contact by which a hit t
 constexpr double kTrailSeconds = 1.0;  // sim s of trail and of event markers
 constexpr size_t kTrailPoints = 2048;
 constexpr size_t kMarkers = 64;
+constexpr size_t kKeepEvents = 64;     // per match, for a view
 
 std::string point_text(ball_vec3 p) {
   char buf[96];
@@ -111,6 +112,7 @@ void Watcher::on_info(const MatchInfoOut &info, double real) {
   MatchState before = w.info.state;
   w.info = info;
   w.has_info = true;
+  w.info_real = real;
   // the segment in effect, when no Segment sample brought it (a watcher
   // that joined after a failover, whose new server has written none yet)
   if (info.segment_seq > 0 && !w.segments.count(info.segment_seq) &&
@@ -197,6 +199,11 @@ void Watcher::on_event(const EventOut &e, double real) {
   }
   ball_event marker;
   if (settings_.snapshot_every > 0.0 && event_marker(e, &marker)) w.recent.push_back(marker);
+  if (settings_.servers.accepts(e.server_id)) {
+    w.events.push_back(e);
+    w.events_taken++;
+    if (w.events.size() > kKeepEvents) w.events.pop_front();
+  }
   say(e.match_id, e.time, rally_line(e));
   out_.records.push_back(record_line(e, real));
 }
@@ -215,6 +222,26 @@ void Watcher::on_state(const StateOut &s, double real) {
 }
 
 void Watcher::on_status(const StatusOut &s) { servers_[s.server_id] = s; }
+
+std::vector<uint32_t> Watcher::match_ids() const {
+  std::vector<uint32_t> ids;
+  for (const auto &kv : matches_)
+    if (kv.second.has_info) ids.push_back(kv.first);
+  return ids;
+}
+
+bool Watcher::view(uint32_t match, WatchedView *out) const {
+  auto it = matches_.find(match);
+  if (it == matches_.end() || !it->second.has_info) return false;
+  const Watched &w = it->second;
+  out->info = &w.info;
+  out->segments = &w.segments;
+  out->events = &w.events;
+  out->events_taken = w.events_taken;
+  out->clock = &w.clock;
+  out->info_real = w.info_real;
+  return true;
+}
 
 // each server state against the ball evaluated here from the segment it
 // names (eq 3 and 4 with MatchInfo's flight model)

@@ -61,6 +61,17 @@ struct WatchOutput {
   }
 };
 
+// What the watcher took of one match, for a client that mirrors it (the
+// spectator page, server/web/spectator.h).
+struct WatchedView {
+  const MatchInfoOut *info = nullptr;      // the newest usable MatchInfo
+  const Segments *segments = nullptr;      // the segments taken, by seq
+  const std::deque<EventOut> *events = nullptr;  // the newest events taken, oldest first
+  uint64_t events_taken = 0;               // events taken so far (the deque holds the newest of them)
+  const SimClock *clock = nullptr;         // the estimate of the match's sim clock
+  double info_real = 0.0;                  // local realtime s the newest usable MatchInfo came
+};
+
 class Watcher {
  public:
   explicit Watcher(const WatcherSettings &settings) : settings_(settings) {}
@@ -86,6 +97,9 @@ class Watcher {
   WatchSummary summary(double seconds) const;
   uint64_t hits() const { return hits_; }  // racket hits in play, every match
   bool ready() const { return ready_; }
+  // The matches with a usable MatchInfo, and what was taken of one (false: none).
+  std::vector<uint32_t> match_ids() const;
+  bool view(uint32_t match, WatchedView *out) const;
 
  private:
   struct Watched {
@@ -99,6 +113,9 @@ class Watcher {
     // the last second of the own ball and of the collisions, the next snapshot's sim time
     std::deque<std::pair<double, ball_vec3>> trail;
     std::deque<ball_event> recent;
+    std::deque<EventOut> events;  // the newest events of the servers it uses
+    uint64_t events_taken = 0;
+    double info_real = 0.0;
     double next_snapshot = -1.0;
     // floor, net and wall segments received, not yet happened or superseded:
     // seq -> (t0 sim s, lead at reception real s)

@@ -30,7 +30,24 @@ std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNe
     p->status_ = d.reader<StatusOut>(kStatusTopic, kStatusProfile, {16}, err);
     if (!p->status_.valid()) return nullptr;
   }
+  if (n.rackets) {
+    // every player's samples, in every match's partition under DDS Security
+    constexpr int kInboxPerSlot = 16;  // samples a slot may have waiting between two reads
+    Sizing racket{n.matches * kMaxPlayers, 1024, d.secure() ? kAnyMatchPartition : ""};
+    racket.inbox_per_key = kInboxPerSlot;
+    p->rackets_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, racket, err);
+    if (!p->rackets_.valid()) return nullptr;
+  }
   return p;
+}
+
+bool ClientEndpoints::take(RacketSampleIn *sample) {
+  SampleMeta meta;
+  if (!rackets_.valid() || !rackets_.take(sample, &meta)) return false;
+  sample->from = meta.from;
+  sample->source_time = meta.source_time;
+  sample->rejected = meta.rejected;
+  return true;
 }
 
 WireSizes wire_sizes() {

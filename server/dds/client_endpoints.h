@@ -27,6 +27,7 @@ struct ClientNeeds {
   // their server holds (ServerChoice::bound): their samples from any other
   // participant are refused and counted (untrusted)
   std::vector<std::pair<uint32_t, std::string>> server_certs;
+  bool rackets = false;   // reads ball/racket_samples (a watcher that draws the rackets)
 };
 
 // The size of one sample of every topic (load.h).
@@ -42,6 +43,7 @@ class ClientEndpoints : public ClientPort {
   bool take(StateOut *state) override { return take_trusted(states_, state); }
   bool take(EventOut *event) override { return take_trusted(events_, event); }
   bool take(StatusOut *status) override { return take_trusted(status_, status); }
+  bool take(RacketSampleIn *sample) override;
   uint64_t untrusted() const override { return untrusted_; }
   bool write(const RacketSampleIn &sample) override { return samples_.write(sample); }
   bool write(const ControlIn &control) override { return controls_.write(control); }
@@ -74,6 +76,7 @@ class ClientEndpoints : public ClientPort {
   Reader<StateOut> states_;
   Reader<EventOut> events_;
   Reader<StatusOut> status_;
+  Reader<RacketSampleIn> rackets_;
 };
 
 }  // namespace dds

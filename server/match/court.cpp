@@ -125,4 +125,14 @@ ball_status lob_velocity(const ball_model &model, ball_vec3 from, ball_vec3 targ
   return BALL_OK;
 }
 
+bool match_model_of(const ball_scene &scene, const MatchInfoOut &info, ball_model *model, Court *court,
+                    std::string *err) {
+  ModelSetup setup;
+  setup.players = info.players;
+  setup.level = static_cast<ball_level>(info.level);
+  setup.extrapolation_time = info.model.extrapolation_time;
+  setup.stale_time = info.model.stale_time;
+  return court_from_model(scene.model, info.court_x[0], court, err) && build_match_model(scene, *court, setup, model, err);
+}
+
 }  // namespace ballsrv

@@ -7,6 +7,7 @@
 
 #include "ball/ball.h"
 #include "ball/scene.h"
+#include "types.h"
 
 namespace ballsrv {
 
@@ -54,6 +55,13 @@ struct ModelSetup {
 // target. Checked with ball_model_check; err names the field.
 bool build_match_model(const ball_scene &scene, const Court &court, const ModelSetup &setup,
                        ball_model *out, std::string *err);
+
+// The model and court a MatchInfo's match is played with, from its scene
+// (the level, players, extrapolation and stale times and the court's x_lo
+// as the info states them): what a client builds to step or draw the
+// match as its server does (ball_model_hash then agrees).
+bool match_model_of(const ball_scene &scene, const MatchInfoOut &info, ball_model *model, Court *court,
+                    std::string *err);
 
 // A launch velocity from `from` with vertical speed v_up whose first floor
 // contact (with this model's drag; no net, no rackets) is at (x, z) of

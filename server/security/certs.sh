@@ -94,7 +94,7 @@ grant() {  # NAME RULES
   for name in server1 server2 server3; do
     grant "$name" "<allow_rule>$domains<publish><topics>$server_topics</topics></publish><subscribe><topics>$server_topics</topics></subscribe><subscribe><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></subscribe></allow_rule>"
   done
-  grant watch "<allow_rule>$domains<subscribe><topics>$server_topics</topics></subscribe></allow_rule>"
+  grant watch "<allow_rule>$domains<subscribe><topics>$server_topics</topics></subscribe><subscribe><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></subscribe></allow_rule>"
   grant load "<allow_rule>$domains<publish><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></publish><subscribe><topics>$server_topics</topics></subscribe></allow_rule>"
   for ((m = 0; m < matches; m++)); do
     for p in a b; do
