@@ -4,7 +4,10 @@
 // ball from the segments at its own frame rate and checks that ball against
 // the server's ball states (the desync check). With --snapshots it also
 // draws PNG frames of each match (libball::render, headless OSMesa) every S
-// sim seconds, as ballrender does for a scene. One loop, one thread.
+// sim seconds, as ballrender does for a scene, rackets included (read from
+// the players' topic: racket_tracks.h). With --http it serves the spectator
+// page (server/web): the loop feeds it, the HTTP server runs on threads of
+// its own. One loop.
 #include <sys/stat.h>
 
 #include <CLI/CLI.hpp>
@@ -16,7 +19,9 @@
 #include "ball/render.h"
 #include "client_endpoints.h"
 #include "common.h"
+#include "racket_tracks.h"
 #include "watcher.h"
+#include "web_server.h"
 
 using namespace ballsrv;
 using namespace ballsrv::app;
@@ -34,20 +39,11 @@ struct Snapshots {
   ~Snapshots() { ball_renderer_destroy(renderer); }
 
   // The frame into dir: "" and its path in *file, or what went wrong.
-  std::string draw(const SnapshotDue &d, std::string *file) {
+  std::string draw(const SnapshotDue &d, const RacketTracks &rackets, std::string *file) {
     if (!renderer && ball_renderer_create(size[0], size[1], &renderer) != BALL_OK)
       return "cannot create an OSMesa renderer";
     auto it = courts.find(d.match);
-    if (it == courts.end()) {
-      // its scene's court (net, walls) if found by name, else libball's, with the announced flight fields
-      ball_scene scene;
-      std::string err;
-      if (!plain_scene_name(d.info.scene) || !load_scene(d.info.scene, &scene, &err)) ball_scene_default(&scene);
-      scene.model.radius = d.info.model.radius;
-      scene.model.floor_level = d.info.model.floor_level;
-      scene.model.gravity = d.info.model.gravity;
-      it = courts.emplace(d.match, scene.model).first;
-    }
+    if (it == courts.end()) it = courts.emplace(d.match, court_model(d.info)).first;
     ball_camera cam;
     ball_camera_preset preset = BALL_CAMERA_SIDE;
     for (int i = 0; i < BALL_CAMERA_PRESET_COUNT; ++i)
@@ -57,7 +53,13 @@ struct Snapshots {
     ball_frame f{};
     f.time = d.sim_time;
     f.ball = d.ball;
-    f.n_rackets = 0;  // a watcher does not read the players' samples
+    f.n_rackets = std::min(it->second.n_rackets, d.info.players);
+    for (int i = 0; i < f.n_rackets; ++i) {
+      ball_racket_pose pose{};
+      f.rackets[i].visible = rackets.pose(d.match, i, d.sim_time, &pose);
+      f.rackets[i].center = pose.center;
+      f.rackets[i].normal = pose.normal;
+    }
     f.n_trail = static_cast<int>(d.trail.size());
     f.trail = d.trail.data();
     f.n_events = static_cast<int>(d.events.size());
@@ -77,7 +79,7 @@ struct Snapshots {
 };
 
 // Prints, records and draws what the watcher produced; "" or what went wrong.
-std::string drain(Watcher &w, OutputFile &rec, Snapshots &snap, bool quiet, double start) {
+std::string drain(Watcher &w, OutputFile &rec, Snapshots &snap, const RacketTracks &rackets, bool quiet, double start) {
   WatchOutput &out = w.output();
   for (const auto &l : out.log)
     if (!quiet) std::printf("[%6.2f s] match %u, t %7.3f: %s\n", mono_now() - start, l.match, l.sim_time, l.text.c_str());
@@ -85,7 +87,7 @@ std::string drain(Watcher &w, OutputFile &rec, Snapshots &snap, bool quiet, doub
   std::vector<SnapshotDue> due = std::move(out.snapshots);
   out.snapshots.clear();
   for (const auto &d : due) {
-    std::string file, why = snap.draw(d, &file);
+    std::string file, why = snap.draw(d, rackets, &file);
     if (!why.empty()) return why;
     w.snapshot_written(d, file, snap.camera, snap.size[0], snap.size[1], realtime_now());
   }
@@ -128,6 +130,11 @@ int main(int argc, char **argv) {
   cli.add_option("--camera", snap.camera, "with --snapshots: the camera")->capture_default_str()->check(CLI::IsMember(cameras));
   cli.add_option("--size", snap.size, "with --snapshots: WxH pixels (default 640x480)")->delimiter('x')->expected(2)
       ->check(CLI::Range(BALL_RENDER_MIN_SIZE, BALL_RENDER_MAX_SIZE));
+  int http = -1;
+  std::string http_address = WebSettings().address;
+  cli.add_option("--http", http, "serve the spectator page on PORT (0: a free port; the URL is printed); "
+                                 "docs/server.md, \"The spectator page\"")->check(CLI::Range(0, 65535));
+  cli.add_option("--http-address", http_address, "with --http: the address to listen on")->capture_default_str();
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
   ws.log = !no_log && !quiet;
@@ -144,9 +151,22 @@ int main(int argc, char **argv) {
                                   dds_opt.discovery_server, "ball-watch", &err,
                                   {dds_opt.security, dds_opt.identity});
   if (!domain) return fail(kProgram, err);
-  auto port =
-      dds::ClientEndpoints::open(*domain, {0, 0, dds::kClientRoom, true, true, "", ws.servers.bound()}, &err);
+  dds::ClientNeeds needs{0, 0, dds::kClientRoom, true, true, "", ws.servers.bound()};
+  needs.rackets = http >= 0 || !snap.dir.empty();  // the rackets are drawn
+  auto port = dds::ClientEndpoints::open(*domain, needs, &err);
   if (!port) return fail(kProgram, err);
+  RacketTracks rackets(court_model);
+  std::unique_ptr<WebServer> web;
+  if (http >= 0) {
+    WebSettings web_opt;
+    web_opt.address = http_address;
+    web_opt.port = http;
+    web_opt.page_dir = find_page_dir();
+    web_opt.three_dir = find_three_dir();
+    if (!(web = WebServer::start(web_opt, SpectatorSettings(), court_model, &err))) return fail(kProgram, "--http: " + err);
+    std::printf("%s: the spectator page is at %s\n", kProgram, web->url().c_str());
+    std::fflush(stdout);
+  }
   OutputFile rec;
   if (!record.empty() && !rec.open(record)) return fail(kProgram, rec.error());
   Watcher w(ws);
@@ -168,19 +188,27 @@ int main(int argc, char **argv) {
     StatusOut so;
     while (port->take(&so)) w.on_status(so);
     w.check_states();
+    RacketSampleIn rs;
+    std::vector<RacketSampleIn> drawn;
+    while (port->take(&rs))
+      if (rackets.take(rs, w)) drawn.push_back(rs);
+    if (web) web->update([&](Spectator &sp) {
+        for (const auto &r : drawn) sp.on_racket(r);
+        sp.update(w, real);
+      });
     if (now >= next_frame) {  // the watcher's own ball, at its own frame rate
       w.frame(real);
       next_frame += 1.0 / ws.fps;
       if (next_frame < now) next_frame = now + 1.0 / ws.fps;
     }
-    if (!(err = drain(w, rec, snap, quiet, start)).empty()) return fail(kProgram, err);
+    if (!(err = drain(w, rec, snap, rackets, quiet, start)).empty()) return fail(kProgram, err);
   }
   WatchSummary sum = w.summary(mono_now() - start);
   sum.untrusted = port->untrusted();
   w.output().records.push_back({{"type", "summary"}, {"summary", sum}});
   if (!quiet)
     for (const auto &line : summary_lines(sum)) std::printf("%s\n", line.c_str());
-  if (!(err = drain(w, rec, snap, true, start)).empty() || (rec.is_open() && !rec.close())) return fail(kProgram, err.empty() ? rec.error() : err);
+  if (!(err = drain(w, rec, snap, rackets, true, start)).empty() || (rec.is_open() && !rec.close())) return fail(kProgram, err.empty() ? rec.error() : err);
   if (!summary_json.empty() && !write_file(summary_json, json(sum).dump(1), &err)) return fail(kProgram, err);
   dds::set_exit_status_if_stuck(0);  // all is written: a stuck DDS teardown still ends well (domain.h)
   return 0;

@@ -1,0 +1,93 @@
+// The spectator page's core (docs/server.md, "The spectator page"), free of
+// DDS and of HTTP: it mirrors what a Watcher took (every match's court,
+// MatchInfo, segments, events and sim clock) and the players' racket samples
+// into the page's messages, JSON texts numbered in order. A page opened now
+// gets snapshot(), then every message after it. The page evaluates the ball
+// itself from the segments (docs/protocol.md). Not thread-safe: the web
+// server (web_server.h) calls it under its lock.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "ball/ball.h"
+#include "watcher.h"
+
+namespace ballsrv {
+
+struct SpectatorSettings {
+  double aspect = 4.0 / 3.0;    // width / height of the page's view (its camera presets are placed for it)
+  double clock_every = 0.1;     // real s between two clock messages of a match
+  double silence = 2.5;         // real s without a MatchInfo after which a match's server is gone
+  size_t keep_messages = 4096;  // messages a late reader can still catch up with
+  size_t page_segments = 32;    // segments of a match a page is given at once
+  size_t page_events = 32;      // events of a match a page is given at once
+};
+
+struct PageMessage {
+  uint64_t id = 0;   // 1, 2, ... in order
+  std::string text;  // one JSON object
+};
+
+class Spectator {
+ public:
+  // court: a match's model for its court (net, walls, rackets), from its MatchInfo
+  Spectator(const SpectatorSettings &settings, std::function<ball_model(const MatchInfoOut &)> court)
+      : settings_(settings), court_(std::move(court)) {}
+
+  // Brings the page's view in line with what `w` took, at local realtime `real`.
+  void update(const Watcher &w, double real);
+  // A racket sample its slot's holder wrote (RacketTracks took it): passed
+  // on unless it is within 1/120 s of the slot's newest passed on (a page
+  // needs no more). false: not passed on (counted in racket_dropped).
+  bool on_racket(const RacketSampleIn &s);
+
+  // What a page opened now is given first: every match as it stands.
+  std::vector<std::string> snapshot() const;
+  // The messages after `after` (at most `max`); false when some of them
+  // are no longer kept (the reader then starts over from a snapshot).
+  bool since(uint64_t after, size_t max, std::vector<PageMessage> *out) const;
+  uint64_t newest() const { return next_id_ - 1; }
+  uint64_t racket_dropped() const { return racket_dropped_; }
+
+ private:
+  struct Mirror {
+    std::string court;                   // the court message
+    std::string scene;                   // ... of this scene and model hash
+    uint64_t model_hash = 0;
+    uint32_t server = 0;
+    uint32_t revision = 0;
+    std::string info;                    // the newest info message
+    std::map<uint32_t, std::string> segments;  // the segment messages sent, by seq
+    std::deque<std::string> events;      // the newest event messages
+    uint64_t events_sent = 0;
+    std::array<std::deque<std::string>, kMaxPlayers> rackets;  // the newest racket messages per slot
+    std::array<double, kMaxPlayers> racket_t{};                 // capture time of the newest passed on
+    std::array<ParticipantId, kMaxPlayers> owners{};
+    int players = 0;
+    std::string clock;                   // the newest clock message
+    double clock_real = -1.0;
+    bool live = false;
+    double frozen = 0.0;                 // sim s the ball stands at while the server is gone
+  };
+  void send(std::string text);
+  void mirror(uint32_t id, const WatchedView &v, double real);
+
+  SpectatorSettings settings_;
+  std::function<ball_model(const MatchInfoOut &)> court_;
+  std::map<uint32_t, Mirror> matches_;
+  std::deque<PageMessage> sent_;
+  uint64_t next_id_ = 1;
+  uint64_t racket_dropped_ = 0;
+};
+
+// The court message of a match (its floor as libball's renderer draws it,
+// net, walls, racket radii and the camera presets for `aspect`), JSON.
+std::string court_message(uint32_t match, const MatchInfoOut &info, const ball_model &court, double aspect);
+
+}  // namespace ballsrv

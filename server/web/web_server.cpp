@@ -1,0 +1,200 @@
+#include "web_server.h"
+
+#include <httplib.h>
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <thread>
+#include <utility>
+#include <vector>
+
+namespace ballsrv {
+
+namespace {
+
+constexpr size_t kBatch = 256;        // messages one write of a stream carries at most
+constexpr auto kKeepAlive = std::chrono::seconds(1);  // a comment line this often when nothing happens
+
+struct File {
+  std::string type, body;
+};
+
+// The files the page needs: URL path -> (folder, name, content type).
+struct Served {
+  const char *path;
+  bool three;  // from three.js's folder, else the page's
+  const char *name;
+  const char *type;
+};
+const Served kFiles[] = {
+    {"/", false, "index.html", "text/html; charset=utf-8"},
+    {"/index.html", false, "index.html", "text/html; charset=utf-8"},
+    {"/style.css", false, "style.css", "text/css; charset=utf-8"},
+    {"/protocol.js", false, "protocol.js", "text/javascript; charset=utf-8"},
+    {"/app.js", false, "app.js", "text/javascript; charset=utf-8"},
+    {"/lib/three.min.js", true, "build/three.min.js", "text/javascript; charset=utf-8"},
+    {"/lib/OrbitControls.js", true, "examples/js/controls/OrbitControls.js", "text/javascript; charset=utf-8"},
+};
+
+bool read_all(const std::string &path, std::string *out) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) return false;
+  std::ostringstream s;
+  s << f.rdbuf();
+  *out = s.str();
+  return static_cast<bool>(f) || f.eof();
+}
+
+std::string event_text(const std::string &json_text) { return "data: " + json_text + "\n\n"; }
+
+}  // namespace
+
+struct WebServer::Impl {
+  WebSettings settings;
+  std::map<std::string, File> files;
+  httplib::Server http;
+  std::thread thread;
+  int port = 0;
+  std::mutex mutex;
+  std::condition_variable news;
+  Spectator spectator;
+  bool stopping = false;  // under mutex
+  std::atomic<int> streaming{0};
+  std::atomic<uint64_t> opened{0}, refused{0};
+
+  Impl(const WebSettings &s, const SpectatorSettings &ss, std::function<ball_model(const MatchInfoOut &)> court)
+      : settings(s), spectator(ss, std::move(court)) {}
+
+  // The next batch of a page's stream: the snapshot first, then what came
+  // after its cursor (waiting for it up to kKeepAlive); a page that fell
+  // too far behind starts over. false: the server stops.
+  bool next(bool *first, uint64_t *cursor, std::string *out) {
+    std::unique_lock<std::mutex> lock(mutex);
+    out->clear();
+    if (!*first) news.wait_for(lock, kKeepAlive, [&] { return stopping || spectator.newest() > *cursor; });
+    if (stopping) return false;
+    std::vector<PageMessage> batch;
+    if (!*first && !spectator.since(*cursor, kBatch, &batch)) {
+      *out += event_text("{\"type\":\"restart\"}");
+      *first = true;
+    }
+    if (*first) {
+      for (const auto &text : spectator.snapshot()) *out += event_text(text);
+      *cursor = spectator.newest();
+      *first = false;
+      return true;
+    }
+    for (const auto &m : batch) {
+      *out += event_text(m.text);
+      *cursor = m.id;
+    }
+    if (out->empty()) *out = ": keep-alive\n\n";
+    return true;
+  }
+
+  void stream(httplib::Response &res) {
+    if (streaming.fetch_add(1) >= settings.max_pages) {
+      streaming--;
+      refused++;
+      res.status = 503;
+      res.set_content("too many pages are open\n", "text/plain");
+      return;
+    }
+    opened++;
+    auto first = std::make_shared<bool>(true);
+    auto cursor = std::make_shared<uint64_t>(0);
+    res.set_header("Cache-Control", "no-cache");
+    res.set_chunked_content_provider(
+        "text/event-stream",
+        [this, first, cursor](size_t, httplib::DataSink &sink) {
+          std::string text;
+          if (!next(first.get(), cursor.get(), &text)) {
+            sink.done();
+            return false;
+          }
+          return sink.write(text.data(), text.size());
+        },
+        [this](bool) { streaming--; });
+  }
+};
+
+WebServer::WebServer(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+
+std::unique_ptr<WebServer> WebServer::start(const WebSettings &settings, const SpectatorSettings &spectator,
+                                            std::function<ball_model(const MatchInfoOut &)> court,
+                                            std::string *err) {
+  auto impl = std::make_unique<Impl>(settings, spectator, std::move(court));
+  for (const auto &f : kFiles) {
+    std::string path = (f.three ? settings.three_dir : settings.page_dir) + "/" + f.name;
+    File file{f.type, ""};
+    if (!read_all(path, &file.body)) {
+      *err = "cannot read " + path +
+             (f.three ? " (three.js: Debian's libjs-three, which ./run setup installs)" : " (the page's files)");
+      return nullptr;
+    }
+    impl->files[f.path] = std::move(file);
+  }
+  Impl *p = impl.get();
+  // pages stream on threads of their own; two more for the files
+  const size_t threads = static_cast<size_t>(settings.max_pages) + 2;
+  p->http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  for (const auto &kv : p->files) {
+    const File *file = &kv.second;
+    p->http.Get(kv.first, [file](const httplib::Request &, httplib::Response &res) {
+      res.set_content(file->body, file->type.c_str());
+    });
+  }
+  p->http.Get("/stream", [p](const httplib::Request &, httplib::Response &res) { p->stream(res); });
+  p->http.Get("/snapshot", [p](const httplib::Request &, httplib::Response &res) {
+    std::string body = "[";
+    {
+      std::lock_guard<std::mutex> lock(p->mutex);
+      for (const auto &text : p->spectator.snapshot()) body += (body.size() > 1 ? "," : "") + text;
+    }
+    res.set_content(body + "]", "application/json");
+  });
+  if (settings.port == 0) p->port = p->http.bind_to_any_port(settings.address);
+  else p->port = p->http.bind_to_port(settings.address, settings.port) ? settings.port : -1;
+  if (p->port <= 0) {
+    *err = "cannot listen on " + settings.address + ":" + std::to_string(settings.port);
+    return nullptr;
+  }
+  p->thread = std::thread([p] { p->http.listen_after_bind(); });
+  return std::unique_ptr<WebServer>(new WebServer(std::move(impl)));
+}
+
+WebServer::~WebServer() {
+  {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    impl_->stopping = true;
+  }
+  impl_->news.notify_all();
+  impl_->http.stop();
+  if (impl_->thread.joinable()) impl_->thread.join();
+}
+
+int WebServer::port() const { return impl_->port; }
+
+std::string WebServer::url() const {
+  const std::string &a = impl_->settings.address;
+  std::string host = a.find(':') != std::string::npos ? "[" + a + "]" : a;
+  return "http://" + host + ":" + std::to_string(impl_->port) + "/";
+}
+
+void WebServer::update(const std::function<void(Spectator &)> &change) {
+  {
+    std::lock_guard<std::mutex> lock(impl_->mutex);
+    change(impl_->spectator);
+  }
+  impl_->news.notify_all();
+}
+
+uint64_t WebServer::pages_opened() const { return impl_->opened; }
+uint64_t WebServer::pages_refused() const { return impl_->refused; }
+
+}  // namespace ballsrv
