@@ -1,5 +1,6 @@
 /* render_probe: the golden-image comparison and the ball finder of the
- * render tests, over libball::render's PNG and compare functions.
+ * render tests, over libball::render's PNG functions and ballrender's
+ * snapshot comparison (libball/tools/snapshot.h).
  *   render_probe compare EXPECTED ACTUAL DIFF TOLERANCE MAX_PIXELS
  *     passes (exit 0) when at most MAX_PIXELS pixels have a channel more than
  *     TOLERANCE apart; else writes the diff image DIFF and exits 1.
@@ -13,6 +14,7 @@
 
 #include "ball/render.h"
 #include "ball_pixels.h"
+#include "snapshot.h"
 
 static int read_png(const char *path, unsigned char **rgb, int *w, int *h) {
   ball_status st = ball_png_read(path, rgb, w, h);
@@ -21,29 +23,34 @@ static int read_png(const char *path, unsigned char **rgb, int *w, int *h) {
 }
 
 static int compare(char **argv) {
-  unsigned char *a = NULL, *b = NULL, *d = NULL;
-  int wa, ha, wb, hb, tol = atoi(argv[3]), rc = 1;
+  unsigned char *b = NULL, *d = NULL;
+  int wb, hb, tol = atoi(argv[3]), rc = 1;
   long allowed = atol(argv[4]);
-  ball_image_diff diff;
-  if (!read_png(argv[0], &a, &wa, &ha) || !read_png(argv[1], &b, &wb, &hb)) goto done;
-  if (wa != wb || ha != hb) {
-    printf("FAIL %s: %dx%d, the golden %s is %dx%d\n", argv[1], wb, hb, argv[0], wa, ha);
+  snapshot_check c;
+  if (!read_png(argv[1], &b, &wb, &hb)) return 1;
+  d = (unsigned char *)malloc((size_t)wb * hb * 3);
+  if (!d || snapshot_compare(argv[0], b, wb, hb, tol, allowed, &c, d) != BALL_OK) goto done;
+  if (c.result == SNAPSHOT_SIZE) {
+    printf("FAIL %s: %dx%d, the golden %s is %dx%d\n", argv[1], wb, hb, argv[0], c.golden_width, c.golden_height);
     goto done;
   }
-  d = (unsigned char *)malloc((size_t)wa * ha * 3);
-  if (!d || ball_image_compare(a, b, wa, ha, tol, &diff, d) != BALL_OK) goto done;
+  if (c.result != SNAPSHOT_SAME && c.result != SNAPSHOT_DIFFERS) {
+    printf("FAIL %s: the golden %s is %s\n", argv[1], argv[0],
+           c.result == SNAPSHOT_MISSING ? "missing" : snapshot_read_error(c.read_status));
+    goto done;
+  }
   printf("%s %s: %dx%d, %ld pixels differ by more than %d (at most %ld allowed), largest difference %d",
-         diff.differing > allowed ? "FAIL" : "ok", argv[1], wa, ha, diff.differing, tol, allowed, diff.max_diff);
-  if (diff.differing > 0) printf(", first at (%ld, %ld)", diff.first_x, diff.first_y);
-  if (diff.differing > allowed) {
+         c.result == SNAPSHOT_DIFFERS ? "FAIL" : "ok", argv[1], wb, hb, c.diff.differing, tol, allowed,
+         c.diff.max_diff);
+  if (c.diff.differing > 0) printf(", first at (%ld, %ld)", c.diff.first_x, c.diff.first_y);
+  if (c.result == SNAPSHOT_DIFFERS) {
     printf(", diff image %s", argv[2]);
-    if (ball_png_write(argv[2], d, wa, ha) != BALL_OK) printf(" (cannot be written)");
+    if (ball_png_write(argv[2], d, wb, hb) != BALL_OK) printf(" (cannot be written)");
   } else {
     rc = 0;
   }
   printf("\n");
 done:
-  free(a);
   free(b);
   free(d);
   return rc;

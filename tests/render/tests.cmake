@@ -3,7 +3,7 @@
 # and determinism across llvmpipe thread counts. docs/render.md.
 add_executable(render_probe ${CMAKE_CURRENT_LIST_DIR}/render_probe.c)
 target_compile_options(render_probe PRIVATE ${BALL_C_WARNINGS})
-target_link_libraries(render_probe PRIVATE ball_render m)
+target_link_libraries(render_probe PRIVATE ball_rendertool m)
 
 ball_add_cmocka(test_render SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_render.c LIBS ball_render m LABELS render)
 set(BALL_RENDER_LSAN "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_LIST_DIR}/lsan.supp")
