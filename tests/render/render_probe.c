@@ -1,12 +1,15 @@
-/* render_probe: the golden-image comparison and the ball finder of the
- * render tests, over libball::render's PNG functions and ballrender's
- * snapshot comparison (libball/tools/snapshot.h).
+/* render_probe: the golden-image comparison, the ball finder and a pixel
+ * changer of the render tests, over libball::render's PNG functions and
+ * ballrender's snapshot comparison (libball/tools/snapshot.h).
  *   render_probe compare EXPECTED ACTUAL DIFF TOLERANCE MAX_PIXELS
  *     passes (exit 0) when at most MAX_PIXELS pixels have a channel more than
  *     TOLERANCE apart; else writes the diff image DIFF and exits 1.
  *   render_probe locate PNG [PX PY MAX_DISTANCE]
  *     the centroid of the ball's pixels (its yellow, any shade); with PX PY,
- *     fails (exit 1) unless it is within MAX_DISTANCE pixels of (PX, PY). */
+ *     fails (exit 1) unless it is within MAX_DISTANCE pixels of (PX, PY).
+ *   render_probe poke PNG X Y CHANNEL DELTA OUT
+ *     writes PNG to OUT with channel CHANNEL (0 red, 1 green, 2 blue) of
+ *     pixel (X, Y) DELTA levels away: up, or down where up would pass 255. */
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -56,6 +59,28 @@ done:
   return rc;
 }
 
+static int poke(char **argv) {
+  unsigned char *a = NULL;
+  int w, h, x = atoi(argv[1]), y = atoi(argv[2]), channel = atoi(argv[3]), delta = atoi(argv[4]), before, rc = 1;
+  if (!read_png(argv[0], &a, &w, &h)) return 1;
+  before = x >= 0 && x < w && y >= 0 && y < h && channel >= 0 && channel <= 2 ? a[3 * ((size_t)y * w + x) + channel] : -1;
+  if (before < 0 || delta < 0 || (before + delta > 255 && before - delta < 0)) {
+    fprintf(stderr, "render_probe: poke: no pixel (%d, %d) channel %d in %dx%d, or no room for %d levels\n", x, y,
+            channel, w, h, delta);
+  } else {
+    unsigned char *p = a + 3 * ((size_t)y * w + x) + channel;
+    *p = (unsigned char)(before + delta <= 255 ? before + delta : before - delta);
+    if (ball_png_write(argv[5], a, w, h) == BALL_OK) {
+      printf("poke (%d, %d) channel %d: %d -> %d\n", x, y, channel, before, *p);
+      rc = 0;
+    } else {
+      fprintf(stderr, "render_probe: %s: cannot be written\n", argv[5]);
+    }
+  }
+  free(a);
+  return rc;
+}
+
 static int locate(int argc, char **argv) {
   unsigned char *a = NULL;
   int w, h;
@@ -82,8 +107,10 @@ static int locate(int argc, char **argv) {
 int main(int argc, char **argv) {
   if (argc == 7 && strcmp(argv[1], "compare") == 0) return compare(argv + 2);
   if ((argc == 3 || argc == 6) && strcmp(argv[1], "locate") == 0) return locate(argc - 2, argv + 2);
+  if (argc == 8 && strcmp(argv[1], "poke") == 0) return poke(argv + 2);
   fprintf(stderr,
           "usage: render_probe compare EXPECTED ACTUAL DIFF TOLERANCE MAX_PIXELS\n"
-          "       render_probe locate PNG [PX PY MAX_DISTANCE]\n");
+          "       render_probe locate PNG [PX PY MAX_DISTANCE]\n"
+          "       render_probe poke PNG X Y CHANNEL DELTA OUT\n");
   return 2;
 }

@@ -1,6 +1,7 @@
-# The renderer: library tests (CMocka), ballrender from the command line,
-# the golden frames, the proof that the comparison fails for a moved ball,
-# and determinism across llvmpipe thread counts. docs/render.md.
+# The renderer: library tests (CMocka), ballrender from the command line
+# (--compare's snapshot regression included), the golden frames, the proof
+# that the comparison fails for a moved ball, and determinism across
+# llvmpipe thread counts. docs/render.md.
 add_executable(render_probe ${CMAKE_CURRENT_LIST_DIR}/render_probe.c)
 target_compile_options(render_probe PRIVATE ${BALL_C_WARNINGS})
 target_link_libraries(render_probe PRIVATE ball_rendertool m)
@@ -36,6 +37,10 @@ set(BALL_RENDER_CASES
   explicit_camera
   threads_and_reruns
   golden_detects_moved_ball
+  compare_update_then_same
+  compare_one_pixel_over
+  compare_missing_golden
+  compare_other_size
 )
 foreach(case ${BALL_RENDER_CASES})
   add_test(NAME render_${case}
