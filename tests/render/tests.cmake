@@ -6,13 +6,16 @@ add_executable(render_probe ${CMAKE_CURRENT_LIST_DIR}/render_probe.c)
 target_compile_options(render_probe PRIVATE ${BALL_C_WARNINGS})
 target_link_libraries(render_probe PRIVATE ball_rendertool m)
 
+include(${CMAKE_CURRENT_LIST_DIR}/golden_cases.cmake)
 ball_add_cmocka(test_render SOURCES ${CMAKE_CURRENT_LIST_DIR}/test_render.c LIBS ball_render m LABELS render)
+# the library tests measure against the goldens' comparison, stated once
+target_compile_definitions(test_render PRIVATE BALL_GOLDEN_TOLERANCE=${BALL_GOLDEN_TOLERANCE}
+  BALL_GOLDEN_MAX_PIXELS=${BALL_GOLDEN_MAX_PIXELS})
 set(BALL_RENDER_LSAN "LSAN_OPTIONS=suppressions=${CMAKE_CURRENT_LIST_DIR}/lsan.supp")
 set_property(TEST test_render APPEND PROPERTY ENVIRONMENT ${BALL_RENDER_LSAN})
 
 set(BALL_RENDER_WORK ${CMAKE_CURRENT_BINARY_DIR}/render_work)
 
-include(${CMAKE_CURRENT_LIST_DIR}/golden_cases.cmake)
 foreach(c ${BALL_GOLDEN_CASES})
   string(REPLACE " " ";" args "${c}")
   list(GET args 0 name)
