@@ -39,6 +39,19 @@ static inline int parse_number(const char *text, double *out) {
   return 1;
 }
 
+/* A whole number in [lo, hi], the whole text consumed: digits after an
+ * optional sign, nothing else (no blanks, no exponent). */
+static inline int parse_integer(const char *text, long lo, long hi, long *out) {
+  char *end;
+  long v;
+  if (!text || !(*text == '-' || *text == '+' || (*text >= '0' && *text <= '9'))) return 0;
+  errno = 0;
+  v = strtol(text, &end, 10);
+  if (end == text || *end != '\0' || errno == ERANGE || v < lo || v > hi) return 0;
+  *out = v;
+  return 1;
+}
+
 /* Loads a scene file; on failure prints "file:line:column: field: message"
  * to out and returns 0. */
 static inline int load_scene_to(FILE *out, const char *path, ball_scene *scene) {

@@ -1,6 +1,7 @@
-/* How the render tests find the ball in a picture: its yellow under any
+/* How the render tests find things in a picture by their colours, which
+ * docs/render.md lists ("What is drawn"): the ball by its yellow under any
  * light (red about green, little blue), which no other colour of the
- * renderer has (docs/render.md lists them). */
+ * renderer has; a racket by its index colour. */
 #ifndef BALL_TESTS_BALL_PIXELS_H
 #define BALL_TESTS_BALL_PIXELS_H
 
@@ -9,21 +10,37 @@ static int ball_pixel(const unsigned char *p) {
   return g >= 40 && 10 * r >= 9 * g && 10 * r <= 13 * g && 2 * b <= g;
 }
 
-/* The centroid of the ball's pixels (pixel centres at +0.5); how many. */
-static long ball_centroid(const unsigned char *rgb, int w, int h, double *cx, double *cy) {
+/* Racket 0 red, racket 1 blue, lit: ambient and diffuse light scale the
+ * colour, so its channels keep their ratios; the dark rim and the edges,
+ * mixed with what is behind, are not counted. */
+static int racket_pixel(int index, const unsigned char *p) {
+  if (index == 0) return p[0] > 100 && p[0] > 2 * p[1] && p[0] > 2 * p[2];
+  return index == 1 && p[2] > 100 && p[2] > 2 * p[1] && p[2] > 2 * p[0];
+}
+
+/* The centroid of the pixels of racket `racket`, or of the ball for
+ * racket < 0 (pixel centres at +0.5); how many. */
+static long colour_centroid(const unsigned char *rgb, int w, int h, int racket, double *cx, double *cy) {
   double sx = 0.0, sy = 0.0;
   long n = 0;
   int x, y;
   for (y = 0; y < h; ++y)
-    for (x = 0; x < w; ++x)
-      if (ball_pixel(rgb + 3 * ((size_t)y * w + x))) {
+    for (x = 0; x < w; ++x) {
+      const unsigned char *p = rgb + 3 * ((size_t)y * w + x);
+      if (racket < 0 ? ball_pixel(p) : racket_pixel(racket, p)) {
         sx += x + 0.5;
         sy += y + 0.5;
         n++;
       }
+    }
   *cx = n ? sx / n : -1.0;
   *cy = n ? sy / n : -1.0;
   return n;
+}
+
+/* The centroid of the ball's pixels; how many. */
+static long ball_centroid(const unsigned char *rgb, int w, int h, double *cx, double *cy) {
+  return colour_centroid(rgb, w, h, -1, cx, cy);
 }
 
 #endif

@@ -4,6 +4,7 @@ cmake_minimum_required(VERSION 3.20)
 file(REMOVE_RECURSE "${WORK}")
 file(MAKE_DIRECTORY "${WORK}")
 set(SCENES ${SOURCE}/libball/scenes)
+set(s_tennis ${SCENES}/tennis.yaml)
 
 # Runs ballrender; sets RC, OUT and ERR.
 macro(ballrender)
@@ -88,8 +89,21 @@ elseif(CASE STREQUAL bad_arguments)
   expect_usage("more than one scene given" ${s} ${s} --times 0 --out u)
   expect_usage("give --times T1,T2,... or --every S" ${s} --out u)
   expect_usage("give --times or --every, not both" ${s} --times 0 --every 1 --out u)
-  expect_usage("no --out DIR given" ${s} --times 0)
+  expect_usage("give --out DIR or --compare GOLDEN_DIR" ${s} --times 0)
   expect_usage("--out: empty folder name" ${s} --times 0 --out=)
+  expect_usage("--compare: empty folder name" ${s} --times 0 --compare=)
+  expect_usage("--diff: empty folder name" ${s} --times 0 --compare u --diff=)
+  expect_usage("--update goes with --compare GOLDEN_DIR" ${s} --times 0 --out u --update)
+  expect_usage("--tolerance goes with --compare GOLDEN_DIR" ${s} --times 0 --out u --tolerance 3)
+  expect_usage("--max-pixels goes with --compare GOLDEN_DIR" ${s} --times 0 --out u --max-pixels 3)
+  expect_usage("--diff goes with --compare GOLDEN_DIR" ${s} --times 0 --out u --diff d)
+  expect_usage("--out does not go with --update" ${s} --times 0 --compare g --update --out u)
+  expect_usage("--diff does not go with --update" ${s} --times 0 --compare u --update --diff d)
+  expect_usage("--tolerance: expected a whole number in \\[0, 255\\], got \"256\"" ${s} --times 0 --compare u --tolerance 256)
+  expect_usage("--tolerance: expected a whole number in \\[0, 255\\], got \"1.5\"" ${s} --times 0 --compare u --tolerance 1.5)
+  expect_usage("--max-pixels: expected a whole number in \\[0, 4194304\\], got \"-1\"" ${s} --times 0 --compare u --max-pixels -1)
+  expect_usage("--compare \\.: no folder name to put \"-diff\" after for the frames that fail: give --diff DIR" ${s} --times 0 --compare .)
+  expect_usage("--compare u/\\.\\./: no folder name" ${s} --times 0 --compare u/../)
   expect_usage("--times: expected times in s in \\[0, 86400\\], got \"x\"" ${s} --times 0,x --out u)
   expect_usage("--times: expected times in s in \\[0, 86400\\], got \"-1\"" ${s} --times -1 --out u)
   expect_usage("--times: expected times in s in \\[0, 86400\\], got \"\"" ${s} --times 1,,2 --out u)
@@ -247,6 +261,112 @@ elseif(CASE STREQUAL golden_detects_moved_ball)
   if(NOT EXISTS ${WORK}/moved/t0005.500.diff.png)
     fail("no diff image next to the failing frame")
   endif()
+
+elseif(CASE STREQUAL compare_update_then_same)
+  # --update writes the goldens, one line each; --compare on the same frames
+  # finds them the same to the level (differing=0 max_diff=0), exit 0, and
+  # makes no diff folder; with --out the frames are written as always
+  ballrender(${s_tennis} --times 0.5,0.75 --size 64x48 --compare goldens --update)
+  expect_rc(0)
+  expect_out("^update t=0\\.500 golden=goldens/t0000\\.500\\.png\nupdate t=0\\.750 golden=goldens/t0000\\.750\\.png\n$")
+  ballrender(${s_tennis} --times 0.5,0.75 --size 64x48 --compare goldens)
+  expect_rc(0)
+  expect_out("^compare t=0\\.500 golden=goldens/t0000\\.500\\.png result=same differing=0 max_diff=0\n"
+    "compare t=0\\.750 golden=goldens/t0000\\.750\\.png result=same differing=0 max_diff=0\n"
+    "summary: frames=2 same=2 differs=0 missing=0 size=0 unreadable=0 tolerance=[0-9]+ max_pixels=0\n$")
+  if(EXISTS ${WORK}/goldens-diff)
+    fail("frames that all pass made a diff folder")
+  endif()
+  ballrender(${s_tennis} --times 0.5 --size 64x48 --compare goldens/ --out frames)
+  expect_rc(0)
+  expect_out("^frame t=0\\.500 file=frames/t0000\\.500\\.png ball=[^\n]*\ncompare t=0\\.500 golden=goldens/t0000\\.500\\.png result=same ")
+
+elseif(CASE STREQUAL compare_one_pixel_over)
+  # One channel of one pixel of a golden moved by the tolerance + 1: that
+  # pixel, and only it, differs (differing=1 at its place, max_diff =
+  # tolerance + 1), exit 1, the diff image and the frame written to the diff
+  # folder; moved by the tolerance exactly it passes. The default tolerance
+  # is read from --help, and is the project's goldens' (golden_cases.cmake).
+  include(${HERE}/golden_cases.cmake)
+  ballrender(--help)
+  if(NOT OUT MATCHES "--tolerance N [^\n]*\n[^\n]*default ([0-9]+) \\(the")
+    fail("no default tolerance in --help")
+  endif()
+  set(tol ${CMAKE_MATCH_1})
+  if(NOT tol EQUAL BALL_GOLDEN_TOLERANCE)
+    fail("ballrender's default tolerance ${tol} is not the goldens' ${BALL_GOLDEN_TOLERANCE}")
+  endif()
+  math(EXPR over "${tol} + 1")
+  set(args ${s_tennis} --times 0.5 --size 64x48)
+  foreach(delta ${over} ${tol})
+    ballrender(${args} --compare g${delta} --update)
+    expect_rc(0)
+    probe(poke ${WORK}/g${delta}/t0000.500.png 17 9 1 ${delta} ${WORK}/g${delta}/t0000.500.png)
+    if(NOT PRC EQUAL 0)
+      fail("cannot change a pixel of the golden")
+    endif()
+    ballrender(${args} --compare g${delta})
+    if(delta EQUAL over)
+      expect_rc(1)
+      expect_out("^compare t=0\\.500 golden=g${delta}/t0000\\.500\\.png result=differs differing=1 max_diff=${over} "
+        "first=17,9 diff=g${delta}-diff/t0000\\.500\\.diff\\.png actual=g${delta}-diff/t0000\\.500\\.png\n"
+        "summary: frames=1 same=0 differs=1 missing=0 size=0 unreadable=0 tolerance=${tol} max_pixels=0\n$")
+      expect_err("1 of 1 frames fail; they are in g${delta}-diff")
+      foreach(f t0000.500.diff.png t0000.500.png)
+        if(NOT EXISTS ${WORK}/g${delta}-diff/${f})
+          fail("no ${f} in the diff folder")
+        endif()
+      endforeach()
+      # the frame written beside the diff image is the frame: the unchanged golden's pixels
+      probe(compare ${WORK}/g${delta}/t0000.500.png ${WORK}/g${delta}-diff/t0000.500.png ${WORK}/d.png 0 1)
+      if(NOT PRC EQUAL 0 OR NOT POUT MATCHES " 1 pixels differ by more than 0 ")
+        fail("the frame in the diff folder is not the rendered frame: ${POUT}")
+      endif()
+      # --max-pixels 1 lets the one pixel pass; --tolerance lets it pass too
+      ballrender(${args} --compare g${delta} --max-pixels 1 --diff d1)
+      expect_rc(0)
+      expect_out("result=same differing=1 max_diff=${over} first=17,9\n")
+      ballrender(${args} --compare g${delta} --tolerance ${over} --diff d2)
+      expect_rc(0)
+      expect_out("result=same differing=0 max_diff=${over}\n.*tolerance=${over} max_pixels=0\n$")
+      if(EXISTS ${WORK}/d1 OR EXISTS ${WORK}/d2)
+        fail("a frame that passes made a --diff folder")
+      endif()
+    else()
+      expect_rc(0)
+      expect_out("result=same differing=0 max_diff=${tol}\n")
+    endif()
+  endforeach()
+
+elseif(CASE STREQUAL compare_missing_golden)
+  # a frame without a golden: result=missing, exit 1, the hint, the frame
+  # written to --diff for a look; the frames that have one are still compared
+  ballrender(${s_tennis} --times 0.5 --size 64x48 --compare g --update)
+  expect_rc(0)
+  ballrender(${s_tennis} --times 0.5,0.75 --size 64x48 --compare g --diff fails)
+  expect_rc(1)
+  expect_out("^compare t=0\\.500 golden=g/t0000\\.500\\.png result=same differing=0 max_diff=0\n"
+    "compare t=0\\.750 golden=g/t0000\\.750\\.png result=missing actual=fails/t0000\\.750\\.png\n"
+    "summary: frames=2 same=1 differs=0 missing=1 size=0 unreadable=0 ")
+  expect_err("^ballrender: no golden in g for 1 of 2 frames: --update writes them\n")
+  if(NOT EXISTS ${WORK}/fails/t0000.750.png)
+    fail("the frame without a golden is not in the --diff folder")
+  endif()
+  # a golden that is not a PNG is not missing: unreadable, said why
+  file(WRITE ${WORK}/g/t0000.750.png "not a png\n")
+  ballrender(${s_tennis} --times 0.75 --size 64x48 --compare g)
+  expect_rc(1)
+  expect_out("^compare t=0\\.750 golden=g/t0000\\.750\\.png result=unreadable actual=g-diff/t0000\\.750\\.png\n")
+  expect_err("^ballrender: g/t0000\\.750\\.png: not a PNG\n")
+
+elseif(CASE STREQUAL compare_other_size)
+  # a golden of another --size: result=size with both sizes, exit 1
+  ballrender(${s_tennis} --times 0.5 --size 64x48 --compare g --update)
+  expect_rc(0)
+  ballrender(${s_tennis} --times 0.5 --size 80x60 --compare g)
+  expect_rc(1)
+  expect_out("^compare t=0\\.500 golden=g/t0000\\.500\\.png result=size golden_size=64x48 size=80x60 "
+    "actual=g-diff/t0000\\.500\\.png\nsummary: frames=1 same=0 differs=0 missing=0 size=1 unreadable=0 ")
 
 else()
   message(FATAL_ERROR "unknown case ${CASE}")

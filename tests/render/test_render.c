@@ -1,9 +1,9 @@
 /* libball::render: the ball drawn where the camera projects it, the camera
- * presets framing the court, rackets drawn oriented, markers where their
- * events are, the same picture every time, the comparison failing for a ball
- * a few centimetres off, PNG files, the scene replay agreeing with the
- * scene run frame for frame, the render section of scene files, and bad
- * arguments refused. */
+ * presets framing the court, rackets drawn oriented and moving the picture
+ * when they move, markers where their events are, the same picture every
+ * time, the comparison failing for a ball a few centimetres off, PNG files,
+ * the scene replay agreeing with the scene run frame for frame, the render
+ * section of scene files, and bad arguments refused. */
 #define _POSIX_C_SOURCE 200809L
 #include <setjmp.h>
 #include <stdarg.h>
@@ -21,6 +21,9 @@
 #define PI 3.14159265358979323846
 #define W 320
 #define H 240
+/* BALL_GOLDEN_TOLERANCE and BALL_GOLDEN_MAX_PIXELS: the golden frames'
+ * comparison (tests/render/golden_cases.cmake, docs/render.md "Tolerance"),
+ * given by the build */
 
 static ball_renderer *renderer;
 static ball_replay replay_a; /* about 200 kB each: static */
@@ -259,13 +262,62 @@ static void test_racket_oriented(void **state) {
     f.rackets[0].center = ball_v3(0.0, 1.0, 0.0);
     f.rackets[0].normal = k == 0 ? ball_v3(0.0, 0.0, 2.0) : ball_v3(1.0, 0.0, 0.0);
     rgb = draw(&m, &c, &f);
-    for (i = 0; i < W * H; ++i) {
-      const unsigned char *p = rgb + 3 * i;
-      if (p[0] > 100 && p[0] > 2 * p[1] && p[0] > 2 * p[2]) ++*(k == 0 ? &facing : &edge_on);
-    }
+    for (i = 0; i < W * H; ++i)
+      if (racket_pixel(0, rgb + 3 * i)) ++*(k == 0 ? &facing : &edge_on);
   }
   assert_near((double)facing, PI * r_px * r_px, 0.1 * PI * r_px * r_px);
   assert_true(edge_on < 0.05 * facing);
+}
+
+/* Rackets move the picture: racket 0 (red) and racket 1 (blue), each facing
+ * the camera 2.8 m away, cover pi r^2 of their own colour (to 10 %, none of
+ * the other's) centred within 0.5 pixel of where ball_camera_project puts
+ * their centres; the same pose again gives 0 differing pixels; the centre
+ * 5 cm to the side (5.9 pixels here) changes more pixels than a golden
+ * frame may differ in (about 570), by more than the goldens' tolerance, and
+ * moves the racket's pixels as far as the projection moves, to 0.5 pixel. */
+static void test_racket_moved_changes_the_frame(void **state) {
+  static unsigned char before[W * H * 3];
+  ball_model m;
+  ball_camera c = close_camera();
+  double r_px = 0.15 / (2.0 * 2.8 * tan(20.0 * PI / 180.0) / H); /* at 2.8 m: 17.7 pixels */
+  int k;
+  (void)state;
+  plain_model(&m);
+  m.n_rackets = 2;
+  m.rackets[0].radius = m.rackets[1].radius = 0.15;
+  for (k = 0; k < 2; ++k) {
+    ball_frame f = ball_only(ball_v3(0.0, 3.0, -20.0)); /* the ball out of the way */
+    ball_image_diff d;
+    double px, py, px2, py2, cx, cy, cx2, cy2;
+    long n;
+    f.n_rackets = 2;
+    f.rackets[k].visible = 1;
+    f.rackets[k].center = ball_v3(k == 0 ? -0.4 : 0.3, 1.1, 0.2);
+    f.rackets[k].normal = ball_v3(0.0, 0.0, 1.0);
+    memcpy(before, draw(&m, &c, &f), sizeof before);
+    assert_ok(ball_camera_project(&c, W, H, f.rackets[k].center, &px, &py, NULL));
+    n = colour_centroid(before, W, H, k, &cx, &cy);
+    assert_near((double)n, PI * r_px * r_px, 0.1 * PI * r_px * r_px);
+    assert_near(cx, px, 0.5);
+    assert_near(cy, py, 0.5);
+    assert_int_equal(colour_centroid(before, W, H, 1 - k, &cx2, &cy2), 0);
+
+    assert_ok(ball_image_compare(before, draw(&m, &c, &f), W, H, BALL_GOLDEN_TOLERANCE, &d, NULL));
+    assert_int_equal(d.differing, 0);
+
+    f.rackets[k].center.x += 0.05;
+    assert_ok(ball_image_compare(before, draw(&m, &c, &f), W, H, BALL_GOLDEN_TOLERANCE, &d, NULL));
+    print_message("racket %d moved 5 cm: %ld pixels differ by more than %d, largest difference %d\n", k, d.differing,
+                  BALL_GOLDEN_TOLERANCE, d.max_diff);
+    assert_true(d.differing > BALL_GOLDEN_MAX_PIXELS);
+    assert_true(d.max_diff > BALL_GOLDEN_TOLERANCE);
+    assert_ok(ball_camera_project(&c, W, H, f.rackets[k].center, &px2, &py2, NULL));
+    assert_true(px2 - px > 5.0); /* visible from the camera: across its view */
+    colour_centroid(draw(&m, &c, &f), W, H, k, &cx2, &cy2);
+    assert_near(cx2 - cx, px2 - px, 0.5);
+    assert_near(cy2 - cy, 0.0, 0.5);
+  }
 }
 
 /* An event's marker changes pixels only near the event's point. */
@@ -335,8 +387,8 @@ static void test_same_picture_every_time(void **state) {
 
 /* The comparison: identical pictures pass with 0 differing pixels; a ball
  * 3 cm off (3.5 pixels here) differs in far more pixels than the goldens
- * allow (20), by far more than their tolerance (8); the diff image marks
- * them red. */
+ * allow (BALL_GOLDEN_MAX_PIXELS, 20), by far more than their tolerance
+ * (BALL_GOLDEN_TOLERANCE, 8); the diff image marks them red. */
 static void test_compare_catches_a_few_centimetres(void **state) {
   static unsigned char a[W * H * 3], diff[W * H * 3];
   ball_model m;
@@ -349,12 +401,12 @@ static void test_compare_catches_a_few_centimetres(void **state) {
   plain_model(&m);
   f = ball_only(ball_v3(0.0, 1.0, 0.0));
   memcpy(a, draw(&m, &c, &f), sizeof a);
-  assert_ok(ball_image_compare(a, draw(&m, &c, &f), W, H, 8, &d, diff));
+  assert_ok(ball_image_compare(a, draw(&m, &c, &f), W, H, BALL_GOLDEN_TOLERANCE, &d, diff));
   assert_int_equal(d.differing, 0);
   assert_int_equal(d.max_diff, 0);
   assert_int_equal(d.first_x, -1);
   f.ball.x += 0.03;
-  assert_ok(ball_image_compare(a, draw(&m, &c, &f), W, H, 8, &d, diff));
+  assert_ok(ball_image_compare(a, draw(&m, &c, &f), W, H, BALL_GOLDEN_TOLERANCE, &d, diff));
   assert_true(d.differing > 100);
   assert_true(d.max_diff > 100);
   assert_true(d.first_x >= 0 && d.first_y >= 0);
@@ -537,6 +589,7 @@ int main(void) {
       cmocka_unit_test(test_floor_layout_drawn),
       cmocka_unit_test(test_camera_find),
       cmocka_unit_test(test_racket_oriented),
+      cmocka_unit_test(test_racket_moved_changes_the_frame),
       cmocka_unit_test(test_markers_at_events),
       cmocka_unit_test(test_same_picture_every_time),
       cmocka_unit_test(test_compare_catches_a_few_centimetres),
