@@ -72,6 +72,9 @@ int main(int argc, char **argv) {
   std::string secure;
   cli.add_option("--secure", secure,
                  "DDS Security: the folder of ./run certs (identities server1, watch, m0-a, m0-b; docs/security.md)");
+  int http = -1;
+  cli.add_option("--http", http, "watch in a browser: the watcher serves the spectator page on PORT of 127.0.0.1 "
+                                 "(0: a free port; the URL is printed)")->check(CLI::Range(0, 65535));
   bot_opt.add(cli, player_fields(), bots, {"rate", "delay", "miss", "noise", "seed"});
   CLI11_PARSE(cli, argc, argv);
   bot_opt.apply(&bots);
@@ -108,7 +111,9 @@ int main(int argc, char **argv) {
                                        "--duration", fmt(duration + 15.0)},
                                       i == 0 ? "m0-a" : "m0-b"),
                                    dir + "/bot" + std::to_string(i) + ".log", dir + "/bot" + std::to_string(i) + ".err"));
-    Process watch = Process::start(as({bin + "/ball-watch", "--domain", dom, "--duration", fmt(duration)}, "watch"));
+    std::vector<std::string> watch_args{bin + "/ball-watch", "--domain", dom, "--duration", fmt(duration)};
+    if (http >= 0) watch_args.insert(watch_args.end(), {"--http", std::to_string(http)});
+    Process watch = Process::start(as(watch_args, "watch"));
     if (server.pid() <= 0 || watch.pid() <= 0 || bot[0].pid() <= 0 || bot[1].pid() <= 0) rc = 1;
     // the watcher ends the demo; a stop signal ends it early
     while (rc == 0 && watch.running() && !stop_requested()) usleep(50000);

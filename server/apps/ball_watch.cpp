@@ -39,7 +39,7 @@ struct Snapshots {
   ~Snapshots() { ball_renderer_destroy(renderer); }
 
   // The frame into dir: "" and its path in *file, or what went wrong.
-  std::string draw(const SnapshotDue &d, const RacketTracks &rackets, std::string *file) {
+  std::string draw(const SnapshotDue &d, const RacketTracks &rackets, SnapshotRecord *drawn) {
     if (!renderer && ball_renderer_create(size[0], size[1], &renderer) != BALL_OK)
       return "cannot create an OSMesa renderer";
     auto it = courts.find(d.match);
@@ -56,8 +56,8 @@ struct Snapshots {
     f.n_rackets = std::min(it->second.n_rackets, d.info.players);
     for (int i = 0; i < f.n_rackets; ++i) {
       ball_racket_pose pose{};
-      f.rackets[i].visible = rackets.pose(d.match, i, d.sim_time, &pose);
-      f.rackets[i].center = pose.center;
+      f.rackets[i].visible = drawn->racket_drawn[i] = rackets.pose(d.match, i, d.sim_time, &pose);
+      f.rackets[i].center = drawn->rackets[i] = pose.center;
       f.rackets[i].normal = pose.normal;
     }
     f.n_trail = static_cast<int>(d.trail.size());
@@ -70,10 +70,12 @@ struct Snapshots {
     ball_render_pixels(renderer, &rgb, &width, &height);
     char name[64];
     std::snprintf(name, sizeof name, "/m%u_t%08.3f.png", d.match, d.sim_time);
-    *file = dir + name;
+    drawn->file = dir + name;
+    drawn->camera = camera;
+    drawn->size = {width, height};
     errno = 0;
-    if (ball_png_write(file->c_str(), rgb, width, height) != BALL_OK)
-      return "cannot write " + *file + ": " + (errno ? std::strerror(errno) : "the PNG writer failed");
+    if (ball_png_write(drawn->file.c_str(), rgb, width, height) != BALL_OK)
+      return "cannot write " + drawn->file + ": " + (errno ? std::strerror(errno) : "the PNG writer failed");
     return "";
   }
 };
@@ -87,9 +89,10 @@ std::string drain(Watcher &w, OutputFile &rec, Snapshots &snap, const RacketTrac
   std::vector<SnapshotDue> due = std::move(out.snapshots);
   out.snapshots.clear();
   for (const auto &d : due) {
-    std::string file, why = snap.draw(d, rackets, &file);
+    SnapshotRecord drawn;
+    std::string why = snap.draw(d, rackets, &drawn);
     if (!why.empty()) return why;
-    w.snapshot_written(d, file, snap.camera, snap.size[0], snap.size[1], realtime_now());
+    w.snapshot_written(d, drawn, realtime_now());
   }
   for (const auto &r : out.records)  // a reader can follow the record as it grows
     if (rec.is_open() && !rec.write_line(r.dump())) return rec.error();

@@ -17,6 +17,7 @@ constexpr double kTrailSeconds = 1.0;  // sim s of trail and of event markers
 constexpr size_t kTrailPoints = 2048;
 constexpr size_t kMarkers = 64;
 constexpr size_t kKeepEvents = 64;     // per match, for a view
+constexpr double kAnew = 1.0;          // sim s: a MatchInfo this far behind the last is a match started anew
 
 std::string point_text(ball_vec3 p) {
   char buf[96];
@@ -109,6 +110,18 @@ void Watcher::on_info(const MatchInfoOut &info, double real) {
     return;
   }
   bool first = !w.has_info;
+  if (!first && info.sim_time + kAnew < w.info.sim_time) {
+    // the sim clock went back: a server started the match anew (its seqs
+    // start over too), so nothing held of the old one applies
+    say(info.match_id, info.sim_time, "match started anew by server " + std::to_string(info.server_id));
+    w.segments.clear();
+    w.pending.clear();
+    w.leads.clear();
+    w.trail.clear();
+    w.recent.clear();
+    w.last_event_seq = 0;
+    w.next_snapshot = -1.0;
+  }
   MatchState before = w.info.state;
   w.info = info;
   w.has_info = true;
@@ -310,10 +323,14 @@ void Watcher::frame(double real) {
   }
 }
 
-void Watcher::snapshot_written(const SnapshotDue &due, const std::string &file, const std::string &camera,
-                               int width, int height, double real) {
+void Watcher::snapshot_written(const SnapshotDue &due, const SnapshotRecord &drawn, double real) {
   watched(due.match).tally.snapshots++;
-  out_.records.push_back(SnapshotRecord{real, due.match, due.sim_time, file, due.ball, camera, {width, height}});
+  SnapshotRecord r = drawn;
+  r.real = real;
+  r.match = due.match;
+  r.sim_time = due.sim_time;
+  r.position = due.ball;
+  out_.records.push_back(r);
 }
 
 WatchSummary Watcher::summary(double seconds) const {

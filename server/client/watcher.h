@@ -90,8 +90,8 @@ class Watcher {
   // newest segment at the estimated sim time; snapshots as they fall due.
   void frame(double real);
   // A snapshot the caller drew to `file`: its record line, and the count.
-  void snapshot_written(const SnapshotDue &due, const std::string &file, const std::string &camera, int width,
-                        int height, double real);
+  // `drawn`: the record line's file, camera, size and rackets (real and the rest are filled in here)
+  void snapshot_written(const SnapshotDue &due, const SnapshotRecord &drawn, double real);
 
   WatchOutput &output() { return out_; }
   WatchSummary summary(double seconds) const;

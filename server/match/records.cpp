@@ -191,7 +191,8 @@ void from_json(const json &j, OwnFrame &f) { BALL_FRAME_KEYS(BALL_GET, f) }
 
 #define BALL_SNAPSHOT_KEYS(X, s)                                                                        \
   X("real", s.real) X("match", s.match) X("sim_time", s.sim_time) X("file", s.file)                     \
-  X("position", s.position) X("camera", s.camera) X("size", s.size)
+  X("position", s.position) X("camera", s.camera) X("size", s.size) X("racket_drawn", s.racket_drawn)  \
+  X("rackets", s.rackets)
 
 void to_json(json &j, const SnapshotRecord &s) {
   j = {{"type", "snapshot"}};

@@ -85,6 +85,8 @@ struct SnapshotRecord {
   ball_vec3 position{0, 0, 0}; // m, the ball drawn
   std::string camera;
   std::array<int, 2> size{0, 0};  // pixels, width and height
+  std::array<bool, kMaxPlayers> racket_drawn{};         // each slot's racket: drawn (it had a pose)
+  std::array<ball_vec3, kMaxPlayers> rackets{};         // m, the centre drawn
 };
 void to_json(json &j, const SnapshotRecord &s);
 void from_json(const json &j, SnapshotRecord &s);

@@ -5,7 +5,7 @@
 #ifndef BALL_TESTS_BALL_PIXELS_H
 #define BALL_TESTS_BALL_PIXELS_H
 
-static int ball_pixel(const unsigned char *p) {
+static inline int ball_pixel(const unsigned char *p) {
   int r = p[0], g = p[1], b = p[2];
   return g >= 40 && 10 * r >= 9 * g && 10 * r <= 13 * g && 2 * b <= g;
 }
@@ -13,14 +13,14 @@ static int ball_pixel(const unsigned char *p) {
 /* Racket 0 red, racket 1 blue, lit: ambient and diffuse light scale the
  * colour, so its channels keep their ratios; the dark rim and the edges,
  * mixed with what is behind, are not counted. */
-static int racket_pixel(int index, const unsigned char *p) {
+static inline int racket_pixel(int index, const unsigned char *p) {
   if (index == 0) return p[0] > 100 && p[0] > 2 * p[1] && p[0] > 2 * p[2];
   return index == 1 && p[2] > 100 && p[2] > 2 * p[1] && p[2] > 2 * p[0];
 }
 
 /* The centroid of the pixels of racket `racket`, or of the ball for
  * racket < 0 (pixel centres at +0.5); how many. */
-static long colour_centroid(const unsigned char *rgb, int w, int h, int racket, double *cx, double *cy) {
+static inline long colour_centroid(const unsigned char *rgb, int w, int h, int racket, double *cx, double *cy) {
   double sx = 0.0, sy = 0.0;
   long n = 0;
   int x, y;
@@ -39,7 +39,7 @@ static long colour_centroid(const unsigned char *rgb, int w, int h, int racket, 
 }
 
 /* The centroid of the ball's pixels; how many. */
-static long ball_centroid(const unsigned char *rgb, int w, int h, double *cx, double *cy) {
+static inline long ball_centroid(const unsigned char *rgb, int w, int h, double *cx, double *cy) {
   return colour_centroid(rgb, w, h, -1, cx, cy);
 }
 

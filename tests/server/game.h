@@ -128,4 +128,13 @@ struct Game {
   }
 };
 
+// a game with both slots joined and parked: nothing hits, serves and double bounces
+inline Game played(double seconds) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  g.run(seconds);
+  return g;
+}
+
 }  // namespace test

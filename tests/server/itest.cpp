@@ -640,23 +640,42 @@ void case_late_join(const Env &env) {
   CHECK_MSG(got - started <= 5.0, "first segment %.3f s after start", got - started);
 }
 
+// The centroid of the pixels `is` picks within 20 px of (px, py); how many.
+// (An antialiased trail over the green floor has a few yellowish pixels.)
+template <class Pick>
+long near_centroid(const unsigned char *rgb, int w, int h, double px, double py, Pick is, double *cx, double *cy) {
+  double sx = 0.0, sy = 0.0;
+  long n = 0;
+  for (int y = std::max(0, static_cast<int>(py) - 20); y < std::min(h, static_cast<int>(py) + 20); ++y)
+    for (int x = std::max(0, static_cast<int>(px) - 20); x < std::min(w, static_cast<int>(px) + 20); ++x)
+      if (is(rgb + 3 * (static_cast<size_t>(y) * w + x))) sx += x + 0.5, sy += y + 0.5, n++;
+  *cx = n ? sx / n : -1.0;
+  *cy = n ? sy / n : -1.0;
+  return n;
+}
+
 // ball-watch --snapshots: PNG frames of the live match every 0.5 sim s, the
-// ball drawn where the camera projects the position the watcher logged
+// ball drawn where the camera projects the position the watcher logged, and
+// the near player's racket (red, facing the behind0 camera) where its track
+// put it
 void case_snapshots(const Env &env) {
   Case c{env};
   std::string dir = path(env, "frames");
   Play p = play(c, {"--rate", "20"}, path(env, "watch.jsonl"),
-                {"--snapshots", dir, "--snapshot-every", "0.5", "--camera", "top", "--size", "480x320"});
+                {"--snapshots", dir, "--snapshot-every", "0.5", "--camera", "behind0", "--size", "480x320"});
   if (first_serve(p.t) < 0.0) return;
   usleep(4 * 1000000);
   p.w.stop();
   p.t.poll();
-  ball_scene scene;
-  ball_scene_default(&scene);  // the server's default scene: the court the frames show
+  // the court the frames show: the match's, as its MatchInfo makes it
+  MatchInfoOut info;
+  for (const auto &j : p.t.lines)
+    if (is_type(j, "match_info")) info = j.get<MatchInfoOut>();
+  ball_model court = court_model(info);
   ball_camera cam;
-  CHECK_MSG(ball_camera_from_preset(&scene.model, BALL_CAMERA_TOP, 480.0 / 320.0, &cam) == BALL_OK, "no camera");
-  int frames = 0, found = 0;
-  double worst = 0.0, last_t = -1.0;
+  CHECK_MSG(ball_camera_from_preset(&court, BALL_CAMERA_BEHIND0, 480.0 / 320.0, &cam) == BALL_OK, "no camera");
+  int frames = 0, found = 0, hidden = 0, rackets = 0, rackets_found = 0;
+  double worst = 0.0, last_t = -1.0, racket_worst = 0.0;
   for (const auto &j : p.t.lines) {
     if (!is_type(j, "snapshot")) continue;
     frames++;
@@ -674,15 +693,38 @@ void case_snapshots(const Env &env) {
     CHECK_MSG(w == 480 && h == 320, "%s is %dx%d, not 480x320", file.c_str(), w, h);
     double px, py, cx, cy;
     ball_vec3 b = snap.position;
-    if (ball_camera_project(&cam, w, h, b, &px, &py, nullptr) == BALL_OK && ball_centroid(rgb, w, h, &cx, &cy) > 0) {
+    // (a ball the racket hides in part is not where its yellow is: such frames are left out)
+    double rx = -1e9, ry = -1e9;
+    if (snap.racket_drawn[0]) ball_camera_project(&cam, w, h, snap.rackets[0], &rx, &ry, nullptr);
+    if (ball_camera_project(&cam, w, h, b, &px, &py, nullptr) == BALL_OK && std::hypot(px - rx, py - ry) < 15.0) {
+      hidden++;
+    } else if (ball_camera_project(&cam, w, h, b, &px, &py, nullptr) == BALL_OK && near_centroid(rgb, w, h, px, py, ball_pixel, &cx, &cy) > 0) {
       worst = std::fmax(worst, std::hypot(cx - px, cy - py));
       found++;
     }
+    // racket 0's red pixels within 20 px of where its recorded centre
+    // projects (its back face, in ambient light only, is a dark red)
+    auto red = [](const unsigned char *q) { return q[0] > 60 && q[0] > 2 * q[1] && q[0] > 2 * q[2]; };
+    if (snap.racket_drawn[0] && ball_camera_project(&cam, w, h, snap.rackets[0], &px, &py, nullptr) == BALL_OK) {
+      rackets++;
+      if (near_centroid(rgb, w, h, px, py, red, &cx, &cy) >= 4) {
+        rackets_found++;
+        racket_worst = std::fmax(racket_worst, std::hypot(cx - px, cy - py));
+      }
+    }
     std::free(rgb);
   }
-  note("%d snapshots, the ball found in %d, at most %.2f px from its projection", frames, found, worst);
+  note("racket 0 drawn in %d snapshots, its pixels found in %d, centred at most %.2f px from its projection", rackets,
+       rackets_found, racket_worst);
+  // (the disc is about 5 px across; the ball and its shadow cover part of it at a hit)
+  CHECK_MSG(rackets >= frames / 2 && rackets_found >= rackets / 2 && racket_worst <= 5.0,
+            "racket 0: drawn in %d of %d frames, found in %d, %.2f px off", rackets, frames, rackets_found, racket_worst);
+  note("%d snapshots, the ball found in %d, at most %.2f px from its projection; %d with the ball at the racket",
+       frames, found, worst, hidden);
   CHECK_MSG(frames >= 6, "only %d snapshots in about 4 s of play", frames);
-  CHECK_MSG(found == frames && worst <= 2.0, "ball found in %d of %d frames, %.2f px off", found, frames, worst);
+  // (within 3.5 px: the trail's antialiased edge over the green floor has a few yellowish pixels next to the ball)
+  CHECK_MSG(found + hidden == frames && found >= frames / 2 && worst <= 3.5, "ball found in %d of %d frames, %.2f px off",
+            found, frames, worst);
 }
 
 // ball-server's command line: --help, bad configs, a missing profile, a bad domain

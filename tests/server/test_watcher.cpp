@@ -12,15 +12,6 @@ using namespace test;
 
 namespace {
 
-// a game with both slots joined and parked: nothing hits, serves and double bounces
-Game played(double seconds) {
-  Game g;
-  g.join(0, participant(1));
-  g.join(1, participant(2));
-  g.run(seconds);
-  return g;
-}
-
 // the match's info as the server writes it: its sim time holds from `server_time` on
 MatchInfoOut info_at(const Game &g, double sim_time, double server_time, MatchState state) {
   MatchInfoOut i = g.match.info();
@@ -183,7 +174,20 @@ TEST(snapshots_fall_due_on_multiples_of_their_period) {
       CHECK_EQ(d.trail.size(), 3u);          // own frames at 0.1, 0.3 and 0.55: the last second
       CHECK_EQ(d.events.size(), 1u);         // the bounce at 0.4 s
       CHECK_EQ(d.events[0].kind, BALL_EVENT_FLOOR);
-      w.snapshot_written(d, "m7_t0000.550.png", "top", 320, 240, server);
+      SnapshotRecord drawn;
+      drawn.file = "m7_t0000.550.png";
+      drawn.camera = "top";
+      drawn.size = {320, 240};
+      drawn.racket_drawn[1] = true;
+      drawn.rackets[1] = ball_v3(22.0, 1.0, 5.0);
+      w.snapshot_written(d, drawn, server);
+      // the record line: what was drawn, at the due frame's time and ball
+      SnapshotRecord r = w.output().records.back().get<SnapshotRecord>();
+      CHECK_EQ(r.file, drawn.file);
+      CHECK_NEAR(r.sim_time, d.sim_time, 0.0);
+      CHECK_NEAR(r.position.x, d.ball.x, 0.0);
+      CHECK(!r.racket_drawn[0] && r.racket_drawn[1]);
+      CHECK_NEAR(r.rackets[1].x, 22.0, 0.0);
     }
     w.output().snapshots.clear();
   }

@@ -455,7 +455,8 @@
       scene.draw(w, t);
       renderer.render(scene.three, camera);
       const r = canvas.getBoundingClientRect();
-      return { x: r.left, y: r.top, width: r.width, height: r.height, ball: ballAt(w, t) };
+      return { x: r.left, y: r.top, width: r.width, height: r.height, ball: ballAt(w, t), camera: w.court.cameras[name],
+               floor: w.court.floor, rackets: scene.rackets.filter((g) => g.visible).length };
     },
     release() {
       held = null;

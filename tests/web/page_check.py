@@ -1,0 +1,249 @@
+#!/usr/bin/env python3
+"""The spectator page in a real browser (docs/server.md, "The spectator
+page"): a ball-server, two ball-bots and a ball-watch --http on loopback, on
+the test's own DDS domain, and Debian's Chromium, headless, driven over the
+DevTools protocol (cdp.py). Every process is started here in a group of its
+own, dies with this script (PR_SET_PDEATHSIG) and is stopped at its end,
+also on a failure. Checks, each with its numbers printed:
+
+  1. the page's ball at the watcher's frame times (its --record-frames) on
+     the same segment equals the watcher's own ball within 1 mm, over at
+     least 100 times; the page never holds an older segment than the watcher;
+  2. 1000 random segments (web_probe segments): the page's evaluation
+     (protocol.js) equals libball's ball_segment_eval within 1e-12 m;
+  3. a frame held at a known sim time, from the side camera: the ball's
+     yellow pixels within 3 px of libball's projection (web_probe shot), every
+     court line's middle white, the court between them blue;
+  4. the server killed: the page says so and keeps the last ball still; a
+     new server: the page picks the match up again and the ball moves;
+  5. no console errors, no uncaught exception, from start to end.
+
+  page_check.py --bin DIR --domain ID --chromium PATH --probe PATH --work DIR [--page-shot PNG]
+
+--page-shot writes a screenshot of the whole page mid-rally (docs/img/spectator.png is one).
+"""
+import argparse
+import ctypes
+import json
+import os
+import re
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from cdp import Browser  # noqa: E402
+
+LIBC = ctypes.CDLL(None)
+PR_SET_PDEATHSIG = 1
+procs = []
+
+
+def start(args, name, work):
+    """A process in a group of its own that dies with this script."""
+    out = open(os.path.join(work, name + ".log"), "w")
+    p = subprocess.Popen(args, stdout=out, stderr=subprocess.STDOUT, start_new_session=True,
+                         preexec_fn=lambda: LIBC.prctl(PR_SET_PDEATHSIG, signal.SIGKILL))
+    procs.append(p)
+    return p
+
+
+def stop(p, sig=signal.SIGTERM, wait=5.0):
+    if p.poll() is None:
+        try:
+            os.killpg(p.pid, sig)
+            p.wait(wait)
+        except (ProcessLookupError, subprocess.TimeoutExpired):
+            os.killpg(p.pid, signal.SIGKILL)
+            p.wait()
+
+
+def server(a, work, name):
+    return start([a.bin + "/ball-server", "--domain", str(a.domain), "--server-id", "1", "--startup-wait", "0",
+                  "--duration", "300"], name, work)
+
+
+class Record:
+    """The watcher's record, read as it grows: its own frames."""
+
+    def __init__(self, path):
+        self.path, self.pos, self.frames = path, 0, []
+
+    def read(self):
+        if not os.path.exists(self.path):
+            return
+        with open(self.path) as f:
+            f.seek(self.pos)
+            for line in f:
+                if not line.endswith("\n"):
+                    break
+                self.pos += len(line.encode())
+                j = json.loads(line)
+                if j.get("type") == "frame" and j.get("match") == 0:
+                    self.frames.append(j)
+
+
+def agreement(b, rec, seconds, need):
+    """Page against watcher at the watcher's frame times; (compared, max m, seqs older, seqs newer)."""
+    compared, worst, older, newer = 0, 0.0, 0, 0
+    deadline = time.time() + seconds
+    while time.time() < deadline and compared < need:
+        time.sleep(0.2)
+        rec.read()
+        batch, rec.frames = rec.frames[::3], []
+        if not batch:
+            continue
+        ts = json.dumps([f["sim_time"] for f in batch])
+        page = b.evaluate("JSON.stringify(%s.map(t => window.spectator.ballAt(0, t)))" % ts)
+        for f, p in zip(batch, json.loads(page)):
+            if p is None:
+                continue
+            if p["seq"] != f["segment_seq"]:
+                # a segment the watcher did not have at its frame yet (a correction): the page's is newer
+                if p["seq"] > f["segment_seq"]:
+                    newer += 1
+                else:
+                    older += 1
+                continue
+            worst = max(worst, max(abs(x - y) for x, y in zip(p["position"], f["position"])))
+            compared += 1
+    return compared, worst, older, newer
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--bin", required=True)
+    ap.add_argument("--domain", type=int, required=True)
+    ap.add_argument("--chromium", required=True)
+    ap.add_argument("--probe", required=True)
+    ap.add_argument("--work", required=True)
+    ap.add_argument("--page-shot")
+    a = ap.parse_args()
+    shutil.rmtree(a.work, ignore_errors=True)
+    os.makedirs(a.work)
+    failures = []
+
+    def check(ok, text):
+        print(("ok   " if ok else "FAIL ") + text, flush=True)
+        if not ok:
+            failures.append(text)
+
+    browser = None
+    try:
+        srv = server(a, a.work, "server")
+        for i in range(2):
+            start([a.bin + "/ball-bot", "--domain", str(a.domain), "--player", str(i), "--seed", str(7 + i),
+                   "--duration", "300"], "bot%d" % i, a.work)
+        record = os.path.join(a.work, "watch.jsonl")
+        start([a.bin + "/ball-watch", "--domain", str(a.domain), "--http", "0", "--no-log", "--record", record,
+               "--record-frames", "--fps", "30"], "watch", a.work)
+        url, deadline = None, time.time() + 20
+        while url is None and time.time() < deadline:
+            m = re.search(r"the spectator page is at (\S+)", open(os.path.join(a.work, "watch.log")).read())
+            url = m.group(1) if m else None
+            time.sleep(0.1)
+        check(url is not None and url.startswith("http://127.0.0.1:"), "ball-watch serves the page on loopback: %s" % url)
+        if url is None:
+            return 1
+        browser = Browser(a.chromium)
+        browser.open(url)
+        browser.wait_for("window.spectator && window.spectator.sample(0) && window.spectator.sample(0).ball", 30,
+                         "the page's first ball")
+
+        # 1. the page's ball and the watcher's
+        rec = Record(record)
+        n, worst, older, newer = agreement(browser, rec, 20, 150)
+        check(n >= 100 and worst <= 1e-3 and older == 0,
+              "the page's ball at %d watcher frame times: largest difference %.3g m (at most 1 mm); "
+              "%d times the page held a newer segment (a correction), %d an older one" % (n, worst, newer, older))
+
+        if a.page_shot:
+            browser.evaluate("document.querySelector('#cameras button[data-preset=behind0]').click()")
+            time.sleep(1.0)
+            with open(a.page_shot, "wb") as f:
+                f.write(browser.screenshot({"x": 0, "y": 0, "width": 1280, "height": 640}))
+
+        # 2. 1000 random segments against ball_segment_eval
+        cases = subprocess.run([a.probe, "segments", "1000", "2026"], capture_output=True, text=True, check=True).stdout
+        worst = browser.evaluate(
+            "(() => { const P = window.BallProtocol; const w = {position: 0, velocity: 0, spin: 0};"
+            " for (const c of %s) { const b = P.segmentEval(c.model, c.seg, c.t);"
+            " for (const k in w) for (let i = 0; i < 3; ++i) w[k] = Math.max(w[k], Math.abs(b[k][i] - c[k][i])); }"
+            " return w; })()" % cases)
+        check(max(worst.values()) <= 1e-12, "1000 random segments: the page's evaluation against ball_segment_eval, "
+              "largest difference of the position %.3g m, the velocity %.3g m/s, the spin %.3g m/s (at most 1e-12)"
+              % (worst["position"], worst["velocity"], worst["spin"]))
+
+        # 3. a frame held still: the ball and the court lines where libball's projection puts them
+        t = browser.wait_for(
+            "(() => { const s = window.spectator.sample(0); const p = s && s.ball && s.ball.position;"
+            " return p && p[1] > 0.3 && p[0] > 3 && p[0] < 21 ? s.t : null; })()", 20, "the ball over the court")
+        held = browser.evaluate("window.spectator.hold(0, %r, 'side')" % t)
+        time.sleep(0.3)  # a composited frame of it
+        shot = os.path.join(a.work, "held.png")
+        with open(shot, "wb") as f:
+            f.write(browser.screenshot(held))
+        cam, floor = held["camera"], held["floor"]
+        args = [a.probe, "shot", shot, repr(cam["fov"])] + [repr(x) for x in cam["eye"] + cam["target"] + cam["up"]]
+        args += [repr(x) for x in held["ball"]["position"]]
+        for l in floor["lines"]:
+            args += [repr(0.5 * (l[0] + l[2])), repr(floor["level"]), repr(0.5 * (l[1] + l[3]))]
+        c = floor["court"]
+        args += [repr(c[0] + 0.25 * (c[2] - c[0])), repr(floor["level"]), repr(c[1] + 0.25 * (c[3] - c[1]))]
+        out = subprocess.run(args, capture_output=True, text=True, check=True).stdout.splitlines()
+        m = re.match(r"ball projected=(\S+),(\S+) centroid=(\S+),(\S+) pixels=(\d+) size=(\d+)x(\d+)", out[0])
+        px, py, cx, cy = map(float, m.groups()[:4])
+        check(int(m.group(5)) >= 4 and abs(px - cx) <= 3 and abs(py - cy) <= 3,
+              "held frame (%s): the ball's %s yellow pixels centred at %.1f, %.1f, libball projects it at %.1f, %.1f"
+              % (m.group(6) + "x" + m.group(7), m.group(5), cx, cy, px, py))
+        reds = [int(re.search(r"max_red=(-?\d+)", x).group(1)) for x in out[1:]]
+        check(all(r > 150 for r in reds[:-1]) and reds[-1] < 100,
+              "held frame: the red channel at the %d court lines' middles %s (white), in a service box %d (blue)"
+              % (len(reds) - 1, reds[:-1], reds[-1]))
+        browser.evaluate("window.spectator.release()")
+
+        # 4. the server killed, then a new one
+        stop(srv, signal.SIGKILL)
+        killed = time.time()
+        browser.wait_for("window.spectator.sample(0).live === false", 10, "the page to see the server gone")
+        gone_after = time.time() - killed
+        s1 = browser.evaluate("JSON.stringify(window.spectator.sample(0))")
+        time.sleep(1.0)
+        s2 = browser.evaluate("JSON.stringify(window.spectator.sample(0))")
+        banner = browser.evaluate("document.getElementById('banner').hidden === false && "
+                                  "document.getElementById('banner').textContent")
+        check(s1 == s2 and bool(banner), "server killed: the page said so after %.1f s (\"%s\") and its ball stood "
+                                         "still for 1 s: %s" % (gone_after, banner, json.loads(s2)["ball"]))
+        srv = server(a, a.work, "server2")
+        back = time.time()
+        browser.wait_for("(() => { const s = window.spectator.sample(0); return s && s.live && s.ball; })()", 30,
+                         "the page to pick the match up again")
+        t1 = browser.evaluate("window.spectator.sample(0).t")
+        time.sleep(1.0)
+        t2 = browser.evaluate("window.spectator.sample(0).t")
+        check(t2 > t1, "a new server: the page picked the match up after %.1f s, and its clock runs (%.2f to %.2f s)"
+              % (time.time() - back - 1.0, t1, t2))
+        rec.read()
+        rec.frames = []
+        n, worst, older, newer = agreement(browser, rec, 15, 30)
+        check(n >= 30 and worst <= 1e-3 and older == 0,
+              "after the new server: %d watcher frame times, largest difference %.3g m" % (n, worst))
+
+        # 5. no console errors
+        errors = browser.console + [("error", e) for e in browser.evaluate("window.spectator.errors")]
+        check(not errors, "no console errors or exceptions: %s" % (errors or "none"))
+    except Exception as e:  # a failure of the test itself is a failure
+        check(False, "%s: %s" % (type(e).__name__, e))
+    finally:
+        if browser:
+            browser.close()
+        for p in procs:
+            stop(p)
+    print("page_check: %s" % ("FAILED: %d checks" % len(failures) if failures else "passed"), flush=True)
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,214 @@
+// The spectator page's core without a network or a browser (spectator.h,
+// racket_tracks.h), fed through a Watcher from a Match: the page is given
+// every match as the watcher took it (court, info, segments to the bit,
+// events, clock), a match started anew resets it, a silent server freezes
+// its clock, racket samples only from their slot's holder, and the message
+// ring says when a reader fell behind. With numbers.
+#include <cmath>
+#include <map>
+
+#include "ball/render.h"
+#include "check.hpp"
+#include "court.h"
+#include "game.h"
+#include "racket_tracks.h"
+#include "records.h"
+#include "spectator.h"
+#include "watcher.h"
+
+using namespace test;
+
+namespace {
+
+ball_model court_of(const MatchInfoOut &info) {
+  ball_scene scene;
+  ball_scene_default(&scene);
+  ball_model m;
+  Court c;
+  std::string err;
+  return match_model_of(scene, info, &m, &c, &err) ? m : scene.model;
+}
+
+// a watcher fed everything of game g, received at `real`
+void feed(Watcher &w, const Game &g, double real) {
+  MatchInfoOut i = g.match.info();
+  i.server_time = real;
+  w.on_info(i, real);
+  for (const auto &s : g.segments) w.on_segment(s, real);
+  for (const auto &e : g.events) w.on_event(e, real);
+}
+
+// a game played for `seconds`, a watcher fed all of it at real 1000 s, and the page's core updated then
+struct Page {
+  Game g;
+  Watcher w{WatcherSettings{}};
+  SpectatorSettings ss;
+  Spectator sp;
+  Page(double seconds, const SpectatorSettings &settings) : g(played(seconds)), ss(settings), sp(settings, court_of) {
+    feed(w, g, 1000.0);
+    sp.update(w, 1000.0);
+  }
+};
+
+std::vector<json> messages(const std::vector<std::string> &texts) {
+  std::vector<json> out;
+  for (const auto &t : texts) out.push_back(json::parse(t));
+  return out;
+}
+
+std::vector<json> of_type(const std::vector<json> &all, const std::string &type) {
+  std::vector<json> out;
+  for (const auto &m : all)
+    if (m.at("type") == type) out.push_back(m);
+  return out;
+}
+
+}  // namespace
+
+TEST(the_page_is_given_what_the_watcher_took) {
+  Page p(12.0, SpectatorSettings{});
+  Game &g = p.g;
+  Watcher &w = p.w;
+  Spectator &sp = p.sp;
+  const SpectatorSettings &ss = p.ss;
+  std::vector<json> snap = messages(sp.snapshot());
+  CHECK_EQ(snap.front().at("type"), "hello");
+  CHECK_EQ(of_type(snap, "court").size(), 1u);
+  CHECK_EQ(of_type(snap, "info").size(), 1u);
+  CHECK_EQ(of_type(snap, "clock").size(), 1u);
+  // the newest page_segments segments, each to the bit as the match wrote it
+  std::vector<json> segs = of_type(snap, "segment");
+  CHECK_EQ(segs.size(), std::min(ss.page_segments, g.segments.size()));
+  std::map<uint32_t, SegmentOut> written;
+  for (const auto &s : g.segments) written[s.seq] = s;
+  for (const auto &m : segs) {
+    SegmentOut s = m.at("segment").get<SegmentOut>();
+    const SegmentOut &o = written.at(s.seq);
+    CHECK(std::memcmp(&s.segment, &o.segment, sizeof s.segment) == 0);
+  }
+  CHECK_EQ(segs.back().at("segment").at("seq").get<uint32_t>(), g.segments.back().seq);
+  std::vector<json> events = of_type(snap, "event");
+  CHECK_EQ(events.size(), std::min(ss.page_events, g.events.size()));
+  CHECK_EQ(events.back().at("event").at("seq").get<uint32_t>(), g.events.back().seq);
+  CHECK(!events.back().at("text").get<std::string>().empty() || g.events.back().kind == EventKind::sound);
+  // the court: libball's floor and presets, a radius per slot
+  json court = of_type(snap, "court")[0];
+  CHECK_EQ(court.at("floor").at("lines").size(), 7u);
+  CHECK_EQ(court.at("cameras").size(), static_cast<size_t>(BALL_CAMERA_PRESET_COUNT));
+  CHECK_EQ(court.at("rackets").size(), 2u);
+  CHECK(!court.at("net").is_null());
+  // the stream: every message numbered in order, nothing new without news
+  std::vector<PageMessage> got;
+  CHECK(sp.since(0, 100000, &got));
+  CHECK_EQ(got.size(), static_cast<size_t>(sp.newest()));
+  for (size_t i = 0; i < got.size(); ++i) CHECK_EQ(got[i].id, i + 1);
+  uint64_t before = sp.newest();
+  sp.update(w, 1000.05);  // within clock_every: nothing to say
+  CHECK_EQ(sp.newest(), before);
+  sp.update(w, 1000.2);  // a clock message
+  CHECK_EQ(sp.newest(), before + 1);
+  CHECK(sp.since(before, 10, &got));
+  CHECK_EQ(got.size(), 1u);
+  CHECK_EQ(json::parse(got[0].text).at("type"), "clock");
+}
+
+TEST(a_silent_server_freezes_the_clock_and_a_new_one_moves_it) {
+  Page p(4.0, SpectatorSettings{});
+  Game &g = p.g;
+  Watcher &w = p.w;
+  Spectator &sp = p.sp;
+  const SpectatorSettings &ss = p.ss;
+  double sim0 = g.match.info().sim_time;
+  // no MatchInfo for longer than `silence`: gone, and still at the sim time of 1 s after the last info
+  sp.update(w, 1000.0 + ss.silence + 0.1);
+  std::vector<PageMessage> got;
+  CHECK(sp.since(0, 100000, &got));
+  json clock = json::parse(got.back().text);
+  CHECK_EQ(clock.at("type"), "clock");
+  CHECK_EQ(clock.at("live"), false);
+  CHECK_EQ(clock.at("running"), false);
+  CHECK_NEAR(clock.at("sim_time").get<double>(), sim0 + 1.0, 1e-9);
+  json info = of_type(messages(sp.snapshot()), "info")[0];
+  CHECK_EQ(info.at("live"), false);
+  sp.update(w, 1010.0);
+  CHECK_NEAR(json::parse(sp.snapshot().back()).at("sim_time").get<double>(), sim0 + 1.0, 1e-9);
+  // a server that started the match anew: its seqs start over, the page is reset
+  Game again = played(1.5);
+  uint64_t before = sp.newest();
+  feed(w, again, 1011.0);
+  sp.update(w, 1011.0);
+  CHECK(sp.since(before, 100000, &got));
+  std::vector<json> fresh;
+  for (const auto &m : got) fresh.push_back(json::parse(m.text));
+  CHECK_EQ(of_type(fresh, "reset").size(), 1u);
+  CHECK_EQ(of_type(fresh, "segment").size(), again.segments.size());
+  std::vector<json> snap = messages(sp.snapshot());
+  CHECK_EQ(of_type(snap, "segment").size(), again.segments.size());  // none of the old match's
+  json live = of_type(snap, "clock")[0];
+  CHECK_EQ(live.at("live"), true);
+  CHECK(live.at("sim_time").get<double>() < 2.0);
+}
+
+TEST(rackets_only_from_their_holder) {
+  Page page(2.0, SpectatorSettings{});
+  Game &g = page.g;
+  Watcher &w = page.w;
+  Spectator &sp = page.sp;
+  RacketTracks tracks(court_of);
+  RacketSampleIn a = g.parked_sample(0), b = a;
+  a.capture_time = 1.0;
+  a.center = ball_v3(1.0, 1.0, 5.0);
+  b.capture_time = 1.2;
+  b.center = ball_v3(1.4, 1.2, 5.0);
+  b.seq = a.seq + 1;
+  RacketSampleIn stranger = b;
+  stranger.from = participant(9);
+  stranger.capture_time = 1.3;
+  CHECK(tracks.take(a, w));
+  CHECK(tracks.take(b, w));
+  CHECK(!tracks.take(stranger, w));  // not the slot's holder
+  RacketSampleIn older = a;          // libball's track refuses a sample older than its newest
+  older.capture_time = 0.5;
+  CHECK(!tracks.take(older, w));
+  RacketSampleIn bad = b;
+  bad.capture_time = 1.5;
+  bad.center.x = NAN;
+  CHECK(!tracks.take(bad, w));
+  RacketSampleIn other = b;
+  other.match_id = 99;  // a match nobody watches
+  CHECK(!tracks.take(other, w));
+  CHECK_EQ(tracks.taken(), 2u);
+  CHECK_EQ(tracks.dropped(), 4u);
+  ball_racket_pose p;
+  CHECK(tracks.pose(g.match.id(), 0, 1.1, &p));  // halfway between the two
+  CHECK_NEAR(p.center.x, 1.2, 1e-12);
+  CHECK_NEAR(p.center.y, 1.1, 1e-12);
+  CHECK(!tracks.pose(g.match.id(), 1, 1.1, &p));  // no sample of slot 1
+  // the page: passed on unless within 1/120 s of the slot's newest
+  CHECK(sp.on_racket(a));
+  RacketSampleIn close = a;
+  close.capture_time = a.capture_time + 0.004;
+  CHECK(!sp.on_racket(close));
+  CHECK(sp.on_racket(b));
+  CHECK_EQ(sp.racket_dropped(), 1u);
+  std::vector<json> r = of_type(messages(sp.snapshot()), "racket");
+  CHECK_EQ(r.size(), 2u);
+  CHECK_EQ(r[1].at("t").get<double>(), 1.2);
+  CHECK_EQ(r[1].at("center")[0].get<double>(), 1.4);
+}
+
+TEST(a_reader_that_fell_behind_is_told) {
+  SpectatorSettings few;
+  few.keep_messages = 8;
+  Page p(8.0, few);
+  Spectator &sp = p.sp;
+  CHECK(sp.newest() > 8u);
+  std::vector<PageMessage> got;
+  CHECK(!sp.since(0, 100, &got));  // the first messages are gone: start over from a snapshot
+  CHECK(sp.since(sp.newest() - 8, 100, &got));
+  CHECK_EQ(got.size(), 8u);
+  CHECK(sp.since(sp.newest() - 8, 3, &got));
+  CHECK_EQ(got.size(), 3u);  // at most `max`
+}
+
+int main(int argc, char **argv) { return check::run(argc, argv); }

@@ -1,0 +1,30 @@
+# The spectator page of ball-watch --http (docs/server.md, "The spectator
+# page") in a real browser: Debian's chromium, headless, driven over the
+# DevTools protocol by Debian's python3 with python3-websocket (./run setup).
+if(NOT TARGET ball-watch)
+  return()
+endif()
+include(${PROJECT_SOURCE_DIR}/cmake/dds_domains.cmake)
+
+add_executable(web_probe ${CMAKE_CURRENT_LIST_DIR}/web_probe.c)
+target_include_directories(web_probe PRIVATE ${PROJECT_SOURCE_DIR}/tests/render)
+target_link_libraries(web_probe PRIVATE ball_render ball_kit_headers)
+target_compile_options(web_probe PRIVATE ${BALL_C_WARNINGS})
+
+find_program(BALL_CHROMIUM NAMES chromium PATHS /usr/bin NO_DEFAULT_PATH REQUIRED)
+find_program(BALL_WEB_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH REQUIRED)
+ball_dds_domain(web_page domain)
+add_test(NAME web_page
+  COMMAND ${BALL_WEB_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/page_check.py --bin ${PROJECT_BINARY_DIR}/server
+          --domain ${domain} --chromium ${BALL_CHROMIUM} --probe $<TARGET_FILE:web_probe>
+          --work ${CMAKE_CURRENT_BINARY_DIR}/web_page)
+set_tests_properties(web_page PROPERTIES LABELS "dds;web" TIMEOUT 180
+  PASS_REGULAR_EXPRESSION "page_check: passed" FAIL_REGULAR_EXPRESSION "FAIL")
+
+# the page's core offline: the spectator and the racket tracks, fed from a Match
+add_executable(test_spectator ${CMAKE_CURRENT_LIST_DIR}/test_spectator.cpp)
+target_include_directories(test_spectator PRIVATE ${PROJECT_SOURCE_DIR}/tests/server ${PROJECT_SOURCE_DIR}/tests/support)
+target_link_libraries(test_spectator PRIVATE ball_web)
+target_compile_options(test_spectator PRIVATE ${BALL_CXX_WARNINGS})
+add_test(NAME test_spectator COMMAND test_spectator)
+set_tests_properties(test_spectator PROPERTIES LABELS "server;web" TIMEOUT 120)
