@@ -16,7 +16,9 @@ also on a failure. Checks, each with its numbers printed:
      court line's middle white, the court between them blue;
   4. the server killed: the page says so and keeps the last ball still; a
      new server: the page picks the match up again and the ball moves;
-  5. no console errors, no uncaught exception, from start to end.
+  5. no console errors, no uncaught exception, from start to end;
+  and a page opened mid-rally draws the ball at once (within 5 s of asking,
+  the browser's start of three.js included).
 
   page_check.py --bin DIR --domain ID --chromium PATH --probe PATH --work DIR [--page-shot PNG]
 
@@ -24,6 +26,7 @@ also on a failure. Checks, each with its numbers printed:
 """
 import argparse
 import ctypes
+import http.client
 import json
 import os
 import re
@@ -148,9 +151,12 @@ def main():
         if url is None:
             return 1
         browser = Browser(a.chromium)
+        opened = time.time()
         browser.open(url)
         browser.wait_for("window.spectator && window.spectator.sample(0) && window.spectator.sample(0).ball", 30,
                          "the page's first ball")
+        first = time.time() - opened
+        check(first <= 5.0, "opened mid-rally, the page drew the ball %.2f s after it was asked for" % first)
 
         # 1. the page's ball and the watcher's
         rec = Record(record)
@@ -230,6 +236,21 @@ def main():
         n, worst, older, newer = agreement(browser, rec, 15, 30)
         check(n >= 30 and worst <= 1e-3 and older == 0,
               "after the new server: %d watcher frame times, largest difference %.3g m" % (n, worst))
+
+        # bounded: the page's stream and 7 more are served, the 9th is told 503, the page goes on
+        host, port = re.match(r"http://([^:/]+):(\d+)/", url).groups()
+        streams, codes = [], []
+        for _ in range(8):
+            c = http.client.HTTPConnection(host, int(port), timeout=5)
+            c.request("GET", "/stream")
+            r = c.getresponse()
+            codes.append(r.status)
+            streams.append(c)
+        for c in streams:
+            c.close()
+        still = browser.evaluate("window.spectator.connected()")
+        check(codes == [200] * 7 + [503] and still,
+              "pages at once: 7 more streams served, the next told %d; the page still connected: %s" % (codes[-1], still))
 
         # 5. no console errors
         errors = browser.console + [("error", e) for e in browser.evaluate("window.spectator.errors")]
