@@ -56,6 +56,10 @@ template <size_t N>
 bool get_name(const std::array<char, N> &in, std::string *out) {
   const char *end = static_cast<const char *>(std::memchr(in.data(), '\0', N));
   if (!end) return false;
+  // printable ASCII only (docs/protocol.md, "The wire"): any other byte, an
+  // invalid UTF-8 sequence among them, would reach the JSON records and the page
+  for (const char *c = in.data(); c != end; ++c)
+    if (*c < 0x20 || *c > 0x7e) return false;
   out->assign(in.data(), end);
   return true;
 }

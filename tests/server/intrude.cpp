@@ -15,7 +15,8 @@
 // says): a MatchInfo with level 99, a segment with seq 0xFFFFFFFF and ball
 // states whose clock pairs are 10,000 s ahead, every 0.2 s; and, with
 // --decoy ID, a well-formed copy of the match's MatchInfo as match ID
-// whose scene is --scene-name (a path). With --as-server ID it is a server instead
+// whose scene is --scene-name (a path), and as match ID + 1 one whose scene
+// is no name at all (bytes that are not UTF-8). With --as-server ID it is a server instead
 // (under DDS Security one certified as a server, but not as server ID): it
 // writes no samples, and every 0.2 s writes a copy of the newest MatchInfo
 // it heard, as match --match of server ID; a client that bound ID to
@@ -128,6 +129,10 @@ int main(int argc, char **argv) {
           g.server_id = static_cast<uint32_t>(as_server);
           g.scene = scene_name;
           ok = forged.write(g) && ok;
+          MatchInfoOut h = g;  // and the next one's scene is not a name at all (not UTF-8)
+          h.match_id = static_cast<uint32_t>(decoy + 1);
+          h.scene = "\xff\xfe\x80<b>";
+          ok = forged.write(h) && ok;
         }
         SegmentOut seg;
         seg.match_id = match;

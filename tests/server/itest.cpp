@@ -503,7 +503,7 @@ void case_forged_server(const Env &env) {
   } fifo;
   std::string rec = path(env, "watch.jsonl"), stats[2] = {path(env, "bot0.json"), path(env, "bot1.json")};
   Server server(c.server());
-  Process w = ready_watcher(c, rec, {"--snapshots", path(env, "snaps")});
+  Process w = ready_watcher(c, rec, {"--snapshots", path(env, "snaps"), "--http", "0"});
   Process b0 = c.bot(0, {"--rate", "15", "--stats-json", stats[0]});
   Process b1 = c.bot(1, {"--rate", "15", "--stats-json", stats[1]});
   Tail t(rec);

@@ -53,7 +53,8 @@ def start(args, name, work):
     return p
 
 
-def stop(p, sig=signal.SIGTERM, wait=5.0):
+def stop(p, sig=signal.SIGTERM, wait=10.0):
+    """Its exit status (a signal: negative)."""
     if p.poll() is None:
         try:
             os.killpg(p.pid, sig)
@@ -61,6 +62,7 @@ def stop(p, sig=signal.SIGTERM, wait=5.0):
         except (ProcessLookupError, subprocess.TimeoutExpired):
             os.killpg(p.pid, signal.SIGKILL)
             p.wait()
+    return p.returncode
 
 
 def server(a, work, name):
@@ -260,8 +262,10 @@ def main():
     finally:
         if browser:
             browser.close()
-        for p in procs:
-            stop(p)
+        ends = [(p.args[0].split("/")[-1], p.returncode if p.returncode == -signal.SIGKILL else stop(p)) for p in procs]
+    # every program ends well when asked to (the server killed on purpose aside)
+    check(all(rc in (0, -signal.SIGKILL) for _, rc in ends) and sum(rc == -signal.SIGKILL for _, rc in ends) <= 1,
+          "every program ended with status 0 when stopped: %s" % ", ".join("%s %d" % e for e in ends))
     print("page_check: %s" % ("FAILED: %d checks" % len(failures) if failures else "passed"), flush=True)
     return 1 if failures else 0
 
