@@ -92,21 +92,10 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
   }
   // segments: the watcher's, from the newest page_segments; anew when it dropped ours (a match started anew)
   const Segments &segs = *v.segments;
-  if (!m.segments.empty() && !segs.count(m.segments.rbegin()->first)) {
-    m.segments.clear();
-    send(json{{"type", "reset"}, {"match", id}}.dump());
-  }
-  auto from = segs.begin();
-  if (segs.size() > settings_.page_segments) std::advance(from, segs.size() - settings_.page_segments);
-  for (auto it = from; it != segs.end(); ++it) {
-    if (m.segments.count(it->first)) continue;
-    std::string text = json{{"type", "segment"}, {"match", id}, {"segment", it->second}}.dump();
-    m.segments[it->first] = text;
-    send(text);
-  }
-  while (m.segments.size() > settings_.page_segments) m.segments.erase(m.segments.begin());
-  // events taken since the last update (those the watcher still holds)
-  uint64_t fresh = v.events_taken - m.events_sent;
+  std::pair<uint32_t, size_t> watched{segs.empty() ? 0 : segs.rbegin()->first, segs.size()};
+  if (watched != m.watched) mirror_segments(id, segs, &m);
+  m.watched = watched;
+  // events taken since the last update (those the watcher still holds)  uint64_t fresh = v.events_taken - m.events_sent;
   size_t n = static_cast<size_t>(std::min<uint64_t>(fresh, v.events->size()));
   for (size_t i = v.events->size() - n; i < v.events->size(); ++i) {
     const EventOut &e = (*v.events)[i];
@@ -129,6 +118,24 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
     m.live = live;
     send(m.clock);
   }
+}
+
+// The watcher's newest page_segments segments the page has not got; all of
+// them anew when the watcher dropped ours (a match started anew).
+void Spectator::mirror_segments(uint32_t id, const Segments &segs, Mirror *m) {
+  if (!m->segments.empty() && !segs.count(m->segments.rbegin()->first)) {
+    m->segments.clear();
+    send(json{{"type", "reset"}, {"match", id}}.dump());
+  }
+  auto from = segs.begin();
+  if (segs.size() > settings_.page_segments) std::advance(from, segs.size() - settings_.page_segments);
+  for (auto it = from; it != segs.end(); ++it) {
+    if (m->segments.count(it->first)) continue;
+    std::string text = json{{"type", "segment"}, {"match", id}, {"segment", it->second}}.dump();
+    m->segments[it->first] = text;
+    send(text);
+  }
+  while (m->segments.size() > settings_.page_segments) m->segments.erase(m->segments.begin());
 }
 
 bool Spectator::on_racket(const RacketSampleIn &s) {

@@ -13,6 +13,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "ball/ball.h"
@@ -64,6 +65,7 @@ class Spectator {
     uint32_t revision = 0;
     std::string info;                    // the newest info message
     std::map<uint32_t, std::string> segments;  // the segment messages sent, by seq
+    std::pair<uint32_t, size_t> watched{0, 0};  // the watcher's newest seq and count when last looked at
     std::deque<std::string> events;      // the newest event messages
     uint64_t events_sent = 0;
     std::array<std::deque<std::string>, kMaxPlayers> rackets;  // the newest racket messages per slot
@@ -77,6 +79,7 @@ class Spectator {
   };
   void send(std::string text);
   void mirror(uint32_t id, const WatchedView &v, double real);
+  void mirror_segments(uint32_t id, const Segments &segs, Mirror *m);
 
   SpectatorSettings settings_;
   std::function<ball_model(const MatchInfoOut &)> court_;

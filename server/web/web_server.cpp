@@ -143,6 +143,7 @@ std::unique_ptr<WebServer> WebServer::start(const WebSettings &settings, const S
   // pages stream on threads of their own; two more for the files
   const size_t threads = static_cast<size_t>(settings.max_pages) + 2;
   p->http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
+  p->http.set_keep_alive_timeout(1);  // an idle connection gives its thread back soon
   for (const auto &kv : p->files) {
     const File *file = &kv.second;
     p->http.Get(kv.first, [file](const httplib::Request &, httplib::Response &res) {
