@@ -73,6 +73,10 @@ ParticipantId Host::creator(uint32_t id) const {
 }
 
 void Host::remove(uint32_t id) {
+  if (Match *m = find(id)) {
+    m->end_streams();
+    removed_lost_ += m->take_lost();
+  }
   by_id_.erase(id);
   creators_.erase(id);
   matches_.erase(std::remove_if(matches_.begin(), matches_.end(),
@@ -117,6 +121,17 @@ SampleResult Host::on_sample(const RacketSampleIn &sample, double now, uint64_t 
 
 void Host::on_rejected(const RacketSampleIn &sample, uint64_t *lost) {
   if (Match *m = find(sample.match_id)) m->on_rejected(sample, lost);
+}
+
+uint64_t Host::take_lost() {
+  uint64_t n = removed_lost_;
+  removed_lost_ = 0;
+  for (auto &m : matches_) n += m->take_lost();
+  return n;
+}
+
+void Host::end_streams() {
+  for (auto &m : matches_) m->end_streams();
 }
 
 Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match **match) {

@@ -48,6 +48,11 @@ class Host {
   // Routes a racket sample (followed matches take them too, to stay warm).
   SampleResult on_sample(const RacketSampleIn &sample, double now, uint64_t *lost = nullptr);  // Match::on_sample
   void on_rejected(const RacketSampleIn &sample, uint64_t *lost);                            // Match::on_rejected
+  // The gaps of the streams that ended since the last call, over the
+  // matches (removed ones included): Match::take_lost. end_streams() ends
+  // every stream (the server stops).
+  uint64_t take_lost();
+  void end_streams();
   // Routes one control message; *match gets the match it concerned (nullptr
   // when none: an unknown match, or a CREATE refused; those are only counted;
   // a followed match's controls are its owner's: nullptr, Reason::none).
@@ -69,6 +74,7 @@ class Host {
   std::map<uint32_t, Match *> by_id_;
   std::map<uint32_t, ParticipantId> creators_;  // the matches created on request, by whom
   uint32_t max_creates_ = UINT32_MAX;
+  uint64_t removed_lost_ = 0;  // the gaps of removed matches' streams, until take_lost
 };
 
 }  // namespace ballsrv

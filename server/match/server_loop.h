@@ -209,6 +209,7 @@ class ServerLoop {
   void admit_hosted();
   bool server_wrote(const MatchInfoOut &info);  // false (and counted) for a MatchInfo no server writes
   void take_samples(double now);
+  void count_lost(uint64_t lost);  // seqs lost: counted in (samples_in) and dropped (docs/protocol.md)
   void take_controls(double now);
   void take_over(double t0, double now);
   void run_due_hits(double t0, double now);  // matches whose racket hit's instant has come step to it
