@@ -147,6 +147,7 @@ Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match 
   if (*match) return (*match)->on_control(c, now, out);  // refused there: it exists
   auto scene = scenes_.find(c.scene);
   if (!allow_create_ || matches_.size() >= max_matches_) return Reason::refused_no_room;
+  if (!create_ids().has(c.match_id)) return Reason::refused_bad_value;
   uint32_t standing = 0;
   for (const auto &kv : creators_) standing += kv.second == c.from;
   if (standing >= max_creates_) return Reason::refused_no_room;  // its share is taken

@@ -23,6 +23,11 @@ class Host {
   // stranger's CREATEs must not fill max_matches for good).
   void set_max_creates(uint32_t n) { max_creates_ = n; }
   bool allows_create() const { return allow_create_; }
+  // The match ids a CREATE may name (the rest refused, `bad_value`): a
+  // bounded key space, so that made-up CREATE ids cannot fill the control
+  // reader's instances (docs/protocol.md, "Control messages").
+  void set_create_ids(CreateIds ids) { create_ids_ = ids; }
+  CreateIds create_ids() const { return allow_create_ ? create_ids_ : CreateIds{create_ids_.first, 0}; }
   // The participant that created match `id` (zeros: configured, or unknown).
   ParticipantId creator(uint32_t id) const;
 
@@ -74,6 +79,7 @@ class Host {
   std::map<uint32_t, Match *> by_id_;
   std::map<uint32_t, ParticipantId> creators_;  // the matches created on request, by whom
   uint32_t max_creates_ = UINT32_MAX;
+  CreateIds create_ids_;
   uint64_t removed_lost_ = 0;  // the gaps of removed matches' streams, until take_lost
 };
 

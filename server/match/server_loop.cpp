@@ -464,7 +464,7 @@ void ServerLoop::admit_hosted() {
   if (admitted_once_ && admitted_now_ == admitted_) return;
   admitted_.swap(admitted_now_);
   admitted_once_ = true;
-  port_.admit(admitted_, host_.allows_create());
+  port_.admit(admitted_, host_.create_ids());
 }
 
 void ServerLoop::take_samples(double now) {

@@ -68,12 +68,11 @@ class ServerPort {
   virtual bool take_sample(RacketSampleIn *sample) = 0;     // false: none left; from and source_time filled in
   virtual bool take_control(ControlIn *control) = 0;        // false: none left; from filled in
   // The matches (id, player slots) whose samples and controls come in, and
-  // whether CREATEs do (the host allows them): the port may turn the others
-  // away before they cost it anything (a sample for another match or slot,
-  // a control for another match, a CREATE when none may come or past the
-  // door's rate), counted as door notes. Until the first call it lets
-  // everything in.
-  virtual void admit(const std::vector<std::pair<uint32_t, int>> &matches, bool creates) {
+  // the ids CREATEs may name (Host::create_ids): the port may turn the
+  // others away before they cost it anything (a sample for another match or
+  // slot, a control for another match, a CREATE outside those ids), counted
+  // as door notes. Until the first call it lets everything in.
+  virtual void admit(const std::vector<std::pair<uint32_t, int>> &matches, CreateIds creates) {
     (void)matches;
     (void)creates;
   }

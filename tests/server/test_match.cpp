@@ -632,15 +632,20 @@ TEST(host_routes_and_creates) {
   Match *m = nullptr;
   ControlIn c;
   c.kind = ControlKind::create;
-  c.match_id = 8;
+  c.match_id = 1008;
   c.scene = "nowhere";
   CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_bad_value);
   c.scene = "tennis";
   c.players = 2;
   c.level = 2;
+  c.match_id = 8;  // not an id CREATEs may name (create_ids: 1000 to 1999)
+  CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_bad_value);
+  c.match_id = 2000;
+  CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_bad_value);
+  c.match_id = 1008;
   CHECK(host.on_control(c, 0.0, &out, &m) == Reason::none);
-  CHECK(m != nullptr && m->id() == 8 && m->config().level == BALL_LEVEL_MID);
-  c.match_id = 9;
+  CHECK(m != nullptr && m->id() == 1008 && m->config().level == BALL_LEVEL_MID);
+  c.match_id = 1009;
   CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_no_room);  // max_matches 2
   c.kind = ControlKind::join;
   c.match_id = 42;
@@ -655,18 +660,18 @@ TEST(host_routes_and_creates) {
   open.add_scene("tennis", scene, &err);
   open.set_max_creates(2);
   c.from = participant(3);
-  for (uint32_t id : {20u, 21u}) {
+  for (uint32_t id : {1020u, 1021u}) {
     c.match_id = id;
     CHECK(open.on_control(c, 0.0, &out, &m) == Reason::none);
   }
-  c.match_id = 22;
+  c.match_id = 1022;
   CHECK(open.on_control(c, 0.0, &out, &m) == Reason::refused_no_room);
   c.from = participant(4);
   CHECK(open.on_control(c, 0.0, &out, &m) == Reason::none);
-  CHECK(open.creator(20) == participant(3) && open.creator(22) == participant(4));
-  open.remove(20);  // one gone: the first may create again
+  CHECK(open.creator(1020) == participant(3) && open.creator(1022) == participant(4));
+  open.remove(1020);  // one gone: the first may create again
   c.from = participant(3);
-  c.match_id = 23;
+  c.match_id = 1023;
   CHECK(open.on_control(c, 0.0, &out, &m) == Reason::none);
 }
 
