@@ -536,7 +536,9 @@ void case_create_flood(const Env &env) {
 // While it lasts the clients read only it (exclusive ownership), refuse
 // all of it and never exit; the server yields nothing to a MatchInfo no
 // server writes; once it is gone the rally goes on, the bots' clocks and
-// streams as they were, and the watcher never opened the FIFO.
+// streams as they were, and the watcher never opened the FIFO. A second
+// watcher that chose the real server (--servers 1) refuses the forger's
+// well-formed match 7 too; both count what they refused.
 void case_forged_server(const Env &env) {
   Case c{env};
   std::string qos = path(env, "strong_qos.xml"), text = file_text(env.source + "/server/qos/ball_qos.xml");
@@ -553,8 +555,10 @@ void case_forged_server(const Env &env) {
     ~Fifo() { unlink(path.c_str()); }
   } fifo;
   std::string rec = path(env, "watch.jsonl"), stats[2] = {path(env, "bot0.json"), path(env, "bot1.json")};
+  std::string sums[2] = {path(env, "watch_any.json"), path(env, "watch_chosen.json")};
   Server server(c.server());
-  Process w = ready_watcher(c, rec, {"--snapshots", path(env, "snaps")});
+  Process w = ready_watcher(c, rec, {"--snapshots", path(env, "snaps"), "--summary-json", sums[0]});
+  Process chosen = ready_watcher(c, path(env, "chosen.jsonl"), {"--servers", "1", "--summary-json", sums[1]});
   Process b0 = c.bot(0, {"--rate", "15", "--stats-json", stats[0]});
   Process b1 = c.bot(1, {"--rate", "15", "--stats-json", stats[1]});
   Tail t(rec);
@@ -566,15 +570,29 @@ void case_forged_server(const Env &env) {
                                    "--scene-name", fifo.path, "--duration", "4", "--out", forged_out},
                                   path(env, "forger.out"), path(env, "forger.err"));
   CHECK_EQ(forger.wait(20.0), 0);
-  bool alive = b0.running() && b1.running() && w.running();
+  bool alive = b0.running() && b1.running() && w.running() && chosen.running();
   size_t from = t.lines.size();
   int after = 0;
   while (after < 2 && !wait_for(t, 20.0, is_hit, &from).is_null()) after++;
   CHECK_EQ(b0.stop(5.0), 0);
   CHECK_EQ(b1.stop(5.0), 0);
   CHECK_EQ(w.stop(5.0), 0);
+  CHECK_EQ(chosen.stop(5.0), 0);
   ServerReport r = stop_server(server, path(env, "server.json"));
   json f = json::parse(file_text(forged_out), nullptr, false);
+  // what each watcher did not take, of match 0 and of the decoy match 7
+  uint64_t not_taken[2][2] = {{0, 0}, {0, 0}};
+  bool decoy_taken = false;  // by the watcher that chose server 1
+  for (int i = 0; i < 2; ++i) {
+    json j = json::parse(file_text(sums[i]), nullptr, false);
+    CHECK_MSG(j.is_object(), "no summary in %s", sums[i].c_str());
+    if (!j.is_object()) continue;
+    WatchSummary s = j.get<WatchSummary>();
+    for (const auto &m : s.matches) {
+      if (m.match == 0) not_taken[i][0] = m.not_taken;
+      if (m.match == 7) not_taken[i][1] = m.not_taken, decoy_taken = decoy_taken || (i == 1 && m.segments > 0);
+    }
+  }
   long forged = f.is_object() ? f.value("infos", 0L) : 0L;
   uint64_t refused[2] = {0, 0};
   for (int i = 0; i < 2; ++i) {
@@ -589,6 +607,14 @@ void case_forged_server(const Env &env) {
   CHECK_MSG(alive, "a client ended under the forgeries");
   CHECK_MSG(after >= 2, "%d hits after the forger left", after);
   CHECK(refused[0] >= 10 && refused[1] >= 10);
+  note("the watcher of any server did not take %llu samples of match 0, %llu of match 7; the one that chose server "
+       "1: %llu and %llu",
+       static_cast<unsigned long long>(not_taken[0][0]), static_cast<unsigned long long>(not_taken[0][1]),
+       static_cast<unsigned long long>(not_taken[1][0]), static_cast<unsigned long long>(not_taken[1][1]));
+  CHECK(not_taken[0][0] >= static_cast<uint64_t>(forged));  // at least the level-99 MatchInfo, every round
+  CHECK(not_taken[1][0] >= static_cast<uint64_t>(forged));
+  CHECK(not_taken[1][1] >= static_cast<uint64_t>(forged) / 2);  // the decoy, refused by the choice alone
+  CHECK(!decoy_taken);
   CHECK(r.others_refused >= 10);
   CHECK_EQ(r.yields, 0u);
   CHECK_EQ(r.matches.size(), 1u);
