@@ -32,6 +32,7 @@ set(BALL_DDS_DOMAINS
   "dds_inbox_share|121|test: one slot's burst of 20,000 samples takes its own share of the inbox only"
   "dds_discovery_flood|122|test: 3000 made-up participant announcements: bounded memory, found again after their leases"
   "dds_lag|123|test: late-swinging bots behind 150 ms: lag compensation finds their hits, rewinds, no desync"
+  "dds_create_flood|124|test: 1000 CREATEs a second under every id a CREATE may name: a real CREATE answered at once, the bots rally"
   "web_page|125|test: the spectator page in headless Chromium follows a rally, a server killed and a new one"
   "dds_discovery|120|test: server, bots and watcher found through a Discovery Server only"
   "test_teardown|141|test: one participant deleted within the teardown limit")

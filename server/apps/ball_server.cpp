@@ -50,8 +50,8 @@ int main(int argc, char **argv) {
   if (!host) return fail(kProgram, err);
   // a primary's writers outrank a standby's (docs/protocol.md, "Several servers on one domain")
   const char *role = config.standby ? dds::kStandbyProfile : dds::kPrimaryProfile;
-  auto port = dds::ServerEndpoints::open(*domain, static_cast<int>(config.max_matches), host->max_players(), role,
-                                         config.standby, &err);
+  auto port = dds::ServerEndpoints::open(*domain, static_cast<int>(config.max_matches), host->max_players(),
+                                         host->create_ids().count, role, config.standby, &err);
   if (!port) return fail(kProgram, err);
 
   SystemClock clock;

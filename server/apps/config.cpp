@@ -191,6 +191,10 @@ const std::vector<Field<ServerConfig>> &server_fields() {
       {"allow_create", &C::allow_create, {}, "", "clients may CREATE matches from the catalogue (`--no-create`)"},
       {"max_creates", &C::max_creates, whole(0, 100000), "",
        "matches one participant's CREATEs may have standing (the rest refused, `no_room`)", "--max-creates"},
+      {"create_first", &C::create_first, whole(0, UINT32_MAX), "", "the first match id a CREATE may name"},
+      {"create_ids", &C::create_ids, whole(1, 65536), "",
+       "how many match ids a CREATE may name, from `create_first` on (the rest turned away at the control "
+       "reader's door; each one an instance of that reader)"},
       {"create_timeout", &C::create_timeout, open_closed(0.0, 3600.0), "s",
        "a created match nobody holds a slot of for this long is removed (its MatchInfo disposed)",
        "--create-timeout"},
@@ -233,6 +237,7 @@ std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes
   if (player_timeout > 0.0) config->defaults.player_timeout = player_timeout;
   auto host = std::make_unique<Host>(config->max_matches, config->allow_create, config->defaults);
   host->set_max_creates(config->max_creates);
+  host->set_create_ids({config->create_first, config->create_ids});
   for (const auto &c : scenes.catalogue)
     if (!host->add_scene(c.first, c.second, err)) return nullptr;
   // another server's match may name a scene by libball's name (a standby

@@ -42,6 +42,8 @@ struct ServerConfig {
                                              // plus kFollowRoom for a standby
   bool allow_create = true;                  // clients may CREATE matches from the catalogue
   uint32_t max_creates = 2;                  // matches one participant's CREATEs may have standing
+  uint32_t create_first = CreateIds{}.first; // the first match id a CREATE may name
+  uint32_t create_ids = CreateIds{}.count;   // how many ids from it on (each an instance of the control reader)
   double create_timeout = 30.0;              // s a created match stands with nobody holding a slot
   bool standby = false;                      // follows other servers' matches, takes them over (--standby)
   uint32_t claim = 0;                        // claims up to this many unplaced or created matches; 0: none

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <mutex>
 #include <unordered_map>
 
@@ -13,12 +12,15 @@ namespace dds {
 
 // The door of the racket and control readers (domain.h): only the samples
 // of the matches the server has, and their slots, become instances of the
-// readers; a control for another match only if it is a CREATE, the server
-// takes CREATEs, and the door's CREATE rate has room. Made-up match ids
-// then cannot fill the readers' instances and starve the real ones
-// (docs/protocol.md, "What the server does with a racket sample"), not
-// even as CREATEs. What it turns away is counted here and handed on as
-// door notes.
+// readers; a control for another match only if it is a CREATE of an id
+// CREATEs may name (Host::create_ids). Made-up match ids then cannot fill
+// the readers' instances and starve the real ones (docs/protocol.md, "What
+// the server does with a racket sample"): the control reader has an
+// instance for each of those ids (open). (Fast DDS 2.9 does not tell a
+// filter the writer, its FilterSampleInfo is empty on a reader, and a
+// live writer's instances stay in the reader until it goes: no bound by
+// writer or by rate would keep a flood from filling it.) What the door
+// turns away is counted here and handed on as door notes.
 class MatchDoor : public Door {
  public:
   explicit MatchDoor(bool controls) : controls_(controls) {}
@@ -30,7 +32,7 @@ class MatchDoor : public Door {
     if (!in) return true;  // nothing said yet
     auto it = in->find(id);
     if (controls_) {
-      if (it != in->end() || (u32(body + 8, le) == static_cast<uint32_t>(balldds::CONTROL_CREATE) && may_create()))
+      if (it != in->end() || (u32(body + 8, le) == static_cast<uint32_t>(balldds::CONTROL_CREATE) && creates().has(id)))
         return true;
       turned_away_[0]++;
       return false;
@@ -44,7 +46,7 @@ class MatchDoor : public Door {
     turned_away_[1]++;
     return false;
   }
-  void set(const std::vector<std::pair<uint32_t, int>> &matches, bool creates) {
+  void set(const std::vector<std::pair<uint32_t, int>> &matches, CreateIds creates) {
     auto in = std::make_shared<Admitted>(matches.begin(), matches.end());
     std::lock_guard<std::mutex> lock(mutex_);
     admitted_ = std::move(in);
@@ -65,35 +67,24 @@ class MatchDoor : public Door {
     std::lock_guard<std::mutex> lock(mutex_);
     return admitted_;
   }
-  // A CREATE may come in: the server takes them, and a token of the CREATE
-  // rate is left (kCreatesPerSecond, as many at once), so that CREATEs under
-  // made-up ids hold at most that many of the reader's instances between
-  // two wake-ups, whoever sends them.
-  bool may_create() const {
+  CreateIds creates() const {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (!creates_) return false;
-    double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-    tokens_ = std::min(kCreatesPerSecond, tokens_ + (now - refilled_) * kCreatesPerSecond);
-    refilled_ = now;
-    if (tokens_ < 1.0) return false;
-    tokens_ -= 1.0;
-    return true;
+    return creates_;
   }
   bool controls_;
   mutable std::mutex mutex_;
   std::shared_ptr<const Admitted> admitted_;
-  bool creates_ = true;
-  mutable double tokens_ = kCreatesPerSecond, refilled_ = 0.0;
+  CreateIds creates_;
   mutable std::atomic<uint64_t> turned_away_[2] = {{0}, {0}};
 };
 
-void ServerEndpoints::admit(const std::vector<std::pair<uint32_t, int>> &matches, bool creates) {
+void ServerEndpoints::admit(const std::vector<std::pair<uint32_t, int>> &matches, CreateIds creates) {
   sample_door_->set(matches, creates);
   control_door_->set(matches, creates);
 }
 
-std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, int players, const char *role,
-                                                       bool follows, std::string *err) {
+std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, int players, uint32_t create_ids,
+                                                       const char *role, bool follows, std::string *err) {
   std::unique_ptr<ServerEndpoints> p(new ServerEndpoints(d));
   int match_room = matches;
   int sample_room = match_room * std::max(1, players) + 64;  // + room for junk keys
@@ -112,8 +103,10 @@ std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, i
   Sizing racket{sample_room, sample_room * kInboxPerSlot, from_players, p->sample_door_};
   racket.inbox_per_key = kInboxPerSlot;  // one writer's burst in a slot takes its own share only
   p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, racket, err);
+  // an instance for every match and every id a CREATE may name: made-up ids cannot fill it
   p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile,
-                                     {match_room + 64, 0, from_players, p->control_door_}, err);
+                                     {match_room + static_cast<int>(create_ids) + 64, 0, from_players, p->control_door_},
+                                     err);
   p->others_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room + 64}, err);
   // (only a standby reads segments: every other server would take its own back)
   if (follows) p->other_segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {match_room + 64}, err);

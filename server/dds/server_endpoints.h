@@ -11,26 +11,21 @@
 namespace ballsrv {
 namespace dds {
 
-// CREATEs for a match the server does not have that the control reader's
-// door lets in, per second and at once, from everyone together
-// (docs/protocol.md, "Control messages"): more would let made-up ids fill
-// the reader's spare instances between two wake-ups.
-constexpr double kCreatesPerSecond = 20.0;
-
 class ServerEndpoints : public ServerPort {
  public:
-  // Endpoints sized for `matches` x `players` (Fast DDS allows 10
-  // instances per topic by default), the match writers with the ownership
+  // Endpoints sized for `matches` x `players` and `create_ids` ids a CREATE
+  // may name (Fast DDS allows 10 instances per topic by default), the match
+  // writers with the ownership
   // strength of `role` (kPrimaryProfile, kStandbyProfile), and a reader of
   // the other servers' segments when it follows their matches (a standby);
   // nullptr with err when one cannot be made.
-  static std::unique_ptr<ServerEndpoints> open(Domain &domain, int matches, int players, const char *role,
-                                               bool follows, std::string *err);
+  static std::unique_ptr<ServerEndpoints> open(Domain &domain, int matches, int players, uint32_t create_ids,
+                                               const char *role, bool follows, std::string *err);
 
   void take_notes(std::vector<PortNote> *out) override;
   bool take_sample(RacketSampleIn *sample) override;
   bool take_control(ControlIn *control) override;
-  void admit(const std::vector<std::pair<uint32_t, int>> &matches, bool creates) override;
+  void admit(const std::vector<std::pair<uint32_t, int>> &matches, CreateIds creates) override;
   bool take_other_info(MatchInfoOut *info, ParticipantId *from) override;
   bool take_other_segment(SegmentOut *segment, ParticipantId *from) override;
   bool take_other_status(StatusOut *status, ParticipantId *from) override;

@@ -73,6 +73,10 @@ ParticipantId Host::creator(uint32_t id) const {
 }
 
 void Host::remove(uint32_t id) {
+  if (Match *m = find(id)) {
+    m->end_streams();
+    removed_lost_ += m->take_lost();
+  }
   by_id_.erase(id);
   creators_.erase(id);
   matches_.erase(std::remove_if(matches_.begin(), matches_.end(),
@@ -119,6 +123,17 @@ void Host::on_rejected(const RacketSampleIn &sample, uint64_t *lost) {
   if (Match *m = find(sample.match_id)) m->on_rejected(sample, lost);
 }
 
+uint64_t Host::take_lost() {
+  uint64_t n = removed_lost_;
+  removed_lost_ = 0;
+  for (auto &m : matches_) n += m->take_lost();
+  return n;
+}
+
+void Host::end_streams() {
+  for (auto &m : matches_) m->end_streams();
+}
+
 Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match **match) {
   *match = find(c.match_id);
   if (*match && (*match)->following()) {  // its owner's to answer
@@ -132,6 +147,7 @@ Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match 
   if (*match) return (*match)->on_control(c, now, out);  // refused there: it exists
   auto scene = scenes_.find(c.scene);
   if (!allow_create_ || matches_.size() >= max_matches_) return Reason::refused_no_room;
+  if (!create_ids().has(c.match_id)) return Reason::refused_bad_value;
   uint32_t standing = 0;
   for (const auto &kv : creators_) standing += kv.second == c.from;
   if (standing >= max_creates_) return Reason::refused_no_room;  // its share is taken

@@ -23,6 +23,11 @@ class Host {
   // stranger's CREATEs must not fill max_matches for good).
   void set_max_creates(uint32_t n) { max_creates_ = n; }
   bool allows_create() const { return allow_create_; }
+  // The match ids a CREATE may name (the rest refused, `bad_value`): a
+  // bounded key space, so that made-up CREATE ids cannot fill the control
+  // reader's instances (docs/protocol.md, "Control messages").
+  void set_create_ids(CreateIds ids) { create_ids_ = ids; }
+  CreateIds create_ids() const { return allow_create_ ? create_ids_ : CreateIds{create_ids_.first, 0}; }
   // The participant that created match `id` (zeros: configured, or unknown).
   ParticipantId creator(uint32_t id) const;
 
@@ -48,6 +53,11 @@ class Host {
   // Routes a racket sample (followed matches take them too, to stay warm).
   SampleResult on_sample(const RacketSampleIn &sample, double now, uint64_t *lost = nullptr);  // Match::on_sample
   void on_rejected(const RacketSampleIn &sample, uint64_t *lost);                            // Match::on_rejected
+  // The gaps of the streams that ended since the last call, over the
+  // matches (removed ones included): Match::take_lost. end_streams() ends
+  // every stream (the server stops).
+  uint64_t take_lost();
+  void end_streams();
   // Routes one control message; *match gets the match it concerned (nullptr
   // when none: an unknown match, or a CREATE refused; those are only counted;
   // a followed match's controls are its owner's: nullptr, Reason::none).
@@ -69,6 +79,8 @@ class Host {
   std::map<uint32_t, Match *> by_id_;
   std::map<uint32_t, ParticipantId> creators_;  // the matches created on request, by whom
   uint32_t max_creates_ = UINT32_MAX;
+  CreateIds create_ids_;
+  uint64_t removed_lost_ = 0;  // the gaps of removed matches' streams, until take_lost
 };
 
 }  // namespace ballsrv

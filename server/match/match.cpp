@@ -1,5 +1,6 @@
 #include "match.h"
 
+#include <bitset>
 #include <cmath>
 
 #include "ball/vec3.h"
@@ -15,6 +16,7 @@ constexpr double kBoxHeight = 30.0;   // m above the floor a racket may be
 constexpr double kUnderFloor = 1.0;   // m under it: a swing's straight line through a low contact, a tracker's error
 constexpr double kOverNet = 1.0;      // m beyond the net a racket may reach
 constexpr int32_t kMaxSeqJump = 1000; // a holder's seq goes at most this far ahead of its previous (33 s at 30 Hz)
+constexpr int32_t kLateWindow = 16;   // seqs behind a stream's newest arrival a late sample may fill its gap (< 64)
 constexpr double kFarAway = 30.0;     // m beyond the court: the ball has left it
 constexpr double kAheadHorizon = 10.0; // sim s: how far ahead a static contact is looked for (docs/protocol.md)
 
@@ -588,13 +590,51 @@ uint64_t Match::stream_gap(Slot &slot, uint32_t seq) {
   if (!slot.has_seen) {
     slot.has_seen = true;
     slot.seen_seq = seq;
+    slot.missing = 0;
     return 0;
   }
   // serial-number arithmetic: behind, the same, or further than a stream goes: no gap
   int32_t ahead = static_cast<int32_t>(seq - slot.seen_seq);
+  if (ahead < 0 && ahead >= -kLateWindow) {  // late: it fills its gap, never counted lost
+    slot.missing &= ~(uint64_t{1} << (-ahead - 1));
+    return 0;
+  }
   if (ahead <= 0 || ahead > kMaxSeqJump) return 0;
   slot.seen_seq = seq;
-  return static_cast<uint64_t>(ahead - 1);
+  // the window moves on by `ahead`: the gaps it leaves behind are lost, and
+  // the seqs skipped now are its new gaps (those beyond its end lost at once)
+  const uint64_t window = (uint64_t{1} << kLateWindow) - 1;
+  uint64_t skipped = static_cast<uint64_t>(ahead - 1), lost = 0;
+  if (ahead >= kLateWindow) {
+    lost = std::bitset<64>(slot.missing).count();
+    slot.missing = 0;
+  } else {
+    lost = std::bitset<64>(slot.missing >> (kLateWindow - ahead)).count();
+    slot.missing = (slot.missing << ahead) & window;
+  }
+  if (skipped >= static_cast<uint64_t>(kLateWindow)) {
+    lost += skipped - kLateWindow;
+    slot.missing = window;
+  } else {
+    slot.missing |= (uint64_t{1} << skipped) - 1;
+  }
+  return lost;
+}
+
+void Match::end_stream(Slot &slot) {
+  ended_lost_ += std::bitset<64>(slot.missing).count();
+  slot.missing = 0;
+  slot.has_seen = false;
+}
+
+void Match::end_streams() {
+  for (auto &s : slots_) end_stream(s);
+}
+
+uint64_t Match::take_lost() {
+  uint64_t n = ended_lost_;
+  ended_lost_ = 0;
+  return n;
 }
 
 void Match::on_rejected(const RacketSampleIn &s, uint64_t *lost) {
@@ -714,12 +754,13 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       if (s.held && s.owner == c.from) {  // a repeated join: the holder's stream starts anew
         s.alive = true;
         s.has_seq = false;
-        s.has_seen = false;
+        end_stream(s);
         s.has_prev = false;
         return Reason::none;
       }
       if (s.held && s.alive && now - s.last_seen <= config_.player_timeout)
         return refuse(c, Reason::refused_slot_held, out);
+      end_stream(s);
       s = Slot{};
       s.held = true;
       s.owner = c.from;
@@ -734,6 +775,7 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       int slot = c.player;
       if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
       if (!slots_[slot].held || slots_[slot].owner != c.from) return refuse(c, Reason::refused_not_player, out);
+      end_stream(slots_[slot]);
       slots_[slot] = Slot{};
       ball_racket_clear(&sim_, slot);
       emit(out, EventKind::leave, slot, sim_.time);
@@ -907,11 +949,13 @@ bool Match::follow(const MatchInfoOut &info, std::string *err) {
     const SlotInfo &in = info.slots[k];
     Slot &sl = slots_[k];
     if (!in.held) {
+      end_stream(sl);
       sl = Slot{};
       continue;
     }
     if (!sl.held || sl.owner != in.owner) {  // a new holder: its own history
       double seen = sl.owner == in.owner ? sl.last_seen : -1e300;
+      end_stream(sl);
       sl = Slot{};
       sl.last_seen = seen;
       ball_racket_clear(&sim_, k);

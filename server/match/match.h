@@ -55,12 +55,17 @@ class Match {
 
   // A racket sample; never changes the ball. `now` is when it arrived. A
   // sample of a slot's holder also moves the holder's stream on: *lost (if
-  // given) gets the seqs it skipped, samples that never arrived (at most
-  // kMaxSeqJump - 1; docs/protocol.md, `lost`).
+  // given) gets the seqs it left behind that never arrived, a late one
+  // fills its gap instead (docs/protocol.md, `lost`).
   SampleResult on_sample(const RacketSampleIn &sample, double now, uint64_t *lost = nullptr);
   // A sample the reader had no room for (RacketSampleIn::rejected): it
   // only moves its holder's stream on, so that it is not counted lost too.
   void on_rejected(const RacketSampleIn &sample, uint64_t *lost);
+  // The gaps of streams that ended (a JOIN anew, a LEAVE, a new holder, a
+  // followed owner's slots) since the last call: lost. end_streams() ends
+  // them all (the server stops).
+  uint64_t take_lost();
+  void end_streams();
 
   // Racket hits at their instant (docs/server.md, "Hits at their instant"):
   // the real s after the last frame's deadline at which the first contact
@@ -137,6 +142,7 @@ class Match {
     uint32_t last_seq = 0;     // the newest accepted (or idle) sample's
     bool has_seen = false;
     uint32_t seen_seq = 0;     // the newest of the holder's samples that arrived, whatever became of it
+    uint64_t missing = 0;      // bit i: seq seen_seq - 1 - i skipped and not (yet) arrived
     SampleRef ref;             // the newest accepted sample
     bool has_prev = false;     // prev_*: the newest sample that passed every check (accepted or idle)
     double prev_time = 0.0;    // sim s: its capture time
@@ -144,7 +150,6 @@ class Match {
     double asked_time_base = 0.0;    // the time base its holder asked for (0: none): a change needs every holder's
   };
 
-  // the holder's sample `seq` arrived: the seqs it skipped since the newest that did, if any
   // The segment of the next static contact, written before the contact
   // (docs/protocol.md, "Segments ahead of time").
   struct Ahead {
@@ -153,7 +158,10 @@ class Match {
     SegmentOut segment;  // as written
   };
 
+  // the holder's sample `seq` arrived: the seqs the stream's window left
+  // behind that never arrived (lost), or, late, it fills its own gap
   static uint64_t stream_gap(Slot &slot, uint32_t seq);
+  void end_stream(Slot &slot);  // its gaps to ended_lost_
   void write_ahead(MatchOutput *out);
   bool is_ahead(const ball_event &ev) const;  // ev is the contact written ahead, to the bit
   PlayState judged(const ball_event &ev) const;  // the rules' state once ev is judged, nothing changed
@@ -213,6 +221,7 @@ class Match {
   Cause segment_cause_ = Cause::serve;  // what started the current segment
   int segment_cause_index_ = -1;
   uint32_t event_seq_ = 0;
+  uint64_t ended_lost_ = 0;  // the gaps of ended streams, until take_lost
   double state_accum_ = 0.0; // fraction of a ball state owed (state_rate / frame_rate per frame)
   MatchCounters counters_;
   std::vector<ball_event> step_events_;

@@ -464,7 +464,7 @@ void ServerLoop::admit_hosted() {
   if (admitted_once_ && admitted_now_ == admitted_) return;
   admitted_.swap(admitted_now_);
   admitted_once_ = true;
-  port_.admit(admitted_, host_.allows_create());
+  port_.admit(admitted_, host_.create_ids());
 }
 
 void ServerLoop::take_samples(double now) {
@@ -483,9 +483,13 @@ void ServerLoop::take_samples(double now) {
     if (r == SampleResult::accepted) stats_.totals.samples_ok++;
     else if (r == SampleResult::idle) stats_.samples_idle++;
     else stats_.totals.drops[static_cast<int>(r)]++;
-    stats_.totals.drops[static_cast<int>(SampleResult::lost)] += lost;
-    stats_.totals.samples_in += lost;
+    count_lost(lost);
   }
+}
+
+void ServerLoop::count_lost(uint64_t lost) {
+  stats_.totals.drops[static_cast<int>(SampleResult::lost)] += lost;
+  stats_.totals.samples_in += lost;
 }
 
 void ServerLoop::take_controls(double now) {
@@ -623,12 +627,14 @@ bool ServerLoop::wake() {
   take_over(t0, now);
   run_due_hits(t0, now);  // (also finds the earliest hit after the samples moved the tracks)
   run_due_frames(t0, now);
+  count_lost(host_.take_lost());  // the gaps of streams that ended (controls, yields, take-overs)
   double t1 = clock_.mono();
   stats_.frame_time.add(t1 - t0);
   if (t1 < next_status_) return false;
   // the status phase
   if (settings_.claim > 0) claim_unplaced(t1);
   expire_created(t1);
+  count_lost(host_.take_lost());
   close_period();
   stats_.late_p99.add(stats_.late.quantile(0.99));
   stats_.late.clear();
@@ -659,6 +665,8 @@ void ServerLoop::run(double duration, const std::function<bool()> &stop,
 }
 
 StatusOut ServerLoop::finish() {
+  host_.end_streams();  // their gaps still open: lost
+  count_lost(host_.take_lost());
   close_period();  // the last, partial period
   return status_;
 }

@@ -68,12 +68,11 @@ class ServerPort {
   virtual bool take_sample(RacketSampleIn *sample) = 0;     // false: none left; from and source_time filled in
   virtual bool take_control(ControlIn *control) = 0;        // false: none left; from filled in
   // The matches (id, player slots) whose samples and controls come in, and
-  // whether CREATEs do (the host allows them): the port may turn the others
-  // away before they cost it anything (a sample for another match or slot,
-  // a control for another match, a CREATE when none may come or past the
-  // door's rate), counted as door notes. Until the first call it lets
-  // everything in.
-  virtual void admit(const std::vector<std::pair<uint32_t, int>> &matches, bool creates) {
+  // the ids CREATEs may name (Host::create_ids): the port may turn the
+  // others away before they cost it anything (a sample for another match or
+  // slot, a control for another match, a CREATE outside those ids), counted
+  // as door notes. Until the first call it lets everything in.
+  virtual void admit(const std::vector<std::pair<uint32_t, int>> &matches, CreateIds creates) {
     (void)matches;
     (void)creates;
   }
@@ -209,6 +208,7 @@ class ServerLoop {
   void admit_hosted();
   bool server_wrote(const MatchInfoOut &info);  // false (and counted) for a MatchInfo no server writes
   void take_samples(double now);
+  void count_lost(uint64_t lost);  // seqs lost: counted in (samples_in) and dropped (docs/protocol.md)
   void take_controls(double now);
   void take_over(double t0, double now);
   void run_due_hits(double t0, double now);  // matches whose racket hit's instant has come step to it

@@ -181,6 +181,14 @@ struct RacketSampleIn {
 };
 
 // client -> server: a control message (MatchControl).
+// The match ids a CREATE may name: [first, first + count); count 0: none.
+struct CreateIds {
+  uint32_t first = 0;
+  uint32_t count = 4096;  // by default the ids 0 to 4095, as many as a client's readers make room for
+  bool has(uint32_t id) const { return id - first < count; }  // (unsigned: below first wraps far above)
+  bool operator==(const CreateIds &o) const { return first == o.first && count == o.count; }
+};
+
 struct ControlIn {
   uint32_t match_id = 0;      // the match (CREATE: the new one's id)
   uint32_t seq = 0;           // per writer; echoed in a refusal

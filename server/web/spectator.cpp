@@ -95,7 +95,8 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
   std::pair<uint32_t, size_t> watched{segs.empty() ? 0 : segs.rbegin()->first, segs.size()};
   if (watched != m.watched) mirror_segments(id, segs, &m);
   m.watched = watched;
-  // events taken since the last update (those the watcher still holds)  uint64_t fresh = v.events_taken - m.events_sent;
+  // events taken since the last update (those the watcher still holds)
+  uint64_t fresh = v.events_taken - m.events_sent;
   size_t n = static_cast<size_t>(std::min<uint64_t>(fresh, v.events->size()));
   for (size_t i = v.events->size() - n; i < v.events->size(); ++i) {
     const EventOut &e = (*v.events)[i];

@@ -54,8 +54,8 @@ struct FakePort : ServerPort {
     notes.clear();
   }
   std::vector<std::vector<std::pair<uint32_t, int>>> admitted;  // every admit call's matches
-  std::vector<bool> admitted_creates;                             // and whether CREATEs come in
-  void admit(const std::vector<std::pair<uint32_t, int>> &m, bool creates) override {
+  std::vector<CreateIds> admitted_creates;                        // and the ids CREATEs may name
+  void admit(const std::vector<std::pair<uint32_t, int>> &m, CreateIds creates) override {
     admitted.push_back(m);
     admitted_creates.push_back(creates);
   }

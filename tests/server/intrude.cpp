@@ -9,7 +9,7 @@
 // the server as `not_permitted`. With --junk N it cycles through N made-up
 // match ids from --match on, a JOIN and a sample for each: they must not
 // fill the server's readers (with --create its controls are CREATEs: a
-// server takes a few, at its door's rate). With --as-server ID --forge it
+// server takes max_creates of them, the rest take their writer's share). With --as-server ID --forge it
 // forges the server topics of match --match itself instead (the review's
 // findings, from writers as strong as --strength PROFILE of the QoS file
 // says): a MatchInfo with level 99, a segment with seq 0xFFFFFFFF and ball

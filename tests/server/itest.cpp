@@ -463,18 +463,69 @@ void case_junk_keys(const Env &env) {
   CHECK(unknown <= samples);
   CHECK(unknown >= samples * 9 / 10);
   CHECK(r.status.controls_refused >= controls * 9 / 10);
-  // the CREATEs: every one counted, most turned away at the door (20 a second pass it), and the
-  // host took max_creates (2) of those that passed: the configured match and two created ones
+  // the CREATEs: every one counted and refused (their ids are not ids a CREATE may name)
   note("%llu CREATEs under made-up ids: %llu controls in, %llu refused in all; %zu matches at the end",
        static_cast<unsigned long long>(create_controls), static_cast<unsigned long long>(r.status.controls_in),
        static_cast<unsigned long long>(r.status.controls_refused), r.matches.size());
   CHECK(create_controls >= 2000);
   CHECK(r.status.controls_in <= controls + create_controls + 200);  // + the bots' own
   CHECK(r.status.controls_refused >= (controls + create_controls) * 9 / 10);
-  CHECK_EQ(r.matches.size(), 3u);
-  // the door let in at most 20 CREATEs a second (16 s) and the made-up JOINs not at all
+  CHECK_EQ(r.matches.size(), 1u);
+  // the door turned both away
   note("turned away at the door: %llu controls", static_cast<unsigned long long>(r.controls_at_door));
-  CHECK(r.controls_at_door + 20u * 17u >= controls * 9 / 10 + create_controls);
+  CHECK(r.controls_at_door >= (controls + create_controls) * 9 / 10);
+  CHECK(r.controls_at_door <= controls + create_controls);
+}
+
+// One writer's CREATEs under every id a CREATE may name (1000 to 1999),
+// 1000 a second, while a client CREATEs a match of its own and two bots
+// join the configured one: the control reader has room for every such id,
+// so the real CREATE is answered as on a quiet domain (before, each
+// made-up id stayed an instance of the reader and after 73 of them DDS
+// refused every new one), the bots rally, and every control is counted:
+// in, and refused but for the flood's own max_creates.
+void case_create_flood(const Env &env) {
+  Case c{env};
+  Server server(c.server());
+  std::string flood_out = path(env, "flood.json"), create_out = path(env, "create.json");
+  Process flood = Process::start({env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "1000", "--junk", "1000",
+                                  "--create", "--rate", "1000", "--duration", "14", "--out", flood_out},
+                                 path(env, "flood.out"), path(env, "flood.err"));
+  usleep(5000000);  // the flood under way: every id CREATEd, 5 times over
+  std::string rec = path(env, "watch.jsonl"), err;
+  Process w = ready_watcher(c, rec, {});
+  Process b0 = c.bot(0, {"--rate", "15"}), b1 = c.bot(1, {"--rate", "15"});
+  int rc = run_to_end(env, {env.bin + "/ball_create", "--domain", env.dom(), "--match", "1500", "--duration", "4",
+                            "--out", create_out},
+                      "create", &err);
+  Tail t(rec);
+  int hits = hits_after_serve_within(t, 3, 20.0);
+  CHECK_EQ(flood.wait(30.0), 0);
+  ServerReport r = stop_all(server, {&b0, &b1, &w}, path(env, "server.json"));
+  json sent = json::parse(file_text(flood_out), nullptr, false), created = json::parse(file_text(create_out), nullptr, false);
+  uint64_t creates = sent.is_object() ? sent.value("controls", uint64_t{0}) : 0;
+  double first = created.is_object() ? created.value("first_after", -1.0) : -1.0;
+  long tries = created.is_object() ? created.value("creates", 0L) : 0L;
+  uint64_t dropped = 0;
+  for (int i = 0; i < kDropReasons; ++i) dropped += r.status.drops[i];
+  note("%llu CREATEs under the ids a CREATE may name, from one writer: %llu controls in, %llu refused, %llu at the door; the real "
+       "CREATE answered %.2f s after its start (%ld sent); %d hits; %zu matches at the end",
+       static_cast<unsigned long long>(creates), static_cast<unsigned long long>(r.status.controls_in),
+       static_cast<unsigned long long>(r.status.controls_refused), static_cast<unsigned long long>(r.controls_at_door),
+       first, tries, hits, r.matches.size());
+  CHECK(creates >= 6000);
+  CHECK_MSG(rc == 0, "ball_create: status %d: %s", rc, err.c_str());
+  CHECK_MSG(first >= 0.0 && tries <= 3, "the real CREATE: answered after %.2f s, %ld sent", first, tries);
+  CHECK_MSG(hits >= 3, "the bots made %d hits among the CREATEs", hits);
+  // every control counted: the flood's (less those sent before the reader matched its writer),
+  // the bots' JOINs and the real CREATE; refused all but the real ones and the flood's max_creates
+  CHECK(r.status.controls_in >= creates * 9 / 10);
+  CHECK(r.status.controls_in <= creates + 100);
+  CHECK(r.status.controls_refused + 2 + 100 >= r.status.controls_in);
+  CHECK(r.status.controls_refused <= creates + 10);
+  CHECK_EQ(r.controls_at_door, 0u);
+  CHECK_EQ(r.matches.size(), 4u);  // the configured one, the real CREATE's and the flood's max_creates (2)
+  CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.samples_idle + dropped);
 }
 
 // A participant posing as a server on an open domain, its writers stronger
@@ -485,7 +536,9 @@ void case_junk_keys(const Env &env) {
 // While it lasts the clients read only it (exclusive ownership), refuse
 // all of it and never exit; the server yields nothing to a MatchInfo no
 // server writes; once it is gone the rally goes on, the bots' clocks and
-// streams as they were, and the watcher never opened the FIFO.
+// streams as they were, and the watcher never opened the FIFO. A second
+// watcher that chose the real server (--servers 1) refuses the forger's
+// well-formed match 7 too; both count what they refused.
 void case_forged_server(const Env &env) {
   Case c{env};
   std::string qos = path(env, "strong_qos.xml"), text = file_text(env.source + "/server/qos/ball_qos.xml");
@@ -502,8 +555,10 @@ void case_forged_server(const Env &env) {
     ~Fifo() { unlink(path.c_str()); }
   } fifo;
   std::string rec = path(env, "watch.jsonl"), stats[2] = {path(env, "bot0.json"), path(env, "bot1.json")};
+  std::string sums[2] = {path(env, "watch_any.json"), path(env, "watch_chosen.json")};
   Server server(c.server());
-  Process w = ready_watcher(c, rec, {"--snapshots", path(env, "snaps"), "--http", "0"});
+  Process w = ready_watcher(c, rec, {"--snapshots", path(env, "snaps"), "--http", "0", "--summary-json", sums[0]});
+  Process chosen = ready_watcher(c, path(env, "chosen.jsonl"), {"--servers", "1", "--summary-json", sums[1]});
   Process b0 = c.bot(0, {"--rate", "15", "--stats-json", stats[0]});
   Process b1 = c.bot(1, {"--rate", "15", "--stats-json", stats[1]});
   Tail t(rec);
@@ -515,15 +570,29 @@ void case_forged_server(const Env &env) {
                                    "--scene-name", fifo.path, "--duration", "4", "--out", forged_out},
                                   path(env, "forger.out"), path(env, "forger.err"));
   CHECK_EQ(forger.wait(20.0), 0);
-  bool alive = b0.running() && b1.running() && w.running();
+  bool alive = b0.running() && b1.running() && w.running() && chosen.running();
   size_t from = t.lines.size();
   int after = 0;
   while (after < 2 && !wait_for(t, 20.0, is_hit, &from).is_null()) after++;
   CHECK_EQ(b0.stop(5.0), 0);
   CHECK_EQ(b1.stop(5.0), 0);
   CHECK_EQ(w.stop(5.0), 0);
+  CHECK_EQ(chosen.stop(5.0), 0);
   ServerReport r = stop_server(server, path(env, "server.json"));
   json f = json::parse(file_text(forged_out), nullptr, false);
+  // what each watcher did not take, of match 0 and of the decoy match 7
+  uint64_t not_taken[2][2] = {{0, 0}, {0, 0}};
+  bool decoy_taken = false;  // by the watcher that chose server 1
+  for (int i = 0; i < 2; ++i) {
+    json j = json::parse(file_text(sums[i]), nullptr, false);
+    CHECK_MSG(j.is_object(), "no summary in %s", sums[i].c_str());
+    if (!j.is_object()) continue;
+    WatchSummary s = j.get<WatchSummary>();
+    for (const auto &m : s.matches) {
+      if (m.match == 0) not_taken[i][0] = m.not_taken;
+      if (m.match == 7) not_taken[i][1] = m.not_taken, decoy_taken = decoy_taken || (i == 1 && m.segments > 0);
+    }
+  }
   long forged = f.is_object() ? f.value("infos", 0L) : 0L;
   uint64_t refused[2] = {0, 0};
   for (int i = 0; i < 2; ++i) {
@@ -538,6 +607,14 @@ void case_forged_server(const Env &env) {
   CHECK_MSG(alive, "a client ended under the forgeries");
   CHECK_MSG(after >= 2, "%d hits after the forger left", after);
   CHECK(refused[0] >= 10 && refused[1] >= 10);
+  note("the watcher of any server did not take %llu samples of match 0, %llu of match 7; the one that chose server "
+       "1: %llu and %llu",
+       static_cast<unsigned long long>(not_taken[0][0]), static_cast<unsigned long long>(not_taken[0][1]),
+       static_cast<unsigned long long>(not_taken[1][0]), static_cast<unsigned long long>(not_taken[1][1]));
+  CHECK(not_taken[0][0] >= static_cast<uint64_t>(forged));  // at least the level-99 MatchInfo, every round
+  CHECK(not_taken[1][0] >= static_cast<uint64_t>(forged));
+  CHECK(not_taken[1][1] >= static_cast<uint64_t>(forged) / 2);  // the decoy, refused by the choice alone
+  CHECK(!decoy_taken);
   CHECK(r.others_refused >= 10);
   CHECK_EQ(r.yields, 0u);
   CHECK_EQ(r.matches.size(), 1u);
@@ -559,10 +636,7 @@ void case_inbox_share(const Env &env) {
   Tail t(rec);
   int hits = hits_after_serve_within(t, 3, 20.0);
   CHECK_EQ(f.wait(20.0), 0);
-  CHECK_EQ(b0.stop(5.0), 0);
-  CHECK_EQ(b1.stop(5.0), 0);
-  CHECK_EQ(w.stop(5.0), 0);
-  ServerReport r = stop_server(server, path(env, "server.json"));
+  ServerReport r = stop_all(server, {&b0, &b1, &w}, path(env, "server.json"));
   json sent = json::parse(file_text(flood_out), nullptr, false);
   uint64_t rejected = r.status.drops[static_cast<int>(SampleResult::rejected)], per_match[2] = {0, 0};
   for (const auto &m : r.matches)
@@ -586,7 +660,7 @@ void case_create_expires(const Env &env) {
   Case c{env};
   Server server(c.server({"--create-timeout", "2", "--max-creates", "1"}));
   std::string err;
-  int rc = run_to_end(env, {env.bin + "/ball_create", "--domain", env.dom(), "--match", "40", "--duration", "1.5",
+  int rc = run_to_end(env, {env.bin + "/ball_create", "--domain", env.dom(), "--match", "1040", "--duration", "1.5",
                             "--out", path(env, "create.json")},
                       "create", &err);
   CHECK_MSG(rc == 0, "ball_create: status %d: %s", rc, err.c_str());
@@ -597,7 +671,7 @@ void case_create_expires(const Env &env) {
   w.stop();
   Tail t(rec);
   t.poll();
-  size_t of40 = count(t.lines, [](const json &j) { return is_type(j, "match_info") && j.at("match") == 40; });
+  size_t of40 = count(t.lines, [](const json &j) { return is_type(j, "match_info") && j.at("match") == 1040; });
   size_t of0 = count(t.lines, [](const json &j) { return is_type(j, "match_info") && j.at("match") == 0; });
   note("a watcher 4 s after the CREATE: %zu MatchInfo of the created match, %zu of the configured one", of40, of0);
   CHECK_EQ(of40, 0u);
@@ -954,6 +1028,7 @@ TEST(pause) { in_case(case_pause); }
 TEST(flood) { in_case(case_flood); }
 TEST(key_flood) { in_case(case_key_flood); }
 TEST(junk_keys) { in_case(case_junk_keys); }
+TEST(create_flood) { in_case(case_create_flood); }
 TEST(forged_server) { in_case(case_forged_server); }
 TEST(inbox_share) { in_case(case_inbox_share); }
 TEST(create_expires) { in_case(case_create_expires); }

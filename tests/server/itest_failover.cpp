@@ -366,7 +366,7 @@ void case_claim(const Env &env) {
   Process load = bots(env, n);
   Tail t(rec);
   CHECK_MSG(rallies(t, n, 2, 40.0), "not every match had 2 hits within 40 s");
-  Process create = program(env, "create", "ball_create", {"--match", "40", "--duration", "4", "--out",
+  Process create = program(env, "create", "ball_create", {"--match", "1040", "--duration", "4", "--out",
                                                           path(env, "create.json")});
   int crc = create.wait(15.0);
   CHECK_MSG(crc == 0, "ball_create: status %d", crc);

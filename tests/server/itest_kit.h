@@ -11,6 +11,7 @@
 #include <cmath>
 #include <fstream>
 #include <functional>
+#include <initializer_list>
 #include <string>
 #include <vector>
 
@@ -170,6 +171,15 @@ inline ServerReport stop_server(Server &server, const std::string &stats) {
     CHECK_MSG(false, "the server's report %s: %s", stats.c_str(), e.what());
   }
   return r;
+}
+
+// The clients stopped, each with status 0 within 5 s, then the server: its report.
+inline ServerReport stop_all(Server &server, std::initializer_list<Process *> clients, const std::string &stats) {
+  for (Process *p : clients) {
+    int rc = p->stop(5.0);
+    CHECK_MSG(rc == 0, "a client's exit status %d", rc);
+  }
+  return stop_server(server, stats);
 }
 
 // A server, a watcher recording to `record` and two bots with the same

@@ -345,6 +345,8 @@ TEST(lost_counts_each_skipped_seq_of_the_holder_once) {
       rejected++;
     }
     CHECK_EQ(stranger_lost, 0u);
+    g.match.end_streams();  // the gaps still open for a late sample: lost
+    lost += g.match.take_lost();
     CHECK_EQ(g.match.counters().rejected, rejected);  // the match's share of the server's rejected
     CHECK_MSG(lost + arrived == static_cast<uint64_t>(newest - first) + 1u,
               "seed %llu: %llu lost + %llu arrived, seqs %u..%u", static_cast<unsigned long long>(seed),
@@ -363,7 +365,52 @@ TEST(lost_counts_each_skipped_seq_of_the_holder_once) {
   g.run(0.02);
   g.seq[0] += 2;  // two lost
   CHECK(g.match.on_sample(g.parked_sample(0), g.now, &lost) == SampleResult::accepted);
-  CHECK_EQ(lost, 2u);
+  CHECK_EQ(lost, 0u);  // not yet: a late sample may fill them
+  g.match.end_streams();
+  CHECK_EQ(g.match.take_lost(), 2u);
+}
+
+// A stream with known gaps, late samples, a forged jump and a rejoin, by
+// hand: a gap counts lost once the stream is 16 seqs past it (or ends)
+// without it; a late sample that fills its gap before then counts where it
+// is dropped (out_of_order), never lost; one later than that was counted
+// lost already and counts out_of_order too (docs/protocol.md, `lost`).
+TEST(lost_counts_a_gap_once_the_window_has_passed_it) {
+  Game g = two_players();
+  g.run(1.0);
+  g.park[0] = false;
+  CHECK(g.control(ControlKind::join, A, 0) == Reason::none);  // the stream starts anew
+  uint64_t lost = 0;
+  auto next = [&](uint32_t seq) {
+    g.run(0.02);
+    g.seq[0] = seq - 1;
+    return g.match.on_sample(g.parked_sample(0), g.now, &lost);
+  };
+  CHECK(next(1) == SampleResult::accepted);
+  CHECK(next(2) == SampleResult::accepted);
+  CHECK(next(5) == SampleResult::accepted);      // 3 and 4 skipped: gaps, not yet lost
+  CHECK(next(4) == SampleResult::out_of_order);  // late: fills its gap
+  CHECK(next(6) == SampleResult::accepted);
+  CHECK_EQ(lost, 0u);
+  CHECK(next(30) == SampleResult::accepted);     // 3 leaves the window; of 7..29, 7..13 at once
+  CHECK_EQ(lost, 1u + 7u);
+  CHECK(next(20) == SampleResult::out_of_order); // late, in the window: fills its gap
+  CHECK(next(13) == SampleResult::out_of_order); // 17 behind: counted lost already
+  CHECK(next(30 + 1001) == SampleResult::out_of_order);  // a forged jump: no gap, the stream stays
+  CHECK_EQ(lost, 8u);
+  CHECK(next(31) == SampleResult::accepted);     // 14 leaves the window
+  CHECK_EQ(lost, 9u);
+  CHECK_EQ(g.match.take_lost(), 0u);
+  // a JOIN anew ends the stream: its open gaps, 15..29 but 20, are lost
+  CHECK(g.control(ControlKind::join, A, 0) == Reason::none);
+  CHECK_EQ(g.match.take_lost(), 14u);
+  // of 1..31: 22 seqs never arrived, and 13 came too late: 23 in all
+  CHECK(next(1) == SampleResult::accepted);      // the new stream
+  CHECK(next(3) == SampleResult::accepted);
+  CHECK(g.control(ControlKind::leave, A, 0) == Reason::none);  // a LEAVE ends it too: 2
+  CHECK_EQ(g.match.take_lost(), 1u);
+  CHECK_EQ(lost, 9u);
+  CHECK_EQ(g.match.take_lost(), 0u);  // each gap once
 }
 
 TEST(vanished_player_pauses_and_resumes) {
@@ -585,15 +632,20 @@ TEST(host_routes_and_creates) {
   Match *m = nullptr;
   ControlIn c;
   c.kind = ControlKind::create;
-  c.match_id = 8;
+  c.match_id = 1008;
   c.scene = "nowhere";
   CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_bad_value);
   c.scene = "tennis";
   c.players = 2;
   c.level = 2;
+  c.match_id = 4096;  // not an id CREATEs may name (by default 0 to 4095)
+  CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_bad_value);
+  c.match_id = 0xFFFFFFFFu;
+  CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_bad_value);
+  c.match_id = 1008;
   CHECK(host.on_control(c, 0.0, &out, &m) == Reason::none);
-  CHECK(m != nullptr && m->id() == 8 && m->config().level == BALL_LEVEL_MID);
-  c.match_id = 9;
+  CHECK(m != nullptr && m->id() == 1008 && m->config().level == BALL_LEVEL_MID);
+  c.match_id = 1009;
   CHECK(host.on_control(c, 0.0, &out, &m) == Reason::refused_no_room);  // max_matches 2
   c.kind = ControlKind::join;
   c.match_id = 42;
@@ -608,18 +660,18 @@ TEST(host_routes_and_creates) {
   open.add_scene("tennis", scene, &err);
   open.set_max_creates(2);
   c.from = participant(3);
-  for (uint32_t id : {20u, 21u}) {
+  for (uint32_t id : {1020u, 1021u}) {
     c.match_id = id;
     CHECK(open.on_control(c, 0.0, &out, &m) == Reason::none);
   }
-  c.match_id = 22;
+  c.match_id = 1022;
   CHECK(open.on_control(c, 0.0, &out, &m) == Reason::refused_no_room);
   c.from = participant(4);
   CHECK(open.on_control(c, 0.0, &out, &m) == Reason::none);
-  CHECK(open.creator(20) == participant(3) && open.creator(22) == participant(4));
-  open.remove(20);  // one gone: the first may create again
+  CHECK(open.creator(1020) == participant(3) && open.creator(1022) == participant(4));
+  open.remove(1020);  // one gone: the first may create again
   c.from = participant(3);
-  c.match_id = 23;
+  c.match_id = 1023;
   CHECK(open.on_control(c, 0.0, &out, &m) == Reason::none);
 }
 
