@@ -33,6 +33,7 @@ set(BALL_DDS_DOMAINS
   "dds_discovery_flood|122|test: 3000 made-up participant announcements: bounded memory, found again after their leases"
   "dds_lag|123|test: late-swinging bots behind 150 ms: lag compensation finds their hits, rewinds, no desync"
   "dds_create_flood|124|test: 1000 CREATEs a second under every id a CREATE may name: a real CREATE answered at once, the bots rally"
+  "dds_control_share|126|test: a stranger's flood of JOINs into match 1: match 0's bots join and rally"
   "web_page|125|test: the spectator page in headless Chromium follows a rally, a server killed and a new one"
   "dds_discovery|120|test: server, bots and watcher found through a Discovery Server only"
   "test_teardown|141|test: one participant deleted within the teardown limit")

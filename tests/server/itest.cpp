@@ -620,6 +620,50 @@ void case_forged_server(const Env &env) {
   CHECK_EQ(r.matches.size(), 1u);
 }
 
+// A flood on one match does not reach another: a stranger writes 1000 JOINs
+// and 1000 racket samples a second into match 1 (a match the server has: it
+// takes slot 0 there, a legal move, and then re-JOINs on and on) while two
+// bots join match 0. Controls are kept per match (keyed by match_id, the
+// newest 16 each), so match 0's JOINs get through and its bots rally; the
+// server counts every control that reached it (taken, refused or lost by
+// DDS) and its racket books balance.
+void case_control_share(const Env &env) {
+  Case c{env};
+  Server server(c.server({"--matches", "2"}));
+  std::string flood_out = path(env, "flood.json");
+  Process f = Process::start({env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "1", "--junk", "1",
+                              "--rate", "1000", "--duration", "14", "--out", flood_out},
+                             path(env, "flood.out"), path(env, "flood.err"));
+  usleep(3000000);
+  std::string rec = path(env, "watch.jsonl");
+  Process w = ready_watcher(c, rec, {"--match", "0"});
+  double started = mono_now();
+  Process b0 = c.bot(0, {"--rate", "15"}), b1 = c.bot(1, {"--rate", "15"});
+  Tail t(rec);
+  json serve = wait_for(t, 20.0, [](const json &j) { return is_type(j, "event") && j.at("kind") == "serve"; });
+  double joined = mono_now() - started;
+  int hits = serve.is_null() ? 0 : hits_after_serve_within(t, 3, 20.0);
+  CHECK_EQ(f.wait(30.0), 0);
+  b0.stop();
+  b1.stop();
+  w.stop();
+  ServerReport r = stop_server(server, path(env, "server.json"));
+  json sent = json::parse(file_text(flood_out), nullptr, false);
+  uint64_t controls = sent.is_object() ? sent.value("controls", 0u) : 0u;
+  uint64_t dropped = 0;
+  for (int i = 0; i < kDropReasons; ++i) dropped += r.status.drops[i];
+  note("a stranger's %llu JOINs and %llu samples into match 1: %llu controls in (%llu refused); match 0's first "
+       "serve %.2f s after its bots started, %d hits",
+       static_cast<unsigned long long>(controls), static_cast<unsigned long long>(sent.value("samples", 0u)),
+       static_cast<unsigned long long>(r.status.controls_in), static_cast<unsigned long long>(r.status.controls_refused),
+       joined, hits);
+  CHECK(controls >= 8000);
+  CHECK_MSG(!serve.is_null() && joined <= 10.0, "match 0 served %.2f s after its bots started", joined);
+  CHECK_MSG(hits >= 3, "match 0: %d hits under the flood of match 1", hits);
+  CHECK(r.status.controls_in >= controls * 9 / 10);  // counted, whatever became of them
+  CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.samples_idle + dropped);
+}
+
 // One slot's burst takes its own share of the server's racket inbox only:
 // a holder of match 0 writes 20,000 samples at once while two bots rally
 // in match 1; what did not fit is counted rejected, all of it match 0's.
@@ -1028,6 +1072,7 @@ TEST(pause) { in_case(case_pause); }
 TEST(flood) { in_case(case_flood); }
 TEST(key_flood) { in_case(case_key_flood); }
 TEST(junk_keys) { in_case(case_junk_keys); }
+TEST(control_share) { in_case(case_control_share); }
 TEST(create_flood) { in_case(case_create_flood); }
 TEST(forged_server) { in_case(case_forged_server); }
 TEST(inbox_share) { in_case(case_inbox_share); }
