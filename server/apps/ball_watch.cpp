@@ -211,6 +211,9 @@ int main(int argc, char **argv) {
   w.output().records.push_back({{"type", "summary"}, {"summary", sum}});
   if (!quiet)
     for (const auto &line : summary_lines(sum)) std::printf("%s\n", line.c_str());
+  if (!quiet && web)
+    std::printf("summary: the spectator page: %llu streams opened, %llu refused (too many at once)\n",
+                static_cast<unsigned long long>(web->pages_opened()), static_cast<unsigned long long>(web->pages_refused()));
   if (!(err = drain(w, rec, snap, rackets, true, start)).empty() || (rec.is_open() && !rec.close())) return fail(kProgram, err.empty() ? rec.error() : err);
   if (!summary_json.empty() && !write_file(summary_json, json(sum).dump(1), &err)) return fail(kProgram, err);
   dds::set_exit_status_if_stuck(0);  // all is written: a stuck DDS teardown still ends well (domain.h)

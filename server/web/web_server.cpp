@@ -166,6 +166,8 @@ std::unique_ptr<WebServer> WebServer::start(const WebSettings &settings, const S
     return nullptr;
   }
   p->thread = std::thread([p] { p->http.listen_after_bind(); });
+  // serving before start returns: a stop() before the listening loop runs would not end it
+  for (int i = 0; i < 2000 && !p->http.is_running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));
   return std::unique_ptr<WebServer>(new WebServer(std::move(impl)));
 }
 

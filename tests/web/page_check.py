@@ -15,7 +15,8 @@ also on a failure. Checks, each with its numbers printed:
      yellow pixels within 3 px of libball's projection (web_probe shot), every
      court line's middle white, the court between them blue;
   4. the server killed: the page says so and keeps the last ball still; a
-     new server: the page picks the match up again and the ball moves;
+     new server: the page picks the match up again and the ball moves; the
+     watcher stopped and started again: the same, and the page reconnects;
   5. no console errors, no uncaught exception, from start to end;
   and a page opened mid-rally draws the ball at once (within 5 s of asking,
   the browser's start of three.js included).
@@ -66,8 +67,23 @@ def stop(p, sig=signal.SIGTERM, wait=10.0):
 
 
 def server(a, work, name):
+    """A server of two matches: the bots play match 0, match 1 waits for players."""
     return start([a.bin + "/ball-server", "--domain", str(a.domain), "--server-id", "1", "--startup-wait", "0",
-                  "--duration", "300"], name, work)
+                  "--matches", "2", "--duration", "300"], name, work)
+
+
+def watcher(a, name, port):
+    """ball-watch --http PORT with its own ball in its record; the page's URL once it serves."""
+    record = os.path.join(a.work, name + ".jsonl")
+    start([a.bin + "/ball-watch", "--domain", str(a.domain), "--http", str(port), "--no-log", "--record", record,
+           "--record-frames", "--fps", "30"], name, a.work)
+    deadline = time.time() + 20
+    while time.time() < deadline:
+        m = re.search(r"the spectator page is at (\S+)", open(os.path.join(a.work, name + ".log")).read())
+        if m:
+            return record, m.group(1)
+        time.sleep(0.1)
+    return record, None
 
 
 class Record:
@@ -141,14 +157,7 @@ def main():
         for i in range(2):
             start([a.bin + "/ball-bot", "--domain", str(a.domain), "--player", str(i), "--seed", str(7 + i),
                    "--duration", "300"], "bot%d" % i, a.work)
-        record = os.path.join(a.work, "watch.jsonl")
-        start([a.bin + "/ball-watch", "--domain", str(a.domain), "--http", "0", "--no-log", "--record", record,
-               "--record-frames", "--fps", "30"], "watch", a.work)
-        url, deadline = None, time.time() + 20
-        while url is None and time.time() < deadline:
-            m = re.search(r"the spectator page is at (\S+)", open(os.path.join(a.work, "watch.log")).read())
-            url = m.group(1) if m else None
-            time.sleep(0.1)
+        record, url = watcher(a, "watch", 0)
         check(url is not None and url.startswith("http://127.0.0.1:"), "ball-watch serves the page on loopback: %s" % url)
         if url is None:
             return 1
@@ -159,6 +168,9 @@ def main():
                          "the page's first ball")
         first = time.time() - opened
         check(first <= 5.0, "opened mid-rally, the page drew the ball %.2f s after it was asked for" % first)
+        listed = browser.wait_for("window.spectator.matches().length === 2 && window.spectator.matches()", 10,
+                                  "both matches listed")
+        check(sorted(listed) == [0, 1], "the page lists every match the watcher sees: %s" % listed)
 
         # 1. the page's ball and the watcher's
         rec = Record(record)
@@ -238,6 +250,28 @@ def main():
         n, worst, older, newer = agreement(browser, rec, 15, 30)
         check(n >= 30 and worst <= 1e-3 and older == 0,
               "after the new server: %d watcher frame times, largest difference %.3g m" % (n, worst))
+
+        # the watcher stopped and started again on the same port: the page says so, holds the ball, comes back
+        port = int(re.match(r"http://[^:/]+:(\d+)/", url).group(1))
+        watch = [p for p in procs if "ball-watch" in p.args[0]][0]
+        check(stop(watch) == 0, "ball-watch stopped (SIGTERM) with status 0 while a page streamed")
+        browser.wait_for("window.spectator.connected() === false", 10, "the page to see the watcher gone")
+        s1 = browser.evaluate("JSON.stringify(window.spectator.sample(0))")
+        time.sleep(1.0)
+        s2 = browser.evaluate("JSON.stringify(window.spectator.sample(0))")
+        banner = browser.evaluate("document.getElementById('banner').hidden === false && "
+                                  "document.getElementById('banner').textContent")
+        check(s1 == s2 and bool(banner), "watcher gone: the page said so (\"%s\") and its ball stood still" % banner)
+        record, url2 = watcher(a, "watch2", port)
+        back = time.time()
+        browser.wait_for("(() => { const s = window.spectator.connected() && window.spectator.sample(0);"
+                         " return s && s.live && s.ball; })()", 20, "the page to reconnect")
+        check(url2 == url, "a watcher on the same port: the page reconnected by itself after %.1f s"
+              % (time.time() - back))
+        rec = Record(record)
+        n, worst, older, newer = agreement(browser, rec, 15, 30)
+        check(n >= 30 and worst <= 1e-3 and older == 0,
+              "after the reconnection: %d watcher frame times, largest difference %.3g m" % (n, worst))
 
         # bounded: the page's stream and 7 more are served, the 9th is told 503, the page goes on
         host, port = re.match(r"http://([^:/]+):(\d+)/", url).groups()

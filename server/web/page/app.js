@@ -34,6 +34,7 @@
   let preset = "side"; // the camera preset, null while orbiting
   let held = null; // {match, t}: a frame held still (tests)
   let connected = false;
+  let lostAt = null; // this host's realtime when ball-watch went out of reach
   let frames = 0;
   const errors = [];
   window.addEventListener("error", (e) => errors.push(String(e.message)));
@@ -395,19 +396,22 @@
     const source = new EventSource("stream");
     source.onopen = () => {
       connected = true;
+      lostAt = null;
       ui.dirty = true;
     };
     source.onmessage = (ev) => receive(JSON.parse(ev.data));
     source.onerror = () => {
-      connected = false; // EventSource tries again by itself
+      if (connected) lostAt = nowSec(); // the ball stands where it was; EventSource tries again by itself
+      connected = false;
       ui.dirty = true;
     };
   }
 
   // The sim time a match is drawn at: its clock's estimate (standing still
-  // while its server is gone: the clock messages say so).
+  // while its server is gone, as the clock messages say, and while ball-watch
+  // cannot be reached).
   function simNow(w) {
-    return w.clock.valid ? w.clock.simNow(nowSec()) : null;
+    return w.clock.valid ? w.clock.simNow(lostAt === null ? nowSec() : lostAt) : null;
   }
 
   function frame() {
