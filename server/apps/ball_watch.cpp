@@ -20,6 +20,7 @@
 #include "client_endpoints.h"
 #include "common.h"
 #include "racket_tracks.h"
+#include "watch_feed.h"
 #include "watcher.h"
 #include "web_server.h"
 
@@ -34,9 +35,29 @@ const char *kProgram = "ball-watch";
 struct Snapshots {
   std::string dir, camera = "side";
   std::vector<int> size{640, 480};  // pixels
+  double every = 0.5;               // sim s
   ball_renderer *renderer = nullptr;
   std::map<uint32_t, ball_model> courts;  // by match
   ~Snapshots() { ball_renderer_destroy(renderer); }
+
+  void add_options(CLI::App &cli) {
+    std::vector<std::string> cameras;
+    for (int i = 0; i < BALL_CAMERA_PRESET_COUNT; ++i) cameras.push_back(ball_camera_preset_name(static_cast<ball_camera_preset>(i)));
+    cli.add_option("--snapshots", dir, "write PNG frames of each match to DIR (m<match>_t<sim time>.png)");
+    cli.add_option("--snapshot-every", every, "with --snapshots: sim seconds between frames")->capture_default_str()->check(CLI::Range(0.01, 3600.0));
+    cli.add_option("--camera", camera, "with --snapshots: the camera")->capture_default_str()->check(CLI::IsMember(cameras));
+    cli.add_option("--size", size, "with --snapshots: WxH pixels (default 640x480)")->delimiter('x')->expected(2)
+        ->check(CLI::Range(BALL_RENDER_MIN_SIZE, BALL_RENDER_MAX_SIZE));
+  }
+  // The folder, made if it is not there: "" or what went wrong.
+  std::string make_dir() const {
+    struct stat st {};
+    if (dir.empty()) return "";
+    if (::stat(dir.c_str(), &st) != 0 && ::mkdir(dir.c_str(), 0777) != 0)
+      return "--snapshots: cannot create " + dir + ": " + std::strerror(errno);
+    if (::stat(dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)) return "--snapshots: " + dir + " is not a folder";
+    return "";
+  }
 
   // The frame into dir: "" and its path in *file, or what went wrong.
   std::string draw(const SnapshotDue &d, const RacketTracks &rackets, SnapshotRecord *drawn) {
@@ -80,6 +101,33 @@ struct Snapshots {
   }
 };
 
+// --http: the spectator page (server/web).
+struct Page {
+  int port = -1;  // -1: none
+  std::string address = WebSettings().address;
+  std::unique_ptr<WebServer> web;
+
+  void add_options(CLI::App &cli) {
+    cli.add_option("--http", port, "serve the spectator page on PORT (0: a free port; the URL is printed); "
+                                   "docs/server.md, \"The spectator page\"")->check(CLI::Range(0, 65535));
+    cli.add_option("--http-address", address, "with --http: the address to listen on")->capture_default_str();
+  }
+  // Serving, when asked for: "" or what went wrong.
+  std::string start() {
+    if (port < 0) return "";
+    WebSettings o;
+    o.address = address;
+    o.port = port;
+    o.page_dir = find_page_dir();
+    o.three_dir = find_three_dir();
+    std::string err;
+    if (!(web = WebServer::start(o, SpectatorSettings(), court_model, &err))) return "--http: " + err;
+    std::printf("%s: the spectator page is at %s\n", kProgram, web->url().c_str());
+    std::fflush(stdout);
+    return "";
+  }
+};
+
 // Prints, records and draws what the watcher produced; "" or what went wrong.
 std::string drain(Watcher &w, OutputFile &rec, Snapshots &snap, const RacketTracks &rackets, bool quiet, double start) {
   WatchOutput &out = w.output();
@@ -107,14 +155,13 @@ int main(int argc, char **argv) {
   CLI::App cli{"ball-watch: watch ball-server's matches: the rally log, a JSON Lines record, the ball\n"
                "evaluated from segments and checked against the server's ball states"};
   WatcherSettings ws;
-  double duration = 0.0, every = 0.5;
+  double duration = 0.0;
   std::string record, summary_json, err;
   bool quiet = false, no_log = false;
   uint64_t until_hits = 0;
   Snapshots snap;
+  Page page;
   DdsOptions dds_opt;
-  std::vector<std::string> cameras;
-  for (int i = 0; i < BALL_CAMERA_PRESET_COUNT; ++i) cameras.push_back(ball_camera_preset_name(static_cast<ball_camera_preset>(i)));
   std::string servers;
   cli.add_option("--match", ws.match, "watch this match only (default: all)");
   cli.add_option("--servers", servers, "use the server topics only from these server ids, comma-separated; "
@@ -128,26 +175,14 @@ int main(int argc, char **argv) {
   cli.add_option("--summary-json", summary_json, "write the summary to FILE as JSON at exit");
   cli.add_flag("--no-log", no_log, "no rally log, only the summary");
   cli.add_flag("--quiet,-q", quiet, "print nothing but errors");
-  cli.add_option("--snapshots", snap.dir, "write PNG frames of each match to DIR (m<match>_t<sim time>.png)");
-  cli.add_option("--snapshot-every", every, "with --snapshots: sim seconds between frames")->capture_default_str()->check(CLI::Range(0.01, 3600.0));
-  cli.add_option("--camera", snap.camera, "with --snapshots: the camera")->capture_default_str()->check(CLI::IsMember(cameras));
-  cli.add_option("--size", snap.size, "with --snapshots: WxH pixels (default 640x480)")->delimiter('x')->expected(2)
-      ->check(CLI::Range(BALL_RENDER_MIN_SIZE, BALL_RENDER_MAX_SIZE));
-  int http = -1;
-  std::string http_address = WebSettings().address;
-  cli.add_option("--http", http, "serve the spectator page on PORT (0: a free port; the URL is printed); "
-                                 "docs/server.md, \"The spectator page\"")->check(CLI::Range(0, 65535));
-  cli.add_option("--http-address", http_address, "with --http: the address to listen on")->capture_default_str();
+  snap.add_options(cli);
+  page.add_options(cli);
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
   ws.log = !no_log && !quiet;
   if (!ServerChoice::parse(servers, &ws.servers, &err)) return fail(kProgram, err);
-  ws.snapshot_every = snap.dir.empty() ? 0.0 : every;
-  struct stat st {};
-  if (!snap.dir.empty() && ::stat(snap.dir.c_str(), &st) != 0 && ::mkdir(snap.dir.c_str(), 0777) != 0)
-    return fail(kProgram, "--snapshots: cannot create " + snap.dir + ": " + std::strerror(errno));
-  if (!snap.dir.empty() && (::stat(snap.dir.c_str(), &st) != 0 || !S_ISDIR(st.st_mode)))
-    return fail(kProgram, "--snapshots: " + snap.dir + " is not a folder");
+  ws.snapshot_every = snap.dir.empty() ? 0.0 : snap.every;
+  if (!(err = snap.make_dir()).empty()) return fail(kProgram, err);
 
   install_stop_signals();
   auto domain = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
@@ -155,47 +190,22 @@ int main(int argc, char **argv) {
                                   {dds_opt.security, dds_opt.identity});
   if (!domain) return fail(kProgram, err);
   dds::ClientNeeds needs{0, 0, dds::kClientRoom, true, true, "", ws.servers.bound()};
-  needs.rackets = http >= 0 || !snap.dir.empty();  // the rackets are drawn
+  needs.rackets = page.port >= 0 || !snap.dir.empty();  // the rackets are drawn
   auto port = dds::ClientEndpoints::open(*domain, needs, &err);
   if (!port) return fail(kProgram, err);
   RacketTracks rackets(court_model);
-  std::unique_ptr<WebServer> web;
-  if (http >= 0) {
-    WebSettings web_opt;
-    web_opt.address = http_address;
-    web_opt.port = http;
-    web_opt.page_dir = find_page_dir();
-    web_opt.three_dir = find_three_dir();
-    if (!(web = WebServer::start(web_opt, SpectatorSettings(), court_model, &err))) return fail(kProgram, "--http: " + err);
-    std::printf("%s: the spectator page is at %s\n", kProgram, web->url().c_str());
-    std::fflush(stdout);
-  }
+  if (!(err = page.start()).empty()) return fail(kProgram, err);
   OutputFile rec;
   if (!record.empty() && !rec.open(record)) return fail(kProgram, rec.error());
   Watcher w(ws);
   const double start = mono_now();
+  std::vector<RacketSampleIn> drawn;  // the racket samples of a turn, for the page
   w.on_start(realtime_now());
   for (double next_frame = start; !stop_requested(); sleep_until(std::min(next_frame, mono_now() + 0.002))) {
     double now = mono_now(), real = realtime_now();
     if ((duration > 0.0 && now - start >= duration) || (until_hits > 0 && w.hits() >= until_hits)) break;
-    // events are not kept for late joiners: what came before "ready" is not seen
-    if (port->hears_server()) w.on_ready(real);
-    MatchInfoOut info;
-    while (port->take(&info)) w.on_info(info, real);
-    SegmentOut seg;
-    while (port->take(&seg)) w.on_segment(seg, real);
-    EventOut e;
-    while (port->take(&e)) w.on_event(e, real);
-    StateOut s;
-    while (port->take(&s)) w.on_state(s, real);
-    StatusOut so;
-    while (port->take(&so)) w.on_status(so);
-    w.check_states();
-    RacketSampleIn rs;
-    std::vector<RacketSampleIn> drawn;
-    while (port->take(&rs))
-      if (rackets.take(rs, w)) drawn.push_back(rs);
-    if (web) web->update([&](Spectator &sp) {
+    take_all(*port, w, &rackets, real, &drawn);
+    if (page.web) page.web->update([&](Spectator &sp) {
         for (const auto &r : drawn) sp.on_racket(r);
         sp.update(w, real);
       });
@@ -211,9 +221,10 @@ int main(int argc, char **argv) {
   w.output().records.push_back({{"type", "summary"}, {"summary", sum}});
   if (!quiet)
     for (const auto &line : summary_lines(sum)) std::printf("%s\n", line.c_str());
-  if (!quiet && web)
+  if (!quiet && page.web)
     std::printf("summary: the spectator page: %llu streams opened, %llu refused (too many at once)\n",
-                static_cast<unsigned long long>(web->pages_opened()), static_cast<unsigned long long>(web->pages_refused()));
+                static_cast<unsigned long long>(page.web->pages_opened()),
+                static_cast<unsigned long long>(page.web->pages_refused()));
   if (!(err = drain(w, rec, snap, rackets, true, start)).empty() || (rec.is_open() && !rec.close())) return fail(kProgram, err.empty() ? rec.error() : err);
   if (!summary_json.empty() && !write_file(summary_json, json(sum).dump(1), &err)) return fail(kProgram, err);
   dds::set_exit_status_if_stuck(0);  // all is written: a stuck DDS teardown still ends well (domain.h)

@@ -7,6 +7,7 @@
 #include <deque>
 
 #include "check.hpp"
+#include "fake_client_port.h"
 #include "game.h"
 #include "player_group.h"
 
@@ -187,40 +188,6 @@ TEST(a_bot_takes_nothing_that_does_not_fit) {
     CHECK_MSG(!ServerChoice::parse(text, &two, &err), "\"%s\" taken", text);
   CHECK(two.accepts(2) && !two.accepts(3));  // a refused text leaves the choice as it was
 }
-
-namespace {
-
-// what a group reads and writes, without a network
-struct FakeClientPort : ClientPort {
-  std::deque<MatchInfoOut> infos;
-  std::deque<SegmentOut> segments;
-  std::vector<RacketSampleIn> samples;
-  std::vector<ControlIn> controls;
-  bool refuse = false;
-  template <class T>
-  static bool pop(std::deque<T> &q, T *out) {
-    if (q.empty()) return false;
-    *out = q.front();
-    q.pop_front();
-    return true;
-  }
-  bool take(MatchInfoOut *i) override { return pop(infos, i); }
-  bool take(SegmentOut *s) override { return pop(segments, s); }
-  bool take(StateOut *) override { return false; }
-  bool take(EventOut *) override { return false; }
-  bool take(StatusOut *) override { return false; }
-  bool write(const RacketSampleIn &s) override {
-    if (!refuse) samples.push_back(s);
-    return !refuse;
-  }
-  bool write(const ControlIn &c) override {
-    if (!refuse) controls.push_back(c);
-    return !refuse;
-  }
-  bool hears_server() const override { return true; }
-};
-
-}  // namespace
 
 TEST(a_group_routes_by_match_and_counts_refused_writes) {
   Game g;  // match 7

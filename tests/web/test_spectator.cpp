@@ -10,10 +10,12 @@
 #include "ball/render.h"
 #include "check.hpp"
 #include "court.h"
+#include "fake_client_port.h"
 #include "game.h"
 #include "racket_tracks.h"
 #include "records.h"
 #include "spectator.h"
+#include "watch_feed.h"
 #include "watcher.h"
 
 using namespace test;
@@ -209,6 +211,44 @@ TEST(a_reader_that_fell_behind_is_told) {
   CHECK_EQ(got.size(), 8u);
   CHECK(sp.since(sp.newest() - 8, 3, &got));
   CHECK_EQ(got.size(), 3u);  // at most `max`
+}
+
+// ball-watch's turn (watch_feed.h): everything the port has reaches the
+// watcher, and only the holder's racket samples reach the tracks and the page
+TEST(a_turn_takes_everything_the_port_has) {
+  Game g = played(6.0);
+  FakeClientPort port;
+  port.infos.push_back(g.match.info());
+  port.segments.assign(g.segments.begin(), g.segments.end());
+  port.events.assign(g.events.begin(), g.events.end());
+  port.states.assign(g.states.begin(), g.states.end());
+  RacketSampleIn mine = g.parked_sample(1), stranger = mine;
+  stranger.from = participant(9);
+  stranger.capture_time += 0.1;
+  port.rackets = {mine, stranger};
+  Watcher w(WatcherSettings{});
+  RacketTracks tracks(court_of);
+  std::vector<RacketSampleIn> drawn;
+  take_all(port, w, &tracks, 1000.0, &drawn);
+  CHECK(port.infos.empty() && port.segments.empty() && port.events.empty() && port.states.empty());
+  CHECK(port.rackets.empty());
+  WatchedView v;
+  CHECK(w.view(g.match.id(), &v));
+  CHECK_EQ(v.segments->size(), g.segments.size());
+  CHECK_EQ(v.events_taken, static_cast<uint64_t>(g.events.size()));
+  WatchSummary sum = w.summary(6.0);
+  CHECK_EQ(sum.matches[0].states_checked, static_cast<uint64_t>(g.states.size()));  // the desync check ran
+  CHECK(sum.matches[0].max_error <= 1e-12);
+  CHECK_EQ(drawn.size(), 1u);
+  CHECK(drawn[0].from == mine.from);
+  CHECK_EQ(tracks.taken(), 1u);
+  CHECK_EQ(tracks.dropped(), 1u);
+  CHECK(w.ready());
+  // without tracks the racket samples stay in the port
+  port.rackets = {mine};
+  take_all(port, w, nullptr, 1000.1, &drawn);
+  CHECK(drawn.empty());
+  CHECK_EQ(port.rackets.size(), 1u);
 }
 
 int main(int argc, char **argv) { return check::run(argc, argv); }
