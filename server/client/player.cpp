@@ -115,8 +115,7 @@ void BotPlayer::on_state(const StateOut &s, double real) {
 void BotPlayer::on_segment(const SegmentOut &seg, double real) {
   if (seg.match_id != p_.match) return;
   if (!servers_.accepts(seg.server_id) || !segment_is_news(seg.seq, newest_seq_, info_.segment_seq) ||
-      !std::isfinite(seg.segment.t0) || !ball_v3_finite(seg.segment.p0) || !ball_v3_finite(seg.segment.v0) ||
-      !ball_v3_finite(seg.segment.s0)) {
+      !finite_segment(seg.segment)) {
     if (seg.seq != newest_seq_) counters_.refused++;  // (the same segment again is no news, not a refusal)
     return;
   }

@@ -143,7 +143,8 @@ void Watcher::on_segment(const SegmentOut &seg, double real) {
   Watched &w = watched(seg.match_id);
   out_.records.push_back(record_line(seg, real));  // what arrived; used only if it fits
   uint32_t newest = w.segments.empty() ? 0 : w.segments.rbegin()->first;
-  if (!settings_.servers.accepts(seg.server_id) || !segment_fits(seg.seq, newest, w.info.segment_seq)) {
+  if (!settings_.servers.accepts(seg.server_id) || !segment_fits(seg.seq, newest, w.info.segment_seq) ||
+      !finite_segment(seg.segment)) {
     w.tally.not_taken++;
     return;
   }

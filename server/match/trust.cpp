@@ -63,6 +63,10 @@ bool usable_info(const MatchInfoOut &i) {
          ball_v3_finite(i.segment.s0) && finite(i.segment.t0);
 }
 
+bool finite_segment(const ball_segment &s) {
+  return std::isfinite(s.t0) && ball_v3_finite(s.p0) && ball_v3_finite(s.v0) && ball_v3_finite(s.s0);
+}
+
 bool segment_is_news(uint32_t seq, uint32_t newest, uint32_t info_seq) {
   if (newest == 0) return true;
   if (seq == info_seq && seq != newest) return true;

@@ -34,6 +34,10 @@ struct ServerChoice {
 // flight model in their ranges (a forged level 99 once made ball-bot exit).
 bool usable_info(const MatchInfoOut &info);
 
+// A segment whose numbers are all finite: a forged NaN or infinity must
+// reach no evaluation (nor a JSON record, which has no such numbers).
+bool finite_segment(const ball_segment &s);
+
 // Segments further ahead of the newest than this are not the stream's (a
 // forged seq 0xFFFFFFFF once blinded every bot): unless the newest
 // MatchInfo names that seq as the one in effect.

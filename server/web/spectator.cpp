@@ -23,6 +23,14 @@ json camera_json(const ball_camera &c) {
 
 bool finite3(const ball_vec3 &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
+// An event a page can show: JSON has no NaN or infinity (nlohmann writes
+// null), and a forged event must not stop the page. (The watcher takes no
+// segment that is not finite: trust.h.)
+bool drawable(const EventOut &e) {
+  return std::isfinite(e.time) && finite3(e.point) && finite3(e.velocity_in) && finite3(e.velocity_out) &&
+         std::isfinite(e.value);
+}
+
 }  // namespace
 
 std::string court_message(uint32_t match, const MatchInfoOut &info, const ball_model &court, double aspect) {
@@ -100,6 +108,10 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
   size_t n = static_cast<size_t>(std::min<uint64_t>(fresh, v.events->size()));
   for (size_t i = v.events->size() - n; i < v.events->size(); ++i) {
     const EventOut &e = (*v.events)[i];
+    if (!drawable(e)) {
+      not_drawable_++;
+      continue;
+    }
     std::string text = json{{"type", "event"}, {"match", id}, {"event", e}, {"text", rally_line(e)}}.dump();
     m.events.push_back(text);
     send(text);

@@ -55,6 +55,8 @@ class Spectator {
   bool since(uint64_t after, size_t max, std::vector<PageMessage> *out) const;
   uint64_t newest() const { return next_id_ - 1; }
   uint64_t racket_dropped() const { return racket_dropped_; }
+  // events the watcher took whose numbers are not all finite: not passed on
+  uint64_t not_drawable() const { return not_drawable_; }
 
  private:
   struct Mirror {
@@ -86,7 +88,7 @@ class Spectator {
   std::map<uint32_t, Mirror> matches_;
   std::deque<PageMessage> sent_;
   uint64_t next_id_ = 1;
-  uint64_t racket_dropped_ = 0;
+  uint64_t racket_dropped_ = 0, not_drawable_ = 0;
 };
 
 // The court message of a match (its floor as libball's renderer draws it,

@@ -271,6 +271,9 @@ TEST(what_does_not_fit_is_recorded_not_used) {
   forged.seq = newest + 1;
   forged.server_id = 2;  // not chosen
   w.on_segment(forged, 1000.0);
+  forged.server_id = 1;
+  forged.segment.p0.y = NAN;  // no evaluation can use it
+  w.on_segment(forged, 1000.0);
   MatchInfoOut bad = info;
   bad.level = 99;
   w.on_info(bad, 1000.1);
@@ -278,8 +281,8 @@ TEST(what_does_not_fit_is_recorded_not_used) {
   bad.server_time = 1e6;  // a clock 1e6 s away
   w.on_info(bad, 1000.1);
   const WatchedMatchSummary m = w.summary(1).matches[0];
-  CHECK_EQ(m.not_taken, 4u);
+  CHECK_EQ(m.not_taken, 5u);
   CHECK_EQ(m.segments, newest);
-  CHECK_EQ(count_type(w.output(), "segment"), g.segments.size() + 2);  // recorded all the same
+  CHECK_EQ(count_type(w.output(), "segment"), g.segments.size() + 3);  // recorded all the same
   CHECK_EQ(count_type(w.output(), "match_info"), 3u);
 }

@@ -193,6 +193,17 @@ TEST(rackets_only_from_their_holder) {
   CHECK(!sp.on_racket(close));
   CHECK(sp.on_racket(b));
   CHECK_EQ(sp.racket_dropped(), 1u);
+  // an event with a number that is not finite is never passed on (JSON has no NaN: the page would get null)
+  EventOut e = g.events.back();
+  e.seq += 1;
+  e.time = NAN;
+  w.on_event(e, 1000.1);
+  uint64_t before = sp.newest();
+  sp.update(w, 1000.1);
+  std::vector<PageMessage> got;
+  CHECK(sp.since(before, 100, &got));
+  for (const auto &m : got) CHECK(json::parse(m.text).at("type") != "event");
+  CHECK_EQ(sp.not_drawable(), 1u);
   std::vector<json> r = of_type(messages(sp.snapshot()), "racket");
   CHECK_EQ(r.size(), 2u);
   CHECK_EQ(r[1].at("t").get<double>(), 1.2);

@@ -82,6 +82,7 @@
         break;
       }
       case "event": {
+        if (!Number.isFinite(m.event.time)) break; // (ball-watch passes finite numbers only)
         const w = match(m.match);
         w.events.push({ e: m.event, text: m.text });
         while (w.events.length > KEEP_EVENTS) w.events.shift();
