@@ -68,39 +68,34 @@ void sleep_until(double t) {
   }
 }
 
+// Where the build tree's copies are when the build does not say (common.h).
+#ifndef BALL_QOS_PROFILE_BUILD
+#define BALL_QOS_PROFILE_BUILD "ball_qos.xml"
+#endif
+#ifndef BALL_SCENES_BUILD
+#define BALL_SCENES_BUILD "scenes"
+#endif
+#ifndef BALL_WEB_BUILD
+#define BALL_WEB_BUILD "web"
+#endif
+
+// One of the project's data files or folders: $env, else the copy installed
+// beside the programs (../share/libball/NAME, when PROBE in it, or NAME itself
+// for "", can be read), else the build tree's.
+static std::string find_data(const char *env, const std::string &name, const std::string &probe, const char *build) {
+  if (const char *given = std::getenv(env)) return given;
+  std::string installed = program_dir() + "/../share/libball/" + name;
+  if (readable(probe.empty() ? installed : installed + "/" + probe)) return installed;
+  return build;
+}
+
 std::string find_profile(const std::string &given) {
-  if (!given.empty()) return given;
-  if (const char *env = std::getenv("BALL_QOS_PROFILE")) return env;
-  std::string installed = program_dir() + "/../share/libball/ball_qos.xml";
-  if (readable(installed)) return installed;
-#ifdef BALL_QOS_PROFILE_BUILD
-  return BALL_QOS_PROFILE_BUILD;
-#else
-  return "ball_qos.xml";
-#endif
+  return given.empty() ? find_data("BALL_QOS_PROFILE", "ball_qos.xml", "", BALL_QOS_PROFILE_BUILD) : given;
 }
 
-std::string scenes_dir() {
-  if (const char *env = std::getenv("BALL_SCENES")) return env;
-  std::string installed = program_dir() + "/../share/libball/scenes";
-  if (readable(installed + "/tennis.yaml")) return installed;
-#ifdef BALL_SCENES_BUILD
-  return BALL_SCENES_BUILD;
-#else
-  return "scenes";
-#endif
-}
+std::string scenes_dir() { return find_data("BALL_SCENES", "scenes", "tennis.yaml", BALL_SCENES_BUILD); }
 
-std::string find_page_dir() {
-  if (const char *env = std::getenv("BALL_WEB_DIR")) return env;
-  std::string installed = program_dir() + "/../share/libball/web";
-  if (readable(installed + "/index.html")) return installed;
-#ifdef BALL_WEB_BUILD
-  return BALL_WEB_BUILD;
-#else
-  return "web";
-#endif
-}
+std::string find_page_dir() { return find_data("BALL_WEB_DIR", "web", "index.html", BALL_WEB_BUILD); }
 
 std::string find_three_dir() {
   if (const char *env = std::getenv("BALL_THREE_DIR")) return env;
