@@ -379,11 +379,25 @@ void ServerLoop::publish(const MatchOutput &out, Scheduled &s, double now) {
     e.server_time = now;
     write(e, &stats_.totals.events_out);
   }
-  if (out.has_state) {
-    StateOut state = out.state;
-    state.server_id = settings_.server_id;
-    state.server_time = s.last_frame_real;
-    write(state, &stats_.totals.states_out);
+  if (out.has_state) {  // states are the bulk of a frame's writes: they wait for the hits
+    write_state(s);       // (an older one first: one state per frame, in order)
+    s.state = out.state;
+    s.state.server_id = settings_.server_id;
+    s.state.server_time = s.last_frame_real;
+    s.state_due = true;
+  }
+}
+
+void ServerLoop::write_state(Scheduled &s) {
+  if (!s.state_due) return;
+  s.state_due = false;
+  write(s.state, &stats_.totals.states_out);
+}
+
+void ServerLoop::write_due_states(double now) {
+  for (auto &s : sched_) {
+    write_state(s);
+    if (clock_.mono() >= earliest_hit_) run_due_hits(clock_.mono(), now);
   }
 }
 
@@ -578,6 +592,7 @@ void ServerLoop::run_due_hits(double t0, double now) {
     double at = hit_due(s);
     if (at <= t0 + 1e-6 && t0 >= s.firm_at) {
       MatchOutput out;  // (out_ may hold a frame's output being published)
+      write_state(s);   // the state of its frame before the hit
       s.match->step_to_hit(&out);
       publish(out, s, now);
       if (out.info_changed) publish_info(s);
@@ -627,6 +642,7 @@ bool ServerLoop::wake() {
   take_over(t0, now);
   run_due_hits(t0, now);  // (also finds the earliest hit after the samples moved the tracks)
   run_due_frames(t0, now);
+  write_due_states(now);
   count_lost(host_.take_lost());  // the gaps of streams that ended (controls, yields, take-overs)
   double t1 = clock_.mono();
   stats_.frame_time.add(t1 - t0);

@@ -213,6 +213,7 @@ class ServerLoop {
   void take_over(double t0, double now);
   void run_due_hits(double t0, double now);  // matches whose racket hit's instant has come step to it
   void run_due_frames(double t0, double now);
+  void write_due_states(double now);  // the frames' states, after the frames (hits come first)
 
   double next_wake() const;  // mono s
   StatusOut status_now() const;
@@ -233,6 +234,8 @@ class ServerLoop {
     double since = 0.0;            // server s: when this server began to step it
     bool taken_over = false;       // from another server
     double last_held = 0.0;        // mono s a slot was last held (for a created match's expiry)
+    bool state_due = false;        // `state` is a frame's, written after the frames of the wake-up
+    StateOut state{};
   };
   // Another server's match this one follows (a standby).
   struct Followed {
@@ -257,7 +260,9 @@ class ServerLoop {
   bool may_create(const ControlIn &control);
   void say(const std::string &line);
   void drop_own_if_standby();
+  // a frame's state is held in s (write_state), the rest written at once
   void publish(const MatchOutput &out, Scheduled &s, double now);
+  void write_state(Scheduled &s);  // its frame's state, if one is due
   void publish_info(Scheduled &s);
   void close_period();  // the status written, the period's latency kept for the line
   template <class T>

@@ -6,6 +6,7 @@
 
 #include <deque>
 #include <map>
+#include <string>
 #include <vector>
 
 #include "server_loop.h"
@@ -72,9 +73,10 @@ struct FakePort : ServerPort {
     q.pop_front();
     return true;
   }
-  bool write(const SegmentOut &s) override { return keep(segments, s); }
-  bool write(const EventOut &e) override { return keep(events, e); }
-  bool write(const StateOut &s) override { return keep(states, s); }
+  std::string written;  // what was written, in order: s(egment), e(vent), b(all state)
+  bool write(const SegmentOut &s) override { return keep(segments, s) && (written += 's', true); }
+  bool write(const EventOut &e) override { return keep(events, e) && (written += 'e', true); }
+  bool write(const StateOut &s) override { return keep(states, s) && (written += 'b', true); }
   bool write(const MatchInfoOut &i) override { return keep(infos, i); }
   bool write(const StatusOut &s) override { return keep(statuses, s); }
   int asserted = 0;

@@ -25,7 +25,8 @@ struct Rig {
   FakePort port;
   LoopSettings settings;
   std::unique_ptr<ServerLoop> loop;
-  explicit Rig(std::vector<double> rates, double status_interval = 1.0) {
+  // (state_rate: every match's ball states per s; 0: its frame rate)
+  explicit Rig(std::vector<double> rates, double status_interval = 1.0, double state_rate = 0.0) {
     ball_scene scene;
     ball_scene_default(&scene);
     std::string err;
@@ -34,7 +35,7 @@ struct Rig {
       MatchConfig c = default_config();
       c.id = static_cast<uint32_t>(i);
       c.frame_rate = rates[i];
-      c.state_rate = rates[i];
+      c.state_rate = state_rate > 0.0 ? state_rate : rates[i];
       host.add_match(c, scene, &err);
     }
     port.clock = &clock;
@@ -82,6 +83,36 @@ TEST(frames_come_at_their_deadlines) {
   CHECK_EQ(r.port.infos[2].revision, 2u);
   CHECK_EQ(r.port.infos[0].server_id, 5u);
   CHECK_EQ(r.port.statuses.size(), 0u);
+}
+
+// Matches write their ball states on frames of their own (a phase from the
+// id), not all on the same frame: 12 matches at 60 Hz with states at 10 Hz
+// write 2 states a frame, not 12 every sixth frame. And a wake-up writes its
+// states after its frames: the frames' segments and hits go out first.
+TEST(matches_write_their_states_on_different_frames) {
+  Rig r(std::vector<double>(12, 60.0), 1.0, 10.0);
+  for (uint32_t m = 0; m < 12; ++m)
+    for (int slot = 0; slot < 2; ++slot)
+      r.port.controls.push_back(join(m, slot, participant(static_cast<uint8_t>(2 * m + slot + 1))));
+  r.run_until(kStart + 0.5);  // every match playing
+  for (uint32_t m = 0; m < 12; ++m) CHECK(r.host.find(m)->state() == MatchState::playing);
+  size_t before = r.port.states.size(), worst = 0;
+  int segments_too = 0;
+  for (int k = 0; k < 60; ++k) {
+    size_t b = r.port.states.size();
+    r.port.written.clear();
+    r.loop->step();
+    worst = std::max(worst, r.port.states.size() - b);
+    // the wake-up's segments and events were written before its states
+    size_t first_state = r.port.written.find('b');
+    if (first_state != std::string::npos) CHECK_EQ(r.port.written.find_first_of("se", first_state), std::string::npos);
+    segments_too += first_state != std::string::npos && first_state > 0;
+  }
+  CHECK(segments_too >= 1);  // (a wake-up with both, at least)
+  check::note("%zu states in 60 frames, at most %zu in one; %d wake-ups wrote segments or events and states",
+              r.port.states.size() - before, worst, segments_too);
+  CHECK(r.port.states.size() - before >= 60u);  // 12 matches x 10 Hz while they play (half a second at least)
+  CHECK(worst <= 3);                               // (12 in one frame, none in the next five, before)
 }
 
 TEST(the_status_comes_once_an_interval) {
