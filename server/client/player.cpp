@@ -134,7 +134,12 @@ void BotPlayer::hand_over(double real) {
 
 void BotPlayer::tick(double mono, double real, std::vector<RacketSampleIn> *samples,
                      std::vector<ControlIn> *controls) {
-  if (next_sample_ < 0.0) next_sample_ = next_join_ = mono;
+  // players sample on their own phases, not in step (a seeded fraction of a sample's period):
+  // a process of many bots would write all their samples in one burst otherwise
+  if (next_sample_ < 0.0) {
+    next_join_ = mono;
+    next_sample_ = mono + std::fmod(static_cast<double>(p_.seed % 1000003) * 0.6180339887498949, 1.0) / p_.rate;
+  }
   hand_over(real);
   if (!joined_ && mono >= next_join_) {
     ControlIn c;
@@ -145,6 +150,8 @@ void BotPlayer::tick(double mono, double real, std::vector<RacketSampleIn> *samp
     controls->push_back(c);
     next_join_ = mono + kJoinRetry;
   }
+  // after a wait (to join, for the clock) or a stall: on at the player's phase, no burst
+  if (next_sample_ < mono - 1.0 / p_.rate) next_sample_ += std::ceil((mono - next_sample_) * p_.rate) / p_.rate;
   if (joined_ && brain_ready_ && clock_.valid() && mono >= next_sample_) {
     RacketSampleIn s;
     s.match_id = p_.match;
@@ -158,7 +165,6 @@ void BotPlayer::tick(double mono, double real, std::vector<RacketSampleIn> *samp
     counters_.taken++;
     if (!link_.send(s, mono)) counters_.lost++;
     next_sample_ += 1.0 / p_.rate;
-    if (next_sample_ < mono) next_sample_ = mono + 1.0 / p_.rate;  // after a stall: no burst
   }
   link_.deliver(mono, [&](const RacketSampleIn &s) {
     samples->push_back(s);

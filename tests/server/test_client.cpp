@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include <deque>
+#include <map>
 
 #include "check.hpp"
 #include "fake_client_port.h"
@@ -122,6 +123,47 @@ TEST(player_joins_then_sends) {
   ControlIn bye;
   CHECK(bot.leave(&bye));
   CHECK(bye.kind == ControlKind::leave && bye.player == 1);
+}
+
+// Players sample on phases of their own (from their seeds), not in step: 60
+// bots at 30 Hz in one process, joined at the same instant, write their
+// samples spread over the period, not 60 at once (a burst that held the
+// server's and the bots' cores), and keep their phases after a wait.
+TEST(players_sample_on_their_own_phases) {
+  Game g;
+  ball_scene scene;
+  ball_scene_default(&scene);
+  std::vector<BotPlayer> bots;
+  for (int i = 0; i < 60; ++i) {
+    PlayerParams p;
+    p.match = g.match.id();
+    p.player = 0;
+    p.rate = 30.0;
+    p.seed = static_cast<uint64_t>(i + 1);
+    bots.emplace_back(scene, participant(9), p);
+  }
+  std::vector<RacketSampleIn> samples;
+  std::vector<ControlIn> controls;
+  for (auto &b : bots) b.tick(0.0, 0.0, &samples, &controls);
+  g.control(ControlKind::join, participant(9), 0);
+  for (auto &b : bots) b.on_info(g.match.info(), 0.5);
+  std::map<int, int> per_ms;  // samples written per millisecond tick
+  for (int k = 0; k <= 200; ++k) {
+    double t = 0.5 + k * 0.001;
+    samples.clear();
+    for (auto &b : bots) b.tick(t, t, &samples, &controls);
+    if (!samples.empty()) per_ms[k] = static_cast<int>(samples.size());
+  }
+  int most = 0, total = 0;
+  for (const auto &m : per_ms) {
+    most = std::max(most, m.second);
+    total += m.second;
+  }
+  check::note("%d samples in 0.2 s over %zu ticks of 1 ms, at most %d in one", total, per_ms.size(), most);
+  CHECK(bots[0].joined());
+  CHECK(total >= 60 * 6 - 60 && total <= 60 * 7);  // 30 Hz each
+  CHECK(most <= 8);                                // (60 in the first tick and every 33 ms, in step)
+  CHECK(per_ms.size() >= 100u);
 }
 
 // A bot takes nothing that does not fit and ends on nothing from the wire:
