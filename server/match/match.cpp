@@ -39,6 +39,16 @@ bool same_segment(const ball_segment &a, const ball_segment &b) {
 
 bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
 
+// How far from a racket's centre its test can find the ball's centre: the
+// sphere test's d_COLL; for the disc and swept tests the disc grown by the
+// ball radius within the slab of the ball radius on either face (the
+// corner of the disc test's cylinder).
+double reach_of(const ball_model &m, int i) {
+  if (m.detect == BALL_DETECT_SPHERE) return m.collision_distance;
+  double r = m.rackets[i].radius + m.radius;
+  return std::sqrt(r * r + m.radius * m.radius);
+}
+
 }  // namespace
 
 // Over (now, end] the ball on its segment moves at most |v| T + g T^2 / 2,
@@ -64,8 +74,7 @@ bool racket_may_reach(const ball_sim &sim, double end) {
     for (int k = 0; k < tr.count; ++k)
       if (tr.samples[k].t > sim.time && tr.samples[k].t < end)
         racket_moves = std::max(racket_moves, ball_v3_dist(tr.samples[k].center, now.center));
-    double reach = m.detect == BALL_DETECT_SPHERE ? m.collision_distance : m.rackets[i].radius + m.radius;
-    if (ball_v3_dist(b.position, now.center) - reach <= ball_moves + racket_moves + 1e-9) return true;
+    if (ball_v3_dist(b.position, now.center) - reach_of(m, i) <= ball_moves + racket_moves + 1e-9) return true;
   }
   return false;
 }

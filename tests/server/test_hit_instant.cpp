@@ -90,6 +90,7 @@ TEST(the_bound_never_hides_a_hit) {
     ball_model m = g.match.model();
     m.detect = detects[n % 3];
     m.normal_mode = (n / 3) % 2 ? BALL_NORMAL_REAL : BALL_NORMAL_VELOCITY;
+    if (n % 4 == 1) m.radius = r.uniform(0.01, 0.12);  // balls with a radius too
     ball_sim sim;
     if (ball_sim_init(&sim, &m) != BALL_OK) continue;
     // a ball in flight over the court
@@ -136,6 +137,47 @@ TEST(the_bound_never_hides_a_hit) {
   CHECK(hits >= 1000);
   CHECK_EQ(hidden, 0);
   CHECK(spared >= 500);  // it does spare some
+}
+
+// The disc test grows the disc by the ball radius within the ball radius of
+// either face: a ball whose centre comes to the corner of that cylinder,
+// sqrt((r + b)^2 + b^2) from the racket's centre, is hit. The bound must
+// reach that far (it reached r + b only: a ball drifting into the rim's
+// corner was found at the frame's end, not at its instant). (The swept
+// test is exact at the rim: it finds no hit there.)
+TEST(the_bound_reaches_the_disc_tests_rim) {
+  MatchConfig c = default_config();
+  c.level = BALL_LEVEL_ADVANCED;
+  Game g(c);
+  for (ball_detect detect : {BALL_DETECT_DISC}) {
+    ball_model m = g.match.model();
+    m.detect = detect;
+    m.normal_mode = BALL_NORMAL_REAL;
+    m.radius = 0.04;  // a ball with a radius (the levels' is the paper's point)
+    ball_sim sim;
+    CHECK_EQ(ball_sim_init(&sim, &m), BALL_OK);
+    const double r = m.rackets[1].radius, b = m.radius, drift = 0.0005;
+    ball_vec3 centre = ball_v3(12.0, 1.0, 4.0);
+    for (int k = 0; k < 3; ++k) {  // a racket held still, its face along x
+      ball_racket_sample smp{0.05 * k, centre, ball_v3(1.0, 0.0, 0.0)};
+      CHECK_EQ(ball_racket_push(&sim, 1, &smp), BALL_OK);
+    }
+    // the ball just off the face's slab, just inside the grown rim, drifting onto the face
+    ball_segment seg{};
+    seg.t0 = 0.1;
+    seg.p0 = ball_v3(centre.x + b + drift, centre.y, centre.z + r + b - 1e-4);
+    seg.v0 = ball_v3(-0.1, 0.0, 0.0);
+    CHECK_EQ(ball_sim_set_segment(&sim, &seg, 0.1), BALL_OK);
+    double end = sim.time + 1.0 / 60.0;
+    ball_racket_contact contact;
+    bool found = ball_racket_first_contact_any(&sim, end, &contact) == BALL_OK && contact.step_to <= end;
+    double dist = ball_v3_dist(seg.p0, centre), moves = 0.1 / 60.0 + 0.5 * m.gravity / 3600.0;
+    note("%s: the ball %.4f m from the racket's centre (r + b = %.4f m), found %d at %.4f s", ball_detect_name(detect),
+         dist, r + b, found, found ? contact.step_to : 0.0);
+    CHECK(found);
+    CHECK(dist - (r + b) > moves);  // (the old reach said no)
+    CHECK(racket_may_reach(sim, end));
+  }
 }
 
 int main(int argc, char **argv) { return check::run(argc, argv); }
