@@ -130,8 +130,9 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       double recv = seg.received > 0.0 ? seg.received : tick;
       part.latency.push_back(recv - seg.sample.source_time);
       const MatchInfoOut *info = port.info(seg.match_id);
-      // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one)
-      if (info && info->time_base > 0.0 && info->server_time > 0.0)
+      // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one;
+      // a correction's t0 lies back by its late sample's trip: lag compensation's, not a hit's way out)
+      if (info && info->time_base > 0.0 && info->server_time > 0.0 && !seg.correction)
         part.hit_to_wire.push_back(recv - server_time_of(*info, seg.segment.t0));
     });
     if (!ok) {
@@ -256,7 +257,7 @@ int run_load(const LoadOptions &o) {
   }
   std::printf("bots at %g Hz in %d process(es), %g s measured after %g s of warm-up; lat: a hit's newest racket "
               "sample written -> its segment received; h2w: the hit's sim time, as the server's real time -> its "
-              "segment received; work: the server's per wake-up (median of its per-second p50 and p99); CPU in %% "
+              "segment received (corrections aside); work: the server's per wake-up (median of its per-second p50 and p99); CPU in %% "
               "of one core; B/s: payload of the server's and the bots' samples, and all loopback bytes\n",
               o.bot.rate, o.bot_processes, o.duration, o.warmup);
   std::vector<int> counts = o.sweep.empty() ? std::vector<int>{o.matches} : o.sweep;
