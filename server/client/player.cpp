@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "ball/vec3.h"
+#include "rng.h"
 
 namespace ballsrv {
 
@@ -138,7 +139,7 @@ void BotPlayer::tick(double mono, double real, std::vector<RacketSampleIn> *samp
   // a process of many bots would write all their samples in one burst otherwise
   if (next_sample_ < 0.0) {
     next_join_ = mono;
-    next_sample_ = mono + std::fmod(static_cast<double>(p_.seed % 1000003) * 0.6180339887498949, 1.0) / p_.rate;
+    next_sample_ = mono + golden_phase(p_.seed) / p_.rate;
   }
   hand_over(real);
   if (!joined_ && mono >= next_join_) {

@@ -99,9 +99,9 @@ bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string
   step_events_.assign(BALL_MAX_CONTACTS + BALL_MAX_RACKETS + 8, ball_event{});
   late_from_.fill(NAN);
   // the matches of a server write their states on different frames (a phase from the
-  // id, golden-ratio spaced), not all on the same one: a frame that wrote a state for
-  // each of 100 matches held the loop for 3-6 ms and every hit that fell in it
-  state_accum_ = std::fmod(static_cast<double>(config.id) * 0.6180339887498949, 1.0);
+  // id), not all on the same one: a frame that wrote a state for each of 100 matches
+  // held the loop for 3-6 ms and every hit that fell in it
+  state_accum_ = golden_phase(config.id);
   state_ = MatchState::waiting;
   need_serve_ = true;
   serve_at_ = sim_.time;

@@ -8,6 +8,13 @@
 
 namespace ballsrv {
 
+// A phase in [0, 1) for item n, the fractional part of n / golden ratio:
+// any run of items spreads evenly over the period (ball states over
+// frames, a bot's samples over their period), none shares another's.
+inline double golden_phase(uint64_t n) {
+  return std::fmod(static_cast<double>(n % 1000003) * 0.6180339887498949, 1.0);
+}
+
 class Rng {
  public:
   explicit Rng(uint64_t seed = 1) : state_(seed) {}
