@@ -351,6 +351,122 @@ static int search_racket(query *q, double hi, double *t_hit, double *searched) {
   return 0;
 }
 
+/* ---- the bound: whether a racket's test can find the ball at all ---- */
+
+/* How far from a racket's centre its test can find the ball's centre: d_COLL
+ * for the sphere test; for the disc test the disc grown by the ball radius
+ * within the ball radius of either face, to the corner of that cylinder,
+ * sqrt((r + b)^2 + b^2); the swept test's exact reach r + b is within it. */
+static double test_reach(const ball_model *m, int i) {
+  double r;
+  if (m->detect == BALL_DETECT_SPHERE) return m->collision_distance;
+  r = m->rackets[i].radius + m->radius;
+  return sqrt(r * r + m->radius * m->radius);
+}
+
+/* How far the ball's centre gets from P_old over [t0, t1] on its segment
+ * (eq 3): horizontally |v0_h| (d(tau1) - d(tau0)) <= |v0_h| (t1 - t0), drag
+ * only slows it; vertically at most the larger |v_y| at the two ends (v_y is
+ * linear in tau) times t1 - t0. P_old is the ball at t0: every call that
+ * moves the sim (a step, set_segment, set_state, set_model) keeps it so. */
+static double ball_moves(const ball_sim *sim, double t1) {
+  const ball_segment *seg = &sim->seg;
+  double T = t1 - sim->time, vh = sqrt(seg->v0.x * seg->v0.x + seg->v0.z * seg->v0.z), vy = 0.0;
+  if (!seg->grounded) {
+    double g = sim->model.gravity, a = fabs(seg->v0.y - g * (sim->time - seg->t0)),
+           b = fabs(seg->v0.y - g * (t1 - seg->t0));
+    vy = a > b ? a : b;
+  }
+  return (vh + vy) * T;
+}
+
+static double farther(double r, ball_vec3 c, ball_vec3 p) {
+  double d = ball_v3_dist(c, p);
+  return d > r ? d : r;
+}
+
+/* A sphere (centre *c, the radius returned) that holds racket i's centre at
+ * every frame end in (t0, t1] as the stage estimates it, and R_old. The
+ * track is linear between its sample times and the end of eq 15's
+ * extrapolation (held after it). From the second newest sample on it is one
+ * line, R(t) = R_n + V (min(t - t_n, extrapolation_time)) with V the two
+ * newest samples' velocity (interpolation between them and eq 15 past the
+ * newest), so over a window that starts there (nearly every look) the
+ * track is the chord R(t0) R(t1); otherwise its corners in the window are
+ * the poses at t0 and t1 and the samples between. */
+static double track_sphere(const ball_model *m, const ball_sim *sim, int i, double t1, ball_vec3 *c) {
+  const ball_racket_track *tr = &sim->tracks[i];
+  const ball_racket_sample *s = tr->samples;
+  int n = tr->count, k;
+  double t0 = sim->time, r;
+  ball_vec3 a, b;
+  if (n == 1) {
+    a = b = s[0].center;
+  } else if (t0 >= s[n - 2].t) {
+    ball_vec3 v = ball_v3_scale(ball_v3_sub(s[n - 1].center, s[n - 2].center), 1.0 / (s[n - 1].t - s[n - 2].t));
+    double da = t0 - s[n - 1].t, db = t1 - s[n - 1].t;
+    if (da > m->extrapolation_time) da = m->extrapolation_time;
+    if (db > m->extrapolation_time) db = m->extrapolation_time;
+    a = ball_v3_add(s[n - 1].center, ball_v3_scale(v, da));
+    b = ball_v3_add(s[n - 1].center, ball_v3_scale(v, db));
+  } else {
+    ball_racket_pose pa, pb;
+    ball__racket_pose(m, tr, t0, &pa);
+    ball__racket_pose(m, tr, t1, &pb);
+    a = pa.center;
+    b = pb.center;
+  }
+  *c = ball_v3_lerp(a, b, 0.5);
+  r = 0.5 * ball_v3_dist(a, b);
+  if (n > 1 && t0 < s[n - 2].t)
+    for (k = 0; k < n; k++)
+      if (s[k].t > t0 && s[k].t < t1) r = farther(r, *c, s[k].center);
+  return tr->has_prev ? farther(r, *c, tr->prev_pose.center) : r;
+}
+
+/* 0 when racket i's test cannot pass in a step ending in (sim->time, t1]:
+ * the ball within ball_moves of P_old, the racket within its sphere, and
+ * the two farther apart than the test reaches. The disc and swept tests
+ * measure the ball (P_old to its end, or along its path) against a disc
+ * between R_old and R, all within those spheres; a margin covers rounding. */
+static int may_reach(const ball_sim *sim, int i, double t1, double moves) {
+  const ball_model *m = &sim->model;
+  ball_vec3 c;
+  double r, gap;
+  if (sim->tracks[i].count <= 0) return 0;
+  r = track_sphere(m, sim, i, t1, &c);
+  gap = ball_v3_dist(sim->prev_position, c) - r - moves - test_reach(m, i);
+  return !(gap > 1e-9 + 1e-12 * (ball_v3_max_abs(c) + ball_v3_max_abs(sim->prev_position) + r + moves));
+}
+
+ball_status ball_racket_may_reach(const ball_sim *sim, int racket, double t_end, int *may) {
+  const ball_model *m;
+  double moves;
+  int i;
+  if (!sim || !may) return BALL_EINVAL;
+  m = &sim->model;
+  if (m->n_rackets < 0 || m->n_rackets > BALL_MAX_RACKETS || racket < -1 || racket >= m->n_rackets)
+    return BALL_EINVAL;
+  if (!isfinite(t_end) || !isfinite(sim->time) || !ball_v3_finite(sim->prev_position) ||
+      !isfinite(sim->seg.t0) || !ball_v3_finite(sim->seg.v0))
+    return BALL_ENONFINITE;
+  if (t_end < sim->time || sim->seg.t0 > sim->time) return BALL_ERANGE;
+  *may = 0;
+  /* no test in the next step: the effect off, or asleep */
+  if (!ball__has(m, BALL_EFFECT_RACKETS) || sim->sleep > 0 || !(t_end > sim->time)) return BALL_OK;
+  moves = ball_moves(sim, t_end);
+  for (i = racket < 0 ? 0 : racket; i < (racket < 0 ? m->n_rackets : racket + 1); i++) {
+    const ball_racket_track *tr = &sim->tracks[i];
+    if (tr->count < 0 || tr->count > BALL_MAX_HISTORY) return BALL_EINVAL;
+    if (tr->count == 0 || sim->time - tr->samples[tr->count - 1].t > m->stale_time) continue;
+    if (may_reach(sim, i, t_end, moves)) {
+      *may = 1;
+      break;
+    }
+  }
+  return BALL_OK;
+}
+
 /* Argument checks and the window both functions share: BALL_OK with *hi
  * (the window's end; t0 when empty) and the flight, or a status. */
 static ball_status prepare(const ball_sim *sim, double t_end, ball__flight *fl, double *hi) {
@@ -392,6 +508,7 @@ static ball_status first_contact(const ball_sim *sim, const ball__flight *fl, in
   while (stale_end - tr->samples[tr->count - 1].t > m->stale_time) stale_end = nextafter(stale_end, -INFINITY);
   if (stale_end < hi) hi = stale_end;
   if (!(hi > sim->time)) return BALL_ENOTFOUND;
+  if (!may_reach(sim, racket, hi, ball_moves(sim, hi))) return BALL_ENOTFOUND; /* nearly every frame */
   memset(&q, 0, sizeof q);
   q.m = m;
   q.sim = sim;

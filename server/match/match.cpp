@@ -39,45 +39,7 @@ bool same_segment(const ball_segment &a, const ball_segment &b) {
 
 bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
 
-// How far from a racket's centre its test can find the ball's centre: the
-// sphere test's d_COLL; for the disc and swept tests the disc grown by the
-// ball radius within the slab of the ball radius on either face (the
-// corner of the disc test's cylinder).
-double reach_of(const ball_model &m, int i) {
-  if (m.detect == BALL_DETECT_SPHERE) return m.collision_distance;
-  double r = m.rackets[i].radius + m.radius;
-  return std::sqrt(r * r + m.radius * m.radius);
-}
-
 }  // namespace
-
-// Over (now, end] the ball on its segment moves at most |v| T + g T^2 / 2,
-// and a racket's track, piecewise linear (interpolated, then extrapolated
-// by eq 15 and held), no farther from where it is now than its farthest
-// corner: the samples in the window and its end. The disc and swept tests
-// measure from the pose of the previous step (R_old), which a sample that
-// came since may have moved off the track: twice that gap is added. A
-// racket reaches the ball only if they come within its test's reach.
-bool racket_may_reach(const ball_sim &sim, double end) {
-  const ball_model &m = *ball_sim_model(&sim);
-  ball_state b;
-  if (ball_sim_state(&sim, &b) != BALL_OK) return true;
-  double T = end - sim.time;
-  double ball_moves = ball_v3_norm(b.velocity) * T + 0.5 * m.gravity * T * T;
-  for (int i = 0; i < m.n_rackets; ++i) {
-    ball_racket_pose now, last;
-    if (ball_racket_estimate(&sim, i, sim.time, &now) != BALL_OK) continue;  // no track, or stale: never tested
-    if (ball_racket_estimate(&sim, i, end, &last) != BALL_OK) return true;   // stale within the window: ask
-    double racket_moves = ball_v3_dist(last.center, now.center);
-    if (sim.tracks[i].has_prev) racket_moves += 2.0 * ball_v3_dist(sim.tracks[i].prev_pose.center, now.center);
-    const ball_racket_track &tr = sim.tracks[i];
-    for (int k = 0; k < tr.count; ++k)
-      if (tr.samples[k].t > sim.time && tr.samples[k].t < end)
-        racket_moves = std::max(racket_moves, ball_v3_dist(tr.samples[k].center, now.center));
-    if (ball_v3_dist(b.position, now.center) - reach_of(m, i) <= ball_moves + racket_moves + 1e-9) return true;
-  }
-  return false;
-}
 
 bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string *err) {
   if (!check_match_config(config, err)) return false;
@@ -323,7 +285,8 @@ void Match::find_hit() {
     return;
   double end = sim_.time - partial_ + frame_time() * config_.time_base;  // the frame's end
   counters_.hit_looks++;
-  if (!(end > sim_.time) || !may_hit(end)) return;
+  int may = 1;  // (a sim the bound refuses goes to the query, which says why)
+  if (!(end > sim_.time) || (ball_racket_may_reach(&sim_, -1, end, &may) == BALL_OK && !may)) return;
   counters_.hit_queries++;
   ball_racket_contact c;
   if (ball_racket_first_contact_any(&sim_, end, &c) == BALL_OK && c.racket >= 0 && c.step_to < end)
@@ -372,7 +335,9 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
   while (then.time < now) {
     double end = std::min(now, then.time + dt);
     ball_racket_contact c{};
-    if (racket_may_reach(then, end) && ball_racket_first_contact(&then, slot, end, &c) == BALL_OK && c.step_to <= end) {
+    int may = 1;
+    if ((ball_racket_may_reach(&then, slot, end, &may) != BALL_OK || may) &&
+        ball_racket_first_contact(&then, slot, end, &c) == BALL_OK && c.step_to <= end) {
       hit = c.step_to;
       break;
     }

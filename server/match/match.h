@@ -38,12 +38,6 @@ struct MatchOutput {
 };
 
 
-// Whether any racket of the sim can come within its test's reach of the
-// ball before sim s `end` (false: no step up to `end` can find a racket
-// hit, and ball_racket_first_contact_any need not be asked): a bound that
-// spares the query on nearly every frame.
-bool racket_may_reach(const ball_sim &sim, double end);
-
 class Match {
  public:
   // Builds the model (build_match_model) and the court; false with err.
@@ -180,7 +174,6 @@ class Match {
   double clock_now() const { return following_ ? follow_time_ : sim_.time; }  // sim s the sample checks use
   void set_level(ball_level level, std::string *err);
   void find_hit();  // next_hit_ from the tracks as they are
-  bool may_hit(double end) const { return racket_may_reach(sim_, end); }
   void took_effect(const SegmentOut &s);  // a segment is in effect now: into the history
   void rewind(int slot, double from, MatchOutput *out);
   bool all_present() const;

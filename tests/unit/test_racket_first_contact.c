@@ -279,6 +279,160 @@ static void any_racket_is_what_the_step_reports(void **state) {
   }
 }
 
+/* When swing sw's ball comes closest to its racket's centre (2 ms grid). */
+static double closest(const ball_model *m, const swing *sw) {
+  double best = INFINITY, at = 0.5;
+  int j;
+  for (j = 1; j < sw->n; j++) {
+    double t;
+    for (t = sw->s[j - 1].t; t < sw->s[j].t; t += 0.002) {
+      ball_state st;
+      double u = (t - sw->s[j - 1].t) / (sw->s[j].t - sw->s[j - 1].t), d;
+      assert_ok(ball_segment_eval(m, &sw->seg, t, &st));
+      d = ball_v3_dist(st.position, ball_v3_lerp(sw->s[j - 1].center, sw->s[j].center, u));
+      if (d < best) {
+        best = d;
+        at = t;
+      }
+    }
+  }
+  return at;
+}
+
+/* ball_racket_may_reach never says 0 where a step finds a hit: swings with
+ * their racket moved off the ball's path by up to twice the test's reach
+ * (many pass near its edge), caught up to 60 ms before the closest
+ * approach. The truth is stepping alone: single steps to 200 frame ends
+ * over 100 ms, the first that hits bisected to the first frame end t_hit
+ * that does. The bound is asked where it is tightest, over (t0, t_hit] (the
+ * hit at the window's very end), and over random windows; wherever a step
+ * in the window hits, it must say 1. It must also spare a fair share of
+ * the windows without a hit (near as these swings come). */
+static void the_bound_never_hides_a_hit(void **state) {
+  size_t ci;
+  (void)state;
+  for (ci = 0; ci < sizeof configs / sizeof configs[0]; ci++) {
+    seeded_rng r = seeded_stream(91, ci);
+    int k, hits = 0, edge = 0, misses = 0, spared = 0;
+    for (k = 0; k < 300; k++) {
+      ball_model m;
+      swing sw;
+      ball_sim sim, before;
+      ball_vec3 off;
+      double t_end, t_hit = INFINITY, lo, reach;
+      int j, may = -1;
+      case_of(&configs[ci], &r, &m, &sw);
+      reach = m.detect == BALL_DETECT_SPHERE ? m.collision_distance
+                                             : hypot(m.rackets[0].radius + m.radius, m.radius);
+      off = ball_v3_scale(ball_v3_unit(swing_rnd3(&r, -1.0, 1.0)), seeded_uniform(&r, 0.0, 2.0 * reach));
+      for (j = 0; j < sw.n; j++) sw.s[j].center = ball_v3_add(sw.s[j].center, off);
+      catch_sim(&m, &sw, closest(&m, &sw) - seeded_uniform(&r, 0.0, 0.06), k % 2, &sim);
+      if (sim.sleep > 0) continue;
+      for (j = 1, lo = sim.time; j <= 200; j++) {
+        double t = sim.time + 0.1 * j / 200;
+        if (step_hits(&sim, t, -1, NULL, NULL)) {
+          t_hit = reference_edge(&sim, -1, lo, t);
+          break;
+        }
+        lo = t;
+      }
+      before = sim;
+      if (isfinite(t_hit)) {
+        assert_ok(ball_racket_may_reach(&sim, -1, t_hit, &may));
+        if (!may) fail_msg("a step hits at %.17g, the bound said no (t0 %.17g)", t_hit, sim.time);
+        assert_ok(ball_racket_may_reach(&sim, 0, t_hit, &may)); /* racket 0 alone: the same */
+        assert_int_equal(may, 1);
+        hits++;
+        edge += ball_v3_norm(off) > 0.8 * reach;
+      }
+      t_end = sim.time + (k % 2 ? seeded_uniform(&r, 0.0005, 0.005) : seeded_uniform(&r, 0.005, 0.1));
+      assert_ok(ball_racket_may_reach(&sim, -1, t_end, &may));
+      assert_memory_equal(&sim, &before, sizeof sim);
+      if (t_end >= t_hit && !may) fail_msg("a step hits at %.17g, the bound said no through %.17g", t_hit, t_end);
+      if (t_end < t_hit) {
+        misses++;
+        spared += !may;
+      }
+    }
+    print_message("%-30s %3d hits (%d with the racket moved 0.8-2 reaches off), the bound spared %d of %d windows "
+                  "without one\n",
+                  configs[ci].name, hits, edge, spared, misses);
+    assert_true(hits >= 50);
+    assert_true(edge >= 10);
+    assert_true(spared * 4 >= misses);
+  }
+}
+
+/* At the edge, by hand: a ball at its apex moving at v straight at a racket
+ * held still (one sample). Over T the bound lets the ball come |v_h| T +
+ * max |v_y| T = (v + g T) T nearer; centres 1e-7 m nearer than the test's
+ * reach plus that may be hit, 1e-7 m farther not. The disc and swept tests
+ * reach the corner of the disc test's cylinder, sqrt((r + b)^2 + b^2). */
+static void the_bound_at_the_tests_reach(void **state) {
+  const ball_detect detects[] = {BALL_DETECT_SPHERE, BALL_DETECT_DISC, BALL_DETECT_SWEPT};
+  const double speeds[] = {0.0, 12.0};
+  size_t di, vi;
+  (void)state;
+  for (di = 0; di < 3; di++)
+    for (vi = 0; vi < 2; vi++) {
+      const double T = 0.01, r = SWING_DISC_R, b = SWING_BALL_R, v = speeds[vi];
+      double reach, d, side;
+      ball_model m;
+      swing_model(&m, detects[di]);
+      m.collision_distance = 0.2;
+      reach = detects[di] == BALL_DETECT_SPHERE ? 0.2 : sqrt((r + b) * (r + b) + b * b);
+      for (side = -1.0; side <= 1.0; side += 2.0) {
+        ball_sim sim;
+        ball_state st = {{1.0, 2.0, 3.0}, {0.6 * v, 0, 0.8 * v}, {0, 0, 0}};
+        int may = -1;
+        d = reach + (v + m.gravity * T) * T + side * 1e-7;
+        assert_ok(ball_sim_init(&sim, &m));
+        assert_ok(ball_sim_set_state(&sim, &st));
+        assert_ok(
+            ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {1.0 + d * 0.6, 2.0, 3.0 + d * 0.8}, {1, 0, 0}}));
+        assert_ok(ball_racket_may_reach(&sim, 0, T, &may));
+        assert_int_equal(may, side < 0.0);
+      }
+    }
+}
+
+/* Its bad input, and the cases where the query finds nothing anyway. */
+static void the_bound_refuses_bad_input(void **state) {
+  ball_model m;
+  ball_sim sim, before;
+  int may = 7;
+  (void)state;
+  swing_model(&m, BALL_DETECT_DISC);
+  assert_ok(ball_sim_init(&sim, &m));
+  assert_ok(ball_racket_may_reach(&sim, -1, 1.0, &may));
+  assert_int_equal(may, 0); /* no samples */
+  assert_ok(ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {0.0, 1.0, 0.0}, {1, 0, 0}}));
+  assert_ok(ball_racket_may_reach(&sim, -1, 0.1, &may));
+  assert_int_equal(may, 1); /* the racket where the ball is */
+  assert_ok(ball_racket_may_reach(&sim, -1, 0.0, &may));
+  assert_int_equal(may, 0); /* an empty window */
+  before = sim;
+  may = 7;
+  assert_int_equal(ball_racket_may_reach(NULL, -1, 1.0, &may), BALL_EINVAL);
+  assert_int_equal(ball_racket_may_reach(&sim, -1, 1.0, NULL), BALL_EINVAL);
+  assert_int_equal(ball_racket_may_reach(&sim, -2, 1.0, &may), BALL_EINVAL);
+  assert_int_equal(ball_racket_may_reach(&sim, 1, 1.0, &may), BALL_EINVAL); /* n_rackets is 1 */
+  assert_int_equal(ball_racket_may_reach(&sim, 0, NAN, &may), BALL_ENONFINITE);
+  assert_int_equal(ball_racket_may_reach(&sim, 0, INFINITY, &may), BALL_ENONFINITE);
+  assert_int_equal(ball_racket_may_reach(&sim, 0, -1e-9, &may), BALL_ERANGE);
+  assert_int_equal(may, 7);
+  assert_memory_equal(&sim, &before, sizeof sim);
+  /* asleep or the effect off: no test in the next step */
+  sim.sleep = 1;
+  assert_ok(ball_racket_may_reach(&sim, -1, 0.1, &may));
+  assert_int_equal(may, 0);
+  sim.sleep = 0;
+  m.effects &= ~BALL_EFFECT_RACKETS;
+  assert_ok(ball_sim_set_model(&sim, &m));
+  assert_ok(ball_racket_may_reach(&sim, -1, 0.1, &may));
+  assert_int_equal(may, 0);
+}
+
 /* A racket 5 m away: nothing in the window, searched through t_end. */
 static void no_hit_when_the_racket_stays_away(void **state) {
   size_t ci;
@@ -434,6 +588,9 @@ int main(void) {
       cmocka_unit_test(search_stops_before_a_static_contact),
       cmocka_unit_test(sleep_counts_steps_not_seconds),
       cmocka_unit_test(bad_input_changes_nothing),
+      cmocka_unit_test(the_bound_never_hides_a_hit),
+      cmocka_unit_test(the_bound_at_the_tests_reach),
+      cmocka_unit_test(the_bound_refuses_bad_input),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -549,6 +549,23 @@ BALL_API ball_status ball_racket_first_contact(const ball_sim *sim, int racket, 
 BALL_API ball_status ball_racket_first_contact_any(const ball_sim *sim, double t_end,
                                                    ball_racket_contact *out);
 
+/* A cheap bound to ask before those queries: *may = 0 when racket `racket`
+ * (-1: any racket) cannot be found by the model's test in a step ending in
+ * (sim->time, t_end], so that ball_racket_first_contact(_any) finds no hit
+ * there; 1 when it may. The ball's path over the window (from P_old, the
+ * sim's prev_position, at most as fast as its segment's speeds at the
+ * window's ends allow) and the racket's track (interpolated, eq 15 past the
+ * newest sample, held; and R_old) are each held in a sphere; they may meet
+ * only when the spheres come within the test's reach (d_COLL; the disc and
+ * swept tests sqrt((r + b)^2 + b^2)). No transcendental call, no pose
+ * beyond the track's corners (docs/rackets.md, "First contact"). *may = 0
+ * also when the query would find nothing for other reasons (no samples, a
+ * stale track, the rackets effect off, the tests asleep, an empty window).
+ * BALL_EINVAL for NULL or a racket the model does not have,
+ * BALL_ENONFINITE for a NaN or infinite t_end (or sim state), BALL_ERANGE
+ * for t_end before sim->time; then *may is unchanged. */
+BALL_API ball_status ball_racket_may_reach(const ball_sim *sim, int racket, double t_end, int *may);
+
 /* A portable hash of the sim's state (clock, frame, segment, previous
  * position, sleep counter, racket samples, and ball_model_hash of the sim's
  * model; not the warning counters), to detect desync between peers: equal on
