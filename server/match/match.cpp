@@ -316,9 +316,12 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
   if (state_ != MatchState::playing || !rally_.live() || history_.empty()) return;
   // back no further than the window, the sample before this one, the last hit or the serve
   double t_a = std::max(from, now - config_.rewind_window);
-  const SegmentOut *at = nullptr;
+  const SegmentOut *at = nullptr, *barrier = nullptr;
   for (const SegmentOut &h : history_) {
-    if (h.cause == Cause::serve || h.cause == Cause::racket) t_a = std::max(t_a, h.segment.t0);
+    if (h.cause == Cause::serve || h.cause == Cause::racket) {
+      t_a = std::max(t_a, h.segment.t0);
+      barrier = &h;
+    }
     if (h.segment.t0 <= t_a) at = &h;
   }
   if (!at || !(t_a < now)) return;
@@ -327,6 +330,12 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
   ball_sim then = sim_;
   if (ball_sim_set_segment(&then, &at->segment, t_a) != BALL_OK) return;
   for (int i = 0; i < model().n_rackets; ++i) then.tracks[i].has_prev = 0;  // R_old: the track at t_a
+  // the racket tests slept after the last hit as they did in the match: else
+  // the hitter's own next sample finds its racket still on the ball at the
+  // hit's instant and hits it again
+  if (barrier && barrier->cause == Cause::racket &&
+      ball_sim_set_sleep(&then, sleep_left(barrier->segment.t0, t_a)) != BALL_OK)
+    return;
   // frame by frame up to now: where the racket meets it first (a frame the
   // bound rules out costs no query; the query stops before a bounce, the
   // step goes through it)
@@ -375,6 +384,16 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
   correcting_ = false;
   counters_.rewinds++;
   out->info_changed = true;
+}
+
+// The racket tests sleep after a hit (section 3.1) for sleep_frames steps:
+// what is left at sim s t of a hit at t_hit, the frame ends since it
+// counted as the match's frames (the hit's own frame end included in the
+// sleep it began).
+int Match::sleep_left(double t_hit, double t) const {
+  double dt = frame_time() * config_.time_base;
+  int ends = dt > 0.0 ? static_cast<int>(std::ceil((t - t_hit) / dt - 1e-9)) : 0;
+  return std::max(0, model().sleep_frames - std::max(0, ends - 1));
 }
 
 void Match::step_to_hit(MatchOutput *out) {
@@ -971,8 +990,7 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t ne
       // the racket tests sleep after a hit (section 3.1): as many frames as
       // the owner had left at t (its frame ends since the hit's frame)
       hit_at_t0 = t == seg->segment.t0;
-      int ends = dt > 0.0 ? static_cast<int>(std::ceil((t - seg->segment.t0) / dt - 1e-9)) : 0;
-      st = ball_sim_set_sleep(&trial, std::max(0, model().sleep_frames - std::max(0, ends - 1)));
+      st = ball_sim_set_sleep(&trial, sleep_left(seg->segment.t0, t));
     }
     if (st != BALL_OK) {
       *err = "segment " + std::to_string(seg->seq) + " at sim time " + std::to_string(t) + ": " + ball_strerror(st);

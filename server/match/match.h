@@ -176,6 +176,7 @@ class Match {
   void find_hit();  // next_hit_ from the tracks as they are
   void took_effect(const SegmentOut &s);  // a segment is in effect now: into the history
   void rewind(int slot, double from, MatchOutput *out);
+  int sleep_left(double t_hit, double t) const;  // racket-test sleep left at sim s t after a hit at t_hit
   bool all_present() const;
   bool holds_slot(const ParticipantId &who) const;
   void set_state(MatchState s, MatchOutput *out);
