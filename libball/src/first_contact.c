@@ -436,34 +436,41 @@ static int may_reach(const ball_sim *sim, int i, double t1, double moves) {
   if (sim->tracks[i].count <= 0) return 0;
   r = track_sphere(m, sim, i, t1, &c);
   gap = ball_v3_dist(sim->prev_position, c) - r - moves - test_reach(m, i);
+  if (gap > 1e-2 * (1.0 + r + moves)) return 0; /* (the margin below is smaller: BALL_MAX_COORD) */
   return !(gap > 1e-9 + 1e-12 * (ball_v3_max_abs(c) + ball_v3_max_abs(sim->prev_position) + r + moves));
 }
 
 ball_status ball_racket_may_reach(const ball_sim *sim, int racket, double t_end, int *may) {
   const ball_model *m;
-  double moves;
-  int i;
+  const ball_vec3 *p, *v;
+  double moves, z;
+  int i, lo, hi, found = 0;
   if (!sim || !may) return BALL_EINVAL;
   m = &sim->model;
   if (m->n_rackets < 0 || m->n_rackets > BALL_MAX_RACKETS || racket < -1 || racket >= m->n_rackets)
     return BALL_EINVAL;
-  if (!isfinite(t_end) || !isfinite(sim->time) || !ball_v3_finite(sim->prev_position) ||
-      !isfinite(sim->seg.t0) || !ball_v3_finite(sim->seg.v0))
+  lo = racket < 0 ? 0 : racket;
+  hi = racket < 0 ? m->n_rackets : racket + 1;
+  for (i = lo; i < hi; i++)
+    if (sim->tracks[i].count < 0 || sim->tracks[i].count > BALL_MAX_HISTORY) return BALL_EINVAL;
+  /* all finite: their sum is (an overflowing sum asks each) */
+  p = &sim->prev_position;
+  v = &sim->seg.v0;
+  z = (t_end + sim->time + sim->seg.t0) + (p->x + p->y + p->z) + (v->x + v->y + v->z);
+  if (!(z - z == 0.0) && (!isfinite(t_end) || !isfinite(sim->time) || !ball_v3_finite(*p) ||
+                          !isfinite(sim->seg.t0) || !ball_v3_finite(*v)))
     return BALL_ENONFINITE;
   if (t_end < sim->time || sim->seg.t0 > sim->time) return BALL_ERANGE;
-  *may = 0;
   /* no test in the next step: the effect off, or asleep */
-  if (!ball__has(m, BALL_EFFECT_RACKETS) || sim->sleep > 0 || !(t_end > sim->time)) return BALL_OK;
-  moves = ball_moves(sim, t_end);
-  for (i = racket < 0 ? 0 : racket; i < (racket < 0 ? m->n_rackets : racket + 1); i++) {
-    const ball_racket_track *tr = &sim->tracks[i];
-    if (tr->count < 0 || tr->count > BALL_MAX_HISTORY) return BALL_EINVAL;
-    if (tr->count == 0 || sim->time - tr->samples[tr->count - 1].t > m->stale_time) continue;
-    if (may_reach(sim, i, t_end, moves)) {
-      *may = 1;
-      break;
+  if (ball__has(m, BALL_EFFECT_RACKETS) && sim->sleep <= 0 && t_end > sim->time) {
+    moves = ball_moves(sim, t_end);
+    for (i = lo; i < hi && !found; i++) {
+      const ball_racket_track *tr = &sim->tracks[i];
+      if (tr->count == 0 || sim->time - tr->samples[tr->count - 1].t > m->stale_time) continue;
+      found = may_reach(sim, i, t_end, moves);
     }
   }
+  *may = found;
   return BALL_OK;
 }
 

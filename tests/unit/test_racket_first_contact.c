@@ -420,6 +420,16 @@ static void the_bound_refuses_bad_input(void **state) {
   assert_int_equal(ball_racket_may_reach(&sim, 0, NAN, &may), BALL_ENONFINITE);
   assert_int_equal(ball_racket_may_reach(&sim, 0, INFINITY, &may), BALL_ENONFINITE);
   assert_int_equal(ball_racket_may_reach(&sim, 0, -1e-9, &may), BALL_ERANGE);
+  sim.tracks[0].count = BALL_MAX_HISTORY + 1; /* a track written by hand */
+  assert_int_equal(ball_racket_may_reach(&sim, -1, 0.1, &may), BALL_EINVAL);
+  sim.tracks[0].count = before.tracks[0].count;
+  sim.prev_position.x = sim.prev_position.y = DBL_MAX; /* a sum that overflows asks each number: all finite */
+  assert_ok(ball_racket_may_reach(&sim, -1, 0.1, &may));
+  assert_int_equal(may, 0);
+  sim.prev_position.y = NAN;
+  may = 7;
+  assert_int_equal(ball_racket_may_reach(&sim, -1, 0.1, &may), BALL_ENONFINITE);
+  sim.prev_position = before.prev_position;
   assert_int_equal(may, 7);
   assert_memory_equal(&sim, &before, sizeof sim);
   /* asleep or the effect off: no test in the next step */
