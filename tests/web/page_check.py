@@ -106,19 +106,36 @@ class Record:
                     self.frames.append(j)
 
 
-def agreement(b, rec, seconds, need):
-    """Page against watcher at the watcher's frame times; (compared, max m, seqs older, seqs newer)."""
+def agreement(b, rec, seconds, need, grace=3.0):
+    """Page against watcher at the watcher's frame times; (compared, max m, seqs older, seqs newer).
+
+    The page's stream trails the watcher's record by its transport: a frame whose segment the page
+    has not received yet (nothing it holds is as new) waits, and counts as an older segment only
+    when the page still lacks it `grace` seconds after the frame was read (a segment lost on the
+    way). A frame whose segment the page holds, or a newer one, is compared at once."""
     compared, worst, older, newer = 0, 0.0, 0, 0
+    waiting = []  # (frame, when read)
     deadline = time.time() + seconds
     while time.time() < deadline and compared < need:
         time.sleep(0.2)
         rec.read()
-        batch, rec.frames = rec.frames[::3], []
+        now = time.time()
+        batch = waiting + [(f, now) for f in rec.frames[::3]]
+        rec.frames, waiting = [], []
         if not batch:
             continue
-        ts = json.dumps([f["sim_time"] for f in batch])
-        page = b.evaluate("JSON.stringify(%s.map(t => window.spectator.ballAt(0, t)))" % ts)
-        for f, p in zip(batch, json.loads(page)):
+        ts = json.dumps([f["sim_time"] for f, _ in batch])
+        # the newest segment the page holds: the one in effect at a time after all of them
+        page, held = json.loads(b.evaluate(
+            "JSON.stringify([%s.map(t => window.spectator.ballAt(0, t)), window.spectator.ballAt(0, 1e300)])" % ts))
+        newest = held["seq"] if held else None
+        for (f, read), p in zip(batch, page):
+            if newest is None or newest < f["segment_seq"]:
+                if now - read < grace:
+                    waiting.append((f, read))
+                else:
+                    older += 1
+                continue
             if p is None:
                 continue
             if p["seq"] != f["segment_seq"]:
