@@ -5,15 +5,21 @@
 // skips after a stall, the percentiles of the status line, the books of
 // the samples, refused writes, CREATE, a busy domain and conflicts, all
 // checked with numbers worked out by hand.
+#include <cmath>
 #include <deque>
 #include <map>
 
+#include "bot.h"
 #include "check.hpp"
 #include "game.h"
+#include "rally.h"
+#include "rng.h"
 #include "fake_port.h"
+#include "segment_feed.h"
 #include "server_loop.h"
 
 using namespace test;
+using check::note;
 
 namespace {
 
@@ -26,13 +32,14 @@ struct Rig {
   LoopSettings settings;
   std::unique_ptr<ServerLoop> loop;
   // (state_rate: every match's ball states per s; 0: its frame rate)
-  explicit Rig(std::vector<double> rates, double status_interval = 1.0, double state_rate = 0.0) {
+  explicit Rig(std::vector<double> rates, double status_interval = 1.0, double state_rate = 0.0,
+               const MatchConfig &base = default_config()) {
     ball_scene scene;
     ball_scene_default(&scene);
     std::string err;
     host.add_scene("tennis", scene, &err);
     for (size_t i = 0; i < rates.size(); ++i) {
-      MatchConfig c = default_config();
+      MatchConfig c = base;
       c.id = static_cast<uint32_t>(i);
       c.frame_rate = rates[i];
       c.state_rate = state_rate > 0.0 ? state_rate : rates[i];
@@ -65,6 +72,89 @@ ControlIn join(uint32_t match, int slot, ParticipantId who) {
 }
 
 }  // namespace
+
+// Every (sim_time, server_time) pair a playing match writes, in its
+// MatchInfo and its ball states, says where its sim clock is: they all lie
+// on one line sim = sim_0 + (server - server_0) * time_base
+// (docs/protocol.md, "Time"), also those written after a hit stepped the
+// match between frames or a late sample rewound it. Two bots play through
+// the loop, their samples at 30 Hz on the clock the states give them,
+// arriving 50 to 100 ms late (a rewind writes a MatchInfo at once).
+TEST(every_clock_pair_of_a_playing_match_lies_on_one_line) {
+  uint64_t steps = 0, rewinds = 0;
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    const double trip = 0.1;  // s; the bots swing late, as people do: hits at their instant and rewinds
+    MatchConfig base = default_config();
+    base.level = BALL_LEVEL_MID;
+    base.seed = seed;
+    Rig r({60.0}, 1.0, 0.0, base);
+    MatchConfig c = r.host.find(0)->config();
+    const ParticipantId who[2] = {participant(1), participant(2)};
+    r.port.controls = {join(0, 0, who[0]), join(0, 1, who[1])};
+    BotBrain brain[2];
+    for (int i = 0; i < 2; ++i) {
+      BotParams p;
+      p.slot = i;
+      p.seed = seed * 11 + static_cast<uint64_t>(i);
+      p.lead = kLateSwing;  // (unaware of the trip: their hits come late, and rewind the match)
+      p.aim_error = 0.02;
+      brain[i].init(r.host.find(0)->model(), r.host.find(0)->court(), p);
+    }
+    SegmentFeed feed;
+    size_t given = 0;
+    uint32_t seq[2] = {0, 0};
+    double next_sample = kStart;
+    std::deque<std::pair<double, RacketSampleIn>> on_the_way;  // (mono s of arrival, sample)
+    Rng jitter(seed);
+    while (r.clock.now < kStart + 20.0) {
+      r.loop->step();
+      while (!on_the_way.empty() && on_the_way.front().first <= r.clock.now) {
+        r.port.samples.push_back(on_the_way.front().second);
+        on_the_way.pop_front();
+      }
+      if (r.port.states.empty()) continue;
+      const StateOut &st = r.port.states.back();  // the bots' clock: the newest state's pair
+      double sim_now = st.sim_time + (r.clock.realtime() - st.server_time) * c.time_base;
+      for (; given < r.port.segments.size(); ++given) feed.add(r.port.segments[given]);
+      if (const SegmentOut *s = feed.due(sim_now))
+        for (int i = 0; i < 2; ++i) brain[i].on_segment(s->segment, s->cause == Cause::serve, s->cause_index, sim_now);
+      if (r.clock.now < next_sample) continue;
+      next_sample += 1.0 / 15.0;
+      for (int i = 0; i < 2; ++i) {
+        RacketSampleIn s;
+        s.match_id = 0;
+        s.player = i;
+        s.seq = ++seq[i];
+        s.capture_time = sim_now;
+        brain[i].pose(sim_now, &s.center, &s.normal);
+        s.from = who[i];
+        s.source_time = r.clock.realtime();
+        on_the_way.push_back({r.clock.now + trip * jitter.uniform(0.5, 1.0), s});
+      }
+    }
+    r.loop->finish();
+    // the line from the first playing state; every later playing pair on it
+    std::vector<std::pair<double, double>> pairs;
+    for (const StateOut &s : r.port.states)
+      if (s.state == MatchState::playing) pairs.push_back({s.sim_time, s.server_time});
+    size_t states = pairs.size();
+    for (const MatchInfoOut &i : r.port.infos)
+      if (i.state == MatchState::playing) pairs.push_back({i.sim_time, i.server_time});
+    CHECK(states > 1000u);
+    double worst = 0.0;
+    for (const auto &p : pairs)
+      worst = std::max(worst, std::fabs(p.first - (pairs[0].first + (p.second - pairs[0].second) * c.time_base)));
+    const MatchCounters &k = r.host.find(0)->counters();
+    note("seed %llu: %zu states and %zu infos while playing, %llu hits (%llu stepped at their instant, "
+         "%llu rewinds): largest distance from the line %.3g s",
+         static_cast<unsigned long long>(seed), states, pairs.size() - states, static_cast<unsigned long long>(k.hits),
+         static_cast<unsigned long long>(k.hit_steps), static_cast<unsigned long long>(k.rewinds), worst);
+    steps += k.hit_steps;
+    rewinds += k.rewinds;
+    CHECK(worst <= 1e-6);  // (server times near 1.7e9 s are doubles 2.4e-7 s apart)
+  }
+  CHECK(steps >= 10u && rewinds >= 10u);  // both ways of stepping between frames were taken
+}
 
 TEST(frames_come_at_their_deadlines) {
   Rig r({60.0, 30.0});
