@@ -44,10 +44,10 @@ int server_summary(Process &server, const std::string &dir) {
     uint64_t dropped = 0;
     for (int i = 0; i < kDropReasons; ++i) dropped += r.status.drops[i];
     std::printf("summary: ball-server: %" PRIu64 " frames, %" PRIu64 " overruns, %" PRIu64 " samples in, %" PRIu64
-                " accepted, %" PRIu64 " dropped, %" PRIu64 " writes refused; server-side latency p50 %.1f ms, p99 "
+                " accepted, %" PRIu64 " idle, %" PRIu64 " dropped, %" PRIu64 " writes refused; server-side latency p50 %.1f ms, p99 "
                 "%.1f ms\n",
-                r.status.frames, r.status.overruns, r.status.samples_in, r.status.samples_ok, dropped,
-                r.write_failures, r.latency_p50 * 1e3, r.latency_p99 * 1e3);
+                r.status.frames, r.status.overruns, r.status.samples_in, r.status.samples_ok,
+                r.status.samples_idle, dropped, r.status.write_failures, r.latency_p50 * 1e3, r.latency_p99 * 1e3);
   } catch (const std::exception &e) {
     std::fprintf(stderr, "%s: no ball-server counters (%s): %s\n", kProgram, (dir + "/server.json").c_str(), e.what());
     rc = 1;

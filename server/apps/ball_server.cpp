@@ -80,7 +80,7 @@ int main(int argc, char **argv) {
   std::fflush(stdout);
   auto print = [&](const StatusOut &o) {
     if (quiet) return;
-    std::printf("%s\n", status_line(o, loop.stats()).c_str());
+    std::printf("%s\n", status_line(o).c_str());
     std::fflush(stdout);
   };
   // another server that outranks this one for one of its matches: it yields it (protocol.md)

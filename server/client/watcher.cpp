@@ -372,9 +372,10 @@ std::vector<std::string> summary_lines(const WatchSummary &s) {
   }
   for (const auto &o : s.servers) {
     std::snprintf(buf, sizeof buf,
-                  "summary: server %u: %" PRIu64 " racket samples in, %" PRIu64 " accepted, dropped %s, %" PRIu64
-                  " frame overruns",
-                  o.server_id, o.samples_in, o.samples_ok, drops_text(o.drops).c_str(), o.overruns);
+                  "summary: server %u: %" PRIu64 " racket samples in, %" PRIu64 " accepted, %" PRIu64
+                  " idle, dropped %s, %" PRIu64 " writes refused, %" PRIu64 " frame overruns",
+                  o.server_id, o.samples_in, o.samples_ok, o.samples_idle, drops_text(o.drops).c_str(),
+                  o.write_failures, o.overruns);
     out.push_back(buf);
   }
   std::snprintf(buf, sizeof buf,

@@ -409,6 +409,11 @@ balldds::ServerStatus to_idl(const StatusOut &in) {
   o.claim_room(in.claim_room);
   o.standby(in.standby);
   o.strength(in.strength);
+  o.samples_idle(in.samples_idle);
+  o.write_failures(in.write_failures);
+  o.dds_lost(in.dds_lost);
+  o.latency_p50(in.latency_p50);
+  o.latency_p99(in.latency_p99);
   return o;
 }
 
@@ -435,6 +440,11 @@ void from_idl(const balldds::ServerStatus &in, StatusOut *o) {
   o->claim_room = in.claim_room();
   o->standby = in.standby();
   o->strength = in.strength();
+  o->samples_idle = in.samples_idle();
+  o->write_failures = in.write_failures();
+  o->dds_lost = in.dds_lost();
+  o->latency_p50 = in.latency_p50();
+  o->latency_p99 = in.latency_p99();
 }
 
 }  // namespace dds

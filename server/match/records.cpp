@@ -158,11 +158,13 @@ void from_json(const json &j, MatchInfoOut &i) {
   X("server_id", s.server_id) X("uptime", s.uptime) X("samples_in", s.samples_in)                       \
   X("samples_ok", s.samples_ok) X("controls_in", s.controls_in) X("controls_refused", s.controls_refused) \
   X("states_out", s.states_out) X("segments_out", s.segments_out) X("events_out", s.events_out)         \
-  X("frames", s.frames) X("overruns", s.overruns)
+  X("frames", s.frames) X("overruns", s.overruns) X("samples_idle", s.samples_idle)                    \
+  X("write_failures", s.write_failures) X("dds_lost", s.dds_lost)
 #define BALL_STATUS_KEYS(X, s)                                                                          \
   X("server_time", s.server_time) X("matches", s.matches) X("playing", s.playing)                       \
   X("frame_p50", s.frame_p50) X("frame_p99", s.frame_p99) X("max_matches", s.max_matches)               \
-  X("following", s.following) X("claim_room", s.claim_room) X("standby", s.standby) X("strength", s.strength)
+  X("following", s.following) X("claim_room", s.claim_room) X("standby", s.standby) X("strength", s.strength) \
+  X("latency_p50", s.latency_p50) X("latency_p99", s.latency_p99)
 
 void to_json(json &j, const StatusOut &s) {
   j = json::object();
@@ -223,10 +225,10 @@ void from_json(const json &j, MatchReport &m) {
 
 // the absolute frame clock: how late frames start (each status period's p99, then its median and max)
 #define BALL_REPORT_KEYS(X, r)                                                                          \
-  X("samples_idle", r.samples_idle) X("infos_out", r.infos_out) X("write_failures", r.write_failures)   \
+  X("infos_out", r.infos_out)                                                                           \
   X("skipped_frames", r.skipped_frames) X("late_p99_median", r.late_p99_median)                         \
   X("late_p99_max", r.late_p99_max) X("late_max", r.late_max) X("deadline_missed", r.deadline_missed)   \
-  X("writers_lost", r.writers_lost) X("dds_lost", r.dds_lost) X("controls_at_door", r.controls_at_door) X("others_refused", r.others_refused) X("conflicts", r.conflicts) X("latency_p50", r.latency_p50)         \
+  X("writers_lost", r.writers_lost) X("controls_at_door", r.controls_at_door) X("others_refused", r.others_refused) X("conflicts", r.conflicts) X("latency_p50", r.latency_p50)         \
   X("latency_p99", r.latency_p99) X("latency_count", r.latency_count) X("matches", r.matches)           \
   X("hit_wakes", r.hit_wakes) X("hit_late_p50", r.hit_late_p50) X("hit_late_p99", r.hit_late_p99)       \
   X("takeovers", r.takeovers) X("yields", r.yields) X("claims", r.claims)                               \

@@ -160,12 +160,10 @@ void from_json(const json &j, MatchReport &m);
 // list's), then the rest, then "matches", the list.
 struct ServerReport {
   StatusOut status;
-  uint64_t samples_idle = 0, infos_out = 0;
-  uint64_t write_failures = 0;  // writes DDS refused
+  uint64_t infos_out = 0;
   uint64_t skipped_frames = 0;  // frames skipped after a stall (more than 5 behind)
   double late_p99_median = 0.0, late_p99_max = 0.0, late_max = 0.0;  // s: frames' start after their deadline
   uint64_t deadline_missed = 0, writers_lost = 0, conflicts = 0;
-  uint64_t dds_lost = 0;  // DDS's own count of racket samples lost (not in drops: `lost` is the holders' seq gaps)
   uint64_t controls_at_door = 0;  // of controls_refused, turned away at the control reader's door
   uint64_t others_refused = 0;    // other participants' MatchInfo no server writes (trust.h, usable_info)
   uint64_t takeovers = 0, yields = 0, claims = 0, follow_failures = 0;  // among the servers of a domain

@@ -44,7 +44,7 @@ void ServerLoop::expire_created(double t0) {
       continue;
     }
     uint32_t id = m->id();
-    if (!port_.dispose_match(id)) stats_.write_failures++;
+    if (!port_.dispose_match(id)) stats_.totals.write_failures++;
     it = sched_.erase(it);
     host_.remove(id);
     stats_.created_expired++;
@@ -360,7 +360,7 @@ void ServerLoop::take_over(double t0, double now) {
 template <class T>
 void ServerLoop::write(const T &sample, uint64_t *written) {
   if (port_.write(sample)) (*written)++;
-  else stats_.write_failures++;
+  else stats_.totals.write_failures++;
 }
 
 void ServerLoop::publish(const MatchOutput &out, Scheduled &s, double now) {
@@ -446,7 +446,7 @@ void ServerLoop::take_notes(double t0) {
       case PortNote::lost:
         // DDS's own count of a writer's sequence gaps: kept apart, since `lost` comes from the
         // holders' own seqs (take_samples), and one forged datagram makes a gap of 2^31
-        stats_.dds_lost += std::min(n.count, kMaxLostPerNote);
+        stats_.totals.dds_lost += std::min(n.count, kMaxLostPerNote);
         break;
       case PortNote::door_unknown_match:
       case PortNote::door_bad_slot: {
@@ -495,7 +495,7 @@ void ServerLoop::take_samples(double now) {
       r = host_.on_sample(sample, now, &lost);
     }
     if (r == SampleResult::accepted) stats_.totals.samples_ok++;
-    else if (r == SampleResult::idle) stats_.samples_idle++;
+    else if (r == SampleResult::idle) stats_.totals.samples_idle++;
     else stats_.totals.drops[static_cast<int>(r)]++;
     count_lost(lost);
   }
@@ -663,8 +663,6 @@ bool ServerLoop::wake() {
 
 void ServerLoop::close_period() {
   status_ = status_now();
-  stats_.period_latency_p50 = stats_.latency.quantile(0.5);
-  stats_.period_latency_p99 = stats_.latency.quantile(0.99);
   write(status_, &stats_.statuses_out);
 }
 
@@ -696,6 +694,8 @@ StatusOut ServerLoop::status_now() const {
   o.uptime = uptime();
   o.frame_p50 = stats_.frame_time.quantile(0.5);
   o.frame_p99 = stats_.frame_time.quantile(0.99);
+  o.latency_p50 = stats_.latency.quantile(0.5);
+  o.latency_p99 = stats_.latency.quantile(0.99);
   o.matches = static_cast<uint32_t>(sched_.size());
   o.playing = 0;
   for (const auto &s : sched_) o.playing += s.match->state() == MatchState::playing;
@@ -710,16 +710,13 @@ StatusOut ServerLoop::status_now() const {
 ServerReport ServerLoop::report() const {
   ServerReport r;
   r.status = status_;
-  r.samples_idle = stats_.samples_idle;
   r.infos_out = stats_.infos_out;
-  r.write_failures = stats_.write_failures;
   r.skipped_frames = stats_.skipped;
   r.late_p99_median = stats_.late_p99.quantile(0.5);
   r.late_p99_max = stats_.late_p99.max();
   r.late_max = stats_.late_max;
   r.deadline_missed = stats_.deadline_missed;
   r.writers_lost = stats_.writers_lost;
-  r.dds_lost = stats_.dds_lost;
   r.controls_at_door = stats_.controls_at_door;
   r.others_refused = stats_.others_refused;
   r.conflicts = stats_.conflicts;
@@ -751,16 +748,15 @@ ServerReport ServerLoop::report() const {
   return r;
 }
 
-std::string status_line(const StatusOut &o, const LoopStats &st) {
+std::string status_line(const StatusOut &o) {
   char buf[1024];
   std::snprintf(buf, sizeof buf,
                 "ball-server %u: %.0f s, matches %u (%u playing), samples in %" PRIu64 " ok %" PRIu64 " idle %" PRIu64
                 ", drops %s, out %" PRIu64 " states %" PRIu64 " segments %" PRIu64 " events, failed writes %" PRIu64
                 ", overruns %" PRIu64 ", frame p50 %.3f ms p99 %.3f ms, latency p50 %.1f ms p99 %.1f ms",
-                o.server_id, o.uptime, o.matches, o.playing, o.samples_in, o.samples_ok, st.samples_idle,
-                drops_text(o.drops).c_str(), o.states_out, o.segments_out, o.events_out, st.write_failures,
-                o.overruns, o.frame_p50 * 1e3, o.frame_p99 * 1e3, st.period_latency_p50 * 1e3,
-                st.period_latency_p99 * 1e3);
+                o.server_id, o.uptime, o.matches, o.playing, o.samples_in, o.samples_ok, o.samples_idle,
+                drops_text(o.drops).c_str(), o.states_out, o.segments_out, o.events_out, o.write_failures,
+                o.overruns, o.frame_p50 * 1e3, o.frame_p99 * 1e3, o.latency_p50 * 1e3, o.latency_p99 * 1e3);
   return buf;
 }
 

@@ -141,12 +141,9 @@ struct LoopSettings {
 // The loop's counters: the status line, ServerStatus, the stats file.
 struct LoopStats {
   StatusOut totals;             // the counters ServerStatus carries: samples, drops, controls, writes, frames, overruns
-  uint64_t samples_idle = 0;    // well formed, but their match was not playing
   uint64_t infos_out = 0, statuses_out = 0;  // MatchInfo and ServerStatus written
-  uint64_t write_failures = 0;  // writes the port refused (every kind, the status too)
   uint64_t skipped = 0;         // frames skipped after a stall
   uint64_t deadline_missed = 0, writers_lost = 0;
-  uint64_t dds_lost = 0;        // DDS's own count of gaps in the racket writers' sequences (at most 1000 a note)
   uint64_t controls_at_door = 0;  // controls the control reader's door turned away (in controls_refused too)
   uint64_t conflicts = 0;       // MatchInfo of one of our matches from another server
   uint64_t others_refused = 0;  // MatchInfo from other participants whose numbers no server writes (usable_info)
@@ -164,7 +161,6 @@ struct LoopStats {
   double late_max = 0.0;        // real s, over the run
   Percentiles latency;          // real s from a hit's newest racket sample's write to its segment's, this period
   Percentiles latency_all;      // the same over the run
-  double period_latency_p50 = 0.0, period_latency_p99 = 0.0;  // real s, of the last status period closed
 };
 
 class ServerLoop {
@@ -295,6 +291,6 @@ class ServerLoop {
 };
 
 // The status line: "ball-server 1: 12 s, matches 1 (1 playing), samples in ...".
-std::string status_line(const StatusOut &status, const LoopStats &stats);
+std::string status_line(const StatusOut &status);
 
 }  // namespace ballsrv

@@ -431,6 +431,12 @@ struct StatusOut {
   uint32_t claim_room = 0;                   // matches it may still claim; 0: it claims none
   bool standby = false;                      // it follows other servers' matches and takes them over
   uint32_t strength = 0;                     // its match writers' ownership strength
+  // the rest of the status line
+  uint64_t samples_idle = 0;                 // well formed, their match not playing: presence only
+  uint64_t write_failures = 0;               // samples of every topic the port refused to write (the status too)
+  uint64_t dds_lost = 0;                     // DDS's own count of gaps in the racket writers' sequences (at most 1000 a note)
+  double latency_p50 = 0.0;                  // real s, the status period: a hit's newest sample written -> its segment written
+  double latency_p99 = 0.0;
 };
 
 }  // namespace ballsrv

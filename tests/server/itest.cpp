@@ -68,7 +68,8 @@ void case_lossy(const Env &env) {
     return c.bot(slot, a);
   };
   Server server = c.server();
-  Process w = ready_watcher(c, path(env, "watch.jsonl"), {});
+  std::string sum = path(env, "watch.json");
+  Process w = ready_watcher(c, path(env, "watch.jsonl"), {"--summary-json", sum});
   Process b0 = bot(0), b1 = bot(1);
   Tail t(path(env, "watch.jsonl"));
   double t0 = first_serve(t), last = 0.0;
@@ -91,10 +92,29 @@ void case_lossy(const Env &env) {
   uint64_t lost = r.status.drops[static_cast<int>(SampleResult::lost)];
   note("the bots' links lost %llu of their samples (%llu written); the server counted %llu lost, DDS %llu",
        static_cast<unsigned long long>(link_lost), static_cast<unsigned long long>(written),
-       static_cast<unsigned long long>(lost), static_cast<unsigned long long>(r.dds_lost));
+       static_cast<unsigned long long>(lost), static_cast<unsigned long long>(r.status.dds_lost));
   CHECK(link_lost >= 15);
   CHECK_MSG(lost <= link_lost && lost + 16 >= link_lost, "server lost %llu, the links %llu",
             static_cast<unsigned long long>(lost), static_cast<unsigned long long>(link_lost));
+  // the books as a monitor reads them: the newest ServerStatus the watcher took balances by
+  // itself (samples_idle is on the wire), and the server's last one is its stats file's
+  CHECK_EQ(w.stop(5.0), 0);
+  WatchSummary ws;
+  if (!read_summary(sum, &ws)) return;
+  CHECK_MSG(ws.servers.size() == 1, "%zu servers in the summary", ws.servers.size());
+  if (ws.servers.empty()) return;
+  const StatusOut &wire = ws.servers[0];
+  uint64_t dropped = 0;
+  for (int i = 0; i < kDropReasons; ++i) dropped += wire.drops[i];
+  note("ServerStatus on the wire: %llu in = %llu accepted + %llu idle + %llu dropped (%llu lost); the stats file: %llu in",
+       (unsigned long long)wire.samples_in, (unsigned long long)wire.samples_ok, (unsigned long long)wire.samples_idle,
+       (unsigned long long)dropped, (unsigned long long)wire.drops[static_cast<int>(SampleResult::lost)],
+       (unsigned long long)r.status.samples_in);
+  CHECK_EQ(wire.samples_in, wire.samples_ok + wire.samples_idle + dropped);
+  CHECK(wire.samples_idle > 0u);  // the bots' samples before both had joined
+  CHECK(wire.drops[static_cast<int>(SampleResult::lost)] > 0u);
+  CHECK(wire.samples_in + 40u >= r.status.samples_in && wire.samples_in <= r.status.samples_in);
+  CHECK_EQ(wire.write_failures, r.status.write_failures);
 }
 
 // the ball evaluated from segments matches the server's ball states
@@ -109,13 +129,7 @@ void case_desync(const Env &env) {
   t.poll();
   // the watcher's own check
   WatchSummary s;
-  try {
-    std::ifstream f(sum);
-    s = json::parse(f).get<WatchSummary>();
-  } catch (const std::exception &e) {
-    CHECK_MSG(false, "no summary in %s: %s", sum.c_str(), e.what());
-    return;
-  }
+  if (!read_summary(sum, &s)) return;
   CHECK_MSG(s.matches.size() == 1, "%zu matches in the summary", s.matches.size());
   if (s.matches.empty()) return;
   const WatchedMatchSummary &m = s.matches[0];
@@ -193,11 +207,7 @@ void case_lag(const Env &env) {
   for (const auto &j : p.t.lines)
     if (is_type(j, "segment") && j.get<SegmentOut>().correction) corrections++;
   WatchSummary w;
-  try {
-    w = json::parse(file_text(sum)).get<WatchSummary>();
-  } catch (const std::exception &e) {
-    CHECK_MSG(false, "no summary in %s: %s", sum.c_str(), e.what());
-  }
+  read_summary(sum, &w);
   double desync = w.matches.empty() ? 1.0 : w.matches[0].max_error;
   note("150 ms, late swings: %d hits in %.1f s, %llu late samples tested, %llu rewinds, %d correction segments, "
        "desync %.3g m",
@@ -339,11 +349,11 @@ void case_flood(const Env &env) {
   const StatusOut &ds = dirty_stats.status;
   long in = static_cast<long>(ds.samples_in), all_drops = 0;
   for (int i = 0; i < kDropReasons; ++i) all_drops += static_cast<long>(ds.drops[i]);
-  long books = static_cast<long>(ds.samples_ok + dirty_stats.samples_idle) + all_drops;
+  long books = static_cast<long>(ds.samples_ok + dirty_stats.status.samples_idle) + all_drops;
   CHECK_MSG(in == books, "samples_in %ld, accepted + idle + dropped %ld", in, books);
   long sent_all = total + valid;
   note("the server's books: %ld in (%ld sent), %llu accepted, %llu idle, %ld dropped", in, sent_all,
-       (unsigned long long)ds.samples_ok, (unsigned long long)dirty_stats.samples_idle, all_drops);
+       (unsigned long long)ds.samples_ok, (unsigned long long)dirty_stats.status.samples_idle, all_drops);
   CHECK_MSG(in <= sent_all, "samples_in %ld, more than the %ld sent", in, sent_all);
   CHECK_MSG(!clean_stats.matches.empty() && !dirty_stats.matches.empty(), "no match in the server's counters");
   if (clean_stats.matches.empty() || dirty_stats.matches.empty()) return;
@@ -409,7 +419,7 @@ void case_key_flood(const Env &env) {
   CHECK(flooded >= 500000);
   CHECK_EQ(pauses, 0u);
   CHECK(r.status.samples_ok >= 100u);  // A's 2 x 10 a second, for the flood's seconds
-  CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.samples_idle + all_drops);
+  CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.status.samples_idle + all_drops);
   CHECK(r.status.samples_in <= static_cast<uint64_t>(flooded) + 1000u);
 }
 
@@ -525,7 +535,7 @@ void case_create_flood(const Env &env) {
   CHECK(r.status.controls_refused <= creates + 10);
   CHECK_EQ(r.controls_at_door, 0u);
   CHECK_EQ(r.matches.size(), 4u);  // the configured one, the real CREATE's and the flood's max_creates (2)
-  CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.samples_idle + dropped);
+  CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.status.samples_idle + dropped);
 }
 
 // A participant posing as a server on an open domain, its writers stronger
@@ -661,7 +671,7 @@ void case_control_share(const Env &env) {
   CHECK_MSG(!serve.is_null() && joined <= 10.0, "match 0 served %.2f s after its bots started", joined);
   CHECK_MSG(hits >= 3, "match 0: %d hits under the flood of match 1", hits);
   CHECK(r.status.controls_in >= controls * 9 / 10);  // counted, whatever became of them
-  CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.samples_idle + dropped);
+  CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.status.samples_idle + dropped);
 }
 
 // One slot's burst takes its own share of the server's racket inbox only:

@@ -107,6 +107,17 @@ inline std::string file_text(const std::string &file) {
   return std::string(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
 }
 
+// A watcher's --summary-json file: false (and a failed check) when it cannot be read.
+inline bool read_summary(const std::string &file, WatchSummary *out) {
+  try {
+    *out = json::parse(file_text(file)).get<WatchSummary>();
+    return true;
+  } catch (const std::exception &e) {
+    CHECK_MSG(false, "no summary in %s: %s", file.c_str(), e.what());
+    return false;
+  }
+}
+
 // Runs a program that should end by itself (logs NAME.out and NAME.err in
 // the work folder): its exit status (-1: stopped after 20 s), its stderr in *err.
 inline int run_to_end(const Env &env, const std::vector<std::string> &argv, const std::string &name, std::string *err) {

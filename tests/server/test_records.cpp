@@ -127,13 +127,14 @@ TEST(reports_come_back) {
   r.status.drops[static_cast<int>(SampleResult::lost)] = 1;
   r.status.frames = 720;
   r.status.overruns = 2;
-  r.samples_idle = 2;
-  r.write_failures = 5;
+  r.status.samples_idle = 2;
+  r.status.write_failures = 5;
+  r.status.latency_p50 = 0.0121;  // (the status period's: in the status's own form, not the report's)
   r.skipped_frames = 7;
   r.late_max = 0.081;
   r.latency_p99 = 0.0309;
   r.latency_count = 48;
-  r.dds_lost = 6;
+  r.status.dds_lost = 6;
   r.controls_at_door = 11;
   MatchReport m;
   m.id = 9;
@@ -147,7 +148,9 @@ TEST(reports_come_back) {
   CHECK(same(back, r));
   CHECK_EQ(back.status.drops[static_cast<int>(SampleResult::stale)], 3u);
   CHECK_EQ(back.matches[0].sim_hash, 0xfedcba9876543210ull);
-  CHECK_EQ(back.dds_lost, 6u);
+  CHECK_EQ(back.status.dds_lost, 6u);
+  CHECK_EQ(back.status.samples_idle, 2u);
+  CHECK_EQ(back.status.write_failures, 5u);
   CHECK_EQ(back.controls_at_door, 11u);
   CHECK_EQ(back.status.matches, 2u);  // the list's
   CHECK_EQ(back.status.playing, 1u);
@@ -170,6 +173,8 @@ TEST(reports_come_back) {
   CHECK(same(wb, w));
   CHECK_EQ(wb.matches[0].max_error, 1e-300);
   CHECK_EQ(wb.servers[0].samples_in, 371u);
+  CHECK_EQ(wb.servers[0].samples_idle, 2u);  // a status carries the whole books
+  CHECK_EQ(wb.servers[0].latency_p50, 0.0121);
   CHECK_EQ(wb.untrusted, 12u);
 
   BotReport b{2, 1, 300, 60, 240, 1, 55, 8, 1, 0, 3, 2, hex(participant(7))};

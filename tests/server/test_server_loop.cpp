@@ -224,7 +224,7 @@ TEST(the_status_comes_once_an_interval) {
   CHECK(r.loop->step());
   CHECK_EQ(r.port.statuses.size(), 2u);
   CHECK_EQ(r.port.statuses[1].frames, 182u);
-  std::string line = status_line(r.loop->status(), r.loop->stats());
+  std::string line = status_line(r.loop->status());
   CHECK_MSG(line.find("ball-server 5: 2 s, matches 2 (0 playing)") == 0, "%s", line.c_str());
   CHECK_MSG(line.find("failed writes 0, overruns 0") != std::string::npos, "%s", line.c_str());
 }
@@ -323,12 +323,12 @@ TEST(samples_and_notes_balance_the_books) {
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::duplicate)], 1u);
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::rejected)], 3u + 1u);
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::lost)], 0u);  // the gaps wait for late samples
-  CHECK_EQ(s.dds_lost, 2u);
+  CHECK_EQ(s.totals.dds_lost, 2u);
   CHECK_EQ(s.deadline_missed, 1u);
   auto balanced = [&] {
     uint64_t dropped = 0;
     for (int i = 0; i < kDropReasons; ++i) dropped += s.totals.drops[i];
-    return s.totals.samples_in == s.totals.samples_ok + s.samples_idle + dropped;
+    return s.totals.samples_in == s.totals.samples_ok + s.totals.samples_idle + dropped;
   };
   CHECK(balanced());
   // the holder's next one after the rejected: no gap; one of the two skipped comes late
@@ -368,7 +368,7 @@ TEST(dds_notes_count_what_they_can_mean) {
                   {PortNote::control_rejected, {}, 73}, {PortNote::control_lost, {}, 1ull << 40}};
   r.loop->step();
   const LoopStats &s = r.loop->stats();
-  CHECK_EQ(s.dds_lost, kMaxLostPerNote);
+  CHECK_EQ(s.totals.dds_lost, kMaxLostPerNote);
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::lost)], 0u);
   CHECK_EQ(s.totals.drops[static_cast<int>(SampleResult::rejected)], 5u);
   CHECK_EQ(s.totals.samples_in, 5u);
@@ -451,13 +451,13 @@ TEST(refused_writes_are_counted) {
   loop.start();  // one MatchInfo
   while (!loop.step()) {
   }  // its periodic MatchInfo at 0.326 s (id 7: 7 x 0.618 mod 1 of the interval), then the status
-  CHECK_EQ(loop.stats().write_failures, 3u);
+  CHECK_EQ(loop.stats().totals.write_failures, 3u);
   CHECK_EQ(loop.stats().infos_out, 0u);
   CHECK_EQ(port.infos.size(), 0u);
   port.refuse = false;
   loop.finish();
   CHECK_EQ(port.statuses.size(), 1u);
-  CHECK_EQ(loop.report().write_failures, 3u);
+  CHECK_EQ(loop.report().status.write_failures, 3u);
 }
 
 TEST(a_create_schedules_the_new_match) {

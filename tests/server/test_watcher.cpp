@@ -231,7 +231,9 @@ TEST(summary_lines_say_the_numbers) {
   o.server_id = 1;
   o.samples_in = 371;
   o.samples_ok = 365;
+  o.samples_idle = 2;
   o.drops[static_cast<int>(SampleResult::stale)] = 4;
+  o.write_failures = 1;
   s.servers = {o};
   s.latency_p50 = 0.0121;
   s.latency_count = 10;
@@ -239,8 +241,9 @@ TEST(summary_lines_say_the_numbers) {
   CHECK_EQ(lines.size(), 3u);
   CHECK_MSG(lines[0].find("match 2: 10 hits") != std::string::npos, "%s", lines[0].c_str());
   CHECK_MSG(lines[0].find("600 of 602 ball states checked") != std::string::npos, "%s", lines[0].c_str());
-  CHECK_MSG(lines[1].find("371 racket samples in, 365 accepted, dropped 4 (stale 4)") != std::string::npos, "%s",
-            lines[1].c_str());
+  CHECK_MSG(lines[1].find("371 racket samples in, 365 accepted, 2 idle, dropped 4 (stale 4), 1 writes refused") !=
+                std::string::npos,
+            "%s", lines[1].c_str());
   CHECK_MSG(lines[2].find("p50 12.1 ms") != std::string::npos, "%s", lines[2].c_str());
 }
 
