@@ -16,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -987,21 +988,38 @@ void case_discovery(const Env &env) {
          err.substr(0, err.find('\n')).c_str());
     CHECK_MSG(rc == 1 && err.find(r.expect) != std::string::npos, "status %d: %s", rc, err.c_str());
   }
-  // the discovery server: started, it says where it listens
+  // the discovery server: started, it says where it listens. The port lies in the
+  // system's ephemeral range (domains above 101 do), so a socket of any program may hold
+  // it for a while: a start that finds it taken is tried again, up to 10 s
   int servers = 0;
   auto discovery_server = [&]() {
     DiscoveryServer ds;
-    std::string log = path(env, "discovery" + std::to_string(++servers));
-    ds.p = Process::start({env.fastdds, "discovery", "-x", "discovery_server@" + find_profile(""), "-l", "127.0.0.1",
-                           "-p", std::to_string(port)},
-                          log + ".out", log + ".err");
-    std::string listening = "UDPv4:[127.0.0.1]:" + std::to_string(port);
-    double end = mono_now() + 10.0;
-    while (file_text(log + ".out").find(listening) == std::string::npos && ds.p.running() && mono_now() < end)
-      usleep(50000);
-    CHECK_MSG(file_text(log + ".out").find(listening) != std::string::npos,
-              "%s discovery did not start on %s (fastdds-tools, ./run setup): %s%s", env.fastdds.c_str(),
-              at.c_str(), file_text(log + ".out").c_str(), file_text(log + ".err").c_str());
+    std::string listening = "UDPv4:[127.0.0.1]:" + std::to_string(port), log;
+    const double give_up = mono_now() + 10.0;
+    for (int attempt = 1;; ++attempt) {
+      log = path(env, "discovery" + std::to_string(++servers));
+      ds.p = Process::start({env.fastdds, "discovery", "-x", "discovery_server@" + find_profile(""), "-l",
+                             "127.0.0.1", "-p", std::to_string(port)},
+                            log + ".out", log + ".err");
+      double end = mono_now() + 10.0;
+      while (file_text(log + ".out").find(listening) == std::string::npos && ds.p.running() && mono_now() < end)
+        usleep(50000);
+      bool taken = file_text(log + ".out").find("wasn't able to allocate the specified listening port") !=
+                   std::string::npos;
+      if (!taken || mono_now() >= give_up) break;
+      ds.end(SIGINT);
+      note("the discovery server's port %d was taken (attempt %d): tried again in 0.5 s", port, attempt);
+      usleep(500000);
+    }
+    if (file_text(log + ".out").find(listening) == std::string::npos) {
+      // who holds the port (iproute2's ss), for the failure's message
+      std::string holders = path(env, "port-holders.txt");
+      std::string cmd = "ss -uapn 'sport = :" + std::to_string(port) + "' > " + holders + " 2>&1";
+      if (std::system(cmd.c_str()) != 0) holders += " (ss failed)";
+      CHECK_MSG(false, "%s discovery did not start on %s (fastdds-tools, ./run setup): %s%s; the port's sockets: %s",
+                env.fastdds.c_str(), at.c_str(), file_text(log + ".out").c_str(), file_text(log + ".err").c_str(),
+                file_text(holders).c_str());
+    }
     return ds;
   };
   auto hits_after = [](Tail &t, size_t *from, int want, double timeout) {
