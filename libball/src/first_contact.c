@@ -353,6 +353,82 @@ static int search_racket(query *q, double hi, double *t_hit, double *searched) {
 
 /* ---- the bound: whether a racket's test can find the ball at all ---- */
 
+/* How far the ball's centre gets from P_old over [t0, t1] on its segment
+ * (eq 3), along each axis: horizontally |v0x| (d(tau1) - d(tau0)) <=
+ * |v0x| (t1 - t0), drag only slows it (z alike); vertically at most the
+ * larger |v_y| at the two ends (v_y is linear in tau) times t1 - t0. P_old
+ * is the ball at t0: every call that moves the sim (a step, set_segment,
+ * set_state, set_model) keeps it so. */
+static inline ball_vec3 ball_box(const ball_sim *sim, double t1) {
+  const ball_segment *seg = &sim->seg;
+  double T = t1 - sim->time, vy = 0.0;
+  if (!seg->grounded) {
+    double g = sim->model.gravity, a = fabs(seg->v0.y - g * (sim->time - seg->t0)),
+           b = fabs(seg->v0.y - g * (t1 - seg->t0));
+    vy = a > b ? a : b;
+  }
+  return ball_v3(fabs(seg->v0.x) * T, vy * T, fabs(seg->v0.z) * T);
+}
+
+/* The same as one distance: |v0_h| T + max |v_y| T from the box's half
+ * extents (the horizontal ones as a vector, drag slows both alike). */
+static double ball_moves(ball_vec3 h) { return sqrt(h.x * h.x + h.z * h.z) + h.y; }
+
+static double farther(double r, ball_vec3 c, ball_vec3 p) {
+  double d = ball_v3_dist(c, p);
+  return d > r ? d : r;
+}
+
+/* From the second newest sample on a racket's track is one line, R(t) =
+ * R_n + V (min(t - t_n, extrapolation_time)) with V the two newest
+ * samples' velocity (interpolation between them and eq 15 past the
+ * newest), held after the extrapolation's end: over a window (t0, t1] that
+ * starts there (nearly every look) the track is the chord from *a = R(t0)
+ * to *b = R(t1), and this returns 1; 0 when the window starts earlier. */
+static inline int track_chord(const ball_model *m, const ball_racket_track *tr, double t0, double t1, ball_vec3 *a,
+                       ball_vec3 *b) {
+  const ball_racket_sample *s = tr->samples;
+  int n = tr->count;
+  if (n == 1) {
+    *a = *b = s[0].center;
+    return 1;
+  }
+  if (!(t0 >= s[n - 2].t)) return 0;
+  {
+    ball_vec3 v = ball_v3_scale(ball_v3_sub(s[n - 1].center, s[n - 2].center), 1.0 / (s[n - 1].t - s[n - 2].t));
+    double da = t0 - s[n - 1].t, db = t1 - s[n - 1].t;
+    if (da > m->extrapolation_time) da = m->extrapolation_time;
+    if (db > m->extrapolation_time) db = m->extrapolation_time;
+    *a = ball_v3_add(s[n - 1].center, ball_v3_scale(v, da));
+    *b = ball_v3_add(s[n - 1].center, ball_v3_scale(v, db));
+  }
+  return 1;
+}
+
+/* A sphere (centre *c, the radius returned) that holds racket i's centre at
+ * every frame end in (t0, t1] as the stage estimates it, and R_old: over
+ * a chord (track_chord, `line`), the chord a b; otherwise the track's
+ * corners in the window, the poses at t0 and t1 and the samples between. */
+static double track_sphere(const ball_model *m, const ball_sim *sim, int i, double t1, int line, ball_vec3 a,
+                           ball_vec3 b, ball_vec3 *c) {
+  const ball_racket_track *tr = &sim->tracks[i];
+  double t0 = sim->time, r;
+  int k;
+  if (!line) {
+    ball_racket_pose pa, pb;
+    ball__racket_pose(m, tr, t0, &pa);
+    ball__racket_pose(m, tr, t1, &pb);
+    a = pa.center;
+    b = pb.center;
+  }
+  *c = ball_v3_lerp(a, b, 0.5);
+  r = 0.5 * ball_v3_dist(a, b);
+  if (!line)
+    for (k = 0; k < tr->count; k++)
+      if (tr->samples[k].t > t0 && tr->samples[k].t < t1) r = farther(r, *c, tr->samples[k].center);
+  return tr->has_prev ? farther(r, *c, tr->prev_pose.center) : r;
+}
+
 /* How far from a racket's centre its test can find the ball's centre: d_COLL
  * for the sphere test; for the disc test the disc grown by the ball radius
  * within the ball radius of either face, to the corner of that cylinder,
@@ -364,77 +440,52 @@ static double test_reach(const ball_model *m, int i) {
   return sqrt(r * r + m->radius * m->radius);
 }
 
-/* How far the ball's centre gets from P_old over [t0, t1] on its segment
- * (eq 3): horizontally |v0_h| (d(tau1) - d(tau0)) <= |v0_h| (t1 - t0), drag
- * only slows it; vertically at most the larger |v_y| at the two ends (v_y is
- * linear in tau) times t1 - t0. P_old is the ball at t0: every call that
- * moves the sim (a step, set_segment, set_state, set_model) keeps it so. */
-static double ball_moves(const ball_sim *sim, double t1) {
-  const ball_segment *seg = &sim->seg;
-  double T = t1 - sim->time, vh = sqrt(seg->v0.x * seg->v0.x + seg->v0.z * seg->v0.z), vy = 0.0;
-  if (!seg->grounded) {
-    double g = sim->model.gravity, a = fabs(seg->v0.y - g * (sim->time - seg->t0)),
-           b = fabs(seg->v0.y - g * (t1 - seg->t0));
-    vy = a > b ? a : b;
-  }
-  return (vh + vy) * T;
+/* The same without the square root, never below it: r + 2 b for the disc. */
+static inline double test_reach_over(const ball_model *m, int i) {
+  return m->detect == BALL_DETECT_SPHERE ? m->collision_distance : m->rackets[i].radius + 2.0 * m->radius;
 }
 
-static double farther(double r, ball_vec3 c, ball_vec3 p) {
-  double d = ball_v3_dist(c, p);
-  return d > r ? d : r;
+/* One axis of boxes_apart: 1 when the racket's centre (between a and b, or
+ * at q) lies farther than the reach from the ball's p +- h along it, by
+ * more than rounding (a few ulps of the numbers subtracted). */
+static inline int axis_apart(double p, double h, double a, double b, double q, double reach) {
+  double lo = a < b ? a : b, hi = a < b ? b : a, e;
+  if (q < lo) lo = q;
+  if (q > hi) hi = q;
+  e = lo - (p + h); /* the racket above the ball's box, or */
+  if (!(e > reach)) e = (p - h) - hi; /* below it */
+  e -= reach;
+  return e > 0.0 && e > 1e-9 + 1e-12 * (fabs(p) + h + fabs(lo) + fabs(hi));
 }
 
-/* A sphere (centre *c, the radius returned) that holds racket i's centre at
- * every frame end in (t0, t1] as the stage estimates it, and R_old. The
- * track is linear between its sample times and the end of eq 15's
- * extrapolation (held after it). From the second newest sample on it is one
- * line, R(t) = R_n + V (min(t - t_n, extrapolation_time)) with V the two
- * newest samples' velocity (interpolation between them and eq 15 past the
- * newest), so over a window that starts there (nearly every look) the
- * track is the chord R(t0) R(t1); otherwise its corners in the window are
- * the poses at t0 and t1 and the samples between. */
-static double track_sphere(const ball_model *m, const ball_sim *sim, int i, double t1, ball_vec3 *c) {
-  const ball_racket_track *tr = &sim->tracks[i];
-  const ball_racket_sample *s = tr->samples;
-  int n = tr->count, k;
-  double t0 = sim->time, r;
-  ball_vec3 a, b;
-  if (n == 1) {
-    a = b = s[0].center;
-  } else if (t0 >= s[n - 2].t) {
-    ball_vec3 v = ball_v3_scale(ball_v3_sub(s[n - 1].center, s[n - 2].center), 1.0 / (s[n - 1].t - s[n - 2].t));
-    double da = t0 - s[n - 1].t, db = t1 - s[n - 1].t;
-    if (da > m->extrapolation_time) da = m->extrapolation_time;
-    if (db > m->extrapolation_time) db = m->extrapolation_time;
-    a = ball_v3_add(s[n - 1].center, ball_v3_scale(v, da));
-    b = ball_v3_add(s[n - 1].center, ball_v3_scale(v, db));
-  } else {
-    ball_racket_pose pa, pb;
-    ball__racket_pose(m, tr, t0, &pa);
-    ball__racket_pose(m, tr, t1, &pb);
-    a = pa.center;
-    b = pb.center;
-  }
-  *c = ball_v3_lerp(a, b, 0.5);
-  r = 0.5 * ball_v3_dist(a, b);
-  if (n > 1 && t0 < s[n - 2].t)
-    for (k = 0; k < n; k++)
-      if (s[k].t > t0 && s[k].t < t1) r = farther(r, *c, s[k].center);
-  return tr->has_prev ? farther(r, *c, tr->prev_pose.center) : r;
+/* The cheap half of the bound, with no square root: 1 when the ball's box
+ * (P_old +- h, ball_box) and the box of the racket's chord a b and R_old
+ * (a again without one) lie farther apart along one axis than the test
+ * reaches (the distance is at least that axis's gap; x, the court's length,
+ * first); 0: ask the spheres. */
+static inline int boxes_apart(ball_vec3 p, ball_vec3 h, ball_vec3 a, ball_vec3 b, ball_vec3 q, double reach) {
+  return axis_apart(p.x, h.x, a.x, b.x, q.x, reach) || axis_apart(p.z, h.z, a.z, b.z, q.z, reach) ||
+         axis_apart(p.y, h.y, a.y, b.y, q.y, reach);
 }
 
 /* 0 when racket i's test cannot pass in a step ending in (sim->time, t1]:
- * the ball within ball_moves of P_old, the racket within its sphere, and
- * the two farther apart than the test reaches. The disc and swept tests
- * measure the ball (P_old to its end, or along its path) against a disc
- * between R_old and R, all within those spheres; a margin covers rounding. */
-static int may_reach(const ball_sim *sim, int i, double t1, double moves) {
+ * the ball within its box h of P_old (ball_box), the racket on its track,
+ * and the two farther apart than the test reaches: first as boxes (most
+ * looks end there), then as spheres, the ball within ball_moves of P_old
+ * and the racket within track_sphere. The disc and swept tests measure the
+ * ball (P_old to its end, or along its path) against a disc between R_old
+ * and R, all within those boxes and spheres; a margin covers rounding.
+ * The track has samples (count > 0: the callers' check). */
+static int may_reach(const ball_sim *sim, int i, double t1, ball_vec3 h) {
   const ball_model *m = &sim->model;
-  ball_vec3 c;
-  double r, gap;
-  if (sim->tracks[i].count <= 0) return 0;
-  r = track_sphere(m, sim, i, t1, &c);
+  const ball_racket_track *tr = &sim->tracks[i];
+  ball_vec3 a, b, c;
+  double r, gap, moves;
+  int line = track_chord(m, tr, sim->time, t1, &a, &b);
+  if (line && boxes_apart(sim->prev_position, h, a, b, tr->has_prev ? tr->prev_pose.center : a, test_reach_over(m, i)))
+    return 0;
+  moves = ball_moves(h);
+  r = track_sphere(m, sim, i, t1, line, a, b, &c);
   gap = ball_v3_dist(sim->prev_position, c) - r - moves - test_reach(m, i);
   if (gap > 1e-2 * (1.0 + r + moves)) return 0; /* (the margin below is smaller: BALL_MAX_COORD) */
   return !(gap > 1e-9 + 1e-12 * (ball_v3_max_abs(c) + ball_v3_max_abs(sim->prev_position) + r + moves));
@@ -443,7 +494,8 @@ static int may_reach(const ball_sim *sim, int i, double t1, double moves) {
 ball_status ball_racket_may_reach(const ball_sim *sim, int racket, double t_end, int *may) {
   const ball_model *m;
   const ball_vec3 *p, *v;
-  double moves, z;
+  ball_vec3 h;
+  double z;
   int i, lo, hi, found = 0;
   if (!sim || !may) return BALL_EINVAL;
   m = &sim->model;
@@ -463,11 +515,11 @@ ball_status ball_racket_may_reach(const ball_sim *sim, int racket, double t_end,
   if (t_end < sim->time || sim->seg.t0 > sim->time) return BALL_ERANGE;
   /* no test in the next step: the effect off, or asleep */
   if (ball__has(m, BALL_EFFECT_RACKETS) && sim->sleep <= 0 && t_end > sim->time) {
-    moves = ball_moves(sim, t_end);
+    h = ball_box(sim, t_end);
     for (i = lo; i < hi && !found; i++) {
       const ball_racket_track *tr = &sim->tracks[i];
       if (tr->count == 0 || sim->time - tr->samples[tr->count - 1].t > m->stale_time) continue;
-      found = may_reach(sim, i, t_end, moves);
+      found = may_reach(sim, i, t_end, h);
     }
   }
   *may = found;
@@ -515,7 +567,7 @@ static ball_status first_contact(const ball_sim *sim, const ball__flight *fl, in
   while (stale_end - tr->samples[tr->count - 1].t > m->stale_time) stale_end = nextafter(stale_end, -INFINITY);
   if (stale_end < hi) hi = stale_end;
   if (!(hi > sim->time)) return BALL_ENOTFOUND;
-  if (!may_reach(sim, racket, hi, ball_moves(sim, hi))) return BALL_ENOTFOUND; /* nearly every frame */
+  if (!may_reach(sim, racket, hi, ball_box(sim, hi))) return BALL_ENOTFOUND; /* nearly every frame */
   memset(&q, 0, sizeof q);
   q.m = m;
   q.sim = sim;

@@ -364,17 +364,22 @@ static void the_bound_never_hides_a_hit(void **state) {
 }
 
 /* At the edge, by hand: a ball at its apex moving at v straight at a racket
- * held still (one sample). Over T the bound lets the ball come |v_h| T +
+ * held still (one sample). Over T the spheres let the ball come |v_h| T +
  * max |v_y| T = (v + g T) T nearer; centres 1e-7 m nearer than the test's
  * reach plus that may be hit, 1e-7 m farther not. The disc and swept tests
- * reach the corner of the disc test's cylinder, sqrt((r + b)^2 + b^2). */
+ * reach the corner of the disc test's cylinder, sqrt((r + b)^2 + b^2).
+ * Along an axis (x, z) the boxes decide where they are tighter: the ball
+ * comes v T nearer along it, the test reaches d_COLL, or r + 2 b for a disc
+ * (the corner without the square root). */
 static void the_bound_at_the_tests_reach(void **state) {
   const ball_detect detects[] = {BALL_DETECT_SPHERE, BALL_DETECT_DISC, BALL_DETECT_SWEPT};
   const double speeds[] = {0.0, 12.0};
-  size_t di, vi;
+  const double dirs[][2] = {{0.6, 0.8}, {1.0, 0.0}, {0.0, -1.0}}; /* (x, z) */
+  size_t di, vi, ui;
   (void)state;
   for (di = 0; di < 3; di++)
-    for (vi = 0; vi < 2; vi++) {
+    for (vi = 0; vi < 2; vi++)
+      for (ui = 0; ui < 3; ui++) {
       const double T = 0.01, r = SWING_DISC_R, b = SWING_BALL_R, v = speeds[vi];
       double reach, d, side;
       ball_model m;
@@ -383,13 +388,19 @@ static void the_bound_at_the_tests_reach(void **state) {
       reach = detects[di] == BALL_DETECT_SPHERE ? 0.2 : sqrt((r + b) * (r + b) + b * b);
       for (side = -1.0; side <= 1.0; side += 2.0) {
         ball_sim sim;
-        ball_state st = {{1.0, 2.0, 3.0}, {0.6 * v, 0, 0.8 * v}, {0, 0, 0}};
+        const double ux = dirs[ui][0], uz = dirs[ui][1];
+        ball_state st = {{1.0, 2.0, 3.0}, {ux * v, 0, uz * v}, {0, 0, 0}};
         int may = -1;
-        d = reach + (v + m.gravity * T) * T + side * 1e-7;
+        double edge = reach + (v + m.gravity * T) * T;
+        if (ux == 0.0 || uz == 0.0) {
+          double boxes = (detects[di] == BALL_DETECT_SPHERE ? 0.2 : r + 2.0 * b) + v * T;
+          if (boxes < edge) edge = boxes;
+        }
+        d = edge + side * 1e-7;
         assert_ok(ball_sim_init(&sim, &m));
         assert_ok(ball_sim_set_state(&sim, &st));
         assert_ok(
-            ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {1.0 + d * 0.6, 2.0, 3.0 + d * 0.8}, {1, 0, 0}}));
+            ball_racket_push(&sim, 0, &(ball_racket_sample){0.0, {1.0 + d * ux, 2.0, 3.0 + d * uz}, {1, 0, 0}}));
         assert_ok(ball_racket_may_reach(&sim, 0, T, &may));
         assert_int_equal(may, side < 0.0);
       }
