@@ -204,6 +204,19 @@ class Match {
   bool stepped_ahead_ = false;  // this frame stepped a contact written ahead
   double next_hit_ = HUGE_VAL;  // sim s of the next racket hit before the frame's end
   bool hit_stale_ = false;      // samples came since next_hit_ was found: look again when asked
+  // A look's bound over its frame and the next said no racket can be hit
+  // before `until`: it holds while the sim stays on that segment with those
+  // tracks and model, awake (find_hit)
+  struct Clear {
+    double until = -HUGE_VAL;
+    double t0 = 0.0;                           // the segment's start and velocity
+    ball_vec3 v0{};
+    std::array<double, kMaxPlayers> newest{};  // each track's newest sample time
+    std::array<int, kMaxPlayers> count{};      // and its samples
+    uint64_t model_hash = 0;
+  } clear_;
+  bool clear_holds(double end) const;
+  void keep_clear(double until);
   double partial_ = 0.0;        // sim s of the current frame already stepped to hits
   std::vector<SegmentOut> history_;  // the segments in effect over the rewind window, oldest first (play: judged)
   // per slot, the capture time of the sample before its first late one

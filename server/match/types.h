@@ -396,6 +396,7 @@ inline SegmentOut current_segment(const MatchInfoOut &i) {
   X(ahead_corrected) /* of those, written again when the contact was stepped */                \
   X(hit_steps)   /* partial frames stepped to a racket hit's instant */                  \
   X(hit_looks)   /* times the next hit was looked for (after frames, samples, hits) */   \
+  X(hit_looks_spared) /* of those, answered by the bound a look before gave over two frames */ \
   X(hit_queries) /* of those, first-contact queries made (the rest: no racket within reach) */ \
   X(late_tested) /* late racket samples tested against the ball where it was (rewind_window) */ \
   X(rewinds)     /* of those, hits found late: the match went back to the hit and on again */

@@ -24,7 +24,7 @@ int main(int argc, char **argv) {
   app.add_option("--seeds", seeds, "rallies per level")->check(CLI::Range(1, 100));
   app.add_option("--seconds", seconds, "sim s per rally")->check(CLI::Range(1.0, 600.0));
   CLI11_PARSE(app, argc, argv);
-  uint64_t hits = 0, wakes = 0, looks = 0, queries = 0, frames = 0;
+  uint64_t hits = 0, wakes = 0, looks = 0, spared = 0, queries = 0, frames = 0;
   for (int level = BALL_LEVEL_EASY; level <= BALL_LEVEL_ADVANCED; ++level)
     for (int seed = 1; seed <= seeds; ++seed) {
       MatchConfig c = default_config();
@@ -38,14 +38,15 @@ int main(int argc, char **argv) {
       hits += r.counters.hits;
       wakes += r.counters.hit_steps;
       looks += r.counters.hit_looks;
+      spared += r.counters.hit_looks_spared;
       queries += r.counters.hit_queries;
       frames += static_cast<uint64_t>(seconds * c.frame_rate);
     }
   double match_s = 3.0 * seeds * seconds;
   std::printf("hit_instant %s: %.0f match s, %llu frames, %llu hits, %llu hit steps (%.2f/s), %llu looks, "
-              "%llu queries (%.2f/s)\n",
+              "%llu spared, %llu queries (%.2f/s)\n",
               instant ? "true" : "false", match_s, (unsigned long long)frames, (unsigned long long)hits,
               (unsigned long long)wakes, static_cast<double>(wakes) / match_s, (unsigned long long)looks,
-              (unsigned long long)queries, static_cast<double>(queries) / match_s);
+              (unsigned long long)spared, (unsigned long long)queries, static_cast<double>(queries) / match_s);
   return 0;
 }

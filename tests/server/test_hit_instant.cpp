@@ -19,7 +19,7 @@ namespace {
 
 struct Hits {
   size_t segments = 0, on_boundary = 0, at_writing = 0, event_time = 0;
-  uint64_t hits = 0, steps = 0, looks = 0, queries = 0;
+  uint64_t hits = 0, steps = 0, looks = 0, spared = 0, queries = 0;
 };
 
 Hits rally_hits(bool instant) {
@@ -37,6 +37,7 @@ Hits rally_hits(bool instant) {
       h.hits += r.counters.hits;
       h.steps += r.counters.hit_steps;
       h.looks += r.counters.hit_looks;
+      h.spared += r.counters.hit_looks_spared;
       h.queries += r.counters.hit_queries;
       for (size_t i = 0; i < r.segments.size(); ++i) {
         const SegmentOut &s = r.segments[i];
@@ -60,15 +61,17 @@ TEST(racket_segments_start_at_the_hits_instant) {
   Hits off = rally_hits(false), on = rally_hits(true);
   note("frame-locked: %zu racket segments, %zu on a frame boundary; at the instant: %zu racket segments (%llu "
        "partial steps), %zu on a frame boundary, %zu written at their t0, %zu events at their segment's t0; "
-       "%llu looks for the next hit, %llu queries",
+       "%llu looks for the next hit (%llu spared), %llu queries",
        off.segments, off.on_boundary, on.segments, (unsigned long long)on.steps, on.on_boundary, on.at_writing,
-       on.event_time, (unsigned long long)on.looks, (unsigned long long)on.queries);
+       on.event_time, (unsigned long long)on.looks, (unsigned long long)on.spared, (unsigned long long)on.queries);
   CHECK(off.segments >= 200);
   CHECK_EQ(off.on_boundary, off.segments);  // the test can tell
   CHECK_EQ(off.event_time, off.segments);
   CHECK(on.segments >= off.segments * 9 / 10);
-  // a hit found at a frame's end happens only when a sample came after the last look
+  // a hit found at a frame's end happens only when a sample came after the last look:
+  // never here, where every sample comes before the look (nor where a look was spared)
   CHECK(on.on_boundary * 20 <= on.segments);
+  CHECK_EQ(on.steps, on.segments);
   CHECK(on.at_writing * 20 >= on.segments * 19);
   CHECK_EQ(on.event_time, on.segments);
   CHECK(on.steps >= on.segments * 9 / 10);
@@ -189,3 +192,44 @@ TEST(the_bound_reaches_the_disc_tests_rim) {
 }
 
 int main(int argc, char **argv) { return check::run(argc, argv); }
+
+// A look the bound spared (its no over two frames, hit_looks_spared) is
+// looked at again once a sample moves a track: a player's racket, parked
+// off the court, is next sampled where the ball will be in the middle of
+// the frame (its capture time ahead of the sim clock, within
+// max_sample_lead, at a legal speed since its previous sample).
+TEST(a_new_sample_ends_what_the_bound_spared) {
+  int tried = 0, found = 0;
+  for (int level = BALL_LEVEL_EASY; level <= BALL_LEVEL_ADVANCED; ++level) {
+    MatchConfig c = default_config();
+    c.level = static_cast<ball_level>(level);
+    Game g(c);
+    g.join(0, participant(1));
+    g.join(1, participant(2));
+    g.run(0.7);  // served, the ball in flight
+    g.park[0] = g.park[1] = false;  // (their rackets may move 25 m in the next 0.5 s)
+    g.run(0.5);
+    // frames until one's look is spared: the bound a frame before covers this frame
+    uint64_t spared = g.match.counters().hit_looks_spared;
+    for (int k = 0; k < 30 && g.match.counters().hit_looks_spared == spared; ++k) g.run(1.0 / c.frame_rate);
+    CHECK(g.match.counters().hit_looks_spared > spared);
+    CHECK(g.match.hit_after() == HUGE_VAL);
+    const ball_sim &sim = g.match.sim();
+    double t = sim.time + 0.5 * g.match.frame_time() * c.time_base;
+    ball_state at{};
+    CHECK_EQ(ball_segment_eval(&g.match.model(), &sim.seg, t, &at), BALL_OK);
+    int slot = g.match.court().side_of(at.position.x);  // the player on the ball's half (singles: slot = side)
+    RacketSampleIn s = g.parked_sample(slot);
+    s.capture_time = t;
+    s.center = at.position;
+    s.normal = ball_v3(1, 0, 0);
+    tried++;
+    SampleResult took = g.match.on_sample(s, g.now);
+    CHECK_MSG(took == SampleResult::accepted, "sample: %s", name_of(took));
+    double after = g.match.hit_after();
+    note("level %d: the ball at %.2f s on side %d; a sample puts racket %d on it at %.4f s: hit after %.4f s", level,
+         sim.time, slot, slot, t, after);
+    found += after < g.match.frame_time();
+  }
+  CHECK_EQ(found, tried);
+}
