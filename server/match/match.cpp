@@ -311,9 +311,9 @@ void Match::find_hit() {
 // a contact moves it along it: its path since is part of the path then),
 // the tracks have no new sample (R_old and R lie on the same track), the
 // model is the same and the tests are awake (asleep, the bound says no
-// without looking, and sleep ends at a step).
-// (A new segment has a new start or a new velocity: a contact at the very
-// instant another began changes the velocity.)
+// without looking, and sleep ends at a step). A new segment has a new start
+// or a new velocity (a contact at the very instant another began changes
+// the velocity).
 inline bool Match::clear_holds(double end) const {
   if (!(end <= clear_.until) || sim_.sleep > 0 || sim_.seg.t0 != clear_.t0 || sim_.seg.v0.x != clear_.v0.x ||
       sim_.seg.v0.y != clear_.v0.y || sim_.seg.v0.z != clear_.v0.z || model_hash_ != clear_.model_hash)

@@ -4,7 +4,8 @@
 // take a chosen time. Due frames, the frame clock's lateness, overruns,
 // skips after a stall, the percentiles of the status line, the books of
 // the samples, refused writes, CREATE, a busy domain and conflicts, all
-// checked with numbers worked out by hand.
+// checked with numbers worked out by hand; and a rally of two bots through
+// the loop, whose clock pairs must lie on one line.
 #include <cmath>
 #include <deque>
 #include <map>
@@ -78,7 +79,7 @@ ControlIn join(uint32_t match, int slot, ParticipantId who) {
 // on one line sim = sim_0 + (server - server_0) * time_base
 // (docs/protocol.md, "Time"), also those written after a hit stepped the
 // match between frames or a late sample rewound it. Two bots play through
-// the loop, their samples at 30 Hz on the clock the states give them,
+// the loop, their samples at 15 Hz on the clock the states give them,
 // arriving 50 to 100 ms late (a rewind writes a MatchInfo at once).
 TEST(every_clock_pair_of_a_playing_match_lies_on_one_line) {
   uint64_t steps = 0, rewinds = 0;
