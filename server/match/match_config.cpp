@@ -59,6 +59,11 @@ const std::vector<Field<MatchConfig>> &match_fields() {
        "step the match to a racket hit's instant between frames, found from the rackets' tracks (docs/server.md, "
        "\"Hits at their instant\"); false: hits are found at frame ends only",
        "--hit-instant"},
+      {"hit_lead", &M::hit_lead, closed(0.0, 0.02), "s",
+       "real s before a racket hit's instant that the loop wakes, steps the match to the instant and writes the "
+       "hit, so that it reaches clients before its `t0` (docs/server.md, \"Hits at their instant\"); 0: at the "
+       "instant",
+       "--hit-lead"},
       {"rewind_window", &M::rewind_window, closed(0.0, 2.0), "s",
        "lag compensation: how far back (sim s) a late racket sample is tested against the ball where it was, "
        "and a hit found so rewinds the match to it (docs/server.md, \"Lag compensation\"); 0: off",

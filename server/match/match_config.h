@@ -31,6 +31,7 @@ struct MatchConfig {
   double max_racket_speed = 50.0;     // m/s: a racket implied faster between two samples is refused
   double racket_margin = 8.0;         // m: how far beyond its own half (sidelines, baseline) a racket may be
   bool hit_instant = true;            // step to a racket hit's instant between frames (false: frame-locked)
+  double hit_lead = 0.002;            // real s before a hit's instant that the loop steps to it and writes it
   double rewind_window = 0.25;        // sim s a late racket sample may take the match back; 0: off
   double court_x_lo = 0.0;            // m: where the court starts (Court)
   uint64_t seed = 1;                  // serve placement

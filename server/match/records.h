@@ -172,7 +172,7 @@ struct ServerReport {
   double latency_p50 = 0.0, latency_p99 = 0.0;  // s: a hit's newest sample written -> its segment written
   uint64_t latency_count = 0;
   uint64_t hit_wakes = 0;       // partial frames stepped to a racket hit's instant
-  double hit_late_p50 = 0.0, hit_late_p99 = 0.0;  // s: such a step began after the hit's instant
+  double hit_late_p50 = 0.0, hit_late_p99 = 0.0;  // s: such a step began after the hit's instant (negative: before)
   std::vector<MatchReport> matches;
 };
 void to_json(json &j, const ServerReport &r);

@@ -577,7 +577,7 @@ void ServerLoop::run_due_frames(double t0, double now) {
 
 
 double ServerLoop::hit_due(const Scheduled &s) const {
-  return s.k == 0 ? HUGE_VAL : s.clock.deadline(s.k - 1) + s.match->hit_after();
+  return s.k == 0 ? HUGE_VAL : s.clock.deadline(s.k - 1) + s.match->hit_after() - s.match->config().hit_lead;
 }
 
 void ServerLoop::run_due_hits(double t0, double now) {
@@ -597,7 +597,7 @@ void ServerLoop::run_due_hits(double t0, double now) {
       publish(out, s, now);
       if (out.info_changed) publish_info(s);
       stats_.hit_wakes++;
-      stats_.hit_late.add(t0 - at);
+      stats_.hit_late.add(t0 - (at + s.match->config().hit_lead));
       at = hit_due(s);
     }
     earliest_hit_ = std::min(earliest_hit_, at);

@@ -154,7 +154,7 @@ struct LoopStats {
   uint64_t liveliness_failures = 0;  // liveliness assertions the port refused
   uint64_t created_expired = 0;  // created matches removed: nobody held a slot for create_timeout
   uint64_t hit_wakes = 0;        // partial frames stepped to a racket hit's instant
-  Percentiles hit_late;          // real s such a step began after the hit's instant, over the run
+  Percentiles hit_late;          // real s such a step began after the hit's instant (negative: before it, by up to hit_lead)
   Percentiles frame_time;       // real s of work per wake-up, this status period
   Percentiles late;             // real s a frame started after its deadline, this status period
   Percentiles late_p99;         // each period's p99 of that, over the run
@@ -245,7 +245,7 @@ class ServerLoop {
     bool alive = true;
   };
   Scheduled schedule(Match *m);
-  double hit_due(const Scheduled &s) const;  // mono s of its next racket hit's instant; +Inf: none
+  double hit_due(const Scheduled &s) const;  // mono s to step its next racket hit: the instant less hit_lead; +Inf: none
   Scheduled *scheduled(uint32_t id);
   ServerView own_view() const;
   std::vector<ServerView> views() const;  // the live servers heard of, and this one

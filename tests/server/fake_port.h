@@ -74,7 +74,13 @@ struct FakePort : ServerPort {
     return true;
   }
   std::string written;  // what was written, in order: s(egment), e(vent), b(all state)
-  bool write(const SegmentOut &s) override { return keep(segments, s) && (written += 's', true); }
+  std::vector<double> segment_mono;  // the clock's mono s at each segment's write
+  bool write(const SegmentOut &s) override {
+    if (!keep(segments, s)) return false;
+    segment_mono.push_back(clock->now);
+    written += 's';
+    return true;
+  }
   bool write(const EventOut &e) override { return keep(events, e) && (written += 'e', true); }
   bool write(const StateOut &s) override { return keep(states, s) && (written += 'b', true); }
   bool write(const MatchInfoOut &i) override { return keep(infos, i); }

@@ -74,22 +74,14 @@ ControlIn join(uint32_t match, int slot, ParticipantId who) {
 
 }  // namespace
 
-// Every (sim_time, server_time) pair a playing match writes, in its
-// MatchInfo and its ball states, says where its sim clock is: they all lie
-// on one line sim = sim_0 + (server - server_0) * time_base
-// (docs/protocol.md, "Time"), also those written after a hit stepped the
-// match between frames or a late sample rewound it. Two bots play through
-// the loop, their samples at 15 Hz on the clock the states give them,
-// arriving 50 to 100 ms late (a rewind writes a MatchInfo at once).
-TEST(every_clock_pair_of_a_playing_match_lies_on_one_line) {
-  uint64_t steps = 0, rewinds = 0;
-  for (uint64_t seed = 1; seed <= 3; ++seed) {
+// Two bots play a MID-level match of 20 s through the loop, their samples
+// at 15 Hz on the clock the states give them, arriving 50 to 100 ms late:
+// hits stepped at their instant and rewinds for late samples both come.
+struct LoopRally {
+  Rig r;
+  MatchConfig c;
+  LoopRally(uint64_t seed, double hit_lead) : r({60.0}, 1.0, 0.0, base(seed, hit_lead)), c(r.host.find(0)->config()) {
     const double trip = 0.1;  // s; the bots swing late, as people do: hits at their instant and rewinds
-    MatchConfig base = default_config();
-    base.level = BALL_LEVEL_MID;
-    base.seed = seed;
-    Rig r({60.0}, 1.0, 0.0, base);
-    MatchConfig c = r.host.find(0)->config();
     const ParticipantId who[2] = {participant(1), participant(2)};
     r.port.controls = {join(0, 0, who[0]), join(0, 1, who[1])};
     BotBrain brain[2];
@@ -134,18 +126,43 @@ TEST(every_clock_pair_of_a_playing_match_lies_on_one_line) {
       }
     }
     r.loop->finish();
-    // the line from the first playing state; every later playing pair on it
-    std::vector<std::pair<double, double>> pairs;
+  }
+  static MatchConfig base(uint64_t seed, double hit_lead) {
+    MatchConfig b = default_config();
+    b.level = BALL_LEVEL_MID;
+    b.seed = seed;
+    b.hit_lead = hit_lead;
+    return b;
+  }
+  // the (sim_time, server_time) pairs of the playing match: its ball states first
+  std::vector<std::pair<double, double>> pairs(size_t *states) const {
+    std::vector<std::pair<double, double>> out;
     for (const StateOut &s : r.port.states)
-      if (s.state == MatchState::playing) pairs.push_back({s.sim_time, s.server_time});
-    size_t states = pairs.size();
+      if (s.state == MatchState::playing) out.push_back({s.sim_time, s.server_time});
+    *states = out.size();
     for (const MatchInfoOut &i : r.port.infos)
-      if (i.state == MatchState::playing) pairs.push_back({i.sim_time, i.server_time});
+      if (i.state == MatchState::playing) out.push_back({i.sim_time, i.server_time});
+    return out;
+  }
+};
+
+// Every (sim_time, server_time) pair a playing match writes, in its
+// MatchInfo and its ball states, says where its sim clock is: they all lie
+// on one line sim = sim_0 + (server - server_0) * time_base
+// (docs/protocol.md, "Time"), also those written after a hit stepped the
+// match between frames (hit_lead before its instant) or a late sample
+// rewound it (a rewind writes a MatchInfo at once).
+TEST(every_clock_pair_of_a_playing_match_lies_on_one_line) {
+  uint64_t steps = 0, rewinds = 0;
+  for (uint64_t seed = 1; seed <= 3; ++seed) {
+    LoopRally g(seed, default_config().hit_lead);
+    size_t states = 0;
+    std::vector<std::pair<double, double>> pairs = g.pairs(&states);
     CHECK(states > 1000u);
     double worst = 0.0;
     for (const auto &p : pairs)
-      worst = std::max(worst, std::fabs(p.first - (pairs[0].first + (p.second - pairs[0].second) * c.time_base)));
-    const MatchCounters &k = r.host.find(0)->counters();
+      worst = std::max(worst, std::fabs(p.first - (pairs[0].first + (p.second - pairs[0].second) * g.c.time_base)));
+    const MatchCounters &k = g.r.host.find(0)->counters();
     note("seed %llu: %zu states and %zu infos while playing, %llu hits (%llu stepped at their instant, "
          "%llu rewinds): largest distance from the line %.3g s",
          static_cast<unsigned long long>(seed), states, pairs.size() - states, static_cast<unsigned long long>(k.hits),
@@ -155,6 +172,50 @@ TEST(every_clock_pair_of_a_playing_match_lies_on_one_line) {
     CHECK(worst <= 1e-6);  // (server times near 1.7e9 s are doubles 2.4e-7 s apart)
   }
   CHECK(steps >= 10u && rewinds >= 10u);  // both ways of stepping between frames were taken
+}
+
+// A hit stepped between frames is written hit_lead before its instant: the
+// loop wakes then (the fake clock wakes exactly), steps the match to the
+// instant and writes the segment, whose t0 maps to the loop's clock by the
+// states' line. A hit that a frame's look finds less than hit_lead ahead is
+// stepped at once, at that frame's deadline; one that a frame's own step
+// finds (a sample came after the look) is written at the frame's deadline,
+// after its instant. No racket segment is written more than hit_lead early.
+TEST(a_hit_is_written_hit_lead_before_its_instant) {
+  for (double lead : {0.0, 0.002, 0.005}) {
+    size_t on_lead = 0, early = 0, racket = 0;
+    for (uint64_t seed = 1; seed <= 2; ++seed) {
+      LoopRally g(seed, lead);
+      size_t states = 0;
+      std::vector<std::pair<double, double>> pairs = g.pairs(&states);
+      CHECK(!pairs.empty());
+      if (pairs.empty()) continue;
+      const double frame = 1.0 / g.c.frame_rate;
+      for (size_t i = 0; i < g.r.port.segments.size(); ++i) {
+        const SegmentOut &s = g.r.port.segments[i];
+        if (s.cause != Cause::racket || s.correction) continue;
+        racket++;
+        // the instant on the loop's clock: the states' line, back from sim to real time
+        double instant = pairs[0].second - kRealOffset + (s.segment.t0 - pairs[0].first) / g.c.time_base;
+        double ahead = instant - g.r.port.segment_mono[i];
+        double into_frame = std::fmod(g.r.port.segment_mono[i] - kStart, frame);
+        bool on_deadline = into_frame <= 1e-6 || frame - into_frame <= 1e-6;
+        CHECK_MSG(ahead <= lead + 1e-6, "lead %g: a racket segment written %.4g s before its instant", lead, ahead);
+        if (std::fabs(ahead - lead) <= 1e-6 && !on_deadline) {
+          on_lead++;
+        } else {
+          CHECK_MSG(on_deadline, "lead %g: a racket segment written %.4g s before its instant, %.4g s into a frame",
+                    lead, ahead, into_frame);
+        }
+        if (ahead > 1e-6) early++;
+      }
+    }
+    note("hit_lead %g s: %zu racket segments, %zu written hit_lead before their instant between frames, %zu before "
+         "it at all",
+         lead, racket, on_lead, early);
+    CHECK(on_lead >= 3u);
+    CHECK(lead > 0.0 ? early >= on_lead : early == 0u);
+  }
 }
 
 TEST(frames_come_at_their_deadlines) {
