@@ -67,6 +67,8 @@ class Match {
   // when it comes before the next frame's end; +Inf: none. Found again after
   // every frame and hit, and when asked after samples came (once for all of them).
   double hit_after();
+  // sim s of the current frame already stepped to hits (0 at a frame's end)
+  double frame_stepped() const { return partial_; }
   // Steps the match to that instant (a partial frame, no ball state): the
   // level's own test finds the hit then; the next frame steps the rest.
   void step_to_hit(MatchOutput *out);

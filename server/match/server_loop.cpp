@@ -401,7 +401,18 @@ void ServerLoop::write_due_states(double now) {
   }
 }
 
+// A match stepped to a hit since its frame has a sim clock past the frame's
+// server_time: its MatchInfo waits for the frame's end, so that every
+// (sim_time, server_time) pair is a frame's (docs/protocol.md, "Time").
+void ServerLoop::info_changed(Scheduled &s) {
+  if (s.match->frame_stepped() > 0.0)
+    s.info_waits = true;
+  else
+    publish_info(s);
+}
+
 void ServerLoop::publish_info(Scheduled &s) {
+  s.info_waits = false;
   MatchInfoOut info = s.match->info();
   info.server_id = settings_.server_id;
   info.server_time = s.last_frame_real;  // sim_time holds from the newest frame's deadline
@@ -532,7 +543,7 @@ void ServerLoop::take_controls(double now) {
     for (auto &s : sched_)
       if (s.match == m) {
         publish(out_, s, now);
-        if (out_.info_changed) publish_info(s);
+        if (out_.info_changed) info_changed(s);
       }
   }
 }
@@ -561,7 +572,7 @@ void ServerLoop::run_due_frames(double t0, double now) {
     s.k++;
     stats_.totals.frames++;
     publish(out_, s, now);
-    if (out_.info_changed || t0 >= s.next_info) {
+    if (out_.info_changed || s.info_waits || t0 >= s.next_info) {
       publish_info(s);
       s.next_info = t0 + settings_.info_interval;
     }
@@ -587,7 +598,7 @@ void ServerLoop::run_due_hits(double t0, double now) {
       MatchOutput out;
       s.match->compensate(&out);
       publish(out, s, now);
-      if (out.info_changed) publish_info(s);
+      if (out.info_changed) info_changed(s);
     }
     double at = hit_due(s);
     if (at <= t0 + 1e-6 && t0 >= s.firm_at) {
@@ -595,7 +606,7 @@ void ServerLoop::run_due_hits(double t0, double now) {
       write_state(s);   // the state of its frame before the hit
       s.match->step_to_hit(&out);
       publish(out, s, now);
-      if (out.info_changed) publish_info(s);
+      if (out.info_changed) info_changed(s);
       stats_.hit_wakes++;
       stats_.hit_late.add(t0 - (at + s.match->config().hit_lead));
       at = hit_due(s);

@@ -231,6 +231,7 @@ class ServerLoop {
     bool taken_over = false;       // from another server
     double last_held = 0.0;        // mono s a slot was last held (for a created match's expiry)
     bool state_due = false;        // `state` is a frame's, written after the frames of the wake-up
+    bool info_waits = false;       // a MatchInfo due after a hit's step, written with the next frame
     StateOut state{};
   };
   // Another server's match this one follows (a standby).
@@ -260,6 +261,7 @@ class ServerLoop {
   void publish(const MatchOutput &out, Scheduled &s, double now);
   void write_state(Scheduled &s);  // its frame's state, if one is due
   void publish_info(Scheduled &s);
+  void info_changed(Scheduled &s);  // now, or with the next frame after a hit's step
   void close_period();  // the status written, the period's latency kept for the line
   template <class T>
   void write(const T &sample, uint64_t *written);

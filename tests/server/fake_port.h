@@ -83,7 +83,12 @@ struct FakePort : ServerPort {
   }
   bool write(const EventOut &e) override { return keep(events, e) && (written += 'e', true); }
   bool write(const StateOut &s) override { return keep(states, s) && (written += 'b', true); }
-  bool write(const MatchInfoOut &i) override { return keep(infos, i); }
+  std::vector<double> info_mono;  // the clock's mono s at each MatchInfo's write
+  bool write(const MatchInfoOut &i) override {
+    if (!keep(infos, i)) return false;
+    info_mono.push_back(clock->now);
+    return true;
+  }
   bool write(const StatusOut &s) override { return keep(statuses, s); }
   int asserted = 0;
   bool assert_liveliness() override {

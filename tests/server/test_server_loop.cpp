@@ -8,6 +8,7 @@
 // the loop, whose clock pairs must lie on one line.
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <map>
 
 #include "bot.h"
@@ -80,7 +81,9 @@ ControlIn join(uint32_t match, int slot, ParticipantId who) {
 struct LoopRally {
   Rig r;
   MatchConfig c;
-  LoopRally(uint64_t seed, double hit_lead) : r({60.0}, 1.0, 0.0, base(seed, hit_lead)), c(r.host.find(0)->config()) {
+  // (each_wake: called after every wake-up, to give the loop more input)
+  LoopRally(uint64_t seed, double hit_lead, const std::function<void(Rig &)> &each_wake = nullptr)
+      : r({60.0}, 1.0, 0.0, base(seed, hit_lead)), c(r.host.find(0)->config()) {
     const double trip = 0.1;  // s; the bots swing late, as people do: hits at their instant and rewinds
     const ParticipantId who[2] = {participant(1), participant(2)};
     r.port.controls = {join(0, 0, who[0]), join(0, 1, who[1])};
@@ -101,6 +104,7 @@ struct LoopRally {
     Rng jitter(seed);
     while (r.clock.now < kStart + 20.0) {
       r.loop->step();
+      if (each_wake) each_wake(r);
       while (!on_the_way.empty() && on_the_way.front().first <= r.clock.now) {
         r.port.samples.push_back(on_the_way.front().second);
         on_the_way.pop_front();
@@ -172,6 +176,59 @@ TEST(every_clock_pair_of_a_playing_match_lies_on_one_line) {
     CHECK(worst <= 1e-6);  // (server times near 1.7e9 s are doubles 2.4e-7 s apart)
   }
   CHECK(steps >= 10u && rewinds >= 10u);  // both ways of stepping between frames were taken
+}
+
+// A MatchInfo due between a hit's partial step and the next frame (a
+// LEVEL control comes then: the loop takes controls before it steps
+// frames) waits for that frame: every MatchInfo's pair is a frame's, on the
+// line and with a server_time not after its write (the clients' minimum
+// filter, docs/protocol.md "Time"), and none is lost.
+TEST(a_match_info_due_after_a_hit_step_waits_for_the_frame) {
+  size_t asked = 0, answered = 0, checked = 0;
+  for (uint64_t seed = 1; seed <= 2; ++seed) {
+    uint64_t wakes = 0;
+    std::vector<double> asked_at;  // mono s
+    LoopRally g(seed, default_config().hit_lead, [&](Rig &r) {
+      if (r.loop->stats().hit_wakes == wakes) return;
+      wakes = r.loop->stats().hit_wakes;
+      ControlIn c = join(0, 0, participant(1));  // the holder of slot 0 asks for the level it has
+      c.kind = ControlKind::level;
+      c.level = BALL_LEVEL_MID;
+      r.port.controls.push_back(c);
+      asked_at.push_back(r.clock.now);
+    });
+    size_t states = 0;
+    std::vector<std::pair<double, double>> pairs = g.pairs(&states);
+    CHECK(states > 1000u);
+    if (pairs.empty()) continue;
+    const double frame = 1.0 / g.c.frame_rate;
+    const std::vector<MatchInfoOut> &infos = g.r.port.infos;
+    for (size_t k = 0; k < infos.size(); ++k) {
+      const MatchInfoOut &i = infos[k];
+      if (i.state != MatchState::playing) continue;
+      checked++;
+      double off = i.sim_time - (pairs[0].first + (i.server_time - pairs[0].second) * g.c.time_base);
+      double into = std::fmod(i.sim_time - pairs[0].first, frame);
+      CHECK_MSG(std::fabs(off) <= 1e-6 && (into <= 1e-6 || frame - into <= 1e-6),
+                "a MatchInfo %.4g s off the line, its sim_time %.4g s into a frame", off, into);
+      CHECK_MSG(i.server_time <= g.r.port.info_mono[k] + kRealOffset + 1e-6, "a MatchInfo stamped %.4g s ahead",
+                i.server_time - g.r.port.info_mono[k] - kRealOffset);
+    }
+    // each LEVEL asked after a hit's step is answered with the next frame
+    for (double t : asked_at) {
+      asked++;
+      for (double w : g.r.port.info_mono)
+        if (w >= t && w <= t + frame + 1e-6) {
+          answered++;
+          break;
+        }
+    }
+  }
+  note("%zu LEVELs asked after a hit's step, %zu answered by a MatchInfo within a frame; %zu playing MatchInfos on "
+       "the line",
+       asked, answered, checked);
+  CHECK(asked >= 10u);
+  CHECK_EQ(answered, asked);
 }
 
 // A hit stepped between frames is written hit_lead before its instant: the
