@@ -1,7 +1,10 @@
 // ball_create: a client of the integration tests that asks the servers of a
 // domain for a new match (CONTROL_CREATE, docs/protocol.md) every 0.5 s
 // until a MatchInfo for it comes, then listens on, and writes as JSON which
-// servers announced that match and when the first did.
+// servers announced that match and when the first did. The first CREATE
+// goes out once a server's control reader and MatchInfo writer matched its
+// own (the control topic keeps nothing for a reader that comes late), and
+// `first_after` and `creates` count from then, not from its discovery.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -37,10 +40,13 @@ int main(int argc, char **argv) {
   if (!controls.valid() || !infos.valid()) return fail("ball_create", err);
   std::set<uint32_t> servers;
   uint32_t seq = 0;
+  const double opened = mono_now();
+  while (!stop_requested() && mono_now() - opened < duration && (controls.matched() < 1 || infos.matched() < 1))
+    sleep_until(mono_now() + 0.01);
   const double start = mono_now();
   double next = start, first = -1.0;
   long refused = 0;
-  while (!stop_requested() && mono_now() - start < duration) {
+  while (!stop_requested() && mono_now() - opened < duration) {
     MatchInfoOut in;
     while (infos.take(&in, nullptr))
       if (in.match_id == match) {
@@ -60,7 +66,8 @@ int main(int argc, char **argv) {
     }
     sleep_until(mono_now() + 0.01);
   }
-  nlohmann::json j = {{"servers", servers}, {"first_after", first}, {"creates", seq}, {"refused", refused}};
+  nlohmann::json j = {{"servers", servers},   {"first_after", first}, {"creates", seq},
+                      {"matched_after", start - opened}, {"refused", refused}};
   if (!out_json.empty() && !write_file(out_json, j.dump(1), &err)) return fail("ball_create", err);
   std::printf("ball_create: match %u announced by %zu server(s), first %.2f s after the start\n", match,
               servers.size(), first);

@@ -264,7 +264,9 @@ def main():
                                          "still for 1 s: %s" % (gone_after, banner, json.loads(s2)["ball"]))
         srv = server(a, a.work, "server2")
         back = time.time()
-        browser.wait_for("(() => { const s = window.spectator.sample(0); return s && s.live && s.ball; })()", 30,
+        # playing again, not only announced: a waiting match's clock stands until the bots are back
+        browser.wait_for("(() => { const s = window.spectator.sample(0); "
+                         "return s && s.live && s.ball && s.state === 'playing'; })()", 30,
                          "the page to pick the match up again")
         t1 = browser.evaluate("window.spectator.sample(0).t")
         time.sleep(1.0)
