@@ -206,6 +206,7 @@ void case_lag(const Env &env) {
   int hits = hits_within(p.t, t0, 6, 30.0, &last);
   p.b0.stop();
   p.b1.stop();
+  usleep(1000000);  // the bots' last samples (150 ms on the way) and their corrections reach the watcher
   p.w.stop();
   ServerReport r = stop_server(p.server, path(env, "server.json"));
   uint64_t rewinds = 0, tested = 0;
@@ -940,8 +941,8 @@ void case_busy(const Env &env) {
                                   "--duration", "60", "--quiet"},
                                  path(env, "first.out"), path(env, "first.err"));
   usleep(500000);
-  std::string err;
-  int rc = run_to_end(env, {env.bin + "/ball-server", "--domain", env.dom(), "--server-id", "2", "--startup-wait", "3",
+  std::string err;  // (the second listens 5 s: the first's start and discovery, under ASan too)
+  int rc = run_to_end(env, {env.bin + "/ball-server", "--domain", env.dom(), "--server-id", "2", "--startup-wait", "5",
                             "--duration", "60"},
                       "second", &err);
   note("second server: status %d: %s", rc, err.substr(0, err.find('\n')).c_str());
