@@ -427,7 +427,11 @@ void case_key_flood(const Env &env) {
        pauses, static_cast<unsigned long long>(r.status.samples_ok));
   CHECK(flooded >= 200000);  // (776,000 here; a thousand times the player's own, on a slower machine too)
   CHECK_EQ(pauses, 0u);
-  CHECK(r.status.samples_ok >= 100u);  // A's 2 x 10 a second, for the flood's seconds
+  // A's own samples (2 x 10 a second) share the way with the flood and DDS loses some with it:
+  // a quarter at least are accepted (82 % here, 54 % under ASan)
+  uint64_t valid = sent.value("valid", uint64_t{0});
+  CHECK_MSG(valid >= 100u && r.status.samples_ok * 4 >= valid, "the player's samples: %llu sent, %llu accepted",
+            static_cast<unsigned long long>(valid), static_cast<unsigned long long>(r.status.samples_ok));
   CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.status.samples_idle + all_drops);
   CHECK(r.status.samples_in <= static_cast<uint64_t>(flooded) + 1000u);
 }
@@ -732,9 +736,12 @@ void case_create_expires(const Env &env) {
   usleep(4 * 1000000);  // the 2 s timeout, the status period that looks
   std::string rec = path(env, "late.jsonl");
   Process w = c.watcher(rec);
-  usleep(2500000);
-  w.stop();
   Tail t(rec);
+  // it hears the server (the configured match's MatchInfo; its start and discovery take their
+  // time on a slow machine), then listens a MatchInfo period more for the created one
+  wait_for(t, 15.0, [](const json &j) { return is_type(j, "match_info") && j.at("match") == 0; });
+  usleep(1500000);
+  w.stop();
   t.poll();
   size_t of40 = count(t.lines, [](const json &j) { return is_type(j, "match_info") && j.at("match") == 1040; });
   size_t of0 = count(t.lines, [](const json &j) { return is_type(j, "match_info") && j.at("match") == 0; });
@@ -771,8 +778,10 @@ void case_late_join(const Env &env) {
   long current = 0, newest_late = 0;
   for (const auto &j : te.lines)
     if (is_type(j, "segment") && recv(j) <= got) current = std::max<long>(current, j.get<SegmentOut>().seq);
+  // (one published just before `got` may reach the late watcher live, a moment after its first
+  // batch: 0.25 s for that on a loaded machine)
   for (const auto &j : tl.lines)
-    if (is_type(j, "segment") && recv(j) <= got + 0.05) newest_late = std::max<long>(newest_late, j.get<SegmentOut>().seq);
+    if (is_type(j, "segment") && recv(j) <= got + 0.25) newest_late = std::max<long>(newest_late, j.get<SegmentOut>().seq);
   note("late watcher: first segment %.3f s after it started; it holds segment %ld, the current one is %ld",
        got - started, newest_late, current);
   CHECK_MSG(newest_late >= current && current > 0, "late watcher has %ld, current is %ld", newest_late, current);
