@@ -189,13 +189,18 @@ void BotBrain::on_segment(const ball_segment &seg, bool serve, int serving_slot,
   stroke_for(x, states_[best].velocity, states_[best].spin, &v_racket, &normal);
 
   // join the stroke line p(t) = x + v_racket (t - t_hit) as early as the
-  // racket can get there, `lead` before contact at the earliest
+  // racket can get there, `lead` before contact at the earliest, and above
+  // the floor (a steep stroke's line starts under it: a racket there is no
+  // body, and the server drops its samples as out of range)
   double t_join = t_hit - params_.lead;
   ball_vec3 p_join = ball_v3_add(x, ball_v3_scale(v_racket, t_join - t_hit));
-  while (ball_v3_dist(here, p_join) > params_.move_speed * (t_join - now) && t_join < t_hit) {
+  while ((ball_v3_dist(here, p_join) > params_.move_speed * (t_join - now) || p_join.y < court_.floor) &&
+         t_join < t_hit) {
     t_join += kJoinStep;
     p_join = ball_v3_add(x, ball_v3_scale(v_racket, t_join - t_hit));
   }
+  double follow = params_.follow;  // (the follow-through ends at the floor too)
+  if (v_racket.y < 0.0) follow = std::fmin(follow, std::fmax(0.0, (x.y - court_.floor) / -v_racket.y));
   if (t_join > t_hit - params_.lead + 1e-9) counters_.late++;
   counters_.plans++;
 
@@ -210,7 +215,7 @@ void BotBrain::on_segment(const ball_segment &seg, bool serve, int serving_slot,
   else
     legs_.push_back(Leg{now, now, here, ball_v3(0, 0, 0)});
   legs_.push_back(Leg{legs_.back().t1, t_join, p_join, ball_v3(0, 0, 0)});
-  legs_.push_back(Leg{t_join, t_hit + params_.follow, p_join, v_racket});
+  legs_.push_back(Leg{t_join, t_hit + follow, p_join, v_racket});
   has_contact_ = true;
   contact_t_ = t_hit;
   contact_p_ = x;

@@ -24,6 +24,7 @@ constexpr double kLateSwing = 0.12;  // s: a late swinger's stroke (a person's s
 struct RallyResult {
   uint64_t hits = 0, bounces = 0, points = 0, serves = 0;
   uint64_t accepted = 0, drops = 0;
+  std::array<uint64_t, kDropSlots> drop_by{};  // the drops by reason
   uint64_t plans = 0, late = 0;
   int racket_segments_with_sample = 0, racket_segments = 0;
   // what the match wrote, each segment with the sim time of the frame that wrote it
@@ -86,7 +87,10 @@ inline RallyResult play(const MatchConfig &c, const Net &net, double seconds, ui
       link[i].deliver(g.now, [&](const RacketSampleIn &s) {
         SampleResult res = g.match.on_sample(s, g.now);
         if (res == SampleResult::accepted) r.accepted++;
-        else if (res != SampleResult::idle) r.drops++;
+        else if (res != SampleResult::idle) {
+          r.drops++;
+          if (static_cast<int>(res) < kDropSlots) r.drop_by[static_cast<size_t>(res)]++;
+        }
       });
     }
     // as the server loop does: late samples tested where the ball was, then a
