@@ -429,6 +429,21 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
   out->info_changed = true;
 }
 
+// A hit ends its racket's stroke: the racket's track starts again from the
+// samples captured at or after the hit (docs/server.md, "Lag compensation";
+// a restored match's track may hold some, a live one's ahead of the sim
+// clock), so that eq 15 does not carry the stroke on past the hit.
+void Match::end_stroke(int k, double t_hit) {
+  if (k < 0 || k >= config_.players || k >= model().n_rackets) return;
+  Slot &sl = slots_[k];
+  sl.hit_time = std::max(sl.hit_time, t_hit);
+  const ball_racket_track tr = sim_.tracks[k];
+  ball_racket_clear(&sim_, k);
+  for (int i = 0; i < tr.count; ++i)  // (each was accepted after the one before it)
+    if (tr.samples[i].t >= sl.hit_time) ball_racket_push(&sim_, k, &tr.samples[i]);
+  hit_stale_ = true;
+}
+
 // The racket tests sleep after a hit (section 3.1) for sleep_frames steps:
 // what is left at sim s t of a hit at t_hit, the frame ends since it
 // counted as the match's frames (the hit's own frame end included in the
@@ -516,6 +531,7 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
       kind = EventKind::racket;
       index = ev.index;
       if (index >= 0 && index < kMaxPlayers) ref = slots_[index].ref;
+      end_stroke(index, ev.segment.t0);
       break;
     case BALL_EVENT_KIND_COUNT: return;
   }
@@ -733,6 +749,9 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
     slot.prev_center = s.center;
     return SampleResult::idle;
   }
+  // of the stroke its racket's last hit ended: it cannot change the hit
+  // (docs/server.md, "Lag compensation")
+  if (s.capture_time < slot.hit_time) return SampleResult::before_hit;
   // a sample identical to a kept one (BALL_EDUPLICATE) or not newer than the
   // newest kept (BALL_ESTALE) is libball's to tell; the sim stays as it was
   ball_racket_sample rs;
@@ -1040,6 +1059,7 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t ne
       return false;
     }
     sim_ = trial;
+    if (seg->cause == Cause::racket) end_stroke(seg->cause_index, seg->segment.t0);
   }
   set_rules(p);
   event_seq_ = std::max(p.event_seq, info.play.event_seq);  // a segment written ahead foresaw its own

@@ -144,6 +144,7 @@ class Match {
     double prev_time = 0.0;    // sim s: its capture time
     ball_vec3 prev_center{0, 0, 0};  // m
     double asked_time_base = 0.0;    // the time base its holder asked for (0: none): a change needs every holder's
+    double hit_time = -1e300;  // sim s: t0 of its racket's newest hit; a sample captured before is before_hit
   };
 
   // The segment of the next static contact, written before the contact
@@ -178,6 +179,7 @@ class Match {
   void find_hit();  // next_hit_ from the tracks as they are
   void took_effect(const SegmentOut &s);  // a segment is in effect now: into the history
   void rewind(int slot, double from, MatchOutput *out);
+  void end_stroke(int slot, double t_hit);  // its racket hit at t_hit: its track from then on only
   int sleep_left(double t_hit, double t) const;  // racket-test sleep left at sim s t after a hit at t_hit
   bool all_present() const;
   bool holds_slot(const ParticipantId &who) const;

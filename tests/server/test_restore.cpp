@@ -39,6 +39,8 @@ struct Outcome {
   double worst_t0 = 0.0;      // s
   double worst_handover = 0.0;  // m: the first standby segment's distance from the ball, beyond eq 6's shift
   std::string first_mismatch; // what differed first
+  int tracks_after_hit = 0;   // rackets restored after a hit of theirs (the segment's or the catch-up's)
+  int samples_before_hit = 0; // samples on such a track captured before that hit
 };
 
 bool same_play(const PlayState &a, const PlayState &b) {
@@ -109,6 +111,20 @@ Outcome run(const Trial &tr) {
                                    &o.err);
       if (!o.restored) return o;
       o.catch_up_segments = out.segments.size();
+      // a hit ends its racket's stroke (docs/server.md, "Lag compensation"):
+      // the racket's track holds no sample from before its newest hit
+      double hit_at[2] = {-1e300, -1e300};
+      if (have_seg && seg.cause == Cause::racket && seg.cause_index >= 0 && seg.cause_index < 2)
+        hit_at[seg.cause_index] = seg.segment.t0;
+      for (const SegmentOut &s : out.segments)
+        if (s.cause == Cause::racket && s.cause_index >= 0 && s.cause_index < 2)
+          hit_at[s.cause_index] = std::fmax(hit_at[s.cause_index], s.segment.t0);
+      for (int i = 0; i < 2; ++i) {
+        if (hit_at[i] <= -1e300) continue;
+        const ball_racket_track &track = b.match.sim().tracks[i];
+        o.tracks_after_hit++;
+        for (int j = 0; j < track.count; ++j) o.samples_before_hit += track.samples[j].t < hit_at[i];
+      }
       b_segs.insert(b_segs.end(), out.segments.begin(), out.segments.end());
       b_events.insert(b_events.end(), out.events.begin(), out.events.end());
     }
@@ -221,7 +237,7 @@ Outcome run(const Trial &tr) {
 // the standby's stream is the owner's, segment for segment and event for event.
 TEST(a_restored_match_goes_on_as_its_owner) {
   Rng r(20261202);
-  int restored = 0, differing = 0;
+  int restored = 0, differing = 0, after_hit = 0, before_hit = 0;
   size_t segments = 0, events = 0, catch_up = 0;
   double worst_p0 = 0.0, worst_t0 = 0.0, worst_handover = 0.0;
   for (int n = 0; n < 300; ++n) {
@@ -241,6 +257,8 @@ TEST(a_restored_match_goes_on_as_its_owner) {
     worst_p0 = std::fmax(worst_p0, o.worst_p0);
     worst_t0 = std::fmax(worst_t0, o.worst_t0);
     worst_handover = std::fmax(worst_handover, o.worst_handover);
+    after_hit += o.tracks_after_hit;
+    before_hit += o.samples_before_hit;
     if (o.mismatches > 0) {
       differing++;
       note("trial %d (level %d, time base %.2f, death frame %d, gap %d): %s", n, static_cast<int>(t.level),
@@ -251,7 +269,11 @@ TEST(a_restored_match_goes_on_as_its_owner) {
        "hit compared with the owner's (p0/v0 within %.3g, t0 within %.3g s), %zu events checked; the first bounce "
        "within %.3g m of the ball; %d trials differ",
        restored, catch_up, segments, worst_p0, worst_t0, events, worst_handover, differing);
+  note("%d rackets restored after a hit of theirs, %d samples from before that hit on their tracks", after_hit,
+       before_hit);
   CHECK_EQ(restored, 300);
+  CHECK(after_hit >= 50);
+  CHECK_EQ(before_hit, 0);
   CHECK(segments > 100);
   CHECK(catch_up > 100);
   CHECK_EQ(differing, 0);
