@@ -357,27 +357,37 @@ void Match::compensate(MatchOutput *out) {
 void Match::rewind(int slot, double from, MatchOutput *out) {
   const double now = sim_.time;
   if (state_ != MatchState::playing || !rally_.live() || history_.empty()) return;
-  // back no further than the window, the sample before this one, the last hit or the serve
+  // back no further than the window, the sample before this one, the last
+  // hit (with rewind_own_hit: another racket's) or the serve
+  const bool own = config_.rewind_own_hit;
   double t_a = std::max(from, now - config_.rewind_window);
-  const SegmentOut *at = nullptr, *barrier = nullptr;
-  for (const SegmentOut &h : history_) {
-    if (h.cause == Cause::serve || h.cause == Cause::racket) {
+  for (const SegmentOut &h : history_)
+    if (h.cause == Cause::serve || (h.cause == Cause::racket && !(own && h.cause_index == slot)))
       t_a = std::max(t_a, h.segment.t0);
-      barrier = &h;
+  const SegmentOut *at = nullptr, *slept = nullptr;
+  double passed = HUGE_VAL;  // t0 of the first of its own hits after t_a: the rewind goes back past it
+  for (const SegmentOut &h : history_) {
+    if (h.segment.t0 <= t_a) {
+      at = &h;
+      if (h.cause == Cause::racket) slept = &h;
+    } else if (h.cause == Cause::racket) {
+      passed = std::min(passed, h.segment.t0);
     }
-    if (h.segment.t0 <= t_a) at = &h;
   }
   if (!at || !(t_a < now)) return;
   counters_.late_tested++;
-  // the ball where it was at t_a, the tracks as they are now (the late sample in them)
+  // the ball where it was at t_a, the tracks as they are now (the late sample
+  // in them; past its own hit, the racket's as if no hit had ended its stroke)
   ball_sim then = sim_;
   if (ball_sim_set_segment(&then, &at->segment, t_a) != BALL_OK) return;
+  if (std::isfinite(passed) && unended_track(&then, slot, slots_[static_cast<size_t>(slot)], nullptr) != BALL_OK)
+    return;
   for (int i = 0; i < model().n_rackets; ++i) then.tracks[i].has_prev = 0;  // R_old: the track at t_a
   // the racket tests slept after the last hit as they did in the match: else
   // the hitter's own next sample finds its racket still on the ball at the
   // hit's instant and hits it again
-  if (barrier && barrier->cause == Cause::racket &&
-      ball_sim_set_sleep(&then, sleep_left(barrier->segment.t0, t_a)) != BALL_OK)
+  if ((slept || std::isfinite(passed)) &&
+      ball_sim_set_sleep(&then, slept ? sleep_left(slept->segment.t0, t_a) : 0) != BALL_OK)
     return;
   // frame by frame up to now: where the racket meets it first (a frame the
   // bound rules out costs no query; the query stops before a bounce, the
@@ -399,7 +409,12 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
       return;
     bool racket = false;
     for (int k = 0; k < n && !racket; ++k) {
-      if (step_events_[k].kind != BALL_EVENT_RACKET) continue;
+      if (step_events_[k].kind != BALL_EVENT_RACKET) {
+        // past its own hit the ball flies where the match has no judged
+        // segment of its own: a contact there is not gone back over
+        if (step_events_[k].time > passed) return;
+        continue;
+      }
       if (step_events_[k].index != slot) return;  // another racket got there first
       racket = true;
     }
@@ -410,18 +425,34 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
     }
   }
   if (!std::isfinite(hit)) return;
+  // the old path after the hit (and from its own hit it went back past) is not history any more
+  auto gone = [&](const SegmentOut &h) { return h.segment.t0 > hit || h.segment.t0 >= passed; };
   // the rules as they were at the hit (the segment in effect then, judged)
   PlayState p = at->play;
   for (const SegmentOut &h : history_)
-    if (h.segment.t0 <= hit) p = h.play;
+    if (!gone(h) && h.segment.t0 <= hit) p = h.play;
   if (!p.live) return;
   set_rules(p);
   // (the events' numbers go on)
-  // the old path after the hit is not history any more
-  while (!history_.empty() && history_.back().segment.t0 > hit) history_.pop_back();
+  while (!history_.empty() && gone(history_.back())) history_.pop_back();
+  if (std::isfinite(passed)) {  // its last hit is the one before, until the hit found now
+    Slot &sl = slots_[static_cast<size_t>(slot)];
+    sl.hit_time = -1e300;
+    for (const SegmentOut &h : history_)
+      if (h.cause == Cause::racket && h.cause_index == slot) sl.hit_time = h.segment.t0;
+    counters_.rewinds_past_own_hit++;
+  }
   // to the hit, then on to the present: what that gives is written as corrections
   sim_ = then;
   correcting_ = true;
+  if (std::isfinite(passed) && hit >= passed && !history_.empty()) {
+    // the hit comes after the one it moves: the segment in effect before
+    // that one, written again, supersedes it and voids its events
+    // (docs/protocol.md, "Corrections")
+    const SegmentOut b = history_.back();
+    emit_segment(out, b.cause, b.cause_index, b.segment, b.sample, b.sound);
+    out->segments.back().play = history_.back().play = b.play;
+  }
   advance(hit - sim_.time, false, out);
   while (sim_.time < now - 1e-12) advance(std::min(dt, now - sim_.time), false, out);
   correcting_ = false;
@@ -442,6 +473,21 @@ void Match::end_stroke(int k, double t_hit) {
   for (int i = 0; i < tr.count; ++i)  // (each was accepted after the one before it)
     if (tr.samples[i].t >= sl.hit_time) ball_racket_push(&sim_, k, &tr.samples[i]);
   hit_stale_ = true;
+}
+
+void Match::keep(Slot &slot, const ball_racket_sample &s) {
+  if (slot.kept_n == BALL_MAX_HISTORY) {
+    std::copy(slot.kept.begin() + 1, slot.kept.end(), slot.kept.begin());
+    slot.kept_n--;
+  }
+  slot.kept[static_cast<size_t>(slot.kept_n++)] = s;
+}
+
+ball_status Match::unended_track(ball_sim *sim, int k, const Slot &slot, const ball_racket_sample *extra) const {
+  ball_status st = ball_racket_clear(sim, k);
+  for (int i = 0; i < slot.kept_n && st == BALL_OK; ++i) st = ball_racket_push(sim, k, &slot.kept[static_cast<size_t>(i)]);
+  if (extra && st == BALL_OK) st = ball_racket_push(sim, k, extra);
+  return st;
 }
 
 // The racket tests sleep after a hit (section 3.1) for sleep_frames steps:
@@ -749,16 +795,27 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
     slot.prev_center = s.center;
     return SampleResult::idle;
   }
-  // of the stroke its racket's last hit ended: it cannot change the hit
-  // (docs/server.md, "Lag compensation")
-  if (s.capture_time < slot.hit_time) return SampleResult::before_hit;
+  // captured in the past of the sim clock, within the window: tested where the ball was then
+  const bool late = config_.rewind_window > 0.0 && s.capture_time < sim_.time &&
+                    s.capture_time >= sim_.time - config_.rewind_window && rally_.live() && !following_;
+  // of the stroke its racket's last hit ended: it cannot change the hit,
+  // unless the match may go back past its own racket's hit (docs/server.md,
+  // "Lag compensation")
+  const bool past_hit = s.capture_time < slot.hit_time;
+  if (past_hit && !(late && config_.rewind_own_hit)) return SampleResult::before_hit;
   // a sample identical to a kept one (BALL_EDUPLICATE) or not newer than the
   // newest kept (BALL_ESTALE) is libball's to tell; the sim stays as it was
   ball_racket_sample rs;
   rs.t = s.capture_time;
   rs.center = s.center;
   rs.normal = s.normal;
-  ball_status st = ball_racket_push(&sim_, s.player, &rs);
+  ball_status st;
+  if (past_hit) {  // not onto the track (the hit ended that stroke): kept for a rewind, checked as the track would take it
+    ball_sim scratch = sim_;
+    st = unended_track(&scratch, s.player, slot, &rs);
+  } else {
+    st = ball_racket_push(&sim_, s.player, &rs);
+  }
   switch (st) {
     case BALL_OK: break;
     case BALL_EDUPLICATE: return SampleResult::duplicate;
@@ -777,10 +834,9 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
   slot.ref.seq = s.seq;
   slot.ref.source_time = s.source_time;
   slot.ref.capture_time = s.capture_time;
+  if (config_.rewind_own_hit) keep(slot, rs);
   hit_stale_ = true;  // the track moved: the hit it meets may too (looked for once, when asked)
-  // captured in the past of the sim clock, within the window: tested where the ball was then
-  if (config_.rewind_window > 0.0 && s.capture_time < sim_.time && s.capture_time >= sim_.time - config_.rewind_window &&
-      rally_.live() && !following_) {
+  if (late) {
     double &f = late_from_[s.player];
     f = std::isnan(f) ? from : std::min(f, from);
     has_late_ = true;

@@ -145,6 +145,10 @@ class Match {
     ball_vec3 prev_center{0, 0, 0};  // m
     double asked_time_base = 0.0;    // the time base its holder asked for (0: none): a change needs every holder's
     double hit_time = -1e300;  // sim s: t0 of its racket's newest hit; a sample captured before is before_hit
+    // with rewind_own_hit: its newest accepted samples, oldest first, those
+    // from before its racket's last hit too (the track holds those after it)
+    std::array<ball_racket_sample, BALL_MAX_HISTORY> kept{};
+    int kept_n = 0;
   };
 
   // The segment of the next static contact, written before the contact
@@ -180,6 +184,10 @@ class Match {
   void took_effect(const SegmentOut &s);  // a segment is in effect now: into the history
   void rewind(int slot, double from, MatchOutput *out);
   void end_stroke(int slot, double t_hit);  // its racket hit at t_hit: its track from then on only
+  static void keep(Slot &slot, const ball_racket_sample &s);  // into slot.kept
+  // sim's track k from slot.kept (and `extra`, newer, if given): the track
+  // it would hold had no hit ended its stroke; libball's status
+  ball_status unended_track(ball_sim *sim, int k, const Slot &slot, const ball_racket_sample *extra) const;
   int sleep_left(double t_hit, double t) const;  // racket-test sleep left at sim s t after a hit at t_hit
   bool all_present() const;
   bool holds_slot(const ParticipantId &who) const;

@@ -68,6 +68,11 @@ const std::vector<Field<MatchConfig>> &match_fields() {
        "lag compensation: how far back (sim s) a late racket sample is tested against the ball where it was, "
        "and a hit found so rewinds the match to it (docs/server.md, \"Lag compensation\"); 0: off",
        "--rewind-window"},
+      {"rewind_own_hit", &M::rewind_own_hit, {}, "",
+       "lag compensation: a late racket sample captured before its own racket's last hit may take the match back "
+       "past that hit, to move it (never past another racket's hit, the serve or a decided point; docs/server.md, "
+       "\"Lag compensation\"); false: a hit ends its racket's stroke and such samples are dropped (`before_hit`)",
+       "--rewind-own-hit"},
       {"court_x_lo", &M::court_x_lo, closed(-BALL_MAX_COORD, BALL_MAX_COORD), "m",
        "where the court starts; it spans x in [court_x_lo, 2 net_x - court_x_lo], z over the net", "--court-x-lo"},
       {"seed", &M::seed, whole(0, INT64_MAX), "", "the serves' placement", "--seed", "1 (+ index with `--matches`)"},

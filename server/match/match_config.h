@@ -33,6 +33,7 @@ struct MatchConfig {
   bool hit_instant = true;            // step to a racket hit's instant between frames (false: frame-locked)
   double hit_lead = 0.002;            // real s before a hit's instant that the loop steps to it and writes it
   double rewind_window = 0.25;        // sim s a late racket sample may take the match back; 0: off
+  bool rewind_own_hit = false;        // a late sample may take the match back past its own racket's last hit
   double court_x_lo = 0.0;            // m: where the court starts (Court)
   uint64_t seed = 1;                  // serve placement
 };

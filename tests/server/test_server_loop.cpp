@@ -82,8 +82,9 @@ struct LoopRally {
   Rig r;
   MatchConfig c;
   // (each_wake: called after every wake-up, to give the loop more input)
-  LoopRally(uint64_t seed, double hit_lead, const std::function<void(Rig &)> &each_wake = nullptr)
-      : r({60.0}, 1.0, 0.0, base(seed, hit_lead)), c(r.host.find(0)->config()) {
+  LoopRally(uint64_t seed, double hit_lead, const std::function<void(Rig &)> &each_wake = nullptr,
+            bool own_hit = false)
+      : r({60.0}, 1.0, 0.0, base(seed, hit_lead, own_hit)), c(r.host.find(0)->config()) {
     const double trip = 0.1;  // s; the bots swing late, as people do: hits at their instant and rewinds
     const ParticipantId who[2] = {participant(1), participant(2)};
     r.port.controls = {join(0, 0, who[0]), join(0, 1, who[1])};
@@ -131,11 +132,12 @@ struct LoopRally {
     }
     r.loop->finish();
   }
-  static MatchConfig base(uint64_t seed, double hit_lead) {
+  static MatchConfig base(uint64_t seed, double hit_lead, bool own_hit) {
     MatchConfig b = default_config();
     b.level = BALL_LEVEL_MID;
     b.seed = seed;
     b.hit_lead = hit_lead;
+    b.rewind_own_hit = own_hit;
     return b;
   }
   // the (sim_time, server_time) pairs of the playing match: its ball states first
@@ -319,6 +321,49 @@ TEST(a_hit_ends_its_rackets_stroke) {
   CHECK(before_hit >= 25);
   CHECK_EQ(on_old_news, 0);
   CHECK_EQ(old_on_track, 0);
+}
+
+// With rewind_own_hit (docs/server.md, "Lag compensation") the samples a
+// hit's stroke sends after it may move the hit, earlier or later: the same
+// rallies as above, taken as a client takes them (a segment supersedes
+// those written before it with a later t0), have no racket hitting again
+// within 0.3 s of its own hit, where a hit that ends its stroke leaves a
+// few (a hit found early on an extrapolated track stands, and the racket's
+// true path meets the ball again on its way back); the stroke's samples
+// that come after the hit inside the window are kept, not dropped.
+TEST(a_rewind_past_its_own_hit_leaves_no_second_hit) {
+  int hits[2] = {0, 0}, again[2] = {0, 0};
+  uint64_t moved = 0, before_hit[2] = {0, 0};
+  for (int own = 0; own < 2; ++own)
+    for (uint64_t seed = 1; seed <= 10; ++seed) {
+      LoopRally g(seed, default_config().hit_lead, nullptr, own == 1);
+      std::vector<SegmentOut> seen;  // in effect, as a client has them
+      for (const SegmentOut &s : g.r.port.segments) {
+        while (!seen.empty() && seen.back().segment.t0 > s.segment.t0) seen.pop_back();
+        seen.push_back(s);
+      }
+      const SegmentOut *prev[2] = {nullptr, nullptr};
+      for (const SegmentOut &s : seen) {
+        if (s.cause != Cause::racket || s.cause_index < 0 || s.cause_index > 1) continue;
+        const SegmentOut *p = prev[s.cause_index];
+        if (p && p->segment.t0 == s.segment.t0) continue;  // written again
+        hits[own]++;
+        if (p && s.segment.t0 - p->segment.t0 < 0.3) again[own]++;
+        prev[s.cause_index] = &s;
+      }
+      if (own) moved += g.r.host.find(0)->counters().rewinds_past_own_hit;
+      before_hit[own] += g.r.loop->status_now().drops[static_cast<int>(SampleResult::before_hit)];
+    }
+  note("10 rallies: a hit ends its stroke: %d racket hits, %d within 0.3 s of the same racket's; rewind_own_hit: %d "
+       "hits, %d within 0.3 s, %llu rewinds past the racket's own hit; samples before_hit %llu and %llu",
+       hits[0], again[0], hits[1], again[1], (unsigned long long)moved, (unsigned long long)before_hit[0],
+       (unsigned long long)before_hit[1]);
+  CHECK(hits[0] >= 150);
+  CHECK(hits[1] >= 150);
+  CHECK(moved >= 20);
+  CHECK_EQ(again[1], 0);
+  // (the samples of the stroke inside the window are kept, not dropped)
+  CHECK(before_hit[1] * 2 < before_hit[0]);
 }
 
 TEST(frames_come_at_their_deadlines) {
