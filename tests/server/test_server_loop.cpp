@@ -6,6 +6,7 @@
 // the samples, refused writes, CREATE, a busy domain and conflicts, all
 // checked with numbers worked out by hand; and a rally of two bots through
 // the loop, whose clock pairs must lie on one line.
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <functional>
@@ -334,6 +335,7 @@ TEST(a_hit_ends_its_rackets_stroke) {
 TEST(a_rewind_past_its_own_hit_leaves_no_second_hit) {
   int hits[2] = {0, 0}, again[2] = {0, 0};
   uint64_t moved = 0, before_hit[2] = {0, 0};
+  std::vector<double> shift_t, shift_v;  // how far moved hits moved: s, m/s of the outgoing velocity
   for (int own = 0; own < 2; ++own)
     for (uint64_t seed = 1; seed <= 10; ++seed) {
       LoopRally g(seed, default_config().hit_lead, nullptr, own == 1);
@@ -351,6 +353,17 @@ TEST(a_rewind_past_its_own_hit_leaves_no_second_hit) {
         if (p && s.segment.t0 - p->segment.t0 < 0.3) again[own]++;
         prev[s.cause_index] = &s;
       }
+      // each moved hit against the one it moved: the same racket's hit written last, within 0.3 s
+      const SegmentOut *last[2] = {nullptr, nullptr};
+      for (const SegmentOut &s : g.r.port.segments) {
+        if (s.cause != Cause::racket || s.cause_index < 0 || s.cause_index > 1) continue;
+        const SegmentOut *p = last[s.cause_index];
+        if (own && s.correction && p && p->segment.t0 != s.segment.t0 && std::fabs(s.segment.t0 - p->segment.t0) < 0.3) {
+          shift_t.push_back(std::fabs(s.segment.t0 - p->segment.t0));
+          shift_v.push_back(ball_v3_dist(s.segment.v0, p->segment.v0));
+        }
+        last[s.cause_index] = &s;
+      }
       if (own) moved += g.r.host.find(0)->counters().rewinds_past_own_hit;
       before_hit[own] += g.r.loop->status_now().drops[static_cast<int>(SampleResult::before_hit)];
     }
@@ -358,6 +371,11 @@ TEST(a_rewind_past_its_own_hit_leaves_no_second_hit) {
        "hits, %d within 0.3 s, %llu rewinds past the racket's own hit; samples before_hit %llu and %llu",
        hits[0], again[0], hits[1], again[1], (unsigned long long)moved, (unsigned long long)before_hit[0],
        (unsigned long long)before_hit[1]);
+  std::sort(shift_t.begin(), shift_t.end());
+  std::sort(shift_v.begin(), shift_v.end());
+  if (!shift_t.empty())
+    note("%zu hits moved: by %.4f s (median) and %.4f s (most), their outgoing velocity by %.3f and %.3f m/s",
+         shift_t.size(), shift_t[shift_t.size() / 2], shift_t.back(), shift_v[shift_v.size() / 2], shift_v.back());
   CHECK(hits[0] >= 150);
   CHECK(hits[1] >= 150);
   CHECK(moved >= 20);
