@@ -33,6 +33,7 @@ set(BALL_DDS_DOMAINS
   "dds_inbox_share|121|test: one slot's burst of 20,000 samples takes its own share of the inbox only"
   "dds_discovery_flood|122|test: 3000 made-up participant announcements: bounded memory, found again after their leases"
   "dds_lag|123|test: late-swinging bots behind 150 ms: lag compensation finds their hits, rewinds, no desync"
+  "dds_lag_own|128|test: the same with rewind_own_hit: hits moved past their own racket's hit, no desync"
   "dds_create_flood|124|test: 1000 CREATEs a second under every id a CREATE may name: a real CREATE answered at once, the bots rally"
   "dds_control_share|126|test: a stranger's flood of JOINs into match 1: match 0's bots join and rally"
   "web_page|125|test: the spectator page in headless Chromium follows a rally, a server killed and a new one"

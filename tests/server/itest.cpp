@@ -194,11 +194,15 @@ void case_desync(const Env &env) {
 // bots that swing late (the stroke's last 0.12 s, whatever the delay)
 // behind 150 ms: without lag compensation they miss nearly every ball;
 // with it the server finds their hits where the ball was, rewinds, and
-// the clients' ball stays the server's
-void case_lag(const Env &env) {
+// the clients' ball stays the server's; with rewind_own_hit (own) the
+// stroke's later samples move hits too, and a moved hit's segments (the
+// one before it written again) keep the watcher on the server's ball
+void lag(const Env &env, bool own) {
   Case c{env};
   std::string sum = path(env, "watch.json");
-  Play p{c.server({"--level", "mid"}), ready_watcher(c, path(env, "watch.jsonl"), {"--summary-json", sum}),
+  std::vector<std::string> args{"--level", "mid"};
+  if (own) args.insert(args.end(), {"--rewind-own-hit", "true"});
+  Play p{c.server(args), ready_watcher(c, path(env, "watch.jsonl"), {"--summary-json", sum}),
          c.bot(0, {"--rate", "15", "--delay", "0.15", "--lead", "0.12"}),
          c.bot(1, {"--rate", "15", "--delay", "0.15", "--lead", "0.12"}), Tail(path(env, "watch.jsonl"))};
   double t0 = first_serve(p.t), last = 0.0;
@@ -209,8 +213,9 @@ void case_lag(const Env &env) {
   usleep(1000000);  // the bots' last samples (150 ms on the way) and their corrections reach the watcher
   p.w.stop();
   ServerReport r = stop_server(p.server, path(env, "server.json"));
-  uint64_t rewinds = 0, tested = 0;
-  for (const auto &m : r.matches) rewinds += m.counters.rewinds, tested += m.counters.late_tested;
+  uint64_t rewinds = 0, tested = 0, moved = 0;
+  for (const auto &m : r.matches)
+    rewinds += m.counters.rewinds, tested += m.counters.late_tested, moved += m.counters.rewinds_past_own_hit;
   p.t.poll();
   int corrections = 0;
   for (const auto &j : p.t.lines)
@@ -218,14 +223,19 @@ void case_lag(const Env &env) {
   WatchSummary w;
   read_summary(sum, &w);
   double desync = w.matches.empty() ? 1.0 : w.matches[0].max_error;
-  note("150 ms, late swings: %d hits in %.1f s, %llu late samples tested, %llu rewinds, %d correction segments, "
-       "desync %.3g m",
-       hits, last - t0, (unsigned long long)tested, (unsigned long long)rewinds, corrections, desync);
+  note("150 ms, late swings%s: %d hits in %.1f s, %llu late samples tested, %llu rewinds (%llu past the racket's own "
+       "hit), %d correction segments, desync %.3g m",
+       own ? ", rewind_own_hit" : "", hits, last - t0, (unsigned long long)tested, (unsigned long long)rewinds,
+       (unsigned long long)moved, corrections, desync);
   CHECK_MSG(hits >= 6, "%d hits in 30 s", hits);
   CHECK(rewinds >= 3);
+  CHECK(own ? moved >= 1 : moved == 0);
   CHECK(corrections >= static_cast<int>(rewinds));
   CHECK(desync <= 1e-9);
 }
+
+void case_lag(const Env &env) { lag(env, false); }
+void case_lag_own(const Env &env) { lag(env, true); }
 
 // a killed bot pauses its match within 2 player timeouts; a new bot resumes it
 void case_pause(const Env &env) {
@@ -1136,6 +1146,7 @@ TEST(create_expires) { in_case(case_create_expires); }
 TEST(late_join) { in_case(case_late_join); }
 TEST(lossy) { in_case(case_lossy); }
 TEST(lag) { in_case(case_lag); }
+TEST(lag_own) { in_case(case_lag_own); }
 TEST(server_cli) { in_case(case_server_cli); }
 TEST(busy) { in_case(case_busy); }
 TEST(snapshots) { in_case(case_snapshots); }

@@ -93,7 +93,7 @@ find_program(BALL_FASTDDS fastdds)
 # capture with Debian's python3 and its python3-scapy (./run setup)
 find_program(BALL_TCPDUMP tcpdump PATHS /usr/bin /usr/sbin)
 find_program(BALL_ITEST_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
-set(BALL_ITEST_CASES rally desync lag pause flood key_flood junk_keys control_share create_flood forged_server inbox_share create_expires late_join lossy server_cli busy snapshots discovery
+set(BALL_ITEST_CASES rally desync lag lag_own pause flood key_flood junk_keys control_share create_flood forged_server inbox_share create_expires late_join lossy server_cli busy snapshots discovery
   failover standby_killed primary_back claim secure load_secure discovery_flood)
 foreach(case ${BALL_ITEST_CASES})
   ball_dds_domain(dds_${case} domain)
