@@ -434,7 +434,17 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
   if (!p.live) return;
   set_rules(p);
   // (the events' numbers go on)
-  while (!history_.empty() && gone(history_.back())) history_.pop_back();
+  while (!history_.empty() && gone(history_.back())) {
+    // a contact that did not happen after all is not counted (the stats
+    // count what a client ends up with): in play if the rally was live after
+    // the segment before it (there is one: `at` stays)
+    const SegmentOut &h = history_.back();
+    if (history_.size() >= 2 && history_[history_.size() - 2].play.live) {
+      if (h.cause == Cause::floor) counters_.bounces--;
+      if (h.cause == Cause::racket) counters_.hits--;
+    }
+    history_.pop_back();
+  }
   if (std::isfinite(passed)) {  // its last hit is the one before, until the hit found now
     Slot &sl = slots_[static_cast<size_t>(slot)];
     sl.hit_time = -1e300;

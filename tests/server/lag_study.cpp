@@ -38,7 +38,7 @@ Rate measure(double delay, bool compensate, bool own_hit, bool plan_ahead, int s
     net.noise = 0.002;
     net.plan_ahead = plan_ahead;
     RallyResult res = play(c, net, seconds, static_cast<uint64_t>(seed));
-    r.hits += res.counters.hits - res.counters.rewinds_past_own_hit;  // (a hit moved is counted once)
+    r.hits += res.counters.hits;  // (a hit moved is counted once: the match un-counts the one it moved)
     for (const EventOut &e : res.events)
       r.missed += e.kind == EventKind::point &&
                   (e.reason == Reason::point_double_bounce || e.reason == Reason::point_not_returned);
