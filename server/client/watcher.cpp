@@ -17,6 +17,8 @@ constexpr double kTrailSeconds = 1.0;  // sim s of trail and of event markers
 constexpr size_t kTrailPoints = 2048;
 constexpr size_t kMarkers = 64;
 constexpr size_t kKeepEvents = 64;     // per match, for a view
+constexpr size_t kKeepCorrections = 16;  // per match: the newest corrections, that may void events still to come
+constexpr double kVoidableFor = 5.0;     // sim s an event stays where a correction may void it (beyond any rewind window)
 constexpr double kAnew = 1.0;          // sim s: a MatchInfo this far behind the last is a match started anew
 
 std::string point_text(ball_vec3 p) {
@@ -149,6 +151,7 @@ void Watcher::on_segment(const SegmentOut &seg, double real) {
     return;
   }
   if (first_segment_after_ < 0.0) first_segment_after_ = real - start_real_;
+  if (seg.correction) void_events(w, seg.seq, seg.segment.t0);
   if (!segment_fits(seg.seq, newest, 0)) w.segments.clear();  // a match started anew (its MatchInfo says so)
   w.segments[seg.seq] = seg;
   while (w.segments.size() > kKeepSegments) w.segments.erase(w.segments.begin());
@@ -186,30 +189,75 @@ void Watcher::settle_leads(Watched &w, double real) {
   }
 }
 
+// What an event adds to the tally (sign +1), or takes off it when a
+// correction voids it (-1). The counts of every kind an event counts in.
+void Watcher::tally(Watched &w, const EventOut &e, int sign) {
+  WatchedMatchSummary &t = w.tally;
+  auto add = [sign](uint64_t &n) { n = sign > 0 ? n + 1 : n - (n > 0); };
+  switch (e.kind) {
+    case EventKind::racket:
+      add(e.in_play ? t.hits : t.dead_hits);
+      if (e.in_play) add(hits_);
+      break;
+    case EventKind::floor:
+      if (e.in_play) add(t.bounces);
+      break;
+    case EventKind::net: add(t.nets); break;
+    case EventKind::wall: add(t.walls); break;
+    case EventKind::sound: add(t.sounds); break;
+    case EventKind::serve: add(t.serves); break;
+    case EventKind::point:
+      add(e.side < 0 ? t.lets : t.points);
+      if (sign > 0) t.score = e.score;
+      break;
+    case EventKind::pause: add(t.pauses); break;
+    case EventKind::resume: add(t.resumes); break;
+    case EventKind::refused: add(t.refused); break;
+    default: break;
+  }
+}
+
+// Events a correction voids (docs/protocol.md, "Corrections"): a
+// collision's or a point's, of a lower seq (written before the correction:
+// the segment in effect then was older) and after its t0.
+static bool voidable(const EventOut &e) {
+  return e.kind == EventKind::racket || e.kind == EventKind::floor || e.kind == EventKind::net ||
+         e.kind == EventKind::wall || e.kind == EventKind::sound || e.kind == EventKind::point;
+}
+static bool voids(uint32_t correction_seq, double t0, const EventOut &e) {
+  return voidable(e) && e.time > t0 && e.segment_seq < correction_seq;
+}
+
+void Watcher::void_events(Watched &w, uint32_t seq, double t0) {
+  w.corrections.push_back({seq, t0});
+  if (w.corrections.size() > kKeepCorrections) w.corrections.pop_front();
+  for (auto it = w.counted.begin(); it != w.counted.end();) {
+    if (voids(seq, t0, *it)) {
+      tally(w, *it, -1);
+      w.tally.voided++;
+      it = w.counted.erase(it);
+    } else {
+      ++it;
+    }
+  }
+}
+
 void Watcher::on_event(const EventOut &e, double real) {
   if (!wanted(e.match_id)) return;
   Watched &w = watched(e.match_id);
   WatchedMatchSummary &t = w.tally;
   if (w.last_event_seq && e.seq > w.last_event_seq + 1) t.events_missed += e.seq - w.last_event_seq - 1;
   if (e.seq > w.last_event_seq) w.last_event_seq = e.seq;
-  switch (e.kind) {
-    case EventKind::racket:
-      (e.in_play ? t.hits : t.dead_hits)++;
-      hits_ += e.in_play;
-      break;
-    case EventKind::floor: t.bounces += e.in_play; break;
-    case EventKind::net: t.nets++; break;
-    case EventKind::wall: t.walls++; break;
-    case EventKind::sound: t.sounds++; break;
-    case EventKind::serve: t.serves++; break;
-    case EventKind::point:
-      (e.side < 0 ? t.lets : t.points)++;
-      t.score = e.score;
-      break;
-    case EventKind::pause: t.pauses++; break;
-    case EventKind::resume: t.resumes++; break;
-    case EventKind::refused: t.refused++; break;
-    default: break;
+  bool voided = false;  // by a correction that came first (another topic: it may)
+  for (const auto &c : w.corrections) voided = voided || voids(c.first, c.second, e);
+  if (voided) {
+    t.voided++;
+  } else {
+    tally(w, e, +1);
+    if (voidable(e)) {
+      w.counted.push_back(e);
+      while (!w.counted.empty() && w.counted.front().time < e.time - kVoidableFor) w.counted.pop_front();
+    }
   }
   ball_event marker;
   if (settings_.snapshot_every > 0.0 && event_marker(e, &marker)) w.recent.push_back(marker);

@@ -120,7 +120,14 @@ class Watcher {
     // floor, net and wall segments received, not yet happened or superseded:
     // seq -> (t0 sim s, lead at reception real s)
     std::map<uint32_t, std::pair<double, double>> leads;
+    // the collision and point events counted over the last kVoidableFor sim
+    // s, and the newest corrections (seq, t0): a correction voids the events
+    // written before it for a later time (docs/protocol.md, "Corrections")
+    std::deque<EventOut> counted;
+    std::deque<std::pair<uint32_t, double>> corrections;
   };
+  void tally(Watched &w, const EventOut &e, int sign);
+  void void_events(Watched &w, uint32_t seq, double t0);
   bool wanted(uint32_t id) const { return settings_.match < 0 || id == static_cast<uint32_t>(settings_.match); }
   Watched &watched(uint32_t id);
   void settle_leads(Watched &w, double real);

@@ -108,11 +108,12 @@ struct WatchedMatchSummary {
   uint32_t segments = 0;          // seq of the newest segment
   uint64_t not_taken = 0;         // server samples recorded but not used: another server's, numbers out of range,
                                   // a clock pair or a segment seq that does not fit (trust.h)
+  uint64_t voided = 0;            // events a correction voided (docs/protocol.md, "Corrections"): off the counts
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(WatchedMatchSummary, match, hits, dead_hits, bounces, nets, walls, sounds, serves,
                                    points, lets, score, pauses, resumes, refused, events_missed, states,
                                    states_checked, states_unmatched, max_error, frames, snapshots, segments,
-                                   not_taken)
+                                   not_taken, voided)
 
 // A server's status line (ServerStatus): every field, drops by name.
 void to_json(json &j, const StatusOut &s);

@@ -2,10 +2,13 @@
 // the desync check (and states whose segment comes later or never), missed
 // events, its own ball at its estimate of the sim clock, the snapshot
 // schedule, the record lines and the summary, with numbers.
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "check.hpp"
 #include "game.h"
+#include "rally.h"
 #include "watcher.h"
 
 using namespace test;
@@ -71,6 +74,66 @@ TEST(tally_and_desync_from_a_match) {
   size_t lines = 1;
   for (const auto &e : g.events) lines += !rally_line(e).empty();
   CHECK_EQ(out.log.size(), lines);
+}
+
+// A correction voids the events written before it for a later time
+// (docs/protocol.md, "Corrections"): rallies behind 100 ms with lag
+// compensation, rewind_own_hit off and on (moved hits, bounces the hits
+// prevented), fed to a watcher as written, a wake-up's segments before its
+// events and after them, and the events 0.3 s behind the segments (two
+// topics: either may come first, and a correction before events it voids).
+// Its tally of hits and bounces is the server's stats' in each order.
+TEST(a_correction_voids_what_it_took_back) {
+  int voided[2] = {0, 0}, runs = 0;
+  for (int own = 0; own < 2; ++own)
+    for (ball_level level : {BALL_LEVEL_MID, BALL_LEVEL_ADVANCED})
+      for (uint64_t seed = 1; seed <= 4; ++seed) {
+        MatchConfig c = default_config();
+        c.level = level;
+        c.seed = seed;
+        c.rewind_own_hit = own == 1;
+        Net net;
+        net.delay = 0.1;
+        net.noise = 0.002;
+        net.plan_ahead = false;
+        RallyResult r = play(c, net, 30.0, seed);
+        Game g(c);
+        for (int order = 0; order < 3; ++order) {
+          Watcher w(WatcherSettings{});
+          w.on_start(1000.0);
+          w.on_info(g.match.info(), 1000.0);
+          // as written: each event with the segment in effect when it was (its
+          // wake-up's), the segments of a wake-up before its events or after
+          std::map<uint32_t, double> written;
+          for (size_t i = 0; i < r.segments.size(); ++i) written[r.segments[i].seq] = r.written_at[i];
+          std::vector<std::pair<double, long>> feed;  // (write time, segment i or -1 - event i)
+          for (size_t i = 0; i < r.segments.size(); ++i) feed.push_back({r.written_at[i], static_cast<long>(i)});
+          for (size_t i = 0; i < r.events.size(); ++i) {
+            auto it = written.find(r.events[i].segment_seq);
+            double late = order == 2 ? 0.3 : 0.0;  // (events held up: later corrections come first)
+            feed.push_back({(it == written.end() ? 0.0 : it->second) + late, -1 - static_cast<long>(i)});
+          }
+          std::stable_sort(feed.begin(), feed.end(), [order](const auto &a, const auto &b) {
+            if (a.first != b.first) return a.first < b.first;
+            return order == 0 ? a.second >= 0 && b.second < 0 : a.second < 0 && b.second >= 0;
+          });
+          for (const auto &f : feed) {
+            if (f.second >= 0)
+              w.on_segment(r.segments[static_cast<size_t>(f.second)], 1000.1);
+            else
+              w.on_event(r.events[static_cast<size_t>(-1 - f.second)], 1000.1);
+          }
+          const WatchedMatchSummary m = w.summary(30.0).matches.at(0);
+          CHECK_EQ(m.hits, r.counters.hits);
+          CHECK_EQ(m.bounces, r.counters.bounces);
+          voided[own] += static_cast<int>(m.voided);
+        }
+        runs++;
+      }
+  check::note("%d rallies behind 100 ms, each fed in three orders: %d events voided without "
+       "rewind_own_hit, %d with it; the watcher's hits and bounces are the server's",
+       runs, voided[0], voided[1]);
+  CHECK(voided[1] >= 100);
 }
 
 TEST(a_state_waits_for_its_segment_or_is_counted_unmatched) {
