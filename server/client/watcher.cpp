@@ -119,6 +119,8 @@ void Watcher::on_info(const MatchInfoOut &info, double real) {
     w.segments.clear();
     w.pending.clear();
     w.leads.clear();
+    w.counted.clear();
+    w.corrections.clear();
     w.trail.clear();
     w.recent.clear();
     w.last_event_seq = 0;
@@ -151,8 +153,12 @@ void Watcher::on_segment(const SegmentOut &seg, double real) {
     return;
   }
   if (first_segment_after_ < 0.0) first_segment_after_ = real - start_real_;
+  if (!segment_fits(seg.seq, newest, 0)) {  // a match started anew (its MatchInfo says so)
+    w.segments.clear();
+    w.counted.clear();
+    w.corrections.clear();
+  }
   if (seg.correction) void_events(w, seg.seq, seg.segment.t0);
-  if (!segment_fits(seg.seq, newest, 0)) w.segments.clear();  // a match started anew (its MatchInfo says so)
   w.segments[seg.seq] = seg;
   while (w.segments.size() > kKeepSegments) w.segments.erase(w.segments.begin());
   if (seg.cause == Cause::racket && seg.sample.valid) {
@@ -225,7 +231,8 @@ static bool voidable(const EventOut &e) {
          e.kind == EventKind::wall || e.kind == EventKind::sound || e.kind == EventKind::point;
 }
 static bool voids(uint32_t correction_seq, double t0, const EventOut &e) {
-  return voidable(e) && e.time > t0 && e.segment_seq < correction_seq;
+  // (seqs in serial number arithmetic, as segment_fits)
+  return voidable(e) && e.time > t0 && static_cast<int32_t>(correction_seq - e.segment_seq) > 0;
 }
 
 void Watcher::void_events(Watched &w, uint32_t seq, double t0) {

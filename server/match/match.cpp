@@ -370,6 +370,7 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
     if (h.segment.t0 <= t_a) {
       at = &h;
       if (h.cause == Cause::racket) slept = &h;
+      if (h.cause == Cause::serve) slept = nullptr;  // (a serve's tests are awake)
     } else if (h.cause == Cause::racket) {
       passed = std::min(passed, h.segment.t0);
     }
