@@ -395,12 +395,16 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
   // step goes through it)
   const double dt = frame_time() * config_.time_base;
   double hit = HUGE_VAL;
+  Aside early;  // tracks that start after the frame stepped
   while (then.time < now) {
     double end = std::min(now, then.time + dt);
+    aside(&then, &early, end);
     ball_racket_contact c{};
     int may = 1;
+    // (a contact before the racket's first sample is not one: it was not there yet)
     if ((ball_racket_may_reach(&then, slot, end, &may) != BALL_OK || may) &&
-        ball_racket_first_contact(&then, slot, end, &c) == BALL_OK && c.step_to <= end) {
+        ball_racket_first_contact(&then, slot, end, &c) == BALL_OK && c.step_to <= end &&
+        !(then.tracks[slot].count > 0 && then.tracks[slot].samples[0].t > c.step_to)) {
       hit = c.step_to;
       break;
     }
@@ -464,8 +468,14 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
     emit_segment(out, b.cause, b.cause_index, b.segment, b.sample, b.sound);
     out->segments.back().play = history_.back().play = b.play;
   }
+  aside(&sim_, &early, hit);
   advance(hit - sim_.time, false, out);
-  while (sim_.time < now - 1e-12) advance(std::min(dt, now - sim_.time), false, out);
+  while (sim_.time < now - 1e-12) {
+    double step = std::min(dt, now - sim_.time);
+    aside(&sim_, &early, sim_.time + step);  // (a hit's follow-through too: its samples come after it)
+    advance(step, false, out);
+  }
+  aside(&sim_, &early, HUGE_VAL);  // every track as it is now again
   correcting_ = false;
   counters_.rewinds++;
   out->info_changed = true;
@@ -484,6 +494,21 @@ void Match::end_stroke(int k, double t_hit) {
   for (int i = 0; i < tr.count; ++i)  // (each was accepted after the one before it)
     if (tr.samples[i].t >= sl.hit_time) ball_racket_push(&sim_, k, &tr.samples[i]);
   hit_stale_ = true;
+}
+
+void Match::aside(ball_sim *sim, Aside *a, double end) const {
+  for (int k = 0, n = std::min(model().n_rackets, kMaxPlayers); k < n; ++k) {
+    ball_racket_track &t = sim->tracks[k];
+    const size_t i = static_cast<size_t>(k);
+    if (a->held[i] && a->track[i].samples[0].t <= end) {  // reached: back, after what came meanwhile (nothing)
+      for (int j = 0; j < a->track[i].count; ++j) ball_racket_push(sim, k, &a->track[i].samples[j]);
+      a->held[i] = false;
+    } else if (!a->held[i] && t.count > 0 && t.samples[0].t > end) {
+      a->track[i] = t;
+      a->held[i] = true;
+      ball_racket_clear(sim, k);
+    }
+  }
 }
 
 void Match::keep(Slot &slot, const ball_racket_sample &s) {

@@ -185,6 +185,16 @@ class Match {
   void rewind(int slot, double from, MatchOutput *out);
   void end_stroke(int slot, double t_hit);  // its racket hit at t_hit: its track from then on only
   static void keep(Slot &slot, const ball_racket_sample &s);  // into slot.kept
+  // A rewind steps the past with the tracks of now: a track whose samples
+  // all come after a frame's end would hold its racket at the first of them
+  // (libball: before its first sample a track is at it), where the racket
+  // had not been yet. Before each frame, such a track waits aside (its
+  // racket meets nothing) until the steps reach its first sample.
+  struct Aside {
+    std::array<ball_racket_track, kMaxPlayers> track;  // (only the held ones are read)
+    std::array<bool, kMaxPlayers> held{};
+  };
+  void aside(ball_sim *sim, Aside *a, double end) const;
   // sim's track k from slot.kept (and `extra`, newer, if given): the track
   // it would hold had no hit ended its stroke; libball's status
   ball_status unended_track(ball_sim *sim, int k, const Slot &slot, const ball_racket_sample *extra) const;
