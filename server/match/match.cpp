@@ -387,9 +387,8 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
   // the racket tests slept after the last hit as they did in the match: else
   // the hitter's own next sample finds its racket still on the ball at the
   // hit's instant and hits it again
-  if ((slept || std::isfinite(passed)) &&
-      ball_sim_set_sleep(&then, slept ? sleep_left(slept->segment.t0, t_a) : 0) != BALL_OK)
-    return;
+  // (ball_sim_set_segment woke them: a serve's, or one past no hit, stay awake)
+  if (slept && ball_sim_set_sleep(&then, sleep_left(slept->segment.t0, t_a)) != BALL_OK) return;
   // frame by frame up to now: where the racket meets it first (a frame the
   // bound rules out costs no query; the query stops before a bounce, the
   // step goes through it)
