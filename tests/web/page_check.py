@@ -18,6 +18,8 @@ also on a failure. Checks, each with its numbers printed:
      new server: the page picks the match up again and the ball moves; the
      watcher stopped and started again: the same, and the page reconnects;
   5. no console errors, no uncaught exception, from start to end;
+  6. the events a correction voids (fed as the stream brings them): no
+     marker, struck out in the log;
   and a page opened mid-rally draws the ball at once (within 5 s of asking,
   the browser's start of three.js included).
 
@@ -315,6 +317,34 @@ def main():
         still = browser.evaluate("window.spectator.connected()")
         check(codes == [200] * 7 + [503] and still,
               "pages at once: 7 more streams served, the next told %d; the page still connected: %s" % (codes[-1], still))
+
+        # 6. what a correction takes back (docs/protocol.md, "Corrections: hits found late"), fed as
+        # the stream brings it to a match of its own, seqs across the 32-bit wrap: events before the
+        # correction's t0, of its own segment or a newer one, or of a kind no correction voids, stand
+        base = 2 ** 32 - 2
+        events = [  # (seq, kind, time, segment_seq, arrives after the correction, void)
+            (1, "racket", 1.00, base, False, False), (2, "floor", 1.30, base + 1, False, True),
+            (3, "sound", 1.30, base + 1, False, True), (4, "serve", 1.35, base + 1, False, False),
+            (5, "point", 1.40, base + 1, False, True), (6, "floor", 1.20, base + 1, False, False),
+            (7, "racket", 1.50, base + 1, True, True), (8, "racket", 1.50, 1, True, False),
+            (9, "floor", 1.60, 2, True, False)]
+        fake = 4242
+
+        def event(e):
+            return {"type": "event", "match": fake, "text": e[1],
+                    "event": {"seq": e[0], "kind": e[1], "time": e[2], "segment_seq": e[3]}}
+        feed = [event(e) for e in events if not e[4]]
+        feed.append({"type": "segment", "match": fake, "segment": {
+            "seq": 1, "t0": 1.2, "p0": [0, 1, 0], "v0": [1, 0, 0], "s0": [0, 0, 0], "grounded": False,
+            "cause": "racket", "sound": True, "correction": True}})
+        feed += [event(e) for e in events if e[4]]
+        for msg in feed:
+            browser.evaluate("window.spectator.feed(%s)" % json.dumps(msg))
+        held = browser.evaluate("window.spectator.events(%d)" % fake)
+        want = [{"seq": e[0], "void": e[5]} for e in events]
+        got = sorted(held or [], key=lambda x: x["seq"])
+        check(got == want, "a correction voids %d of %d events, those after its t0 written before it, whichever "
+              "came first: %s" % (sum(x["void"] for x in got), len(got), [x["seq"] for x in got if x["void"]]))
 
         # 5. no console errors
         errors = browser.console + [("error", e) for e in browser.evaluate("window.spectator.errors")]

@@ -10,6 +10,7 @@
   const KEEP_SEGMENTS = 64; // per match
   const KEEP_EVENTS = 60; //   per match, for the log and the markers
   const KEEP_RACKET_SAMPLES = 8;
+  const KEEP_CORRECTIONS = 16; // per match: the newest, which may void events still to come (the watcher's rule)
   const MIN_BALL_PIXELS = 2; // as the renderer: a ball never under 2 pixels of radius
   const MIN_MARKER_PIXELS = 5;
   const MARKER_RADIUS = 0.25; // m
@@ -41,8 +42,8 @@
 
   function match(id) {
     if (!matches.has(id))
-      matches.set(id, { id: id, court: null, info: null, live: false, segments: [], events: [], rackets: [[], [], [], []],
-                        clock: new P.SimClock(), trail: [] });
+      matches.set(id, { id: id, court: null, info: null, live: false, segments: [], events: [], corrections: [],
+                        rackets: [[], [], [], []], clock: new P.SimClock(), trail: [] });
     return matches.get(id);
   }
 
@@ -70,6 +71,7 @@
         const w = match(m.match);
         w.segments = [];
         w.events = [];
+        w.corrections = [];
         w.trail = [];
         w.rackets = [[], [], [], []];
         break;
@@ -79,12 +81,19 @@
         w.segments.push({ seq: s.seq, t0: s.t0, p0: s.p0, v0: s.v0, s0: s.s0, grounded: s.grounded, cause: s.cause, sound: s.sound });
         w.segments.sort((a, b) => (P.seqAfter(a.seq, b.seq) ? 1 : a.seq === b.seq ? 0 : -1));
         while (w.segments.length > KEEP_SEGMENTS) w.segments.shift();
+        if (s.correction) { // what it took back is void: no marker, struck out in the log
+          const c = { seq: s.seq, t0: s.t0 };
+          w.corrections.push(c);
+          while (w.corrections.length > KEEP_CORRECTIONS) w.corrections.shift();
+          for (const x of w.events) x.void = x.void || P.voids(c, x.e);
+        }
         break;
       }
       case "event": {
         if (!Number.isFinite(m.event.time)) break; // (ball-watch passes finite numbers only)
         const w = match(m.match);
-        w.events.push({ e: m.event, text: m.text });
+        // (a correction may come first: another topic)
+        w.events.push({ e: m.event, text: m.text, void: w.corrections.some((c) => P.voids(c, m.event)) });
         while (w.events.length > KEEP_EVENTS) w.events.shift();
         break;
       }
@@ -273,7 +282,7 @@
       pos.needsUpdate = true;
       this.trail.geometry.setDrawRange(0, w.trail.length);
       // the markers of the collisions of the last `trail` seconds
-      const shown = w.events.filter(({ e }) => e.kind in C.marks && e.time <= t && e.time >= t - w.court.trail);
+      const shown = w.events.filter(({ e, void: v }) => !v && e.kind in C.marks && e.time <= t && e.time >= t - w.court.trail);
       const key = w.id + ":" + shown.map(({ e }) => e.seq).join(",");
       if (key !== this.markerKey) { // made anew only when the markers change
         for (const o of this.markers.children.slice()) {
@@ -355,7 +364,8 @@
       this.el("match").innerHTML = w && w.info ? matchHtml(w) : "<p>waiting for a match</p>";
       this.el("log").replaceChildren(...(w ? w.events : []).filter((x) => x.text).slice(-40).reverse().map((x) => {
         const li = document.createElement("li");
-        li.textContent = "t " + x.e.time.toFixed(2) + "  " + x.text;
+        li.textContent = "t " + x.e.time.toFixed(2) + "  " + x.text + (x.void ? "  (void: corrected)" : "");
+        if (x.void) li.className = "void";
         return li;
       }));
     },
@@ -439,6 +449,9 @@
     frames: () => frames,
     connected: () => connected,
     matches: () => [...matches.keys()],
+    // a message as the stream brings it, and the events a match holds
+    feed: (m) => receive(m),
+    events: (id) => (matches.has(id) ? matches.get(id).events.map((x) => ({ seq: x.e.seq, void: !!x.void })) : null),
     // the ball of a match at sim time t, from the segments the page holds
     ballAt: (id, t) => ballAt(matches.get(id), t),
     // the page's sim time now for a match, and its ball then

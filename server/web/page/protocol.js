@@ -1,7 +1,8 @@
 // The ball server's protocol as a page needs it, written from
 // docs/protocol.md and docs/rackets.md alone: the ball from a segment
 // ("Evaluating the ball from segments", eq 3 and 4 of the paper), the
-// segment in effect, the sim clock estimate ("Time") and a racket's track
+// segment in effect, the events a correction voids ("Corrections"), the
+// sim clock estimate ("Time") and a racket's track
 // (interpolated between samples, eq 15 past the newest). Another
 // implementation beside libball's: the tests hold its numbers to libball's.
 // Loads in a page (window.BallProtocol) and in Node (module.exports).
@@ -69,6 +70,15 @@
     for (const s of segments)
       if (s.t0 <= t && (best === null || seqAfter(s.seq, best.seq))) best = s;
     return best;
+  }
+
+  // Whether a correction (a segment with `correction` set: {seq, t0}) voids
+  // an event ({kind, time, segment_seq}), by "Corrections: hits found late":
+  // a collision's or a point's event, written before the correction (the
+  // segment in effect then is older: serial arithmetic) and after its t0.
+  const VOIDABLE = ["racket", "floor", "net", "wall", "sound", "point"];
+  function voids(correction, event) {
+    return VOIDABLE.indexOf(event.kind) >= 0 && event.time > correction.t0 && seqAfter(correction.seq, event.segment_seq);
   }
 
   // The sim clock from (sim_time, server_time) pairs: the smallest
@@ -154,5 +164,6 @@
     };
   }
 
-  return { segmentEval: segmentEval, seqAfter: seqAfter, inEffect: inEffect, SimClock: SimClock, racketEstimate: racketEstimate };
+  return { segmentEval: segmentEval, seqAfter: seqAfter, inEffect: inEffect, voids: voids, SimClock: SimClock,
+           racketEstimate: racketEstimate };
 });
