@@ -299,6 +299,18 @@ static double closest(const ball_model *m, const swing *sw) {
   return at;
 }
 
+/* A case of c whose racket is moved off the ball's path by up to twice the
+ * test's reach (*off; many pass near its edge); returns the reach. */
+static double near_swing(const config *c, seeded_rng *r, ball_model *m, swing *sw, ball_vec3 *off) {
+  double reach;
+  int j;
+  case_of(c, r, m, sw);
+  reach = m->detect == BALL_DETECT_SPHERE ? m->collision_distance : hypot(m->rackets[0].radius + m->radius, m->radius);
+  *off = ball_v3_scale(ball_v3_unit(swing_rnd3(r, -1.0, 1.0)), seeded_uniform(r, 0.0, 2.0 * reach));
+  for (j = 0; j < sw->n; j++) sw->s[j].center = ball_v3_add(sw->s[j].center, *off);
+  return reach;
+}
+
 /* ball_racket_may_reach never says 0 where a step finds a hit: swings with
  * their racket moved off the ball's path by up to twice the test's reach
  * (many pass near its edge), caught up to 60 ms before the closest
@@ -321,11 +333,7 @@ static void the_bound_never_hides_a_hit(void **state) {
       ball_vec3 off;
       double t_end, t_hit = INFINITY, lo, reach;
       int j, may = -1;
-      case_of(&configs[ci], &r, &m, &sw);
-      reach = m.detect == BALL_DETECT_SPHERE ? m.collision_distance
-                                             : hypot(m.rackets[0].radius + m.radius, m.radius);
-      off = ball_v3_scale(ball_v3_unit(swing_rnd3(&r, -1.0, 1.0)), seeded_uniform(&r, 0.0, 2.0 * reach));
-      for (j = 0; j < sw.n; j++) sw.s[j].center = ball_v3_add(sw.s[j].center, off);
+      reach = near_swing(&configs[ci], &r, &m, &sw, &off);
       catch_sim(&m, &sw, closest(&m, &sw) - seeded_uniform(&r, 0.0, 0.06), k % 2, &sim);
       if (sim.sleep > 0) continue;
       for (j = 1, lo = sim.time; j <= 200; j++) {
@@ -360,6 +368,58 @@ static void the_bound_never_hides_a_hit(void **state) {
     assert_true(hits >= 50);
     assert_true(edge >= 10);
     assert_true(spared * 4 >= misses);
+  }
+}
+
+/* What a server rests on when it spares looks over several frames (the
+ * next look after a no over two frames, a late sample ruled out over its
+ * whole window): the bound's no over (t0, t_end] holds for every walk of
+ * frames through the window, not only one step, while the ball stays on its
+ * segment (each frame's P_old and R_old lie on the path and the track the
+ * bound held). Swings as above, windows of 5 to 150 ms, walked in frames of
+ * 1/240 to 1/30 s; the walk ends at a static contact. */
+static void the_bound_covers_every_walk_of_frames(void **state) {
+  size_t ci;
+  (void)state;
+  for (ci = 0; ci < sizeof configs / sizeof configs[0]; ci++) {
+    seeded_rng r = seeded_stream(97, ci);
+    int k, hits = 0, spared = 0, near = 0, frames = 0;
+    for (k = 0; k < 300; k++) {
+      ball_model m;
+      swing sw;
+      ball_sim sim, walk;
+      ball_vec3 off;
+      ball_event ev[STEPS_FRAME_CAP];
+      double t_end, reach;
+      int j, n, may = -1, hit = 0, stop = 0;
+      reach = near_swing(&configs[ci], &r, &m, &sw, &off);
+      catch_sim(&m, &sw, closest(&m, &sw) - seeded_uniform(&r, 0.0, 0.15), k % 2, &sim);
+      if (sim.sleep > 0) continue;
+      t_end = sim.time + seeded_uniform(&r, 0.005, 0.15);
+      assert_ok(ball_racket_may_reach(&sim, -1, t_end, &may));
+      walk = sim;
+      while (walk.time < t_end && !hit && !stop) {
+        double end = walk.time + seeded_uniform(&r, 1.0 / 240, 1.0 / 30);
+        if (end > t_end) end = t_end;
+        assert_ok(ball_step(&walk, end - walk.time, ev, STEPS_FRAME_CAP, &n));
+        frames++;
+        for (j = 0; j < n; j++) {
+          if (ev[j].kind == BALL_EVENT_RACKET) hit = 1;
+          else stop = 1; /* (a static contact: another segment) */
+        }
+      }
+      if (hit && !may) fail_msg("a walk of frames hits before %.17g, the bound said no from %.17g", t_end, sim.time);
+      hits += hit;
+      if (!may) {
+        spared++;
+        near += ball_v3_norm(off) < reach;
+      }
+    }
+    print_message("%-30s %3d walks hit; the bound ruled out %d (%d with the racket's path within a reach of the "
+                  "ball's), %d frames walked\n", configs[ci].name, hits, spared, near, frames);
+    assert_true(hits >= 25);
+    assert_true(spared >= 50);
+    assert_true(near >= 10);
   }
 }
 
@@ -610,6 +670,7 @@ int main(void) {
       cmocka_unit_test(sleep_counts_steps_not_seconds),
       cmocka_unit_test(bad_input_changes_nothing),
       cmocka_unit_test(the_bound_never_hides_a_hit),
+      cmocka_unit_test(the_bound_covers_every_walk_of_frames),
       cmocka_unit_test(the_bound_at_the_tests_reach),
       cmocka_unit_test(the_bound_refuses_bad_input),
   };
