@@ -377,56 +377,86 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
   }
   if (!at || !(t_a < now)) return;
   counters_.late_tested++;
-  // the ball where it was at t_a, the tracks as they are now (the late sample
-  // in them; past its own hit, the racket's as if no hit had ended its stroke)
-  ball_sim then = sim_;
-  if (ball_sim_set_segment(&then, &at->segment, t_a) != BALL_OK) return;
-  if (std::isfinite(passed) && unended_track(&then, slot, slots_[static_cast<size_t>(slot)], nullptr) != BALL_OK)
-    return;
-  for (int i = 0; i < model().n_rackets; ++i) then.tracks[i].has_prev = 0;  // R_old: the track at t_a
-  // the racket tests slept after the last hit as they did in the match: else
-  // the hitter's own next sample finds its racket still on the ball at the
-  // hit's instant and hits it again
-  // (ball_sim_set_segment woke them: a serve's, or one past no hit, stay awake)
-  if (slept && ball_sim_set_sleep(&then, sleep_left(slept->segment.t0, t_a)) != BALL_OK) return;
-  // frame by frame up to now: where the racket meets it first (a frame the
-  // bound rules out costs no query; the query stops before a bounce, the
-  // step goes through it)
   const double dt = frame_time() * config_.time_base;
   double hit = HUGE_VAL;
+  ball_sim then, before;
   Aside early;  // tracks that start after the frame stepped
-  while (then.time < now) {
-    double end = std::min(now, then.time + dt);
-    aside(&then, &early, end);
-    ball_racket_contact c{};
-    int may = 1;
-    // (a contact before the racket's first sample is not one: it was not there yet)
-    if ((ball_racket_may_reach(&then, slot, end, &may) != BALL_OK || may) &&
-        ball_racket_first_contact(&then, slot, end, &c) == BALL_OK && c.step_to <= end &&
-        !(then.tracks[slot].count > 0 && then.tracks[slot].samples[0].t > c.step_to)) {
-      hit = c.step_to;
-      break;
-    }
-    ball_sim before = then;
-    int n = 0;
-    if (ball_step(&then, end - then.time, step_events_.data(), static_cast<int>(step_events_.size()), &n) != BALL_OK)
+  // A frame whose step finds the racket (after a bounce inside it, where
+  // the query stops) is stepped again from its start, so only a frame that
+  // may hold a static contact keeps its start (a copy of the whole sim);
+  // one that finds the racket without having kept it (the query gave up
+  // early) walks again, keeping every frame's.
+  for (int keep_all = 0; keep_all < 2; ++keep_all) {
+    // the ball where it was at t_a, the tracks as they are now (the late sample
+    // in them; past its own hit, the racket's as if no hit had ended its stroke)
+    then = sim_;
+    if (ball_sim_set_segment(&then, &at->segment, t_a) != BALL_OK) return;
+    if (std::isfinite(passed) && unended_track(&then, slot, slots_[static_cast<size_t>(slot)], nullptr) != BALL_OK)
       return;
-    bool racket = false;
-    for (int k = 0; k < n && !racket; ++k) {
-      if (step_events_[k].kind != BALL_EVENT_RACKET) {
-        // past its own hit the ball flies where the match has no judged
-        // segment of its own: a contact there is not gone back over
-        if (step_events_[k].time > passed) return;
-        continue;
+    for (int i = 0; i < model().n_rackets; ++i) then.tracks[i].has_prev = 0;  // R_old: the track at t_a
+    // most late samples meet nothing: when the ball stayed on one segment
+    // since t_a (no contact took effect since, and the exact scheme steps
+    // the same contacts on any frames) and the bound rules the racket out
+    // of a step ending anywhere up to now (every frame's P_old, R_old and
+    // ends lie in its boxes and spheres; asked awake), no frame can find it
+    if (keep_all == 0 && !std::isfinite(passed) && at == &history_.back() && model().scheme == BALL_SCHEME_EXACT) {
+      int may = 1;
+      if (ball_racket_may_reach(&then, slot, now, &may) == BALL_OK && !may) {
+        counters_.late_ruled_out++;
+        return;
       }
-      if (step_events_[k].index != slot) return;  // another racket got there first
-      racket = true;
     }
-    if (racket) {  // after a bounce inside the frame: the step's own test found it at the frame's end
-      then = before;
-      hit = end;
-      break;
+    // the racket tests slept after the last hit as they did in the match: else
+    // the hitter's own next sample finds its racket still on the ball at the
+    // hit's instant and hits it again
+    // (ball_sim_set_segment woke them: a serve's, or one past no hit, stay awake)
+    if (slept && ball_sim_set_sleep(&then, sleep_left(slept->segment.t0, t_a)) != BALL_OK) return;
+    // frame by frame up to now: where the racket meets it first (a frame the
+    // bound rules out costs no query; the query stops before a bounce, the
+    // step goes through it)
+    hit = HUGE_VAL;
+    early.held.fill(false);
+    bool again = false;
+    while (then.time < now) {
+      double end = std::min(now, then.time + dt);
+      aside(&then, &early, end);
+      ball_racket_contact c{};
+      int may = 1;
+      // (a contact before the racket's first sample is not one: it was not there yet)
+      if ((ball_racket_may_reach(&then, slot, end, &may) != BALL_OK || may) &&
+          ball_racket_first_contact(&then, slot, end, &c) == BALL_OK && c.step_to <= end &&
+          !(then.tracks[slot].count > 0 && then.tracks[slot].samples[0].t > c.step_to)) {
+        hit = c.step_to;
+        break;
+      }
+      // (the exact scheme's next contact, when known, says whether the frame holds one)
+      const bool keep = keep_all || !(then.next.valid && then.next.time > end);
+      if (keep) before = then;
+      int n = 0;
+      if (ball_step(&then, end - then.time, step_events_.data(), static_cast<int>(step_events_.size()), &n) != BALL_OK)
+        return;
+      bool racket = false;
+      for (int k = 0; k < n && !racket; ++k) {
+        if (step_events_[k].kind != BALL_EVENT_RACKET) {
+          // past its own hit the ball flies where the match has no judged
+          // segment of its own: a contact there is not gone back over
+          if (step_events_[k].time > passed) return;
+          continue;
+        }
+        if (step_events_[k].index != slot) return;  // another racket got there first
+        racket = true;
+      }
+      if (racket && !keep) {
+        again = true;
+        break;
+      }
+      if (racket) {  // after a bounce inside the frame: the step's own test found it at the frame's end
+        then = before;
+        hit = end;
+        break;
+      }
     }
+    if (!again) break;
   }
   if (!std::isfinite(hit)) return;
   // the old path after the hit (and from its own hit it went back past) is not history any more

@@ -400,6 +400,7 @@ inline SegmentOut current_segment(const MatchInfoOut &i) {
   X(hit_looks_spared) /* of those, answered by the bound a look before gave over two frames */ \
   X(hit_queries) /* of those, first-contact queries made (the rest: no racket within reach) */ \
   X(late_tested) /* late racket samples tested against the ball where it was (rewind_window) */ \
+  X(late_ruled_out) /* of those, ruled out by libball's bound at once (one segment since, the racket out of reach) */ \
   X(rewinds)     /* of those, hits found late: the match went back to the hit and on again */ \
   X(rewinds_past_own_hit) /* of those, back past the racket's own last hit, to move it (rewind_own_hit) */
 struct MatchCounters {

@@ -16,7 +16,7 @@ using check::note;
 namespace {
 
 struct Lag {
-  uint64_t hits = 0, rewinds = 0, tested = 0, points = 0, past_own = 0;
+  uint64_t hits = 0, rewinds = 0, tested = 0, ruled_out = 0, points = 0, past_own = 0;
   size_t corrections = 0, correction_hits = 0;
   int before_barrier = 0;   // corrections that start before the last hit or serve the client had
   int not_past = 0;         // correction hits not in the past when written
@@ -49,6 +49,7 @@ Lag run(double delay, double window, int seeds, bool plan_ahead = true, ball_lev
     l.hits += r.counters.hits;
     l.rewinds += r.counters.rewinds;
     l.tested += r.counters.late_tested;
+    l.ruled_out += r.counters.late_ruled_out;
     l.points += r.counters.points;
     l.past_own += r.counters.rewinds_past_own_hit;
     Game g(c);
@@ -154,15 +155,21 @@ void keeps_the_rules(const Lag &on) {
 TEST(a_late_sample_inside_the_window_hits_where_the_ball_was) {
   Lag off = run(0.1, 0.0, 6, false), on = run(0.1, 0.25, 6, false);
   note("100 ms delay, mid, 6 rallies of 30 s: without compensation %llu hits %llu points; with it %llu hits %llu "
-       "points, %llu late samples tested, %llu rewinds, %zu correction segments (%zu hits, %d by the last hitter "
-       "asleep), %d before the last hit, %d not in the past; %d states within %.3g m, %d without a segment",
+       "points, %llu late samples tested (%llu ruled out by the bound at once), %llu rewinds, %zu correction segments "
+       "(%zu hits, %d by the last hitter asleep), %d before the last hit, %d not in the past; %d states within %.3g m, "
+       "%d without a segment",
        (unsigned long long)off.hits, (unsigned long long)off.points, (unsigned long long)on.hits,
-       (unsigned long long)on.points, (unsigned long long)on.tested, (unsigned long long)on.rewinds, on.corrections,
+       (unsigned long long)on.points, (unsigned long long)on.tested, (unsigned long long)on.ruled_out,
+       (unsigned long long)on.rewinds, on.corrections,
        on.correction_hits, on.rehits, on.before_barrier, on.not_past, on.states, on.worst, on.wrong);
   CHECK_EQ(off.rewinds, 0u);
   CHECK_EQ(off.corrections, 0u);
   CHECK(on.tested > 1000);
   CHECK(on.rewinds >= 10);
+  // most late samples meet nothing, and the bound says so before any frame is stepped again
+  // (what it spares would have found no hit: libball's the_bound_covers_every_walk_of_frames)
+  CHECK(on.ruled_out * 2 >= on.tested);
+  CHECK(on.ruled_out + on.rewinds <= on.tested);
   keeps_the_rules(on);
   CHECK(on.hits >= off.hits);
 }
