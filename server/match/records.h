@@ -174,6 +174,9 @@ struct ServerReport {
   uint64_t latency_count = 0;
   uint64_t hit_wakes = 0;       // partial frames stepped to a racket hit's instant
   double hit_late_p50 = 0.0, hit_late_p99 = 0.0;  // s: such a step began after the hit's instant (negative: before)
+  uint64_t hit_known = 0;         // of them, hits the loop knew before they were due (the instant less hit_lead)
+  double hit_wake_late_p99 = 0.0;  // s: their step began after that
+  uint64_t hit_found_after = 0;   // of them, hits first seen after their instant (samples that came after it)
   std::vector<MatchReport> matches;
 };
 void to_json(json &j, const ServerReport &r);

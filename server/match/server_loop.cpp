@@ -581,7 +581,9 @@ void ServerLoop::run_due_frames(double t0, double now) {
     if (t > s.clock.deadline(s.k)) stats_.totals.overruns++;
     // a hit whose instant came while the frames of many matches were done
     // waits for one match's frame, not for all of them
-    earliest_hit_ = std::min(earliest_hit_, hit_due(s));
+    double due = hit_due(s);
+    see_due(s, due, t);
+    earliest_hit_ = std::min(earliest_hit_, due);
     if (t >= earliest_hit_) run_due_hits(t, now);
   }
 }
@@ -589,6 +591,13 @@ void ServerLoop::run_due_frames(double t0, double now) {
 
 double ServerLoop::hit_due(const Scheduled &s) const {
   return s.k == 0 ? HUGE_VAL : s.clock.deadline(s.k - 1) + s.match->hit_after() - s.match->config().hit_lead;
+}
+
+// A hit due within kSameHit of the one seen before is known since then.
+void ServerLoop::see_due(Scheduled &s, double at, double t) {
+  if (std::fabs(at - s.due_seen) <= kSameHit) return;
+  s.due_seen = at;
+  s.due_seen_at = t;
 }
 
 void ServerLoop::run_due_hits(double t0, double now) {
@@ -601,6 +610,7 @@ void ServerLoop::run_due_hits(double t0, double now) {
       if (out.info_changed) info_changed(s);
     }
     double at = hit_due(s);
+    see_due(s, at, t0);
     if (at <= t0 + 1e-6 && t0 >= s.firm_at) {
       MatchOutput out;  // (out_ may hold a frame's output being published)
       write_state(s);   // the state of its frame before the hit
@@ -608,8 +618,14 @@ void ServerLoop::run_due_hits(double t0, double now) {
       publish(out, s, now);
       if (out.info_changed) info_changed(s);
       stats_.hit_wakes++;
-      stats_.hit_late.add(t0 - (at + s.match->config().hit_lead));
+      const double lead = s.match->config().hit_lead;
+      stats_.hit_late.add(t0 - (at + lead));
+      // why late: the wake-up (the loop knew the hit before it was due), or
+      // its samples (first seen after its instant); else found within the lead
+      if (s.due_seen_at < at) stats_.hit_wake_late.add(t0 - at);
+      else if (s.due_seen_at > at + lead) stats_.hit_found_after++;
       at = hit_due(s);
+      see_due(s, at, t0);
     }
     earliest_hit_ = std::min(earliest_hit_, at);
   }
@@ -743,6 +759,9 @@ ServerReport ServerLoop::report() const {
   r.hit_wakes = stats_.hit_wakes;
   r.hit_late_p50 = stats_.hit_late.quantile(0.5);
   r.hit_late_p99 = stats_.hit_late.quantile(0.99);
+  r.hit_known = stats_.hit_wake_late.size();
+  r.hit_wake_late_p99 = stats_.hit_wake_late.quantile(0.99);
+  r.hit_found_after = stats_.hit_found_after;
   for (const auto &sc : sched_) {
     const Match *m = sc.match;
     MatchReport mr;

@@ -101,6 +101,9 @@ constexpr double kFollowWake = 1.0 / 60.0;
 // segments a standby keeps of each followed match, the newest by seq: the
 // one in effect and those written ahead of their contact
 constexpr size_t kFollowedSegments = 8;
+// s: a racket hit due within this of the one the loop saw before is that
+// hit found again (after a frame, or a sample that moved it a little)
+constexpr double kSameHit = 1e-3;
 // s between two assertions of the writers' liveliness: 4 per 1 s lease
 constexpr double kLivelinessPeriod = 0.25;
 // Samples one note of DDS may count as lost: DDS counts a gap in a writer's
@@ -155,6 +158,8 @@ struct LoopStats {
   uint64_t created_expired = 0;  // created matches removed: nobody held a slot for create_timeout
   uint64_t hit_wakes = 0;        // partial frames stepped to a racket hit's instant
   Percentiles hit_late;          // real s such a step began after the hit's instant (negative: before it, by up to hit_lead)
+  Percentiles hit_wake_late;     // real s such a step began after its due time, of the hits the loop knew before it
+  uint64_t hit_found_after = 0;  // such steps of hits the loop first saw after their instant (their samples came later)
   Percentiles frame_time;       // real s of work per wake-up, this status period
   Percentiles late;             // real s a frame started after its deadline, this status period
   Percentiles late_p99;         // each period's p99 of that, over the run
@@ -232,6 +237,8 @@ class ServerLoop {
     double last_held = 0.0;        // mono s a slot was last held (for a created match's expiry)
     bool state_due = false;        // `state` is a frame's, written after the frames of the wake-up
     bool info_waits = false;       // a MatchInfo due after a hit's step, written with the next frame
+    double due_seen = HUGE_VAL;    // mono s: the hit due the loop last saw (hit_due), and
+    double due_seen_at = 0.0;      // when it first saw it (see_due)
     StateOut state{};
   };
   // Another server's match this one follows (a standby).
@@ -247,6 +254,7 @@ class ServerLoop {
   };
   Scheduled schedule(Match *m);
   double hit_due(const Scheduled &s) const;  // mono s to step its next racket hit: the instant less hit_lead; +Inf: none
+  static void see_due(Scheduled &s, double at, double t);  // the loop saw hit due `at` at mono s t
   Scheduled *scheduled(uint32_t id);
   ServerView own_view() const;
   std::vector<ServerView> views() const;  // the live servers heard of, and this one

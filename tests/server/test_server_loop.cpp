@@ -278,6 +278,55 @@ TEST(a_hit_is_written_hit_lead_before_its_instant) {
   }
 }
 
+// Why a hit's step was late (the stats file's hit_known, hit_wake_late_p99,
+// hit_found_after; docs/server.md "Hits at their instant"): every hit
+// stepped between frames is one the loop knew before it was due (its
+// instant less hit_lead), one it first saw within the lead, or one it first
+// saw after its instant (a sample that came after it). The fake clock
+// wakes exactly, or `over` late at every sleep: a known hit's step begins
+// that much after its due time, never more (its wake-up may be a frame's,
+// less late for the hit). A hit first seen after its instant is written
+// after it. (Here the samples come 50 to 100 ms late: most hits are
+// rewinds', and of those stepped between frames many were first seen late.)
+TEST(a_hit_steps_lateness_is_the_wake_ups_or_its_samples) {
+  for (double over : {0.0, 0.0007}) {
+    uint64_t wakes = 0, known = 0, after = 0;
+    size_t written_after = 0;
+    double worst = 0.0, median = 0.0;
+    for (uint64_t seed = 1; seed <= 8; ++seed) {
+      LoopRally g(seed, default_config().hit_lead, [&](Rig &r) {
+        if (over > 0.0) r.clock.oversleep[r.clock.sleeps] = over;
+      });
+      const ServerReport rep = g.r.loop->report();
+      const LoopStats &st = g.r.loop->stats();
+      CHECK_EQ(rep.hit_known, static_cast<uint64_t>(st.hit_wake_late.size()));
+      CHECK(rep.hit_known + rep.hit_found_after <= rep.hit_wakes);
+      wakes += rep.hit_wakes;
+      known += rep.hit_known;
+      after += rep.hit_found_after;
+      worst = std::max(worst, st.hit_wake_late.max());
+      median = std::max(median, st.hit_wake_late.quantile(0.5));
+      size_t states = 0;
+      std::vector<std::pair<double, double>> pairs = g.pairs(&states);
+      if (pairs.empty()) continue;
+      for (size_t i = 0; i < g.r.port.segments.size(); ++i) {
+        const SegmentOut &s = g.r.port.segments[i];
+        if (s.cause != Cause::racket || s.correction) continue;
+        double instant = pairs[0].second - kRealOffset + (s.segment.t0 - pairs[0].first) / g.c.time_base;
+        if (g.r.port.segment_mono[i] > instant + 1e-6) written_after++;
+      }
+    }
+    note("every sleep %g s late: %llu hits stepped between frames, %llu known before due (their steps at most %.3g s "
+         "after it, median %.3g s), %llu first seen after their instant; %zu racket segments written after it",
+         over, static_cast<unsigned long long>(wakes), static_cast<unsigned long long>(known), worst, median,
+         static_cast<unsigned long long>(after), written_after);
+    CHECK(known >= 3u && after >= 3u && known + after <= wakes);
+    CHECK(worst <= over + 1e-9);
+    CHECK(over == 0.0 ? worst >= 0.0 : median >= over - 1e-9);  // a known hit wakes for itself
+    CHECK(after <= written_after);
+  }
+}
+
 // A hit ends its racket's stroke (docs/server.md, "Lag compensation"):
 // with samples 50 to 100 ms late, the samples of the stroke that arrive
 // after the hit are dropped as before_hit, so that at every wake-up a
