@@ -59,6 +59,7 @@ typedef struct rim_ctx {
   double radius;
   const ball__flight *fl; /* the exact scheme: the path on seg */
   const ball_segment *seg;
+  double g;               /* the exact scheme: gravity's part of the bound (0 grounded) */
   ball_vec3 p0, p1; /* the sampled scheme: the chord p0 -> p1 */
 } rim_ctx;
 
@@ -75,6 +76,14 @@ static int advance(state_fn at, const rim_ctx *x, double ta, double tb, double a
     ball_vec3 c, v, near, diff;
     double len, d, dp, eps, tau, disc;
     at(x, t, &c, &v);
+    if (x->fl) {
+      /* on the path |v_h| only falls (eq 3), so k |v_h| + g from here on
+       * bounds the rest; taken when it has fallen below half the bound in
+       * use (a drag that stops the ball in 1e-289 s left a bound of 1e287
+       * from the window's start, and steps of 1e-144 s) */
+      double a = (x->fl->k * sqrt(v.x * v.x + v.z * v.z) + x->g) * (1.0 + 1e-12);
+      if (a < 0.5 * acc) acc = a;
+    }
     near = ball__rect_nearest(x->pl, c);
     diff = ball_v3_sub(c, near);
     len = ball_v3_norm(diff);
@@ -111,9 +120,14 @@ static int advance(state_fn at, const rim_ctx *x, double ta, double tb, double a
 
 /* ---- the exact scheme: on the analytic path ---- */
 
-static void path_state(const rim_ctx *x, double t, ball_vec3 *c, ball_vec3 *v) {
+/* At tau on seg (time from its start: the search's steps, and its
+ * follow-out steps of 1e-15 (1 + |tau|), stay fine on a clock whose ulp is
+ * longer than the contact's time scale). */
+static void path_state(const rim_ctx *x, double tau, ball_vec3 *c, ball_vec3 *v) {
   ball_state s;
-  ball__eval_f(x->fl, x->seg, t, &s);
+  double d, f;
+  ball__drag_terms(x->fl->b, x->fl->k, tau, &d, &f);
+  ball__state_at(x->fl->g, x->fl->sdamp, x->seg, tau, d, f, &s);
   *c = s.position;
   *v = s.velocity;
 }
@@ -196,14 +210,14 @@ static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_seg
   ctx.seg = seg;
   ctx.pl = pl;
   ctx.radius = r;
+  ctx.g = seg->grounded ? 0.0 : fl->g;
   /* from the segment's start, not from tau_from: the stepper asks at a
    * segment's start, ball_predict anywhere on it, and the same search gives
    * both the same contact to the bit; a contact before tau_from (a segment
    * given with one unresolved) falls back to a search from there */
-  if (!advance(path_state, &ctx, seg->t0 + w_seg, seg->t0 + w1, acc, &t_hit, q, n)) return 0;
-  if (t_hit - seg->t0 < tau_from && !advance(path_state, &ctx, seg->t0 + w0, seg->t0 + w1, acc, &t_hit, q, n))
-    return 0;
-  *tau = t_hit - seg->t0;
+  if (!advance(path_state, &ctx, w_seg, w1, acc, &t_hit, q, n)) return 0;
+  if (t_hit < tau_from && !advance(path_state, &ctx, w0, w1, acc, &t_hit, q, n)) return 0;
+  *tau = t_hit;
   return 1;
 }
 

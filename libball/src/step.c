@@ -181,8 +181,12 @@ static void resolve(const ball_model *m, const ball__flight *fl, ball_segment *s
     floor_bounce(m, seg, c->time, s.position, &s, ev);
   } else {
     const ball_plane *pl = plane_of(m, c->which);
-    plane_bounce(m, seg, c->which, plane_normal(pl, c->normal), ball_v3_norm(c->normal) > 0.0, c->time, s.position,
-                 c->point, &s, plane_reflect(pl, c->normal, s.velocity), ev);
+    int rim = ball_v3_norm(c->normal) > 0.0;
+    /* an edge's or corner's centre is the search's, at the contact's tau:
+     * the clock rounds c->time (by 1.2e-7 s at 1e9 s), and the path there
+     * may already be inside the edge (where a ball too slow to bounce rests) */
+    plane_bounce(m, seg, c->which, plane_normal(pl, c->normal), rim, c->time, rim ? c->point : s.position, c->point,
+                 &s, plane_reflect(pl, c->normal, s.velocity), ev);
   }
 }
 
