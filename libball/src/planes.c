@@ -39,6 +39,12 @@ static int face_interior(const ball_plane *pl, ball_vec3 q) {
   return h > pl->lo && h < pl->hi && q.y > pl->bottom && q.y < pl->top;
 }
 
+/* The bound on the centre's acceleration along the path from where the
+ * horizontal speed is vh: |a| <= k vh + g (eq 3; g 0 on the floor), a
+ * little over for rounding; no horizontal speed, no drag's part (k is +Inf
+ * where b underflows to 0). */
+static double path_acc(double k, double vh, double g) { return ((vh > 0.0 ? k * vh : 0.0) + g) * (1.0 + 1e-12); }
+
 /* ---- the search: advancement on a second-order bound ----
  *
  * d(t) = |c(t) - nearest| - r, the ball's distance to the rectangle, is the
@@ -81,7 +87,7 @@ static int advance(state_fn at, const rim_ctx *x, double ta, double tb, double a
        * bounds the rest; taken when it has fallen below half the bound in
        * use (a drag that stops the ball in 1e-289 s left a bound of 1e287
        * from the window's start, and steps of 1e-144 s) */
-      double a = (x->fl->k * sqrt(v.x * v.x + v.z * v.z) + x->g) * (1.0 + 1e-12);
+      double a = path_acc(x->fl->k, sqrt(v.x * v.x + v.z * v.z), x->g);
       if (a < 0.5 * acc) acc = a;
     }
     near = ball__rect_nearest(x->pl, c);
@@ -203,7 +209,7 @@ static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_seg
     double vh;
     ball__eval_f(fl, seg, seg->t0 + w_seg, &s);
     vh = sqrt(s.velocity.x * s.velocity.x + s.velocity.z * s.velocity.z);
-    acc = (fl->k * vh + (seg->grounded ? 0.0 : fl->g)) * (1.0 + 1e-12);
+    acc = path_acc(fl->k, vh, seg->grounded ? 0.0 : fl->g);
   }
   memset(&ctx, 0, sizeof ctx);
   ctx.fl = fl;
