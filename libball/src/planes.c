@@ -117,6 +117,9 @@ static int advance(state_fn at, const rim_ctx *x, double ta, double tb, double a
       else
         tau = acc > 0.0 ? (dp + disc) / acc : INFINITY; /* moving away on a line: for good */
     }
+    /* an infinite bound (1 / b = +Inf on a moving ball: inf / inf) knows no
+     * step: the smallest, and the bound again from there (V_h is 0 then) */
+    if (!(tau >= 0.0)) tau = 0.0;
     if (!(t + tau <= tb)) return 0;
     if (t + tau == t) tau = 1e-15 * (1.0 + fabs(t)); /* below the clock's ulp: one ulp on */
     t += tau;

@@ -464,13 +464,13 @@ static int above_the_edge(void *ctx, ball_sim *sim, const steps_tally *t, const 
 /* Any drag, down to a ball that it stops in 1e-289 s or at once (air
  * friction DBL_MAX: 1 / b is +Inf), on any clock:
  * dropped 0.25 m onto the net's top edge (its centre over the edge line,
- * g = 8: the surface reaches it at tau = 0.25 s, at 2 m/s) with a speed
- * along the net, the ball bounces off the edge at 0.25 s (eq 6, net
- * damping) and never sinks into it. Two findings of the fuzz harness: the
+ * g = 8: the surface reaches it at tau = 0.25 s, at 2 m/s), or thrown up
+ * at 1 m/s from there, with a speed along the net, the ball bounces off the
+ * edge (eq 6, net damping) and never sinks into it. Two findings of the fuzz harness: the
  * rim search's acceleration bound, k |v_h| at the window's start, was 1e287
  * m/s^2 for the lightest balls, and its steps of 1e-144 s ran out before the
- * contact (and with 1 / b = +Inf and no speed along the net, +Inf times 0 made
- * it NaN); and the search stepped the absolute clock, so that on a clock at
+ * contact (with 1 / b = +Inf, +Inf times a speed of 0 made it NaN, and its
+ * first step off a rising ball +Inf / +Inf); and the search stepped the absolute clock, so that on a clock at
  * 1e38 s (ulp 1.7e22 s) its first step off a touching edge went past every
  * contact. Either way the ball fell through the edge. On a clock at T the
  * contact's time is T + 0.25 to the clock's ulp and its place exact as on a
@@ -481,39 +481,43 @@ static void test_any_drag_on_any_clock_bounces_off_the_net_top_edge_eq6(void **s
   static const double speeds[] = {0.0, 0.3, 1.0};
   static const double clocks[] = {0.0, 1e9, 1e38};
   static const double frictions[] = {0.02, DBL_MAX};
-  size_t i, j, k, l;
+  static const double ups[] = {0.0, 1.0};
+  size_t i, j, k, l, u;
   (void)state;
-  for (l = 0; l < sizeof frictions / sizeof frictions[0]; l++)
-    for (k = 0; k < sizeof clocks / sizeof clocks[0]; k++)
-      for (i = 0; i < sizeof masses / sizeof masses[0]; i++)
-        for (j = 0; j < sizeof speeds / sizeof speeds[0]; j++) {
-          ball_model m;
-          ball_sim sim;
-          ball_segment seg;
-          steps_tally t;
-          const double T = clocks[k];
-          model_of(&m, BALL_EFFECT_NET | BALL_EFFECT_DRAG, 0.1);
-          m.mass = masses[i];
-          m.air_friction = frictions[l];
-          core_start(&m, &sim, ball_v3(0.0, 1.0, 0.0), ball_v3(0.0, 0.0, 0.0));
-          seg = sim.seg;
-          seg.t0 = T;
-          seg.p0 = ball_v3(m.net.position, m.net.top + 0.1 + 0.25, 5.0);
-          seg.v0 = ball_v3(0.0, 0.0, speeds[j]);
-          assert_int_equal(ball_sim_set_segment(&sim, &seg, T), BALL_OK);
-          steps_begin(&t, NULL, 0);
-          steps_each(&sim, 1.0 / 60.0, 30, &t, above_the_edge, &m);
-          if (t.kind[BALL_EVENT_NET] < 1)
-            fail_msg("air friction %g, clock %g, mass %g, speed %g: no net event", frictions[l], T, masses[i],
-                     speeds[j]);
-          const double ulp = nextafter(T, INFINITY) - T;
-          assert_near(t.first.time, T + 0.25, fmax(1e-12, 2.0 * ulp));
-          /* (the search stops within 1e-13 of the coordinates' scale, 1.3e-12 m here) */
-          assert_near(t.first.point.y, m.net.top + 0.1, 2e-12);
-          /* the speeds at the contact's time rounded to the clock: g * 2 ulp */
-          assert_near(t.first.velocity_in.y, -2.0, 1e-11 + 16.0 * ulp);
-          assert_near(t.first.velocity_out.y, 2.0 * m.net.damping, 1e-11 + 16.0 * ulp);
-        }
+  for (u = 0; u < sizeof ups / sizeof ups[0]; u++)
+    for (l = 0; l < sizeof frictions / sizeof frictions[0]; l++)
+      for (k = 0; k < sizeof clocks / sizeof clocks[0]; k++)
+        for (i = 0; i < sizeof masses / sizeof masses[0]; i++)
+          for (j = 0; j < sizeof speeds / sizeof speeds[0]; j++) {
+            ball_model m;
+            ball_sim sim;
+            ball_segment seg;
+            steps_tally t;
+            const double T = clocks[k];
+            model_of(&m, BALL_EFFECT_NET | BALL_EFFECT_DRAG, 0.1);
+            m.mass = masses[i];
+            m.air_friction = frictions[l];
+            core_start(&m, &sim, ball_v3(0.0, 1.0, 0.0), ball_v3(0.0, 0.0, 0.0));
+            seg = sim.seg;
+            seg.t0 = T;
+            seg.p0 = ball_v3(m.net.position, m.net.top + 0.1 + 0.25, 5.0);
+            seg.v0 = ball_v3(0.0, ups[u], speeds[j]);
+            assert_int_equal(ball_sim_set_segment(&sim, &seg, T), BALL_OK);
+            steps_begin(&t, NULL, 0);
+            steps_each(&sim, 1.0 / 60.0, 30, &t, above_the_edge, &m);
+            if (t.kind[BALL_EVENT_NET] < 1)
+              fail_msg("up %g, air friction %g, clock %g, mass %g, speed %g: no net event", ups[u], frictions[l], T,
+                       masses[i], speeds[j]);
+            const double ulp = nextafter(T, INFINITY) - T;
+            /* 0.25 + v tau - 4 tau^2 = 0 */
+            const double tau = (ups[u] + sqrt(ups[u] * ups[u] + 4.0)) / 8.0, v_in = -sqrt(ups[u] * ups[u] + 4.0);
+            assert_near(t.first.time, T + tau, fmax(1e-12, 2.0 * ulp));
+            /* (the search stops within 1e-13 of the coordinates' scale, 1.3e-12 m here) */
+            assert_near(t.first.point.y, m.net.top + 0.1, 2e-12);
+            /* the speeds at the contact's time rounded to the clock: g * 2 ulp */
+            assert_near(t.first.velocity_in.y, v_in, 1e-11 + 16.0 * ulp);
+            assert_near(t.first.velocity_out.y, -v_in * m.net.damping, 1e-11 + 16.0 * ulp);
+          }
 }
 
 /* More contacts in one frame than BALL_MAX_CONTACTS: walls 0.05 m apart and a
