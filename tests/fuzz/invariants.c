@@ -40,7 +40,7 @@
  * adds energy and spin; after it, P2 and P4 wait until the ball is back
  * above the floor (below it, moving down, the exact scheme bounces it at
  * once: eq 5 lifts it to the floor) and P3 until it is clear of a rectangle
- * again. The exact scheme's
+ * again (also where such a lift lands it: the lift is a jump by design). The exact scheme's
  * path is not rebuilt in a frame that hit BALL_MAX_CONTACTS (the ball is
  * then held where its last contact left it).
  *
@@ -413,7 +413,8 @@ void fz_frame_end(fz_watch *w, const ball_sim *sim, double dt, const ball_event 
             ball_vec3 c = at(&f, sg, tb, NULL), q = ev[i].point;
             /* a ball a racket left below the floor bounces at once: eq 5
              * puts it on the floor, a jump up (step.c, floor_contact) */
-            if (ev[i].kind == BALL_EVENT_FLOOR && !f.floor && c.y < q.y) q.y = c.y;
+            int lifted = ev[i].kind == BALL_EVENT_FLOOR && !f.floor && c.y < q.y;
+            if (lifted) q.y = c.y;
             /* (the path at the event's time, which the clock rounds: also
              * the fall gravity makes within that rounding, from rest) */
             double jump = f.tol + 8.0 * (n + 1) * g * fz_ulp(t_end) * fz_ulp(t_end);
@@ -422,13 +423,18 @@ void fz_frame_end(fz_watch *w, const ball_sim *sim, double dt, const ball_event 
              * it below) is held at the floor, as eq 5 lifts a falling one
              * (step.c, plane_bounce) */
             if (ev[i].kind != BALL_EVENT_FLOOR && (m->effects & BALL_EFFECT_FLOOR) && ev[i].segment.grounded &&
-                p0.y < f.fy)
+                p0.y < f.fy) {
               p0.y = f.fy;
+              lifted = 1;
+            }
             FZ_CHECK(ball_v3_dist(c, q) <= jump && ball_v3_dist(ev[i].segment.p0, p0) <= f.tol,
                      "event %d: the ball jumps from (%.17g, %.17g, %.17g) to the event point (%.17g, %.17g, %.17g) "
                      "and restarts at (%.17g, %.17g, %.17g)",
                      i, c.x, c.y, c.z, ev[i].point.x, ev[i].point.y, ev[i].point.z, ev[i].segment.p0.x,
                      ev[i].segment.p0.y, ev[i].segment.p0.z);
+            /* a jump by design, as a racket's: P3 holds for the rectangles
+             * the ball is clear of where it lands */
+            if (lifted) update_clear(w, ev[i].segment.p0, f.tol);
             sg = &ev[i].segment;
             ta = tb;
           }
