@@ -742,6 +742,10 @@ ball_status ball_predict(const ball_model *m, const ball_segment *seg_in, double
 /* ---- hash ---- */
 
 uint64_t ball_sim_hash(const ball_sim *sim) {
+  return sim ? ball_sim_hash_with(sim, ball_model_hash(&sim->model)) : 0;
+}
+
+uint64_t ball_sim_hash_with(const ball_sim *sim, uint64_t model_hash) {
   uint64_t h = BALL__HASH_SEED;
   int r, i;
   if (!sim) return 0;
@@ -763,5 +767,5 @@ uint64_t ball_sim_hash(const ball_sim *sim) {
       h = ball__hash_vec(h, tr->samples[i].normal);
     }
   }
-  return ball__hash_word(h, ball_model_hash(&sim->model));
+  return ball__hash_word(h, model_hash);
 }

@@ -622,7 +622,7 @@ void Match::advance(double dt, bool with_state, MatchOutput *out) {
     s.state = state_;
     s.segment_seq = current_seq_;
     ball_sim_state(&sim_, &s.ball);
-    s.sim_hash = ball_sim_hash(&sim_);
+    s.sim_hash = sim_hash();
   }
 }
 

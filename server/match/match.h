@@ -121,6 +121,8 @@ class Match {
   const MatchConfig &config() const { return config_; }
   const ball_model &model() const { return *ball_sim_model(&sim_); }  // the sim's own
   const ball_sim &sim() const { return sim_; }
+  // ball_sim_hash of the sim, with the model's hash kept as the model changes
+  uint64_t sim_hash() const { return ball_sim_hash_with(&sim_, model_hash_); }
   const Court &court() const { return court_; }
   const MatchCounters &counters() const { return counters_; }
   double frame_time() const { return 1.0 / config_.frame_rate; }

@@ -772,7 +772,7 @@ ServerReport ServerLoop::report() const {
     mr.counters = m->counters();
     mr.score = m->score();
     mr.sim_time = m->sim().time;
-    mr.sim_hash = ball_sim_hash(&m->sim());
+    mr.sim_hash = m->sim_hash();
     r.matches.push_back(mr);
   }
   return r;

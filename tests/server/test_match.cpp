@@ -534,6 +534,15 @@ TEST(controls) {
   CHECK(g.match.info().model_hash != h);
   CHECK_EQ(g.match.info().level, 3);
   CHECK(g.match.model().response == BALL_RESPONSE_PHYSICAL);
+  // the states' sim hash is the sim's under the new model (the match keeps the model's hash)
+  for (int k = 0, seen = 0; k < 60 && seen < 3; ++k) {
+    size_t n = g.states.size();
+    g.run(1.0 / g.match.config().frame_rate);
+    if (g.states.size() == n) continue;
+    seen++;
+    CHECK_EQ(g.states.back().sim_hash, ball_sim_hash(&g.match.sim()));
+    CHECK(g.states.back().sim_hash != ball_sim_hash_with(&g.match.sim(), h));
+  }
   CHECK(g.control(ControlKind::level, B, -1, 9) == Reason::refused_bad_value);
   CHECK(g.control(ControlKind::pause, A) == Reason::none);
   CHECK(g.match.state() == MatchState::paused);

@@ -264,6 +264,47 @@ static void the_sim_hash_follows_the_state(void **state) {
   assert_true(ball_sim_hash(&b) != ball_sim_hash(&a));
 }
 
+/* ball_sim_hash_with given the model's hash is ball_sim_hash, over random
+ * scenes stepped with rackets sampled (every part of the state set); any
+ * other model hash gives another sim hash. */
+static void the_sim_hash_with_a_kept_model_hash_is_the_same(void **state) {
+  core_rng r;
+  int c, k, samples = 0;
+  (void)state;
+  r.s = 2026120401ULL;
+  assert_true(ball_sim_hash_with(NULL, 1) == 0);
+  for (c = 0; c < 200; c++) {
+    ball_model m;
+    ball_sim sim;
+    uint64_t mh;
+    ball_model d;
+    ball_model_default(&d);
+    core_court_scene(&m);
+    m.effects |= BALL_EFFECT_RACKETS | BALL_EFFECT_SPIN;
+    m.n_rackets = 2;
+    m.rackets[0] = m.rackets[1] = d.rackets[0];
+    m.rackets[0].partner = m.rackets[1].partner = -1;
+    m.air_friction = core_uniform(&r, 0.0, 0.1);
+    m.scheme = core_uniform(&r, 0.0, 1.0) < 0.5 ? BALL_SCHEME_EXACT : BALL_SCHEME_SAMPLED;
+    m.initial_velocity = ball_v3(core_uniform(&r, -30, 30), core_uniform(&r, -5, 15), core_uniform(&r, -10, 10));
+    m.initial_spin = ball_v3(core_uniform(&r, -3, 3), core_uniform(&r, -3, 3), core_uniform(&r, -3, 3));
+    assert_ok(ball_sim_init(&sim, &m));
+    mh = ball_model_hash(&sim.model);
+    for (k = 0; k < 40; k++) {
+      if (k % 3 == 0) {
+        ball_racket_sample s = {sim.time, {core_uniform(&r, 0, 24), core_uniform(&r, 0, 2), core_uniform(&r, 0, 11)},
+                                {1, 0, 0}};
+        assert_ok(ball_racket_push(&sim, k % m.n_rackets, &s));
+      }
+      assert_ok(ball_step(&sim, core_uniform(&r, 1e-3, 0.05), NULL, 0, NULL));
+      samples += sim.tracks[0].count + sim.tracks[1].count;
+      assert_true(ball_sim_hash_with(&sim, mh) == ball_sim_hash(&sim));
+      assert_true(ball_sim_hash_with(&sim, mh ^ 1u) != ball_sim_hash(&sim));
+    }
+  }
+  assert_true(samples > 1000); /* the tracks were part of it */
+}
+
 /* ---- the prepared flight ---- */
 
 static void flight_eval_is_segment_eval_to_the_bit(void **state) {
@@ -660,6 +701,7 @@ int main(void) {
       cmocka_unit_test(hashes_are_the_documented_numbers),
       cmocka_unit_test(the_model_hash_sees_every_field_a_step_reads),
       cmocka_unit_test(the_sim_hash_follows_the_state),
+      cmocka_unit_test(the_sim_hash_with_a_kept_model_hash_is_the_same),
       cmocka_unit_test(flight_eval_is_segment_eval_to_the_bit),
       cmocka_unit_test(one_expm1_gives_the_two_textbook_terms),
       cmocka_unit_test(flight_rejects_bad_input),

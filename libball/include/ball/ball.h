@@ -572,6 +572,12 @@ BALL_API ball_status ball_racket_may_reach(const ball_sim *sim, int racket, doub
  * every machine for equal states (docs/model.md defines it). 0 for NULL. */
 BALL_API uint64_t ball_sim_hash(const ball_sim *sim);
 
+/* The same with the model's hash given: ball_sim_hash(sim) when model_hash
+ * is ball_model_hash(&sim->model). For a caller that hashes the sim often
+ * and keeps the model's hash while the model stays the same (the model's
+ * hash is over half of ball_sim_hash's work). 0 for NULL. */
+BALL_API uint64_t ball_sim_hash_with(const ball_sim *sim, uint64_t model_hash);
+
 /* ---- prediction (beyond the paper) ------------------------------------- */
 
 /* What ball_predict writes. Set the arrays and capacities, the rest is output. */
