@@ -232,7 +232,8 @@ void from_json(const json &j, MatchReport &m) {
   X("latency_p99", r.latency_p99) X("latency_count", r.latency_count) X("matches", r.matches)           \
   X("hit_wakes", r.hit_wakes) X("hit_late_p50", r.hit_late_p50) X("hit_late_p99", r.hit_late_p99)       \
   X("hit_known", r.hit_known) X("hit_wake_late_p99", r.hit_wake_late_p99)                               \
-  X("hit_found_after", r.hit_found_after)                                                               \
+  X("hit_found_after", r.hit_found_after) X("hit_found_late_p50", r.hit_found_late_p50)                 \
+  X("hit_found_late_p99", r.hit_found_late_p99)                                                         \
   X("takeovers", r.takeovers) X("yields", r.yields) X("claims", r.claims)                               \
   X("follow_failures", r.follow_failures) X("following", r.following) X("created_expired", r.created_expired)
 

@@ -177,6 +177,7 @@ struct ServerReport {
   uint64_t hit_known = 0;         // of them, hits the loop knew before they were due (the instant less hit_lead)
   double hit_wake_late_p99 = 0.0;  // s: their step began after that
   uint64_t hit_found_after = 0;   // of them, hits first seen after their instant (samples that came after it)
+  double hit_found_late_p50 = 0.0, hit_found_late_p99 = 0.0;  // s: their step began after the instant
   std::vector<MatchReport> matches;
 };
 void to_json(json &j, const ServerReport &r);

@@ -623,7 +623,7 @@ void ServerLoop::run_due_hits(double t0, double now) {
       // why late: the wake-up (the loop knew the hit before it was due), or
       // its samples (first seen after its instant); else found within the lead
       if (s.due_seen_at < at) stats_.hit_wake_late.add(t0 - at);
-      else if (s.due_seen_at > at + lead) stats_.hit_found_after++;
+      else if (s.due_seen_at > at + lead) stats_.hit_found_late.add(t0 - (at + lead));
       at = hit_due(s);
       see_due(s, at, t0);
     }
@@ -761,7 +761,9 @@ ServerReport ServerLoop::report() const {
   r.hit_late_p99 = stats_.hit_late.quantile(0.99);
   r.hit_known = stats_.hit_wake_late.size();
   r.hit_wake_late_p99 = stats_.hit_wake_late.quantile(0.99);
-  r.hit_found_after = stats_.hit_found_after;
+  r.hit_found_after = stats_.hit_found_late.size();
+  r.hit_found_late_p50 = stats_.hit_found_late.quantile(0.5);
+  r.hit_found_late_p99 = stats_.hit_found_late.quantile(0.99);
   for (const auto &sc : sched_) {
     const Match *m = sc.match;
     MatchReport mr;

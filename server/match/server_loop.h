@@ -159,7 +159,7 @@ struct LoopStats {
   uint64_t hit_wakes = 0;        // partial frames stepped to a racket hit's instant
   Percentiles hit_late;          // real s such a step began after the hit's instant (negative: before it, by up to hit_lead)
   Percentiles hit_wake_late;     // real s such a step began after its due time, of the hits the loop knew before it
-  uint64_t hit_found_after = 0;  // such steps of hits the loop first saw after their instant (their samples came later)
+  Percentiles hit_found_late;    // real s such a step began after the hit's instant, of the hits the loop first saw after it (their samples came later)
   Percentiles frame_time;       // real s of work per wake-up, this status period
   Percentiles late;             // real s a frame started after its deadline, this status period
   Percentiles late_p99;         // each period's p99 of that, over the run

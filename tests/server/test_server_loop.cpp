@@ -292,7 +292,7 @@ TEST(a_hit_steps_lateness_is_the_wake_ups_or_its_samples) {
   for (double over : {0.0, 0.0007}) {
     uint64_t wakes = 0, known = 0, after = 0;
     size_t written_after = 0;
-    double worst = 0.0, median = 0.0;
+    double worst = 0.0, median = 0.0, found_late = 0.0;
     for (uint64_t seed = 1; seed <= 8; ++seed) {
       LoopRally g(seed, default_config().hit_lead, [&](Rig &r) {
         if (over > 0.0) r.clock.oversleep[r.clock.sleeps] = over;
@@ -304,6 +304,11 @@ TEST(a_hit_steps_lateness_is_the_wake_ups_or_its_samples) {
       wakes += rep.hit_wakes;
       known += rep.hit_known;
       after += rep.hit_found_after;
+      CHECK_EQ(rep.hit_found_after, static_cast<uint64_t>(st.hit_found_late.size()));
+      // (first seen after the instant, stepped no earlier than that)
+      CHECK(st.hit_found_late.size() == 0 || st.hit_found_late.quantile(0.0) > 0.0);
+      CHECK(rep.hit_found_late_p50 <= rep.hit_found_late_p99);
+      found_late = std::max(found_late, st.hit_found_late.max());
       worst = std::max(worst, st.hit_wake_late.max());
       median = std::max(median, st.hit_wake_late.quantile(0.5));
       size_t states = 0;
@@ -317,9 +322,10 @@ TEST(a_hit_steps_lateness_is_the_wake_ups_or_its_samples) {
       }
     }
     note("every sleep %g s late: %llu hits stepped between frames, %llu known before due (their steps at most %.3g s "
-         "after it, median %.3g s), %llu first seen after their instant; %zu racket segments written after it",
+         "after it, median %.3g s), %llu first seen after their instant (stepped up to %.3g s after it); %zu racket "
+         "segments written after it",
          over, static_cast<unsigned long long>(wakes), static_cast<unsigned long long>(known), worst, median,
-         static_cast<unsigned long long>(after), written_after);
+         static_cast<unsigned long long>(after), found_late, written_after);
     CHECK(known >= 3u && after >= 3u && known + after <= wakes);
     CHECK(worst <= over + 1e-9);
     CHECK(over == 0.0 ? worst >= 0.0 : median >= over - 1e-9);  // a known hit wakes for itself
