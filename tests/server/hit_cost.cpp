@@ -19,10 +19,12 @@ int main(int argc, char **argv) {
   bool instant = true;
   int seeds = 4;
   double seconds = 30.0;
+  double rate = 30.0;
   app.add_option("--hit-instant", instant, "step to a racket hit's instant (true) or find hits at frame ends (false)")
       ->required();
   app.add_option("--seeds", seeds, "rallies per level")->check(CLI::Range(1, 100));
   app.add_option("--seconds", seconds, "sim s per rally")->check(CLI::Range(1.0, 600.0));
+  app.add_option("--rate", rate, "racket samples per s (ball-load's bots: 30)")->check(CLI::Range(2.0, 120.0));
   CLI11_PARSE(app, argc, argv);
   uint64_t hits = 0, wakes = 0, looks = 0, spared = 0, queries = 0, frames = 0;
   for (int level = BALL_LEVEL_EASY; level <= BALL_LEVEL_ADVANCED; ++level)
@@ -32,7 +34,7 @@ int main(int argc, char **argv) {
       c.seed = static_cast<uint64_t>(seed);
       c.hit_instant = instant;
       Net net;  // the players' rate, as in ball-load
-      net.rate = 30.0;
+      net.rate = rate;
       net.noise = 0.002;
       RallyResult r = play(c, net, seconds, static_cast<uint64_t>(seed));
       hits += r.counters.hits;
