@@ -132,8 +132,14 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       const MatchInfoOut *info = port.info(seg.match_id);
       // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one;
       // a correction's t0 lies back by its late sample's trip: lag compensation's, not a hit's way out)
-      if (info && info->time_base > 0.0 && info->server_time > 0.0 && !seg.correction)
-        part.hit_to_wire.push_back(recv - server_time_of(*info, seg.segment.t0));
+      if (info && info->time_base > 0.0 && info->server_time > 0.0 && !seg.correction) {
+        double hit = server_time_of(*info, seg.segment.t0);
+        part.hit_to_wire.push_back(recv - hit);
+        if (seg.written > 0.0 && seg.received > 0.0) {  // its two parts, where DDS said both
+          part.hit_to_write.push_back(seg.written - hit);
+          part.delivery.push_back(seg.received - seg.written);
+        }
+      }
     });
     if (!ok) {
       *err = group.error();

@@ -117,7 +117,7 @@ LoadRow combine(const std::vector<LoadPart> &parts, const WireSizes &sizes) {
   row.write_failures = 0;
   row.ready = true;
   row.bot_processes = static_cast<int>(parts.size());
-  Percentiles latency, h2w;
+  Percentiles latency, h2w, h2write, delivery;
   const LoadPart *server = &parts[0];
   double seconds = 0.0;
   uint64_t written = 0;
@@ -131,6 +131,8 @@ LoadRow combine(const std::vector<LoadPart> &parts, const WireSizes &sizes) {
     written += client_payload(p.counts, sizes);
     for (double v : p.latency) latency.add(v);
     for (double v : p.hit_to_wire) h2w.add(v);
+    for (double v : p.hit_to_write) h2write.add(v);
+    for (double v : p.delivery) delivery.add(v);
     if (p.frame_p50.size() > server->frame_p50.size()) server = &p;
   }
   row.seconds = seconds;
@@ -139,6 +141,10 @@ LoadRow combine(const std::vector<LoadPart> &parts, const WireSizes &sizes) {
   row.latency_p99_ms = latency.quantile(0.99) * 1e3;
   row.hit_to_wire_p50_ms = h2w.quantile(0.5) * 1e3;
   row.hit_to_wire_p99_ms = h2w.quantile(0.99) * 1e3;
+  row.hit_to_write_p50_ms = h2write.quantile(0.5) * 1e3;
+  row.hit_to_write_p99_ms = h2write.quantile(0.99) * 1e3;
+  row.delivery_p50_ms = delivery.quantile(0.5) * 1e3;
+  row.delivery_p99_ms = delivery.quantile(0.99) * 1e3;
   Percentiles p50, p99;
   for (double v : server->frame_p50) p50.add(v);
   for (double v : server->frame_p99) p99.add(v);
@@ -211,26 +217,26 @@ std::string load_table(const std::vector<LoadPoint> &points, bool header) {
   std::string out;
   char line[512];
   const char *head =
-      "%7s %6s %4s %4s %5s %6s %8s %8s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %8s %8s\n";
+      "%7s %6s %4s %4s %5s %6s %8s %8s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %7s %8s %8s\n";
   std::snprintf(line, sizeof line, head, "matches", "states", "prio", "proc", "round", "hits", "samp/s", "overrun",
-                "work50", "work99", "lat50", "lat99", "h2w50", "h2w99", "srvCPU", "srvRSS", "botCPU", "botRSS",
+                "work50", "work99", "lat50", "lat99", "h2w50", "h2w99", "h2s99", "s2r99", "srvCPU", "srvRSS", "botCPU", "botRSS",
                 "srv B/s", "bot B/s", "lo B/s");
   if (header) out += line;
-  std::snprintf(line, sizeof line, head, "", "Hz", "", "", "", "", "", "%", "ms", "ms", "ms", "ms", "ms", "ms",
-                "%/match", "KiB/m", "%/match", "KiB/m", "/match", "/match", "/match");
+  std::snprintf(line, sizeof line, head, "", "Hz", "", "", "", "", "", "%", "ms", "ms", "ms", "ms", "ms", "ms", "ms",
+                "ms", "%/match", "KiB/m", "%/match", "KiB/m", "/match", "/match", "/match");
   if (header) out += line;
   for (const auto &p : points)
     for (int which = 0; which < (p.rounds > 1 ? 2 : 1); ++which) {
       const LoadRow &r = which == 0 ? p.median : p.min;
       std::snprintf(line, sizeof line,
-                    "%7d %6s %4s %4d %5s %6llu %8.0f %7.2f%% %7.3f %7.3f %7.1f %7.1f %7.1f %7.1f %7s %7s %7s %7s "
+                    "%7d %6s %4s %4d %5s %6llu %8.0f %7.2f%% %7.3f %7.3f %7.1f %7.1f %7.1f %7.1f %7.1f %7.1f %7s %7s %7s %7s "
                     "%7s %8s %8s%s\n",
                     r.matches, fmt("%.0f", r.state_rate).c_str(),
                     r.server_priority > 0 ? ("F" + std::to_string(r.server_priority)).c_str() : "-", r.bot_processes,
                     p.rounds == 1 ? "1" : which == 0 ? "med" : "min",
                     static_cast<unsigned long long>(r.hits), r.samples_per_s, r.overrun_pct, r.frame_p50_ms,
                     r.frame_p99_ms_median, r.latency_p50_ms, r.latency_p99_ms, r.hit_to_wire_p50_ms,
-                    r.hit_to_wire_p99_ms, fmt("%.3f", r.server_cpu_pct).c_str(),
+                    r.hit_to_wire_p99_ms, r.hit_to_write_p99_ms, r.delivery_p99_ms, fmt("%.3f", r.server_cpu_pct).c_str(),
                     fmt("%.1f", r.server_rss_kib).c_str(), fmt("%.3f", r.bots_cpu_pct).c_str(),
                     fmt("%.1f", r.bots_rss_kib).c_str(), fmt("%.0f", r.server_bytes).c_str(),
                     fmt("%.0f", r.bots_bytes).c_str(), fmt("%.0f", r.lo_bytes).c_str(),

@@ -60,7 +60,10 @@ class ClientEndpoints : public ClientPort {
     while (r.take(out, &meta)) {
       auto it = bound_.find(out->server_id);
       if (it == bound_.end() || prefix_fits(meta.from, it->second)) {
-        if constexpr (std::is_same_v<T, SegmentOut>) out->received = meta.reception_time;
+        if constexpr (std::is_same_v<T, SegmentOut>) {
+          out->received = meta.reception_time;
+          out->written = meta.source_time;
+        }
         return true;
       }
       untrusted_++;

@@ -209,6 +209,9 @@ struct LoadRow {  // one point (match count, state rate) of one round of the loa
   uint64_t hits = 0, write_failures = 0;
   double latency_p50_ms = 0.0, latency_p99_ms = 0.0;          // a hit's newest sample written -> its segment received
   double hit_to_wire_p50_ms = 0.0, hit_to_wire_p99_ms = 0.0;  // the hit's sim time (as real) -> its segment received
+  // hit-to-wire's two parts: the hit's sim time (as real) -> the server's write (DDS source timestamp), and that write ->
+  // the reception (one host's clock: on several hosts their offset is in both)
+  double hit_to_write_p50_ms = 0.0, hit_to_write_p99_ms = 0.0, delivery_p50_ms = 0.0, delivery_p99_ms = 0.0;
   uint64_t server_frames = 0, server_overruns = 0;
   double overrun_pct = 0.0;   // of the server's frames
   double frame_p50_ms = 0.0, frame_p99_ms_median = 0.0, frame_p99_ms_max = 0.0;
@@ -221,7 +224,8 @@ struct LoadRow {  // one point (match count, state rate) of one round of the loa
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LoadRow, matches, bots, rate, state_rate, bot_processes, server_priority, ready, seconds,
                                    samples_per_s, hits, write_failures, latency_p50_ms, latency_p99_ms,
-                                   hit_to_wire_p50_ms, hit_to_wire_p99_ms, server_frames, server_overruns,
+                                   hit_to_wire_p50_ms, hit_to_wire_p99_ms, hit_to_write_p50_ms, hit_to_write_p99_ms,
+                                   delivery_p50_ms, delivery_p99_ms, server_frames, server_overruns,
                                    overrun_pct, frame_p50_ms, frame_p99_ms_median, frame_p99_ms_max, playing,
                                    server_cpu_pct, server_rss_kib, bots_cpu_pct, bots_rss_kib, server_bytes,
                                    bots_bytes, lo_bytes, lo_packets)
@@ -239,10 +243,11 @@ struct LoadPart {
   LoadRow row;                         // its bots: matches, bots, ready, seconds, samples_per_s, write_failures
   std::vector<double> latency;         // s, each hit's: newest sample written -> segment received
   std::vector<double> hit_to_wire;     // s, each hit's: the hit's sim time (as real) -> segment received
+  std::vector<double> hit_to_write, delivery;  // s, each hit's: its sim time (as real) -> written; written -> received
   std::vector<double> frame_p50, frame_p99;  // s, the server's, each status period's
   StatusOut first, last;               // the server's first and last status of the window
   PortCounts counts;                   // over the window
 };
-NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LoadPart, row, latency, hit_to_wire, frame_p50, frame_p99, first, last, counts)
+NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LoadPart, row, latency, hit_to_wire, hit_to_write, delivery, frame_p50, frame_p99, first, last, counts)
 
 }  // namespace ballsrv

@@ -259,6 +259,7 @@ struct SegmentOut {
   SampleRef sample;           // RACKET: the hitting racket's newest sample
   PlayState play;             // the rules' state once its collision is judged
   double received = 0.0;      // a reader's: realtime s its DDS reader received it (0: unknown); not on the wire
+  double written = 0.0;       // a reader's: its DDS source timestamp, the writer's realtime s (0: unknown); not on the wire
 };
 
 // server -> clients: a collision or a match event (Event).

@@ -82,6 +82,8 @@ TEST(parts_combine_counts_pool_latencies_and_take_the_server_once) {
   a.row.samples_per_s = 180.0;
   a.latency = {0.010, 0.030};
   a.hit_to_wire = {0.001, 0.003};
+  a.hit_to_write = {0.0005, 0.0025};  // its parts: the server's write, then the delivery
+  a.delivery = {0.0005, 0.0005};
   a.counts.samples_written = 360;
   a.counts.segments = 8;  // the server's, as every process hears it
   a.frame_p50 = {0.001};
@@ -92,6 +94,8 @@ TEST(parts_combine_counts_pool_latencies_and_take_the_server_once) {
   b.row.ready = false;
   b.latency = {0.020};
   b.hit_to_wire = {0.002};
+  b.hit_to_write = {-0.001};  // written ahead of the hit (hit_lead), received 3 ms after the write
+  b.delivery = {0.003};
   b.counts.samples_written = 120;
   b.frame_p50 = {0.002, 0.004};  // heard more status periods: the server's figures come from b
   b.first.frames = 100;
@@ -106,6 +110,10 @@ TEST(parts_combine_counts_pool_latencies_and_take_the_server_once) {
   CHECK_EQ(r.hits, 3u);
   CHECK_NEAR(r.latency_p50_ms, 20.0, 1e-9);
   CHECK_NEAR(r.hit_to_wire_p50_ms, 2.0, 1e-9);
+  CHECK_NEAR(r.hit_to_write_p50_ms, 0.5, 1e-9);  // pooled over the processes: {-1, 0.5, 2.5} ms
+  CHECK_NEAR(r.hit_to_write_p99_ms, 2.5, 1e-9);
+  CHECK_NEAR(r.delivery_p50_ms, 0.5, 1e-9);
+  CHECK_NEAR(r.delivery_p99_ms, 3.0, 1e-9);
   CHECK_EQ(r.server_frames, 200u);
   CHECK_NEAR(r.overrun_pct, 1.5, 1e-12);
   CHECK_NEAR(r.frame_p50_ms, 4.0, 1e-9);  // rank round(0.5 * 1) of {2, 4}
