@@ -279,6 +279,7 @@ void Match::frame(double now, MatchOutput *out) {
 void Match::find_hit() {
   next_hit_ = HUGE_VAL;
   hit_stale_ = false;
+  near_hit_ = false;
   const ball_model &m = model();
   if (!config_.hit_instant || state_ != MatchState::playing || following_ || need_serve_ ||
       !(m.effects & BALL_EFFECT_RACKETS) || m.n_rackets == 0 || sim_.sleep > 0)
@@ -298,6 +299,7 @@ void Match::find_hit() {
     keep_clear(end + dt);
     return;
   }
+  near_hit_ = true;
   if (ball_racket_may_reach(&sim_, -1, end, &may) == BALL_OK && !may) return;
   counters_.hit_queries++;
   ball_racket_contact c;

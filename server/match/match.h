@@ -67,6 +67,11 @@ class Match {
   // when it comes before the next frame's end; +Inf: none. Found again after
   // every frame and hit, and when asked after samples came (once for all of them).
   double hit_after();
+  // The last look could not rule out a racket hit before the end of the
+  // frame after its own (the bound over both said maybe): the loop runs the
+  // frames of such matches first at a deadline, so that a hit early in the
+  // next frame is found before its instant, not after other matches' frames.
+  bool near_hit() const { return near_hit_; }
   // sim s of the current frame already stepped to hits (0 at a frame's end)
   double frame_stepped() const { return partial_; }
   // Steps the match to that instant (a partial frame, no ball state): the
@@ -228,6 +233,7 @@ class Match {
   bool stepped_ahead_ = false;  // this frame stepped a contact written ahead
   double next_hit_ = HUGE_VAL;  // sim s of the next racket hit before the frame's end
   bool hit_stale_ = false;      // samples came since next_hit_ was found: look again when asked
+  bool near_hit_ = false;       // near_hit()
   // A look's bound over its frame and the next said no racket can be hit
   // before `until`: it holds while the sim stays on that segment with those
   // tracks and model, awake (find_hit)

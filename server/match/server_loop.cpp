@@ -549,43 +549,52 @@ void ServerLoop::take_controls(double now) {
 }
 
 void ServerLoop::run_due_frames(double t0, double now) {
-  for (auto &s : sched_) {
-    double d = s.clock.deadline(s.k);
-    if (d > t0 + 1e-6) continue;
-    if (t0 < s.firm_at) {  // a claim settling: nothing moves yet
-      s.k = s.clock.first_at(t0 + 1e-6);
-      continue;
-    }
-    // far behind (the machine stalled): skip to now rather than race
-    double behind = (t0 - d) / s.clock.period();
-    if (behind > settings_.max_behind) {
-      uint64_t skip = static_cast<uint64_t>(behind);
-      s.k += skip;
-      stats_.skipped += skip;
-      d = s.clock.deadline(s.k);
-    }
-    s.last_frame_real = s.clock.realtime_at(d);
-    stats_.late.add(t0 - d);
-    stats_.late_max = std::max(stats_.late_max, t0 - d);
-    out_.clear();
-    s.match->frame(now, &out_);
-    s.k++;
-    stats_.totals.frames++;
-    publish(out_, s, now);
-    if (out_.info_changed || s.info_waits || t0 >= s.next_info) {
-      publish_info(s);
-      s.next_info = t0 + settings_.info_interval;
-    }
-    // an overrun: the frame was done only after the next one was due
-    double t = clock_.mono();
-    if (t > s.clock.deadline(s.k)) stats_.totals.overruns++;
-    // a hit whose instant came while the frames of many matches were done
-    // waits for one match's frame, not for all of them
-    double due = hit_due(s);
-    see_due(s, due, t);
-    earliest_hit_ = std::min(earliest_hit_, due);
-    if (t >= earliest_hit_) run_due_hits(t, now);
+  // the matches a racket may hit in the frame after this one first: a hit
+  // early in that frame is found at this deadline, not after every other
+  // match's frame (docs/server.md, "Hits at their instant")
+  frame_due_.assign(sched_.size(), 0);
+  for (size_t i = 0; i < sched_.size(); ++i)
+    if (sched_[i].clock.deadline(sched_[i].k) <= t0 + 1e-6) frame_due_[i] = sched_[i].match->near_hit() ? 1 : 2;
+  for (char pass : {1, 2})
+    for (size_t i = 0; i < sched_.size(); ++i)
+      if (frame_due_[i] == pass) run_frame(sched_[i], t0, now);
+}
+
+void ServerLoop::run_frame(Scheduled &s, double t0, double now) {
+  double d = s.clock.deadline(s.k);
+  if (t0 < s.firm_at) {  // a claim settling: nothing moves yet
+    s.k = s.clock.first_at(t0 + 1e-6);
+    return;
   }
+  // far behind (the machine stalled): skip to now rather than race
+  double behind = (t0 - d) / s.clock.period();
+  if (behind > settings_.max_behind) {
+    uint64_t skip = static_cast<uint64_t>(behind);
+    s.k += skip;
+    stats_.skipped += skip;
+    d = s.clock.deadline(s.k);
+  }
+  s.last_frame_real = s.clock.realtime_at(d);
+  stats_.late.add(t0 - d);
+  stats_.late_max = std::max(stats_.late_max, t0 - d);
+  out_.clear();
+  s.match->frame(now, &out_);
+  s.k++;
+  stats_.totals.frames++;
+  publish(out_, s, now);
+  if (out_.info_changed || s.info_waits || t0 >= s.next_info) {
+    publish_info(s);
+    s.next_info = t0 + settings_.info_interval;
+  }
+  // an overrun: the frame was done only after the next one was due
+  double t = clock_.mono();
+  if (t > s.clock.deadline(s.k)) stats_.totals.overruns++;
+  // a hit whose instant came while the frames of many matches were done
+  // waits for one match's frame, not for all of them
+  double due = hit_due(s);
+  see_due(s, due, t);
+  earliest_hit_ = std::min(earliest_hit_, due);
+  if (t >= earliest_hit_) run_due_hits(t, now);
 }
 
 

@@ -213,7 +213,7 @@ class ServerLoop {
   void take_controls(double now);
   void take_over(double t0, double now);
   void run_due_hits(double t0, double now);  // matches whose racket hit's instant has come step to it
-  void run_due_frames(double t0, double now);
+  void run_due_frames(double t0, double now);  // those near a hit first (Match::near_hit)
   void write_due_states(double now);  // the frames' states, after the frames (hits come first)
 
   double next_wake() const;  // mono s
@@ -255,6 +255,7 @@ class ServerLoop {
   Scheduled schedule(Match *m);
   double hit_due(const Scheduled &s) const;  // mono s to step its next racket hit: the instant less hit_lead; +Inf: none
   static void see_due(Scheduled &s, double at, double t);  // the loop saw hit due `at` at mono s t
+  void run_frame(Scheduled &s, double t0, double now);  // its due frame, then the hits due by then
   Scheduled *scheduled(uint32_t id);
   ServerView own_view() const;
   std::vector<ServerView> views() const;  // the live servers heard of, and this one
@@ -296,6 +297,7 @@ class ServerLoop {
   uint32_t claimed_ = 0;
   double next_assert_ = 0.0;  // mono s of the next liveliness assertion
   double earliest_hit_ = HUGE_VAL;  // mono s of the earliest hit_due of the scheduled matches
+  std::vector<char> frame_due_;     // run_due_frames': 0 none, 1 near a hit, 2 the rest
   void keep_alive(double t0);
   void expire_created(double t0);
 };

@@ -22,7 +22,12 @@ struct FakeClock : Clock {
   double now = kStart;
   int sleeps = 0;
   std::map<int, double> oversleep;  // by sleep index: s the machine stalls past the wake-up
-  double mono() override { return now; }
+  double per_read = 0.0;            // s each reading takes: work in proportion to the loop's
+  double mono() override {
+    double t = now;
+    now += per_read;
+    return t;
+  }
   double realtime() override { return now + kRealOffset; }
   void sleep_until(double t) override {
     if (t > now) now = t;
