@@ -20,6 +20,9 @@ struct LoadOptions {
   int first_match = 0;
   PlayerParams bot;          // every bot's settings (match, slot and seed are each bot's own)
   double warmup = 4.0;       // s for every slot to be joined and the rallies to start
+  // s: each match's bots begin at a seeded random instant this long after the start at most (below
+  // the warm-up), as the matches of a server do; 0: all at once, and the rallies play in lockstep
+  double stagger = 1.0;
   double duration = 10.0;    // s measured
   double window_start = -1;  // server s the window starts (a bot process's, from ball-load); < 0: after the warm-up
   int bot_processes = 1;     // 1: this process plays every slot

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "frame_clock.h"
+#include "rng.h"
 
 namespace ballsrv {
 
@@ -23,6 +24,16 @@ std::vector<MatchRange> split_matches(int first, int count, int k) {
 
 double server_time_of(const MatchInfoOut &info, double sim) {
   return info.server_time + (sim - info.sim_time) / info.time_base;
+}
+
+std::vector<double> bot_starts(int first_match, int matches, uint64_t seed, double stagger, double start) {
+  std::vector<double> out;
+  for (int m = first_match; m < first_match + matches; ++m) {
+    Rng rng(seed * 0x9e3779b97f4a7c15ull + static_cast<uint64_t>(m));
+    double at = start + stagger * rng.uniform();
+    out.insert(out.end(), {at, at});
+  }
+  return out;
 }
 
 bool CountingPort::take(MatchInfoOut *info) {

@@ -30,6 +30,12 @@ std::vector<MatchRange> split_matches(int first, int count, int k);
 // (docs/protocol.md, "Time"); valid while the match plays on from that pair.
 double server_time_of(const MatchInfoOut &info, double sim);
 
+// When each bot of a load begins (s, in bot order, two a match: ball-load's
+// stagger): match m's both at start plus a draw in [0, stagger) from the
+// seed and m alone, so that a match begins alike however the matches are
+// split over processes.
+std::vector<double> bot_starts(int first_match, int matches, uint64_t seed, double stagger, double start);
+
 // A ClientPort over another that counts what goes through it and keeps
 // each match's newest MatchInfo (for server_time_of).
 class CountingPort : public ClientPort {

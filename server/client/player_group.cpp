@@ -37,10 +37,15 @@ bool PlayerGroup::tick(ClientPort &port, double mono, double real,
   }
   samples_.clear();
   controls_.clear();
-  for (auto &b : bots_) b.tick(mono, real, &samples_, &controls_);
+  for (size_t i = 0; i < bots_.size(); ++i)
+    if (starts_.empty() || mono >= starts_[i]) bots_[i].tick(mono, real, &samples_, &controls_);
   write(port, controls_, &controls_written_);
   write(port, samples_, &samples_written_);
   return true;
+}
+
+void PlayerGroup::start_at(std::vector<double> starts) {
+  if (starts.size() == bots_.size()) starts_ = std::move(starts);
 }
 
 int PlayerGroup::leave(ClientPort &port) {

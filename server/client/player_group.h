@@ -30,6 +30,9 @@ class PlayerGroup {
             const std::function<void(const SegmentOut &, double)> &on_segment = {});
   // Each joined bot's LEAVE, written (a clean exit); how many.
   int leave(ClientPort &port);
+  // Bot i begins (its first tick, its JOIN) at monotonic starts[i], not
+  // before; the default: at the first tick. Sizes other than the bots' are ignored.
+  void start_at(std::vector<double> starts);
 
   std::vector<BotPlayer> &bots() { return bots_; }
   const std::vector<BotPlayer> &bots() const { return bots_; }
@@ -45,6 +48,7 @@ class PlayerGroup {
   void write(ClientPort &port, const std::vector<T> &items, uint64_t *written);
 
   std::vector<BotPlayer> bots_;
+  std::vector<double> starts_;  // start_at's (empty: every bot at once)
   std::map<uint32_t, std::vector<BotPlayer *>> by_match_;
   std::vector<RacketSampleIn> samples_;
   std::vector<ControlIn> controls_;

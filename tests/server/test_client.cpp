@@ -286,4 +286,30 @@ TEST(a_group_routes_by_match_and_counts_refused_writes) {
   CHECK_EQ(r.participant, hex(me));
 }
 
+// A bot given a later start says nothing before it (no JOIN, no sample);
+// starts that are not one for every bot change nothing.
+TEST(a_group_begins_each_bot_at_its_start) {
+  ball_scene scene;
+  ball_scene_default(&scene);
+  std::vector<BotPlayer> bots;
+  for (int slot = 0; slot < 2; ++slot) {
+    PlayerParams p;
+    p.match = 7;
+    p.player = slot;
+    bots.emplace_back(scene, participant(4), p);
+  }
+  PlayerGroup group(std::move(bots));
+  group.start_at({0.0});  // one start for two bots: ignored
+  group.start_at({0.0, 1.0});
+  FakeClientPort port;
+  CHECK(group.tick(port, 0.0, 0.0));
+  CHECK(group.tick(port, 0.999, 0.999));
+  CHECK_EQ(port.controls.size(), 2u);  // bot 0's JOIN, and again 0.5 s on (unanswered)
+  for (const ControlIn &c : port.controls) CHECK_EQ(c.player, 0);
+  size_t before = port.controls.size();
+  CHECK(group.tick(port, 1.0, 1.0));
+  CHECK_EQ(port.controls.size(), before + 1);
+  CHECK_EQ(port.controls.back().player, 1);
+}
+
 CHECK_MAIN

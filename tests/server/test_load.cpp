@@ -72,6 +72,25 @@ TEST(proc_texts_give_cpu_rss_and_loopback_bytes) {
   CHECK(!parse_net_dev(dev, "wlan0", &bytes, &packets));
 }
 
+// Each match's two bots begin together, within the stagger of the start,
+// the same whichever process plays the match; the matches spread over it.
+TEST(a_loads_matches_begin_staggered_alike_however_split) {
+  std::vector<double> all = bot_starts(0, 100, 7, 1.0, 50.0);
+  CHECK_EQ(all.size(), 200u);
+  double lo = 1e300, hi = -1e300;
+  for (size_t i = 0; i < all.size(); i += 2) {
+    CHECK_EQ(all[i], all[i + 1]);
+    CHECK(all[i] >= 50.0 && all[i] < 51.0);
+    lo = std::min(lo, all[i]);
+    hi = std::max(hi, all[i]);
+  }
+  CHECK(hi - lo > 0.9);  // 100 draws in 1 s: spread over it
+  std::vector<double> part = bot_starts(60, 40, 7, 1.0, 50.0);
+  for (size_t i = 0; i < part.size(); ++i) CHECK_EQ(part[i], all[120 + i]);
+  for (double t : bot_starts(0, 5, 7, 0.0, 50.0)) CHECK_EQ(t, 50.0);  // none: all at once
+  CHECK(bot_starts(0, 100, 8, 1.0, 50.0)[0] != all[0]);                 // another seed, other instants
+}
+
 TEST(parts_combine_counts_pool_latencies_and_take_the_server_once) {
   WireSizes s{100, 10, 1000, 10000, 100000, 1000000, 10000000};
   LoadPart a, b;
