@@ -396,6 +396,7 @@ void ServerLoop::write_state(Scheduled &s) {
 
 void ServerLoop::write_due_states(double now) {
   for (auto &s : sched_) {
+    if (!s.state_due) continue;  // (a hit's wake-up has none: no clock read per match)
     write_state(s);
     if (clock_.mono() >= earliest_hit_) run_due_hits(clock_.mono(), now);
   }
