@@ -25,8 +25,9 @@ int main(int argc, char **argv) {
   bot_opt.add(cli, player_fields(), o.bot, {"rate", "seed"});
   cli.add_option("--warmup", o.warmup, "s before measuring")->capture_default_str();
   cli.add_option("--stagger", o.stagger,
-                 "s: each match's bots begin at a random instant within this of the start (0: all at once)")
-      ->capture_default_str()->check(CLI::Range(0.0, 60.0));
+                 "s: each match's bots begin at a random instant within this of the start (0: all at once; "
+                 "default: a quarter of --warmup)")
+      ->check(CLI::Range(0.0, 60.0));
   cli.add_option("--duration", o.duration, "s measured")->capture_default_str();
   cli.add_option("--bot-processes", o.bot_processes, "processes the bots are split over")->capture_default_str()
       ->check(CLI::Range(1, 64));

@@ -101,7 +101,7 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
     }
   PlayerGroup group(std::move(bots));
   const double start = mono_now();
-  group.start_at(bot_starts(o.first_match, o.matches, o.bot.seed, o.stagger, start));
+  group.start_at(bot_starts(o.first_match, o.matches, o.bot.seed, stagger_of(o), start));
   LoadPart part;
   bool have_first = false, measuring = false;
   double window_start = -1.0, window_end = 0.0, samples_before = 0.0;
@@ -211,7 +211,7 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
       std::string file = dir + "/part" + std::to_string(i) + ".json";
       std::vector<std::string> argv = {program_dir() + "/ball-load", "--matches", std::to_string(ranges[i].count),
                                        "--first-match", std::to_string(ranges[i].first), "--window-start", start,
-                                       "--warmup", std::to_string(o.warmup), "--stagger", std::to_string(o.stagger),
+                                       "--warmup", std::to_string(o.warmup), "--stagger", std::to_string(stagger_of(o)),
                                        "--duration", std::to_string(o.duration),
                                        "--rate", std::to_string(o.bot.rate), "--seed", std::to_string(o.bot.seed),
                                        "--part-json", file};
@@ -255,8 +255,8 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
 
 int run_load(const LoadOptions &o) {
   std::string err;
-  if (!(o.stagger >= 0.0 && (o.stagger == 0.0 || o.stagger < o.warmup)))
-    return fail(kProgram, "--stagger must be 0 or below --warmup (every slot joins within the warm-up)");
+  if (o.stagger >= o.warmup && o.stagger > 0.0)
+    return fail(kProgram, "--stagger must be below --warmup (every slot joins within the warm-up)");
   if (!o.part_json.empty()) {  // a bot process: its part, to the file
     bool written = false;
     bool ok = drive(o, {}, [&](const LoadPart &p) {

@@ -21,8 +21,9 @@ struct LoadOptions {
   PlayerParams bot;          // every bot's settings (match, slot and seed are each bot's own)
   double warmup = 4.0;       // s for every slot to be joined and the rallies to start
   // s: each match's bots begin at a seeded random instant this long after the start at most (below
-  // the warm-up), as the matches of a server do; 0: all at once, and the rallies play in lockstep
-  double stagger = 1.0;
+  // the warm-up), as the matches of a server do; 0: all at once, and the rallies play in lockstep;
+  // < 0: a quarter of the warm-up
+  double stagger = -1.0;
   double duration = 10.0;    // s measured
   double window_start = -1;  // server s the window starts (a bot process's, from ball-load); < 0: after the warm-up
   int bot_processes = 1;     // 1: this process plays every slot
@@ -38,6 +39,9 @@ struct LoadOptions {
   DdsOptions dds;            // under DDS Security its --identity must be granted every match/* (`load`)
   std::string server_identity = "server1";  // with a sweep under DDS Security: the ball-server's identity
 };
+
+// The stagger in s that the options mean (LoadOptions::stagger).
+inline double stagger_of(const LoadOptions &o) { return o.stagger < 0.0 ? o.warmup / 4.0 : o.stagger; }
 
 // Runs what the options say; the exit status.
 int run_load(const LoadOptions &o);
