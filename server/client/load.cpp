@@ -56,6 +56,15 @@ uint64_t client_payload(const PortCounts &c, const WireSizes &s) {
   return c.samples_written * s.sample + c.controls_written * s.control;
 }
 
+double server_written_per_s(const StatusOut &a, const StatusOut &b, const WireSizes &s) {
+  double span = b.server_time - a.server_time;
+  if (!(span > 0.0) || b.segments_out < a.segments_out || b.events_out < a.events_out || b.states_out < a.states_out)
+    return -1.0;
+  uint64_t bytes = (b.segments_out - a.segments_out) * s.segment + (b.events_out - a.events_out) * s.event +
+                   (b.states_out - a.states_out) * s.state;
+  return static_cast<double>(bytes) / span;
+}
+
 PortCounts operator-(const PortCounts &a, const PortCounts &b) {
   return {a.infos - b.infos,       a.segments - b.segments, a.states - b.states,
           a.events - b.events,     a.statuses - b.statuses, a.samples_written - b.samples_written,
@@ -168,9 +177,16 @@ LoadRow combine(const std::vector<LoadPart> &parts, const WireSizes &sizes) {
   row.frame_p99_ms_median = p99.quantile(0.5) * 1e3;
   row.frame_p99_ms_max = p99.max() * 1e3;
   row.playing = server->last.playing;
-  // every process reads every match's samples: the server's payload once, from one of them
+  // what the server wrote: segments, events and ball states by its own
+  // counts; MatchInfos and statuses, which it does not count there, as one
+  // bot process took them (every process reads every match's)
   double per = row.matches > 0 && seconds > 0.0 ? 1.0 / (row.matches * seconds) : 0.0;
-  row.server_bytes = static_cast<double>(server_payload(server->counts, sizes)) * per;
+  double counted = server_written_per_s(server->first, server->last, sizes);
+  PortCounts heard;
+  heard.infos = server->counts.infos;
+  heard.statuses = server->counts.statuses;
+  if (counted >= 0.0 && row.matches > 0)
+    row.server_bytes = counted / row.matches + static_cast<double>(server_payload(heard, sizes)) * per;
   row.bots_bytes = static_cast<double>(written) * per;
   return row;
 }

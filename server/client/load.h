@@ -74,6 +74,11 @@ struct WireSizes {
 // acknowledgements, resends and discovery are not in them.
 uint64_t server_payload(const PortCounts &c, const WireSizes &s);
 uint64_t client_payload(const PortCounts &c, const WireSizes &s);
+// Payload bytes per second the server wrote between two of its statuses
+// (a the earlier): its own counts of segments, events and ball states,
+// over the statuses' server_time between them; -1 when they are not two.
+// (A bot reads no events, so what a client port takes leaves them out.)
+double server_written_per_s(const StatusOut &a, const StatusOut &b, const WireSizes &s);
 PortCounts operator-(const PortCounts &a, const PortCounts &b);
 
 // /proc figures of one process and of the loopback device.

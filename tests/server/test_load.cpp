@@ -50,6 +50,22 @@ TEST(payload_is_counts_times_sizes) {
   CHECK_EQ(server_payload(d, s), 0u);
 }
 
+TEST(what_the_server_wrote_is_its_own_counts_over_its_statuses) {
+  WireSizes s{100, 10, 1000, 10000, 100000, 1000000, 10000000};
+  StatusOut a, b;
+  a.server_time = 10.0;
+  b.server_time = 14.0;
+  a.segments_out = 5, b.segments_out = 9;
+  a.events_out = 7, b.events_out = 15;
+  a.states_out = 100, b.states_out = 140;
+  CHECK_NEAR(server_written_per_s(a, b, s), (4.0 * 1000 + 8.0 * 10000 + 40.0 * 100000) / 4.0, 1e-9);
+  CHECK_EQ(server_written_per_s(a, a, s), -1.0);  // one status: no span
+  CHECK_EQ(server_written_per_s(b, a, s), -1.0);  // the later first
+  StatusOut restarted = b;
+  restarted.events_out = 3;  // a count that went back (another server): not a payload
+  CHECK_EQ(server_written_per_s(a, restarted, s), -1.0);
+}
+
 TEST(proc_texts_give_cpu_rss_and_loopback_bytes) {
   double cpu = 0.0, rss = 0.0;
   // comm with a space and a parenthesis; utime 250, stime 50 ticks
@@ -120,6 +136,13 @@ TEST(parts_combine_counts_pool_latencies_and_take_the_server_once) {
   b.first.frames = 100;
   b.last.frames = 300;
   b.last.overruns = 3;
+  b.first.server_time = 50.0;  // its statuses 2 s apart: 6 segments and 20 events written between them
+  b.last.server_time = 52.0;
+  b.first.segments_out = 10;
+  b.last.segments_out = 16;
+  b.first.events_out = 30;
+  b.last.events_out = 50;
+  b.counts.infos = 4;  // the MatchInfos it took (the server counts none in its status)
   LoadRow r = combine({a, b}, s);
   CHECK_EQ(r.matches, 4);
   CHECK_EQ(r.bots, 8);
@@ -136,7 +159,8 @@ TEST(parts_combine_counts_pool_latencies_and_take_the_server_once) {
   CHECK_EQ(r.server_frames, 200u);
   CHECK_NEAR(r.overrun_pct, 1.5, 1e-12);
   CHECK_NEAR(r.frame_p50_ms, 4.0, 1e-9);  // rank round(0.5 * 1) of {2, 4}
-  CHECK_NEAR(r.server_bytes, 8.0 * 1000 / (4 * 2.0), 1e-9);      // once, not per process
+  // the server's own counts (not the 8 segments a process took: no events there), once, not per process
+  CHECK_NEAR(r.server_bytes, (6.0 * 1000 + 20.0 * 10000) / 2.0 / 4 + 4.0 * 1000000 / (4 * 2.0), 1e-9);
   CHECK_NEAR(r.bots_bytes, 480.0 * 100 / (4 * 2.0), 1e-9);       // summed
 }
 
