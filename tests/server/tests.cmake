@@ -107,7 +107,7 @@ foreach(case ${BALL_ITEST_CASES})
 endforeach()
 # the two floods fill both cores: each runs alone, so that its server is judged under its own
 # flood only (beside the other, dds_key_flood's player twice lost a player timeout of samples
-# to the history its keys share with the stranger's, and its slot vanished)
+# in the server's receive path, which they share with the stranger's flood, and its slot vanished)
 set_tests_properties(dds_flood dds_key_flood PROPERTIES RUN_SERIAL TRUE)
 
 # the demo under DDS Security (./run demo --secure) rallies: its summary
