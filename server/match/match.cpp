@@ -849,11 +849,16 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
     if (ahead < 0 || ahead > kMaxSeqJump) return SampleResult::out_of_order;
   }
   if (s.capture_time < clock_now() - config_.max_sample_age) return SampleResult::stale;
-  // a racket is a body: no faster than max_racket_speed since its previous sample, no jump
-  if (slot.has_prev && s.capture_time > slot.prev_time &&
-      ball_v3_norm(ball_v3_sub(s.center, slot.prev_center)) >
-          config_.max_racket_speed * (s.capture_time - slot.prev_time))
-    return SampleResult::too_fast;
+  if (slot.has_prev) {
+    double moved = ball_v3_norm(ball_v3_sub(s.center, slot.prev_center));
+    // not newer than its previous sample (which may be one taken while
+    // paused, not on the track: libball's order check does not see it):
+    // the racket would be in two places
+    if (s.capture_time < slot.prev_time || (s.capture_time == slot.prev_time && moved > 0.0))
+      return SampleResult::stale;
+    // a racket is a body: no faster than max_racket_speed since its previous sample, no jump
+    if (moved > config_.max_racket_speed * (s.capture_time - slot.prev_time)) return SampleResult::too_fast;
+  }
   if (state_ != MatchState::playing) {
     slot.has_seq = true;
     slot.last_seq = s.seq;

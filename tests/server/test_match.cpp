@@ -279,6 +279,75 @@ TEST(a_racket_stays_physical_and_on_its_side) {
   CHECK(g.match.on_sample(near, g.now) == SampleResult::out_of_range);
 }
 
+// The speed limit holds across a pause: a sample captured before the slot's
+// previous one (taken while paused, up to max_sample_lead ahead of the
+// stopped sim clock), or at its time elsewhere, is a racket in two places,
+// stale, not pushed on the track behind that sample's back; one at its time
+// and place is that sample again. Over random moves: every sample that
+// passed every check lies within max_racket_speed of every one before it.
+TEST(a_capture_time_going_back_is_stale) {
+  Game g = two_players();
+  g.run(1.0);
+  g.park[0] = false;  // slot 0's stream by hand from here
+  const double vmax = g.match.config().max_racket_speed;
+  RacketSampleIn a = g.parked_sample(0);
+  a.center.x += 2.0;
+  CHECK(g.match.on_sample(a, g.now) == SampleResult::accepted);
+  CHECK(g.control(ControlKind::pause, g.owner[0]) == Reason::none);
+  RacketSampleIn b = a;  // while paused: 15 m in 0.4 s is 37.5 m/s
+  b.seq = ++g.seq[0];
+  b.capture_time = a.capture_time + 0.4;
+  b.center.z += 15.0;
+  CHECK(g.match.on_sample(b, g.now) == SampleResult::idle);
+  CHECK(g.control(ControlKind::resume, g.owner[0]) == Reason::none);
+  uint64_t hash = ball_sim_hash(&g.match.sim());
+  RacketSampleIn c = a;  // back at a's place 0.2 s after it, but 0.2 s before b
+  c.seq = ++g.seq[0];
+  c.capture_time = a.capture_time + 0.2;
+  CHECK(g.match.on_sample(c, g.now) == SampleResult::stale);
+  c.seq = ++g.seq[0];
+  c.capture_time = b.capture_time;  // at b's time, elsewhere
+  CHECK(g.match.on_sample(c, g.now) == SampleResult::stale);
+  CHECK_EQ(ball_sim_hash(&g.match.sim()), hash);
+  RacketSampleIn again = b;  // b once more, with a new seq: the same place at the same time
+  again.seq = ++g.seq[0];
+  CHECK(g.match.on_sample(again, g.now) == SampleResult::accepted);
+
+  // random moves, forward and back in time: what is accepted stays a body
+  const Court &court = g.match.court();
+  std::vector<RacketSampleIn> kept{again};
+  int refused = 0;
+  for (uint64_t seed = 1; seed <= 8; ++seed) {
+    seeded_rng rng = seeded_stream(seed, 12);
+    for (int k = 0; k < 60; ++k) {
+      RacketSampleIn s = kept.back();
+      s.seq = ++g.seq[0];
+      s.capture_time = kept.back().capture_time + seeded_uniform(&rng, -0.05, 0.1);
+      while (s.capture_time > g.match.sim().time + 0.3) g.run(1.0 / 60.0);  // within max_sample_lead
+      if (seeded_uniform(&rng, 0.0, 1.0) < 0.7)  // mostly near the newest accepted one
+        s.center = ball_v3_add(s.center, ball_v3(seeded_uniform(&rng, -1.0, 1.0), seeded_uniform(&rng, -0.2, 0.2),
+                                                 seeded_uniform(&rng, -1.0, 1.0)));
+      else
+        s.center = ball_v3(seeded_uniform(&rng, court.x_lo, court.net_x), seeded_uniform(&rng, 0.2, 2.0),
+                           seeded_uniform(&rng, court.z_lo, court.z_hi));
+      bool paused = seeded_below(&rng, 8) == 0;  // now and then the sample comes while paused
+      if (paused) CHECK(g.control(ControlKind::pause, g.owner[0]) == Reason::none);
+      SampleResult r = g.match.on_sample(s, g.now);
+      if (paused) CHECK(g.control(ControlKind::resume, g.owner[0]) == Reason::none);
+      if (r == SampleResult::accepted || r == SampleResult::idle)
+        kept.push_back(s);
+      else
+        refused++;
+    }
+  }
+  CHECK(kept.size() > 100);
+  CHECK(refused > 100);
+  for (size_t i = 1; i < kept.size(); ++i)
+    for (size_t j = 0; j < i; ++j)
+      CHECK(ball_v3_norm(ball_v3_sub(kept[i].center, kept[j].center)) <=
+            vmax * (kept[i].capture_time - kept[j].capture_time) + 1e-9);
+}
+
 // Sequence numbers compare as serial numbers (RFC 1982): a stream at
 // 2^32 - 1 goes on at 0 instead of locking; a holder's repeated JOIN starts
 // its stream anew.
