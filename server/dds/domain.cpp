@@ -18,6 +18,8 @@
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <fastdds/rtps/attributes/ServerAttributes.h>
 #include <fastdds/rtps/common/InstanceHandle.h>
+#include <fastcdr/Cdr.h>
+#include <fastcdr/FastBuffer.h>
 
 #include <openssl/evp.h>
 #include <openssl/pem.h>
@@ -49,14 +51,91 @@ using eprosima::fastrtps::types::ReturnCode_t;
 namespace ballsrv {
 namespace dds {
 
+// Whether a payload (its encapsulation included) reads as a sample of a type.
+class Readable {
+ public:
+  virtual ~Readable() = default;
+  virtual bool readable(const uint8_t *data, uint32_t length) const = 0;
+};
+
+// An IDL type's support whose reading never throws. Fast CDR 1.0 throws for
+// an encapsulation it does not know (other than plain CDR, with or without
+// its parameter-list flag, either byte order) and for a boolean byte other
+// than 0 or 1; the generated support catches only a sample cut short, and
+// an uncaught throw in a DDS receive thread or a take ends the process: one
+// forged sample would stop every server and client on the domain. Here a
+// sample that does not read is not data (DDS drops it at the take), and a
+// door (DoorFilter) reads each sample through once before DDS keeps it.
+template <class Idl, class Base>
+class Guarded final : public Base, public Readable {
+ public:
+  bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t *payload, void *data) override {
+    try {
+      return Base::deserialize(payload, data);
+    } catch (...) {
+      return false;
+    }
+  }
+  bool getKey(void *data, eprosima::fastrtps::rtps::InstanceHandle_t *handle, bool force_md5) override {
+    try {
+      return Base::getKey(data, handle, force_md5);
+    } catch (...) {
+      return false;
+    }
+  }
+  bool readable(const uint8_t *data, uint32_t length) const override {
+    if (length < 4) return false;
+    try {
+      eprosima::fastcdr::FastBuffer buffer(reinterpret_cast<char *>(const_cast<uint8_t *>(data)), length);
+      eprosima::fastcdr::Cdr cdr(buffer, eprosima::fastcdr::Cdr::DEFAULT_ENDIAN, eprosima::fastcdr::Cdr::DDS_CDR);
+      cdr.read_encapsulation();
+      Idl sample;  // (fixed-size types: no allocation)
+      sample.deserialize(cdr);
+      return true;
+    } catch (...) {
+      return false;
+    }
+  }
+};
+
+// RawWriter's type: a payload as it is, under another type's name.
+class RawType final : public fdds::TopicDataType {
+ public:
+  explicit RawType(const std::string &name, bool keyed) {
+    setName(name.c_str());
+    m_typeSize = static_cast<uint32_t>(RawWriter::kRawMax);
+    m_isGetKeyDefined = keyed;
+  }
+  bool serialize(void *data, eprosima::fastrtps::rtps::SerializedPayload_t *payload) override {
+    const auto &bytes = *static_cast<const std::vector<uint8_t> *>(data);
+    if (bytes.size() > payload->max_size) return false;
+    std::copy(bytes.begin(), bytes.end(), payload->data);
+    payload->length = static_cast<uint32_t>(bytes.size());
+    return true;
+  }
+  bool deserialize(eprosima::fastrtps::rtps::SerializedPayload_t *, void *) override { return false; }
+  std::function<uint32_t()> getSerializedSizeProvider(void *data) override {
+    size_t n = static_cast<const std::vector<uint8_t> *>(data)->size();
+    return [n] { return static_cast<uint32_t>(n); };
+  }
+  void *createData() override { return new std::vector<uint8_t>; }
+  void deleteData(void *data) override { delete static_cast<std::vector<uint8_t> *>(data); }
+  // the instance: the body's first 16 bytes (any handle does; a reader without one reads the key itself)
+  bool getKey(void *data, eprosima::fastrtps::rtps::InstanceHandle_t *handle, bool) override {
+    const auto &bytes = *static_cast<const std::vector<uint8_t> *>(data);
+    for (size_t i = 0; i < 16; ++i) handle->value[i] = i + 4 < bytes.size() ? bytes[i + 4] : 0;
+    return true;
+  }
+};
+
 // Which IDL type and type support carry each server type.
 template <class T>
 struct Wire;
-#define BALL_WIRE(T, IDL)                     \
-  template <>                                 \
-  struct Wire<T> {                            \
-    using Idl = balldds::IDL;                 \
-    using Support = balldds::IDL##PubSubType; \
+#define BALL_WIRE(T, IDL)                                                   \
+  template <>                                                               \
+  struct Wire<T> {                                                          \
+    using Idl = balldds::IDL;                                               \
+    using Support = Guarded<balldds::IDL, balldds::IDL##PubSubType>;        \
   };
 BALL_WIRE(RacketSampleIn, RacketSample)
 BALL_WIRE(ControlIn, MatchControl)
@@ -324,23 +403,33 @@ constexpr const char *kDoorClass = "BALL_DOOR";
 
 struct DoorFilter final : public fdds::IContentFilter {
   std::shared_ptr<const Door> door;
+  const Readable *type = nullptr;
   bool evaluate(const SerializedPayload &payload, const FilterSampleInfo &, const GUID_t &) const override {
-    if (payload.length < 4 || payload.data[0] != 0 || payload.data[1] > 1) return true;  // not plain CDR
-    return door->admit(payload.data + 4, payload.length - 4, payload.data[1] == 1);
+    // what does not read as the type is turned away (and counted) here
+    if (!type->readable(payload.data, payload.length)) {
+      door->malformed();
+      return false;
+    }
+    // (read as plain CDR with the parameter-list flag too, as Fast CDR reads it)
+    return door->admit(payload.data + 4, payload.length - 4, (payload.data[1] & 1) != 0);
   }
 };
 
 struct DoorFactory : public fdds::IContentFilterFactory {
   std::mutex mutex;
   std::vector<std::shared_ptr<const Door>> doors;
-  ReturnCode_t create_content_filter(const char *, const char *, const fdds::TopicDataType *, const char *expression,
-                                     const ParameterSeq &, fdds::IContentFilter *&filter) override {
+  ReturnCode_t create_content_filter(const char *, const char *, const fdds::TopicDataType *type,
+                                     const char *expression, const ParameterSeq &,
+                                     fdds::IContentFilter *&filter) override {
     char *end = nullptr;
     unsigned long i = std::strtoul(expression, &end, 10);
+    const Readable *readable = dynamic_cast<const Readable *>(type);
     std::lock_guard<std::mutex> lock(mutex);
-    if (end == expression || *end != '\0' || i >= doors.size()) return ReturnCode_t::RETCODE_BAD_PARAMETER;
+    if (end == expression || *end != '\0' || i >= doors.size() || !readable)
+      return ReturnCode_t::RETCODE_BAD_PARAMETER;
     DoorFilter *f = filter ? static_cast<DoorFilter *>(filter) : new DoorFilter;
     f->door = doors[i];
+    f->type = readable;
     filter = f;
     return ReturnCode_t::RETCODE_OK;
   }
@@ -712,6 +801,48 @@ void Reader<T>::drain_status(std::vector<StatusNote> *out) {
 }
 
 template <class T>
+RawWriter Domain::raw_writer(const char *topic_name, const char *profile, std::string *err) {
+  RawWriter w;
+  typename Wire<T>::Support real;
+  fdds::TypeSupport type(new RawType(real.getName(), real.m_isGetKeyDefined));
+  if (type.register_type(impl_->participant) != ReturnCode_t::RETCODE_OK) {
+    *err = std::string("cannot register a raw type as ") + real.getName();
+    return w;
+  }
+  fdds::Topic *t = impl_->participant->create_topic(topic_name, real.getName(), fdds::TOPIC_QOS_DEFAULT);
+  if (t) impl_->topics[topic_name] = t;  // (deleted with the participant's)
+  fdds::DataWriterQos qos;
+  if (!t || impl_->publisher->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    *err = std::string("cannot write raw payloads on ") + topic_name + " with profile " + profile;
+    return w;
+  }
+  w.w_ = impl_->publisher->create_datawriter(t, qos);
+  if (!w.w_) *err = std::string("cannot create a raw writer on ") + topic_name;
+  else impl_->writers.push_back(w.w_);
+  return w;
+}
+
+bool RawWriter::write(const std::vector<uint8_t> &payload) {
+  if (!w_ || payload.size() > kRawMax) return false;
+  return w_->write(const_cast<std::vector<uint8_t> *>(&payload));
+}
+
+int RawWriter::matched() const {
+  fdds::PublicationMatchedStatus s;
+  if (!w_ || w_->get_publication_matched_status(s) != ReturnCode_t::RETCODE_OK) return 0;
+  return s.current_count;
+}
+
+template <class T>
+std::vector<uint8_t> serialized(const T &sample) {
+  typename Wire<T>::Idl wire = to_idl(sample);
+  typename Wire<T>::Support support;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(support.getSerializedSizeProvider(&wire)());
+  if (!support.serialize(&wire, &payload)) return {};
+  return std::vector<uint8_t>(payload.data, payload.data + payload.length);
+}
+
+template <class T>
 uint64_t serialized_size() {
   typename Wire<T>::Idl wire;
   typename Wire<T>::Support support;
@@ -720,10 +851,12 @@ uint64_t serialized_size() {
 
 #define BALL_ENDPOINTS(T)                                                                      \
   template uint64_t serialized_size<T>();                                                      \
+  template std::vector<uint8_t> serialized<T>(const T &);                                       \
   template class Writer<T>;                                                                    \
   template class Reader<T>;                                                                    \
   template Writer<T> Domain::writer<T>(const char *, const char *, Sizing, std::string *, const char *); \
-  template Reader<T> Domain::reader<T>(const char *, const char *, Sizing, std::string *);
+  template Reader<T> Domain::reader<T>(const char *, const char *, Sizing, std::string *);            \
+  template RawWriter Domain::raw_writer<T>(const char *, const char *, std::string *);
 BALL_ENDPOINTS(RacketSampleIn)
 BALL_ENDPOINTS(ControlIn)
 BALL_ENDPOINTS(SegmentOut)

@@ -57,12 +57,14 @@ constexpr int kClientRoom = 4096;
 // A reader's door: it sees each arriving sample's CDR body (after the
 // 4-byte encapsulation) before DDS keeps it, and so before the sample's key
 // becomes an instance of the reader; false turns the sample away. Called
-// from DDS's receive threads. (Samples in an encoding other than plain CDR
-// are let in: the reader's own deserialization judges them.)
+// from DDS's receive threads. A sample that does not read as the reader's
+// type (an encapsulation Fast CDR does not know, a boolean byte other than
+// 0 or 1, cut short) is turned away before admit, and told to malformed().
 class Door {
  public:
   virtual ~Door() = default;
   virtual bool admit(const uint8_t *body, size_t size, bool little_endian) const = 0;
+  virtual void malformed() const = 0;
 };
 
 // How many instances (keys) an endpoint must hold: the profile says keep
@@ -132,6 +134,12 @@ struct StatusNote {
 template <class T>
 uint64_t serialized_size();
 
+// One sample of T as a writer puts it on the wire: its CDR encoding with
+// the 4-byte encapsulation header (for the tests' hostile participants,
+// which change bytes of it; RawWriter).
+template <class T>
+std::vector<uint8_t> serialized(const T &sample);
+
 class Domain;
 
 template <class T>
@@ -147,6 +155,23 @@ class Writer {
   bool dispose(const T &key_sample);
   int matched() const;  // readers matched now
   bool valid() const { return w_ != nullptr; }
+
+ private:
+  friend class Domain;
+  eprosima::fastdds::dds::DataWriter *w_ = nullptr;
+};
+
+// Writes payloads as they are, their 4-byte encapsulation included, under
+// the type name of an IDL type: what no IDL type writes (an encapsulation
+// Fast CDR does not know, a boolean byte of 2, a sample cut short). For the
+// tests' hostile participants (Domain::raw_writer).
+class RawWriter {
+ public:
+  RawWriter() = default;
+  [[nodiscard]] bool write(const std::vector<uint8_t> &payload);  // at most kRawMax bytes
+  int matched() const;  // readers matched now
+  bool valid() const { return w_ != nullptr; }
+  static constexpr size_t kRawMax = 4096;
 
  private:
   friend class Domain;
@@ -232,6 +257,12 @@ class Domain {
   uint32_t writer_strength(const char *profile) const;
   template <class T>
   Reader<T> reader(const char *topic, const char *profile, Sizing sizing, std::string *err);
+
+  // A RawWriter on `topic` under the type name of T's IDL type, with the
+  // data_writer profile `profile`. The participant must not have T's own
+  // type (a Domain of its own): DDS keeps one type per name.
+  template <class T>
+  RawWriter raw_writer(const char *topic, const char *profile, std::string *err);
 
   // The liveliness lease a data_reader profile requests (s; 0: none).
   double reader_lease(const char *profile) const;

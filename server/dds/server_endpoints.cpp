@@ -26,7 +26,7 @@ class MatchDoor : public Door {
   explicit MatchDoor(bool controls) : controls_(controls) {}
   bool admit(const uint8_t *body, size_t size, bool le) const override {
     // RacketSample: match_id u32 at 0, player u16 at 4; MatchControl: match_id u32 at 0, kind at 8
-    if (size < 12) return true;  // too short for its type: the reader's deserialization refuses it
+    if (size < 12) return true;  // (never: it read as its type, malformed() otherwise)
     uint32_t id = u32(body, le);
     std::shared_ptr<const Admitted> in = admitted();
     if (!in) return true;  // nothing said yet
@@ -46,15 +46,17 @@ class MatchDoor : public Door {
     turned_away_[1]++;
     return false;
   }
+  void malformed() const override { turned_away_[2]++; }
   void set(const std::vector<std::pair<uint32_t, int>> &matches, CreateIds creates) {
     auto in = std::make_shared<Admitted>(matches.begin(), matches.end());
     std::lock_guard<std::mutex> lock(mutex_);
     admitted_ = std::move(in);
     creates_ = creates;
   }
-  // turned away since the last call: [0] unknown match (controls: all), [1] bad slot
-  void take(uint64_t out[2]) {
-    for (int i = 0; i < 2; ++i) out[i] = turned_away_[i].exchange(0);
+  // turned away since the last call: [0] unknown match (controls: all but
+  // the malformed), [1] bad slot, [2] not readable as the type
+  void take(uint64_t out[3]) {
+    for (int i = 0; i < 3; ++i) out[i] = turned_away_[i].exchange(0);
   }
 
  private:
@@ -75,7 +77,7 @@ class MatchDoor : public Door {
   mutable std::mutex mutex_;
   std::shared_ptr<const Admitted> admitted_;
   CreateIds creates_;
-  mutable std::atomic<uint64_t> turned_away_[2] = {{0}, {0}};
+  mutable std::atomic<uint64_t> turned_away_[3] = {{0}, {0}, {0}};
 };
 
 void ServerEndpoints::admit(const std::vector<std::pair<uint32_t, int>> &matches, CreateIds creates) {
@@ -149,12 +151,13 @@ void ServerEndpoints::take_notes(std::vector<PortNote> *out) {
     if (n.kind == StatusNote::rejected) out->push_back({PortNote::control_rejected, {}, static_cast<uint64_t>(n.count)});
     if (n.kind == StatusNote::samples_lost) out->push_back({PortNote::control_lost, {}, static_cast<uint64_t>(n.count)});
   }
-  uint64_t away[2];
+  uint64_t away[3];
   control_door_->take(away);
-  if (away[0]) out->push_back({PortNote::door_control, {}, away[0]});
+  if (away[0] + away[2]) out->push_back({PortNote::door_control, {}, away[0] + away[2]});
   sample_door_->take(away);
   if (away[0]) out->push_back({PortNote::door_unknown_match, {}, away[0]});
   if (away[1]) out->push_back({PortNote::door_bad_slot, {}, away[1]});
+  if (away[2]) out->push_back({PortNote::door_malformed, {}, away[2]});
   notes_.clear();
   samples_.drain_status(&notes_);
   for (const auto &n : notes_) {

@@ -461,9 +461,12 @@ void ServerLoop::take_notes(double t0) {
         stats_.totals.dds_lost += std::min(n.count, kMaxLostPerNote);
         break;
       case PortNote::door_unknown_match:
-      case PortNote::door_bad_slot: {
-        // turned away at the door: the first two checks of a sample (docs/protocol.md)
-        SampleResult why = n.kind == PortNote::door_bad_slot ? SampleResult::bad_slot : SampleResult::unknown_match;
+      case PortNote::door_bad_slot:
+      case PortNote::door_malformed: {
+        // turned away at the door: not readable, or the first two checks of a sample (docs/protocol.md)
+        SampleResult why = n.kind == PortNote::door_bad_slot      ? SampleResult::bad_slot
+                           : n.kind == PortNote::door_malformed ? SampleResult::malformed
+                                                                : SampleResult::unknown_match;
         stats_.totals.drops[static_cast<int>(why)] += n.count;
         stats_.totals.samples_in += n.count;
         break;

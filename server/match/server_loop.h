@@ -52,10 +52,11 @@ struct PortNote {
   // writers of the server topics (its liveliness lost or unmatched);
   // rejected, lost: racket samples; control_rejected, control_lost: controls;
   // door_unknown_match, door_bad_slot: racket samples, door_control: controls,
-  // turned away at the reader's door (ServerPort::admit)
+  // turned away at the reader's door (ServerPort::admit); door_malformed:
+  // racket samples the door found not readable as their type
   enum Kind {
     writer_lost, deadline_missed, rejected, lost, server_lost, control_rejected, control_lost,
-    door_unknown_match, door_bad_slot, door_control
+    door_unknown_match, door_bad_slot, door_control, door_malformed
   } kind;
   ParticipantId who{};  // writer_lost, server_lost: the participant; zeros otherwise
   uint64_t count = 1;   // samples or deadlines

@@ -105,7 +105,8 @@ bool parse_hex(const std::string &text, ParticipantId *id);  // false unless 24 
   X(lost, "lost", 11)                  /* never arrived: a gap or a full history; DDS layer only */ \
   X(too_fast, "too_fast", 12)          /* implies a racket faster than max_racket_speed since the previous one */ \
   X(not_permitted, "not_permitted", 13) /* DDS Security: its writer's partition is not the match's */ \
-  X(before_hit, "before_hit", 14)      /* captured before its racket's last hit */
+  X(before_hit, "before_hit", 14)      /* captured before its racket's last hit */ \
+  X(malformed, "malformed", 15)        /* not readable as a RacketSample (its encapsulation, cut short); DDS layer only */
 
 #define BALL_ENUMERATOR(e, name, idl) e,
 enum class MatchState { BALL_MATCH_STATES(BALL_ENUMERATOR) };

@@ -510,6 +510,63 @@ void case_junk_keys(const Env &env) {
   CHECK(r.controls_at_door <= controls + create_controls);
 }
 
+// Samples no IDL type writes, on every topic a server or a client reads
+// (ball_unreadable: the encapsulation of XCDR2 or a first byte other than
+// 0, which Fast CDR 1.0 throws for; cut short; a boolean byte of 2), while
+// two bots rally: Fast CDR's throw once ended the server, and a client,
+// at the first one. Everyone plays on; the server turns the unreadable
+// racket samples away at its door, each counted `malformed`, its
+// unreadable controls likewise (controls_at_door), and a racket sample of
+// a made-up match in plain CDR with the parameter-list flag as
+// `unknown_match` (Fast CDR reads it as plain CDR: so does the door).
+void case_unreadable(const Env &env) {
+  Case c{env};
+  Server server(c.server());
+  std::string rec = path(env, "watch.jsonl");
+  Process w = ready_watcher(c, rec, {});
+  Process b0 = c.bot(0, {"--rate", "15"}), b1 = c.bot(1, {"--rate", "15"});
+  Tail t(rec);
+  CHECK_MSG(hits_after_serve_within(t, 2, 20.0) == 2, "no rally before the unreadable samples");
+  std::string out = path(env, "unreadable.json");
+  double sent_at = realtime_now();
+  Process u = Process::start({env.bin + "/ball_unreadable", "--domain", env.dom(), "--count", "50", "--clients",
+                              "--out", out},
+                             path(env, "unreadable.out"), path(env, "unreadable.err"));
+  CHECK_EQ(u.wait(30.0), 0);
+  double last = 0.0;
+  int after = hits_within(t, sent_at, 3, 20.0, &last);
+  note("%d hits after the unreadable samples began", after);
+  CHECK_MSG(after == 3, "%d hits after the unreadable samples", after);
+  CHECK_MSG(b0.running() && b1.running() && w.running(), "a client died: bots %d %d, watcher %d", b0.running(),
+            b1.running(), w.running());
+  CHECK_EQ(b0.stop(), 0);
+  CHECK_EQ(b1.stop(), 0);
+  CHECK_EQ(w.stop(), 0);
+  CHECK_MSG(server.p.running(), "the server died");
+  ServerReport r = stop_server(server, path(env, "server.json"));
+  json sent = json::parse(file_text(out), nullptr, false);
+  CHECK_MSG(sent.is_object(), "no report in %s", out.c_str());
+  if (!sent.is_object()) return;
+  auto of = [&](const char *topic, const char *kind) { return sent["sent"][topic].value(kind, 0L); };
+  long racket = of("racket", "xcdr2") + of("racket", "encapsulation") +
+                of("racket", "cut_short");
+  long flagged = of("racket", "parameter_list");
+  long controls = of("control", "xcdr2") + of("control", "encapsulation") +
+                  of("control", "cut_short");
+  long malformed = static_cast<long>(r.status.drops[static_cast<int>(SampleResult::malformed)]);
+  long unknown = static_cast<long>(r.status.drops[static_cast<int>(SampleResult::unknown_match)]);
+  note("sent %ld unreadable racket samples, %ld flagged ones of a made-up match, %ld unreadable controls; the "
+       "server: %ld malformed, %ld unknown_match, %llu controls at the door",
+       racket, flagged, controls, malformed, unknown, static_cast<unsigned long long>(r.controls_at_door));
+  CHECK_EQ(racket, 150L);
+  CHECK(malformed <= racket && malformed >= racket * 9 / 10);
+  CHECK(unknown <= flagged && unknown >= flagged * 9 / 10);
+  CHECK(static_cast<long>(r.controls_at_door) <= controls && static_cast<long>(r.controls_at_door) >= controls * 9 / 10);
+  long drops = 0;
+  for (int i = 0; i < kDropReasons; ++i) drops += static_cast<long>(r.status.drops[i]);
+  CHECK_EQ(static_cast<long>(r.status.samples_in), static_cast<long>(r.status.samples_ok + r.status.samples_idle) + drops);
+}
+
 // One writer's CREATEs under every id a CREATE may name (1000 to 1999),
 // 1000 a second, while a client CREATEs a match of its own and two bots
 // join the configured one: the control reader has room for every such id,
@@ -1138,6 +1195,7 @@ TEST(pause) { in_case(case_pause); }
 TEST(flood) { in_case(case_flood); }
 TEST(key_flood) { in_case(case_key_flood); }
 TEST(junk_keys) { in_case(case_junk_keys); }
+TEST(unreadable) { in_case(case_unreadable); }
 TEST(control_share) { in_case(case_control_share); }
 TEST(create_flood) { in_case(case_create_flood); }
 TEST(forged_server) { in_case(case_forged_server); }

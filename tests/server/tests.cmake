@@ -64,6 +64,10 @@ add_test(NAME docs_server_dds_domains_current
     -P ${PROJECT_SOURCE_DIR}/tests/cli/keys_doc.cmake)
 set_tests_properties(docs_server_dds_domains_current PROPERTIES LABELS server)
 
+add_executable(ball_unreadable ${CMAKE_CURRENT_LIST_DIR}/unreadable.cpp)
+target_link_libraries(ball_unreadable PRIVATE ball_app ball_dds)
+target_compile_options(ball_unreadable PRIVATE ${BALL_CXX_WARNINGS})
+set_target_properties(ball_unreadable PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/server)
 add_executable(ball_flood ${CMAKE_CURRENT_LIST_DIR}/flood.cpp)
 target_link_libraries(ball_flood PRIVATE ball_app ball_dds)
 target_compile_options(ball_flood PRIVATE ${BALL_CXX_WARNINGS})
@@ -84,7 +88,7 @@ add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp ${CMAKE_CURRENT_LI
 target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static ball_render)
 target_include_directories(ball_itest PRIVATE ${PROJECT_SOURCE_DIR}/tests/render ${PROJECT_SOURCE_DIR}/tests/support)
 target_compile_options(ball_itest PRIVATE ${BALL_CXX_WARNINGS})
-add_dependencies(ball_itest ball-server ball-bot ball-watch ball-load ball_flood ball_create ball_intrude)
+add_dependencies(ball_itest ball-server ball-bot ball-watch ball-load ball_flood ball_create ball_intrude ball_unreadable)
 
 # each case on the DDS domain cmake/dds_domains.cmake gives it: parallel runs
 # never meet; the discovery case runs Debian's fastdds-tools (./run setup)
@@ -93,7 +97,7 @@ find_program(BALL_FASTDDS fastdds)
 # capture with Debian's python3 and its python3-scapy (./run setup)
 find_program(BALL_TCPDUMP tcpdump PATHS /usr/bin /usr/sbin)
 find_program(BALL_ITEST_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
-set(BALL_ITEST_CASES rally desync lag lag_own pause flood key_flood junk_keys control_share create_flood forged_server inbox_share create_expires late_join lossy server_cli busy snapshots discovery
+set(BALL_ITEST_CASES rally desync lag lag_own pause flood key_flood junk_keys unreadable control_share create_flood forged_server inbox_share create_expires late_join lossy server_cli busy snapshots discovery
   failover standby_killed primary_back claim secure load_secure discovery_flood)
 foreach(case ${BALL_ITEST_CASES})
   ball_dds_domain(dds_${case} domain)
