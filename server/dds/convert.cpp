@@ -35,6 +35,14 @@ BALL_CONTROL_KINDS(BALL_CHECK_CONTROL)
 
 namespace {
 
+// An enum from the wire as it came, or kEnumCount<E> for any value outside
+// the IDL's: a value of E (a cast to it from one beyond int would not be)
+// that a receiver refuses (usable_info, usable_segment).
+template <class E, class W>
+E wire_enum(W w) {
+  return static_cast<E>(std::min(static_cast<uint32_t>(w), static_cast<uint32_t>(kEnumCount<E>)));
+}
+
 balldds::Vec3 v3(ball_vec3 v) {
   balldds::Vec3 o;
   o.x(v.x);
@@ -179,7 +187,7 @@ void from_idl(const balldds::Segment &in, SegmentOut *o) {
   o->match_id = in.match_id();
   o->server_id = in.server_id();
   o->seq = in.seq();
-  o->cause = static_cast<Cause>(in.cause());
+  o->cause = wire_enum<Cause>(in.cause());  // (usable_segment refuses one outside the IDL's)
   o->cause_index = in.cause_index();
   o->segment.t0 = in.t0();
   o->segment.p0 = v3(in.p0());
@@ -261,7 +269,7 @@ void from_idl(const balldds::BallState &in, StateOut *o) {
   o->frame = in.frame();
   o->sim_time = in.sim_time();
   o->server_time = in.server_time();
-  o->state = static_cast<MatchState>(in.state());
+  o->state = wire_enum<MatchState>(in.state());
   o->segment_seq = in.segment_seq();
   o->ball.position = v3(in.position());
   o->ball.velocity = v3(in.velocity());
@@ -329,7 +337,7 @@ void from_idl(const balldds::MatchInfo &in, MatchInfoOut *o) {
   o->match_id = in.match_id();
   o->server_id = in.server_id();
   o->revision = in.revision();
-  o->state = static_cast<MatchState>(in.state());
+  o->state = wire_enum<MatchState>(in.state());  // (usable_info refuses one outside the IDL's)
   if (!get_name(in.scene(), &o->scene)) o->scene.clear();
   o->level = in.level();
   o->players = std::min<int>(in.players(), kMaxPlayers);

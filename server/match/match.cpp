@@ -5,6 +5,7 @@
 
 #include "ball/vec3.h"
 #include "rng.h"
+#include "trust.h"
 
 namespace ballsrv {
 
@@ -23,7 +24,7 @@ constexpr double kAheadHorizon = 10.0; // sim s: how far ahead a static contact 
 // A decided point on the rules' state: the score, the next server, the serve
 // due serve_delay after the instant t it was decided.
 void settle(const Call &call, double t, double serve_delay, PlayState *p) {
-  if (call.winner >= 0) p->score[call.winner]++;
+  if (call.winner == 0 || call.winner == 1) p->score[static_cast<size_t>(call.winner)]++;  // (-1: a let)
   p->rally++;
   p->serving_side = static_cast<int>(p->rally % 2);
   p->serve_due = true;
@@ -723,7 +724,8 @@ void Match::serve(MatchOutput *out) {
   // singles: slot = side; doubles: the partners of a side take turns
   int slot = side;
   if (config_.players > 2 && (points_played_ / 2) % 2 == 1 && side + 2 < config_.players) slot = side + 2;
-  if (slot >= config_.players) slot = 0, side = 0;
+  if (side != 0 && side != 1) side = 0;  // (a restored Play is checked: play_fits)
+  if (slot < 0 || slot >= config_.players) slot = 0, side = 0;
   Rng rng(config_.seed * 0x9e3779b97f4a7c15ull + points_played_);
   ball_vec3 from = court_.ready(slot, config_.players);
   from.x += Court::toward_net(side) * 2.0;
@@ -1160,9 +1162,17 @@ bool Match::follow(const MatchInfoOut &info, std::string *err) {
 
 bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t newest_seq, double target,
                     MatchOutput *out, std::string *err) {
-  if (!follow(info, err)) return false;
   bool seg_newer = seg && seg->seq > info.segment_seq;
   const PlayState &p = seg_newer ? seg->play : info.play;
+  const double p_at = seg_newer ? seg->segment.t0 : info.sim_time;
+  // the rules' sides and counts index arrays, their times decide the serves:
+  // a Play no server writes is refused before anything changes
+  if (!play_fits(p, p_at)) {
+    *err = "its rules' state (striker " + std::to_string(p.striker) + ", serving side " +
+           std::to_string(p.serving_side) + ", bounces " + std::to_string(p.bounces) + ") is out of range";
+    return false;
+  }
+  if (!follow(info, err)) return false;
   double dt = frame_time() * config_.time_base;
   bool hit_at_t0 = false;  // restored at the instant of a racket hit
   if (seg && !(seg->segment.t0 <= target + 1e-9)) {
@@ -1170,10 +1180,11 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t ne
            ", after the present " + std::to_string(target);
     return false;
   }
+  // the info's sim time is a frame end on that segment when it came after it
+  double t = seg && !seg_newer && seg->seq == info.segment_seq && info.sim_time >= seg->segment.t0
+                 ? info.sim_time
+                 : seg ? seg->segment.t0 : sim_.time;
   if (seg) {
-    // the info's sim time is a frame end on that segment when it came after it
-    double t = !seg_newer && seg->seq == info.segment_seq && info.sim_time >= seg->segment.t0 ? info.sim_time
-                                                                                                : seg->segment.t0;
     ball_sim trial = sim_;
     ball_status st = ball_sim_set_segment(&trial, &seg->segment, t);
     if (st == BALL_OK && seg->cause == Cause::racket) {

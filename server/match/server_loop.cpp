@@ -163,6 +163,10 @@ void ServerLoop::take_others() {
     }
     auto it = followed_.find(seg.match_id);
     if (it == followed_.end() || !(it->second.owner == from)) continue;
+    if (!usable_segment(seg)) {  // a take-over may go on from it: counted like a MatchInfo no server writes
+      stats_.others_refused++;
+      continue;
+    }
     Segments &kept = it->second.segments;
     kept[seg.seq] = seg;
     while (kept.size() > kFollowedSegments) kept.erase(kept.begin());
@@ -170,16 +174,24 @@ void ServerLoop::take_others() {
 }
 
 // A MatchInfo no server could have written (numbers out of range, as a
-// client judges them) is not another server's: nobody yields to it,
-// follows it, counts it an owner or is kept from starting by it; counted.
+// client judges them, or its segment and Play not fitting its sim time:
+// usable_other_info) is not another server's: nobody yields to it, follows
+// it, counts it an owner or is kept from starting by it; counted.
 bool ServerLoop::server_wrote(const MatchInfoOut &info) {
-  if (usable_info(info)) return true;
+  if (usable_other_info(info)) return true;
   stats_.others_refused++;
   return false;
 }
 
 void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from) {
   if (!server_wrote(info)) return;
+  // a standby follows what it reads (after a yield too), and its take-over
+  // maps the owner's sim clock by the info's server_time: one far from this
+  // server's clock is no server's (a forged one made the catch-up endless)
+  if (settings_.standby && !(std::fabs(info.server_time - clock_.realtime()) <= kMaxClockGap)) {
+    stats_.others_refused++;
+    return;
+  }
   owners_[info.match_id] = {from, -1.0};
   if (scheduled(info.match_id)) {
     // our own reader took another server's sample for a match we step: DDS
@@ -187,11 +199,10 @@ void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from)
     stats_.conflicts++;
     if (on_conflict_) on_conflict_(info, from);
     yield(info.match_id, info, from);
-    if (!settings_.standby) return;
   }
+  if (!settings_.standby) return;
   auto it = followed_.find(info.match_id);
   if (it == followed_.end()) {
-    if (!settings_.standby) return;
     std::string err;
     if (!host_.follow(info, &err)) {
       if (stats_.follow_failures++ == 0 || stats_.follow_failures % 1000 == 0)

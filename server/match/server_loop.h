@@ -111,6 +111,12 @@ constexpr double kLivelinessPeriod = 0.25;
 // sequence numbers, which one forged datagram can make 2^31 long (a gap
 // beyond this is a restart or a forgery, not that many samples).
 constexpr uint64_t kMaxLostPerNote = 1000;
+// real s a followed MatchInfo's server_time may lie from this server's
+// realtime clock (docs/protocol.md, "Several servers on one domain"): an
+// owner writes its MatchInfo at least once a second, stamped with its newest
+// frame's deadline, and the servers of a domain keep their clocks in step
+// (NTP); a take-over maps the owner's sim clock by that stamp
+constexpr double kMaxClockGap = 10.0;
 
 // The segment a standby restores an owner's match from (docs/protocol.md,
 // "Several servers"): of the owner's segments, the newest in effect at sim
@@ -150,7 +156,7 @@ struct LoopStats {
   uint64_t deadline_missed = 0, writers_lost = 0;
   uint64_t controls_at_door = 0;  // controls the control reader's door turned away (in controls_refused too)
   uint64_t conflicts = 0;       // MatchInfo of one of our matches from another server
-  uint64_t others_refused = 0;  // MatchInfo from other participants whose numbers no server writes (usable_info)
+  uint64_t others_refused = 0;  // MatchInfo and Segments of others no server writes (trust.h, kMaxClockGap)
   uint64_t takeovers = 0;       // followed matches taken over
   uint64_t yields = 0;          // matches given up to a server that outranks this one
   uint64_t claims = 0;          // matches claimed (configured or created)

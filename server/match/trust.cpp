@@ -1,6 +1,8 @@
 #include "trust.h"
 
 #include "ball/vec3.h"
+#include "fields.h"
+#include "match_config.h"
 
 #include <algorithm>
 #include <cmath>
@@ -51,9 +53,39 @@ bool ServerChoice::parse(const std::string &text, ServerChoice *out, std::string
   return true;
 }
 
+namespace {
+template <class E>
+bool enum_in_range(E v) {
+  return static_cast<unsigned>(v) < static_cast<unsigned>(kEnumCount<E>);  // (enum class: any int is a value)
+}
+bool side(int s) { return s == 0 || s == 1; }
+bool sim_time(double t) { return t >= 0.0 && t <= kMaxSimTime; }
+}  // namespace
+
+bool usable_play(const PlayState &p) {
+  return p.score[0] >= 0 && p.score[0] <= kMaxScore && p.score[1] >= 0 && p.score[1] <= kMaxScore &&
+         side(p.serving_side) && side(p.striker) && (p.bounces == 0 || p.bounces == 1) && side(p.bounce_side) &&
+         std::isfinite(p.rally_start) && std::isfinite(p.serve_at);
+}
+
+bool play_fits(const PlayState &p, double at) {
+  const double serve_delay = find_field(match_fields(), "serve_delay")->bounds.hi;
+  return usable_play(p) && p.rally_start <= at + 1e-6 && p.serve_at <= at + serve_delay + 1e-6;
+}
+
+bool usable_segment(const SegmentOut &s) {
+  return finite_segment(s.segment) && enum_in_range(s.cause) && sim_time(s.segment.t0) &&
+         play_fits(s.play, s.segment.t0);
+}
+
+bool usable_other_info(const MatchInfoOut &i) {
+  return usable_info(i) && i.segment.t0 <= i.sim_time + 1e-6 && play_fits(i.play, i.sim_time);
+}
+
 bool usable_info(const MatchInfoOut &i) {
   auto finite = [](double v) { return std::isfinite(v); };
-  return i.players >= 1 && i.players <= kMaxPlayers && i.level >= BALL_LEVEL_CUSTOM &&
+  return enum_in_range(i.state) && enum_in_range(i.pause_reason) && enum_in_range(i.segment_cause) &&
+         sim_time(i.sim_time) && sim_time(i.segment.t0) && usable_play(i.play) && i.players >= 1 && i.players <= kMaxPlayers && i.level >= BALL_LEVEL_CUSTOM &&
          i.level <= BALL_LEVEL_ADVANCED && i.time_base >= 0.05 && i.time_base <= 20.0 && i.frame_time > 0.0 &&
          i.frame_time <= 10.0 && finite(i.sim_time) && finite(i.server_time) && finite(i.model.gravity) &&
          finite(i.model.mass) && i.model.mass > 0.0 && finite(i.model.air_friction) && i.model.air_friction >= 0.0 &&

@@ -30,9 +30,35 @@ struct ServerChoice {
   static bool parse(const std::string &text, ServerChoice *out, std::string *err);
 };
 
+// sim s: no match's clock gets this far (31 years of play); a sim time
+// beyond it is forged, and steps of a frame would vanish in its rounding
+constexpr double kMaxSimTime = 1e9;
+// points a side may have: a forged score must not overflow when it scores
+constexpr int kMaxScore = 1 << 30;
+
 // A MatchInfo a client can use: slots, level, time base, frame time and the
-// flight model in their ranges (a forged level 99 once made ball-bot exit).
+// flight model in their ranges (a forged level 99 once made ball-bot exit),
+// the enums among the IDL's values, the sim clock and the segment's t0 in
+// [0, kMaxSimTime], and its Play usable (usable_play).
 bool usable_info(const MatchInfoOut &info);
+
+// A Play from the wire (docs/protocol.md, "Segments") whose numbers are in
+// the ranges a server writes: serving side, striker and bounce side 0 or 1,
+// bounces 0 or 1, scores in [0, kMaxScore], the rally's start and the
+// serve's time finite. The sides and counts index the rules' arrays.
+bool usable_play(const PlayState &play);
+// And as a server writes it at sim s `at` (a MatchInfo's sim_time, a
+// Segment's t0): the rally begun by then, the serve due at most the longest
+// serve_delay after it (a serve put off without end stops the match).
+bool play_fits(const PlayState &play, double at);
+
+// What a server takes of another server's MatchInfo (docs/protocol.md,
+// "Several servers on one domain"): usable_info, its segment starting no
+// later than its sim_time, and its Play fitting that sim time.
+bool usable_other_info(const MatchInfoOut &info);
+// Another server's Segment a standby may go on from: finite, its cause
+// among the IDL's, its t0 in [0, kMaxSimTime] and its Play fitting that t0.
+bool usable_segment(const SegmentOut &segment);
 
 // A segment whose numbers are all finite: a forged NaN or infinity must
 // reach no evaluation (nor a JSON record, which has no such numbers).

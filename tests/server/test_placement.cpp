@@ -3,12 +3,16 @@
 // servers heard in random orders, then the server loop offline (a fake port
 // and clock) as a standby that takes a match over and as a claimant.
 #include <algorithm>
+#include <cinttypes>
+#include <cmath>
+#include <functional>
 #include <random>
 
 #include "check.hpp"
 #include "fake_port.h"
 #include "game.h"
 #include "placement.h"
+#include "rng.h"
 
 using namespace test;
 using check::note;
@@ -190,6 +194,46 @@ struct StandbyRig {
   }
 };
 
+// A host with the tennis scene and `configured` matches (ids 0, 1, ...),
+// with a fake port and clock, for a loop.
+struct HostRig {
+  Host host{16, true, default_config()};
+  FakeClock clock;
+  FakePort port;
+  explicit HostRig(uint32_t configured) {
+    port.clock = &clock;
+    ball_scene scene;
+    ball_scene_default(&scene);
+    std::string err;
+    host.add_scene("tennis", scene, &err);
+    for (uint32_t k = 0; k < configured; ++k) {
+      MatchConfig c = default_config();
+      c.id = k;
+      host.add_match(c, scene, &err);
+    }
+  }
+};
+
+// A claimant's view of itself (server 3) and of server 4, a claimant heard of.
+std::vector<ServerView> three_and_four(uint32_t room3, uint32_t room4) {
+  ServerView me, them;
+  me.server_id = 3;
+  me.claim_room = room3;
+  them.server_id = 4;
+  them.claim_room = room4;
+  return {me, them};
+}
+
+// Starts a loop that heard server 4, a claimant with room `room4`, first.
+void start_after_hearing_four(ServerLoop &loop, FakePort &port, uint32_t room4) {
+  StatusOut other;
+  other.server_id = 4;
+  other.claim_room = room4;
+  port.other_status.push_back({other, participant(40)});
+  loop.listen(0.2, [] { return false; });
+  loop.start();
+}
+
 }  // namespace
 
 // A standby follows the owner's match, writes nothing, and takes it over
@@ -240,6 +284,86 @@ TEST(a_standby_takes_a_match_over_when_its_owner_is_lost) {
   CHECK(rep.matches.size() == 1u && rep.matches[0].taken_over);
 }
 
+// A stranger writes one forged MatchInfo (or Segment) of the followed match
+// after the owner's last and leaves with the owner: the standby refuses what
+// no server writes (counted as others_refused), takes the match over from
+// the owner's own newest, on the owner's clock, within its grace, and the
+// match plays on with its rules in range. Each forgery once hung the
+// standby (a clock far away), wrote past score[1], or froze the match.
+TEST(a_strangers_forged_info_never_takes_a_match_over) {
+  struct Forgery {
+    const char *what;
+    std::function<void(MatchInfoOut &)> info;  // a forged MatchInfo
+    std::function<void(SegmentOut &)> seg;     // or a forged Segment after a true copy of the info
+  };
+  const std::vector<Forgery> forgeries = {
+      {"server_time -1e308", [](MatchInfoOut &i) { i.server_time = -1e308; }, nullptr},
+      {"server_time 0", [](MatchInfoOut &i) { i.server_time = 0.0; }, nullptr},
+      {"server_time an hour ago", [](MatchInfoOut &i) { i.server_time -= 3600.0; }, nullptr},
+      {"sim_time 1e300", [](MatchInfoOut &i) { i.sim_time = 1e300; }, nullptr},
+      {"striker 30000", [](MatchInfoOut &i) { i.play.striker = 30000; }, nullptr},
+      {"serving_side -1", [](MatchInfoOut &i) { i.play.serving_side = -1; }, nullptr},
+      {"serve_at NaN", [](MatchInfoOut &i) { i.play.serve_at = std::nan(""); }, nullptr},
+      {"score INT_MAX", [](MatchInfoOut &i) { i.play.score[1] = 2147483647; }, nullptr},
+      {"state 7", [](MatchInfoOut &i) { i.state = static_cast<MatchState>(7); }, nullptr},
+      {"pause_reason 99", [](MatchInfoOut &i) { i.pause_reason = static_cast<Reason>(99); }, nullptr},
+      {"info segment_cause 9", [](MatchInfoOut &i) { i.segment_cause = static_cast<Cause>(9); }, nullptr},
+      {"segment striker 30000", nullptr, [](SegmentOut &s) { s.play.striker = 30000; }},
+      {"segment cause 9", nullptr, [](SegmentOut &s) { s.cause = static_cast<Cause>(9); }},
+      {"segment t0 1e300", nullptr, [](SegmentOut &s) { s.segment.t0 = 1e300; }},
+  };
+  const ParticipantId stranger = participant(99);
+  for (const Forgery &f : forgeries) {
+    StandbyRig r;
+    r.play(4.0);
+    MatchInfoOut last = r.owner.match.info();
+    last.server_id = 1;
+    last.server_time = r.clock.realtime() - 1.0 / 60.0;
+    MatchInfoOut forged = last;
+    forged.revision = 100000;
+    if (f.info) f.info(forged);
+    r.port.others.push_back({forged, stranger});
+    if (f.seg) {
+      SegmentOut s = current_segment(last);
+      s.seq = last.segment_seq + 1;
+      s.cause = Cause::floor;
+      s.segment.t0 = last.sim_time;
+      s.play = last.play;
+      f.seg(s);
+      r.port.other_segments.push_back({s, stranger});
+    }
+    uint64_t refused = r.loop->stats().others_refused;
+    r.loop->wake();
+    r.port.notes.push_back({PortNote::server_lost, owner_participant(), 1});
+    r.port.notes.push_back({PortNote::server_lost, stranger, 1});
+    double lost = r.clock.now;
+    int wakes = 0;
+    while (r.loop->stats().takeovers == 0 && r.clock.now < lost + 2.0 && wakes++ < 1000) r.loop->step();
+    const Match *m = r.host.find(7);
+    CHECK_MSG(r.loop->stats().others_refused > refused, "%s: not refused", f.what);
+    CHECK_MSG(r.loop->stats().takeovers == 1u && m && !m->following(), "%s: not taken over (%" PRIu64 " failures)",
+              f.what, r.loop->stats().follow_failures);
+    if (!m || m->following()) continue;
+    // on the owner's clock, from its own newest info
+    double mapped = last.sim_time + (r.port.infos.front().server_time - last.server_time) * last.time_base;
+    CHECK_MSG(std::fabs(r.port.infos.front().sim_time - mapped) <= 1.0 / 60.0 + 1e-6, "%s: sim time %.3f, the owner's %.3f",
+              f.what, r.port.infos.front().sim_time, mapped);
+    double sim0 = m->sim().time;
+    while (r.clock.now < lost + 6.0) {
+      r.loop->step();
+      if (r.loop->stats().totals.frames % 6 == 0) r.feed(m->sim().time);
+    }
+    PlayState p = m->play();
+    bool in_range = (p.serving_side == 0 || p.serving_side == 1) && (p.striker == 0 || p.striker == 1) &&
+                    p.score[0] >= last.play.score[0] && p.score[1] >= last.play.score[1] &&
+                    p.score[0] < last.play.score[0] + 10 && p.score[1] < last.play.score[1] + 10;
+    note("%s: refused, taken over; %.2f sim s played on, score %d:%d, %s", f.what, m->sim().time - sim0, p.score[0],
+         p.score[1], name_of(m->state()));
+    CHECK_MSG(in_range, "%s: rules out of range after the take-over", f.what);
+    CHECK_MSG(m->state() == MatchState::playing && m->sim().time - sim0 > 3.0, "%s: the match did not play on", f.what);
+  }
+}
+
 // Of 8 configured matches, a claimant that hears another claimant takes the
 // ones the claim rule gives it, and steps them only after it settled.
 TEST(a_claimant_takes_its_share_after_settling) {
@@ -263,18 +387,8 @@ TEST(a_claimant_takes_its_share_after_settling) {
   s.claim = 10;
   s.settle = 1.0;
   ServerLoop loop(host, port, clock, s);
-  StatusOut other;
-  other.server_id = 4;
-  other.claim_room = 10;
-  port.other_status.push_back({other, participant(40)});
-  loop.listen(0.2, [] { return false; });
-  loop.start();
-  ServerView me, them;
-  me.server_id = 3;
-  me.claim_room = 10;
-  them.server_id = 4;
-  them.claim_room = 10;
-  std::map<uint32_t, uint32_t> rule = assign_claims(ids, {me, them});
+  start_after_hearing_four(loop, port, 10);
+  std::map<uint32_t, uint32_t> rule = assign_claims(ids, three_and_four(10, 10));
   std::vector<uint32_t> mine;
   for (const auto &kv : rule)
     if (kv.second == 3) mine.push_back(kv.first);

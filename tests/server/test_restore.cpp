@@ -8,12 +8,14 @@
 // restores from what it had and both step on: the standby's segments and
 // events, the catch-up's included, must be the owner's.
 #include <array>
+#include <climits>
 #include <cmath>
 #include <cstdio>
 
 #include "check.hpp"
 #include "rally.h"
 #include "server_loop.h"
+#include "trust.h"
 
 using namespace ballsrv;
 using namespace test;
@@ -331,6 +333,94 @@ TEST(what_does_not_fit_is_refused_and_changes_nothing) {
                         a.match.sim().time, &out, &err));
   CHECK(!b.match.following());
   CHECK(b.match.play().score == a.match.play().score);
+}
+
+
+namespace {
+
+// A value a forger might write into a field of Play: mostly in range (1 in
+// 8 outside it: just outside, far outside, or the ends of int; NaN, an
+// infinity, a time far after `at`).
+int wild_int(Rng &r, int lo, int hi) {
+  if (!r.chance(0.125)) return lo + static_cast<int>(r.uniform(0.0, hi - lo + 1.0));
+  switch (static_cast<int>(r.uniform(0.0, 4.0))) {
+    case 0: return lo - 1;
+    case 1: return hi + 1;
+    case 2: return r.chance(0.5) ? static_cast<int>(r.uniform(hi + 2.0, 40000.0)) : static_cast<int>(r.uniform(-40000.0, lo - 2.0));
+    default: return r.chance(0.5) ? INT_MIN : INT_MAX;
+  }
+}
+double wild_time(Rng &r, double at) {
+  if (!r.chance(0.125)) return at - r.uniform(0.0, 5.0);
+  switch (static_cast<int>(r.uniform(0.0, 3.0))) {
+    case 0: return std::nan("");
+    case 1: return r.chance(0.5) ? HUGE_VAL : -HUGE_VAL;
+    default: return at + r.uniform(61.0, 1e12);
+  }
+}
+
+}  // namespace
+
+// A Play from the wire names sides and counts the rules index arrays by
+// (score[striker], the serve's slot): 2,000 random Plays, each field outside
+// its range 1 time in 8, restored into a playing match: each one
+// play_fits refuses is refused by restore with the match as it was, each
+// one it takes plays 5 s on with the score and the sides in range (under
+// the asan preset: no write past score[1]).
+TEST(a_forged_play_is_refused_or_stays_in_range) {
+  Game a = played(3.0);
+  CHECK(a.ok);
+  const MatchInfoOut info = a.match.info();
+  CHECK(info.state == MatchState::playing);
+  Rng r(20261204);
+  int refused = 0, taken = 0, out_of_range = 0, serves = 0;
+  for (int n = 0; n < 2000; ++n) {
+    Game b;
+    CHECK(b.ok);
+    std::string err;
+    CHECK(b.match.follow(info, &err));
+    MatchInfoOut forged = info;
+    PlayState &p = forged.play;
+    p.score = {wild_int(r, 0, kMaxScore), wild_int(r, 0, kMaxScore)};
+    p.serving_side = wild_int(r, 0, 1);
+    p.striker = wild_int(r, 0, 1);
+    p.bounces = wild_int(r, 0, 1);
+    p.bounce_side = wild_int(r, 0, 1);
+    p.live = r.chance(0.5);
+    p.serve_due = r.chance(0.5);
+    p.rally_start = wild_time(r, info.sim_time);
+    p.serve_at = wild_time(r, info.sim_time);
+    uint64_t before = ball_sim_hash(&b.match.sim());
+    MatchOutput out;
+    err.clear();
+    const SegmentOut own = current_segment(forged);
+    bool restored = b.match.restore(forged, &own, info.segment_seq, info.sim_time, &out, &err);
+    if (!play_fits(p, info.sim_time)) {
+      refused++;
+      CHECK_MSG(!restored, "play %d restored: striker %d serving %d bounces %d", n, p.striker, p.serving_side,
+                p.bounces);
+      CHECK(b.match.following() && ball_sim_hash(&b.match.sim()) == before);
+      CHECK(out.segments.empty() && out.events.empty());
+      continue;
+    }
+    CHECK_MSG(restored, "play %d refused: %s", n, err.c_str());
+    taken++;
+    b.park[0] = b.park[1] = true;
+    b.owner[0] = participant(1);
+    b.owner[1] = participant(2);
+    b.run(5.0);
+    PlayState q = b.match.play();
+    bool ok = q.score[0] >= p.score[0] && q.score[1] >= p.score[1] && q.score[0] <= kMaxScore + 10 &&
+              q.score[1] <= kMaxScore + 10 && (q.serving_side == 0 || q.serving_side == 1) &&
+              (q.striker == 0 || q.striker == 1);
+    out_of_range += !ok;
+    serves += b.count(EventKind::serve) > 0;
+  }
+  note("2000 forged plays: %d refused, %d taken (%d of them served within 5 s), %d out of range after", refused,
+       taken, serves, out_of_range);
+  CHECK(refused > 1000 && taken > 100);
+  CHECK_EQ(out_of_range, 0);
+  CHECK(serves > taken / 2);
 }
 
 int main(int argc, char **argv) { return check::run(argc, argv); }
