@@ -1184,6 +1184,16 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t ne
   double t = seg && !seg_newer && seg->seq == info.segment_seq && info.sim_time >= seg->segment.t0
                  ? info.sim_time
                  : seg ? seg->segment.t0 : sim_.time;
+  // the catch-up steps the owner's frames from t to the present: at most
+  // kMaxCatchUp real s of them (a present a forged clock puts far away, or
+  // +Inf, would step without end)
+  bool plays = seg_newer || state_ == MatchState::playing;
+  if (plays && dt > 0.0 && !(target - t <= kMaxCatchUp * config_.time_base)) {
+    *err = "the present, sim time " + std::to_string(target) + ", is " + std::to_string(target - t) +
+           " sim s after the segment's " + std::to_string(t) + ": more than " +
+           std::to_string(static_cast<int>(kMaxCatchUp)) + " s of the owner's frames to catch up";
+    return false;
+  }
   if (seg) {
     ball_sim trial = sim_;
     ball_status st = ball_sim_set_segment(&trial, &seg->segment, t);
@@ -1222,7 +1232,11 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t ne
     advance(end - sim_.time, false, out);
     if (hit_at_t0) ball_sim_set_sleep(&sim_, std::min(sim_.sleep + 1, model().sleep_frames));
   }
-  while (sim_.time < target - 1e-9) advance(std::min(dt, target - sim_.time), false, out);
+  // (bounded by the check above; a step that moves the clock no more ends it too)
+  for (double before = -HUGE_VAL; sim_.time < target - 1e-9 && sim_.time > before;) {
+    before = sim_.time;
+    advance(std::min(dt, target - sim_.time), false, out);
+  }
   return true;
 }
 

@@ -38,6 +38,12 @@ struct MatchOutput {
 };
 
 
+// real s of the owner's frames a restore steps at most to the present
+// (docs/protocol.md, "Several servers on one domain"): an owner's frames
+// since its newest segment and MatchInfo, a few seconds; a present further
+// away is a forged clock's
+constexpr double kMaxCatchUp = 60.0;
+
 class Match {
  public:
   // Builds the model (build_match_model) and the court; false with err.

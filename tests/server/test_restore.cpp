@@ -423,4 +423,41 @@ TEST(a_forged_play_is_refused_or_stays_in_range) {
   CHECK(serves > taken / 2);
 }
 
+// A restore steps from the segment to the present in frames: a present a
+// forged clock puts far away (+Inf, 3e10 sim s) is refused at once, the match
+// as it was; the longest catch-up taken is kMaxCatchUp of the owner's frames.
+TEST(a_catch_up_beyond_its_bound_is_refused) {
+  Game a = played(3.0);
+  CHECK(a.ok);
+  const MatchInfoOut info = a.match.info();
+  CHECK(info.state == MatchState::playing);
+  const double span = kMaxCatchUp * info.time_base;  // sim s
+  struct Case {
+    double target;
+    bool taken;
+  } cases[] = {{HUGE_VAL, false},
+               {info.sim_time + 3e10, false},
+               {info.sim_time + span + 1.0, false},
+               {std::nan(""), false},
+               {info.sim_time + span - 1.0, true}};
+  for (const Case &c : cases) {
+    Game b;
+    std::string err;
+    CHECK(b.match.follow(info, &err));
+    uint64_t before = ball_sim_hash(&b.match.sim());
+    MatchOutput out;
+    const SegmentOut own = current_segment(info);  // (the catch-up starts at the info's sim time)
+    bool restored = b.match.restore(info, &own, info.segment_seq, c.target, &out, &err);
+    note("present %.6g sim s (catch-up %.6g): %s %s", c.target, c.target - info.sim_time,
+         restored ? "restored" : "refused:", restored ? "" : err.c_str());
+    CHECK_EQ(restored, c.taken);
+    if (restored) {
+      CHECK_NEAR(b.match.sim().time, c.target, 1e-6);
+      continue;
+    }
+    CHECK(b.match.following() && ball_sim_hash(&b.match.sim()) == before);
+    CHECK(out.segments.empty() && out.events.empty());
+  }
+}
+
 int main(int argc, char **argv) { return check::run(argc, argv); }
