@@ -564,8 +564,12 @@ ball_status Match::unended_track(ball_sim *sim, int k, const Slot &slot, const b
 // sleep it began).
 int Match::sleep_left(double t_hit, double t) const {
   double dt = frame_time() * config_.time_base;
-  int ends = dt > 0.0 ? static_cast<int>(std::ceil((t - t_hit) / dt - 1e-9)) : 0;
-  return std::max(0, model().sleep_frames - std::max(0, ends - 1));
+  const int sleep = model().sleep_frames;
+  double ends = dt > 0.0 ? std::ceil((t - t_hit) / dt - 1e-9) : 0.0;
+  // clamped before the conversion: a hit far in the past (a sim time from
+  // the wire) is as long past as sleep_frames + 1 frame ends; NaN: awake
+  if (!(ends <= sleep + 1.0)) return 0;
+  return std::max(0, sleep - std::max(0, static_cast<int>(ends) - 1));
 }
 
 void Match::step_to_hit(MatchOutput *out) {

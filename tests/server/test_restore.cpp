@@ -460,4 +460,37 @@ TEST(a_catch_up_beyond_its_bound_is_refused) {
   }
 }
 
+// The racket tests sleep after a hit for sleep_frames frames (section 3.1):
+// restored on a racket hit's segment at a sim time a forged info puts far
+// after it (1e3 to 1e300 s), they are awake, as after any hit long past;
+// restored at the hit's instant they sleep the whole sleep_frames.
+TEST(a_hit_long_past_leaves_the_rackets_awake) {
+  Game a = played(3.0);
+  CHECK(a.ok);
+  MatchInfoOut info = a.match.info();
+  SegmentOut hit = current_segment(info);
+  hit.cause = Cause::racket;
+  hit.cause_index = 0;
+  hit.segment.grounded = 1;  // (a rolling ball: any sim time after t0 is on the court)
+  hit.segment.p0.y = a.match.model().floor_level + a.match.model().radius;
+  hit.segment.v0 = ball_v3(0.1, 0.0, 0.0);
+  info.state = MatchState::waiting;  // nothing stepped: the sleep is the restore's own
+  info.segment = hit.segment;
+  const int sleep_frames = a.match.model().sleep_frames;
+  CHECK(sleep_frames > 0);
+  for (double after : {0.0, 1e3, 1e9, 1e12, 1e300}) {
+    Game b;
+    std::string err;
+    CHECK(b.match.follow(info, &err));
+    MatchInfoOut i = info;
+    i.sim_time = hit.segment.t0 + after;
+    MatchOutput out;
+    bool restored = b.match.restore(i, &hit, hit.seq, i.sim_time, &out, &err);
+    note("restored %.0e s after a hit: %s, sleep %d", after, restored ? "yes" : err.c_str(),
+         restored ? b.match.sim().sleep : -1);
+    if (!restored) continue;  // (libball may refuse a time that far: then nothing changed)
+    CHECK_EQ(b.match.sim().sleep, after == 0.0 ? sleep_frames : 0);
+  }
+}
+
 int main(int argc, char **argv) { return check::run(argc, argv); }
