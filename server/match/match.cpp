@@ -1156,7 +1156,12 @@ bool Match::follow(const MatchInfoOut &info, std::string *err) {
     sl.held = true;
     sl.owner = in.owner;
     sl.samples = std::max(sl.samples, in.samples);
-    if (!sl.has_seq || in.last_seq > sl.last_seq) {
+    // the owner's newest seq moves the stream on as one of the holder's
+    // samples would (on_sample): ahead in serial-number arithmetic, by at
+    // most kMaxSeqJump, so that a forged last_seq holds the holder back no
+    // further than a forged sample could (docs/protocol.md, "Several servers")
+    int32_t ahead = static_cast<int32_t>(in.last_seq - sl.last_seq);
+    if (!sl.has_seq || (ahead > 0 && ahead <= kMaxSeqJump)) {
       sl.has_seq = in.samples > 0;
       sl.last_seq = in.last_seq;
     }

@@ -493,4 +493,48 @@ TEST(a_hit_long_past_leaves_the_rackets_awake) {
   }
 }
 
+// A slot's newest seq from the owner's MatchInfo moves the standby's stream
+// on as a sample would (serial-number arithmetic, at most 1000 ahead): a
+// forged last_seq of the real one plus k (k random over the 2^32 circle)
+// keeps the holder's next samples out for at most 1000 seqs.
+TEST(a_forged_last_seq_holds_a_slot_back_no_further_than_a_sample_could) {
+  Game a = played(3.0);
+  CHECK(a.ok);
+  MatchInfoOut info = a.match.info();
+  info.state = MatchState::waiting;  // (the holder's samples only refresh its presence and seq)
+  const uint32_t real = info.slots[0].last_seq;
+  CHECK(info.slots[0].samples > 0);
+  Rng r(20261205);
+  int held_back = 0, worst = 0;
+  for (int n = 0; n < 500; ++n) {
+    Game b;
+    std::string err;
+    CHECK(b.match.follow(info, &err));
+    MatchInfoOut forged = info;
+    const uint32_t fixed[6] = {0x80000000u, 0x7fffffffu, 0xffffffffu, 5000u, 1000u, 500u};
+    uint32_t k = n < 6 ? fixed[n] : static_cast<uint32_t>(r.next());
+    forged.slots[0].last_seq = real + k;
+    CHECK(b.match.follow(forged, &err));
+    b.match.follow_clock(info.sim_time);
+    // the holder goes on from its real seq: how many of its samples the standby refuses
+    RacketSampleIn s = a.parked_sample(0);
+    s.capture_time = info.sim_time;
+    int out = 0;
+    for (uint32_t j = 1; j <= 1001; ++j, ++out) {
+      s.seq = real + j;
+      SampleResult res = b.match.on_sample(s, a.now);
+      if (res == SampleResult::idle || res == SampleResult::accepted) break;
+    }
+    worst = std::max(worst, out);
+    if (out > 1000) {
+      held_back++;
+      if (held_back <= 3) note("forged last_seq %u + %u: the holder's next 1001 samples refused", real, k);
+    }
+  }
+  note("500 forged last_seq: at most %d of the holder's samples refused after one; %d held it back for good", worst,
+       held_back);
+  CHECK_EQ(held_back, 0);
+  CHECK_EQ(worst, 1000);  // (k = 1000: seqs 1 to 1000 behind or at the forged one)
+}
+
 int main(int argc, char **argv) { return check::run(argc, argv); }
