@@ -540,7 +540,11 @@ void ServerLoop::take_controls(double now) {
       stats_.totals.controls_refused++;
       continue;
     }
-    if (!may_create(control)) continue;  // another server's to create (the claim rule)
+    if (!may_create(control)) {  // another server's to create (the claim rule, a standby): nothing here
+      stats_.totals.controls_refused++;
+      stats_.creates_elsewhere++;
+      continue;
+    }
     out_.clear();
     Match *m = nullptr;
     size_t before = host_.matches().size();
@@ -769,6 +773,7 @@ ServerReport ServerLoop::report() const {
   r.deadline_missed = stats_.deadline_missed;
   r.writers_lost = stats_.writers_lost;
   r.controls_at_door = stats_.controls_at_door;
+  r.creates_elsewhere = stats_.creates_elsewhere;
   r.others_refused = stats_.others_refused;
   r.conflicts = stats_.conflicts;
   r.takeovers = stats_.takeovers;

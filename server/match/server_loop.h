@@ -155,6 +155,7 @@ struct LoopStats {
   uint64_t skipped = 0;         // frames skipped after a stall
   uint64_t deadline_missed = 0, writers_lost = 0;
   uint64_t controls_at_door = 0;  // controls the control reader's door turned away (in controls_refused too)
+  uint64_t creates_elsewhere = 0;  // CREATEs left to another server (standby, claim rule; in controls_refused too)
   uint64_t conflicts = 0;       // MatchInfo of one of our matches from another server
   uint64_t others_refused = 0;  // MatchInfo and Segments of others no server writes (trust.h, kMaxClockGap)
   uint64_t takeovers = 0;       // followed matches taken over

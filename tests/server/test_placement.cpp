@@ -364,6 +364,48 @@ TEST(a_strangers_forged_info_never_takes_a_match_over) {
   }
 }
 
+// Every control a loop takes is counted once: in controls_in, and in
+// controls_refused unless it took effect here. A standby creates nothing and
+// a claimant creates only the matches the claim rule gives it: the CREATEs
+// they leave to another server took no effect here, so they are refused.
+TEST(a_create_left_to_another_server_is_counted_refused) {
+  for (int claimant = 0; claimant < 2; ++claimant) {
+    HostRig h(0);
+    FakePort &port = h.port;
+    LoopSettings s;
+    s.server_id = 3;
+    s.standby = !claimant;
+    s.claim = claimant ? 10 : 0;
+    ServerLoop loop(h.host, port, h.clock, s);
+    start_after_hearing_four(loop, port, 1000);
+    const std::vector<ServerView> views = three_and_four(10, 1000);
+    Rng r(20261206 + static_cast<uint64_t>(claimant));
+    int sent = 0, ours = 0;
+    for (int n = 0; n < 200; ++n) {
+      ControlIn c;
+      c.kind = ControlKind::create;
+      c.match_id = static_cast<uint32_t>(r.uniform(0.0, 4096.0));
+      c.scene = "tennis";
+      c.from = participant(static_cast<uint8_t>(1 + n % 200));
+      if (claimant && assign_claims({c.match_id}, views)[c.match_id] == 3) {
+        if (ours >= 2) continue;  // (a few of its own: those take effect)
+        ours++;
+      }
+      port.controls.push_back(c);
+      sent++;
+    }
+    h.clock.now += 0.01;
+    loop.wake();
+    const StatusOut st = loop.status_now();
+    note("%s: %d CREATEs, %d of them its own: %" PRIu64 " in, %" PRIu64 " refused, %u matches", claimant ? "claimant" : "standby",
+         sent, ours, st.controls_in, st.controls_refused, st.matches);
+    CHECK_EQ(st.controls_in, static_cast<uint64_t>(sent));
+    CHECK_EQ(st.matches, static_cast<uint32_t>(ours));
+    CHECK_EQ(st.controls_refused, static_cast<uint64_t>(sent - ours));
+    CHECK_EQ(loop.report().creates_elsewhere, static_cast<uint64_t>(sent - ours));
+  }
+}
+
 // Of 8 configured matches, a claimant that hears another claimant takes the
 // ones the claim rule gives it, and steps them only after it settled.
 TEST(a_claimant_takes_its_share_after_settling) {

@@ -136,6 +136,7 @@ TEST(reports_come_back) {
   r.latency_count = 48;
   r.status.dds_lost = 6;
   r.controls_at_door = 11;
+  r.creates_elsewhere = 13;
   MatchReport m;
   m.id = 9;
   m.state = MatchState::playing;
@@ -152,6 +153,7 @@ TEST(reports_come_back) {
   CHECK_EQ(back.status.samples_idle, 2u);
   CHECK_EQ(back.status.write_failures, 5u);
   CHECK_EQ(back.controls_at_door, 11u);
+  CHECK_EQ(back.creates_elsewhere, 13u);
   CHECK_EQ(back.status.matches, 2u);  // the list's
   CHECK_EQ(back.status.playing, 1u);
   // the books a test checks: drops by every reason's name
