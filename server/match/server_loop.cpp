@@ -148,6 +148,7 @@ void ServerLoop::take_others() {
   ParticipantId from;
   StatusOut st;
   while (port_.take_other_status(&st, &from)) {
+    if (peers_.size() >= kMaxPeers && !peers_.count(from)) continue;  // (a lost one makes room)
     Peer &p = peers_[from];
     p.status = st;
     p.alive = true;
@@ -192,7 +193,11 @@ void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from)
     stats_.others_refused++;
     return;
   }
-  owners_[info.match_id] = {from, -1.0};
+  // only a claimant's configured matches wait for their owners (claim_unplaced;
+  // before start() they are still the host's): a bounded map, whatever ids come
+  bool candidate = host_.find(info.match_id) != nullptr;
+  for (const auto &c : candidates_) candidate = candidate || c.id == info.match_id;
+  if (settings_.claim > 0 && candidate) owners_[info.match_id] = {from, -1.0};
   if (scheduled(info.match_id)) {
     // our own reader took another server's sample for a match we step: DDS
     // ranks that server above us for every reader (the weaker of two owners yields)
@@ -442,10 +447,9 @@ void ServerLoop::take_notes(double t0) {
       case PortNote::server_lost: {
         auto p = peers_.find(n.who);
         if (p != peers_.end()) {
-          if (p->second.alive)
-            say("server " + std::to_string(p->second.status.server_id) + " (participant " + hex(n.who) +
-                ") is gone: its writers lost their liveliness");
-          p->second.alive = false;
+          say("server " + std::to_string(p->second.status.server_id) + " (participant " + hex(n.who) +
+              ") is gone: its writers lost their liveliness");
+          peers_.erase(p);  // (forgotten: forged writers come and go without bound)
         }
         for (auto &f : followed_)
           if (f.second.owner == n.who && f.second.lost_at < 0.0) f.second.lost_at = t0;

@@ -117,6 +117,10 @@ constexpr uint64_t kMaxLostPerNote = 1000;
 // frame's deadline, and the servers of a domain keep their clocks in step
 // (NTP); a take-over maps the owner's sim clock by that stamp
 constexpr double kMaxClockGap = 10.0;
+// other servers' ServerStatus writers a loop keeps at most: the remote
+// participants the QoS profiles allow (total_participants), so that forged
+// writers cannot grow it without bound; a lost one is forgotten
+constexpr size_t kMaxPeers = 4096;
 
 // The segment a standby restores an owner's match from (docs/protocol.md,
 // "Several servers"): of the owner's segments, the newest in effect at sim
@@ -230,6 +234,8 @@ class ServerLoop {
   const LoopStats &stats() const { return stats_; }
   ServerReport report() const;
   double uptime() const;  // real s since start
+  size_t peers_known() const { return peers_.size(); }    // ServerStatus writers kept (at most kMaxPeers)
+  size_t owners_known() const { return owners_.size(); }  // owners kept of a claimant's configured matches
 
  private:
   struct Scheduled {
@@ -300,7 +306,8 @@ class ServerLoop {
   std::function<void(const std::string &)> on_note_;
   std::map<uint32_t, Followed> followed_;
   std::map<ParticipantId, Peer> peers_;
-  std::map<uint32_t, std::pair<ParticipantId, double>> owners_;  // match -> owner heard of, mono s it was lost (-1: alive)
+  // a claimant's configured match -> its owner heard of, mono s it was lost (-1: alive)
+  std::map<uint32_t, std::pair<ParticipantId, double>> owners_;
   std::vector<MatchConfig> candidates_;  // a claimant's configured matches not (yet) its own
   uint32_t claimed_ = 0;
   double next_assert_ = 0.0;  // mono s of the next liveliness assertion

@@ -406,6 +406,59 @@ TEST(a_create_left_to_another_server_is_counted_refused) {
   }
 }
 
+// What a loop keeps of the others (ServerStatus writers, match owners
+// heard of) stays bounded however many forged writers and match ids come
+// and go: 20,000 forged ServerStatus and MatchInfo, each from a writer of
+// its own under a random match id, half of the writers lost soon after.
+TEST(what_a_loop_keeps_of_strangers_is_bounded) {
+  HostRig h(8);
+  CHECK_EQ(h.host.matches().size(), 8u);
+  FakeClock &clock = h.clock;
+  FakePort &port = h.port;
+  LoopSettings s;
+  s.server_id = 3;
+  s.claim = 4;
+  ServerLoop loop(h.host, port, clock, s);
+  loop.start();
+  Game owner;  // a usable MatchInfo to forge from
+  Rng r(20261207);
+  size_t most_peers = 0, most_owners = 0;
+  for (int n = 0; n < 20000; ++n) {
+    ParticipantId w{};
+    for (auto &b : w) b = static_cast<uint8_t>(r.next());
+    StatusOut st;
+    st.server_id = static_cast<uint32_t>(r.next());
+    port.other_status.push_back({st, w});
+    MatchInfoOut i = owner.match.info();
+    i.match_id = static_cast<uint32_t>(r.next());
+    i.server_id = st.server_id;
+    i.server_time = clock.realtime();
+    port.others.push_back({i, w});
+    if (n % 2 == 0) port.notes.push_back({PortNote::server_lost, w, 1});
+    if (n % 100 == 99) {
+      clock.now += 0.01;
+      loop.wake();
+      most_peers = std::max(most_peers, loop.peers_known());
+      most_owners = std::max(most_owners, loop.owners_known());
+    }
+  }
+  note("20000 forged writers and match ids: at most %zu peers kept (cap %zu), %zu owners (of 8 candidates)",
+       most_peers, kMaxPeers, most_owners);
+  CHECK(most_peers <= kMaxPeers);
+  CHECK(most_owners <= 8u);
+  // the owners of its configured matches it still keeps
+  for (uint32_t k = 0; k < 8; ++k) {
+    MatchInfoOut i = owner.match.info();
+    i.match_id = k;
+    i.server_time = clock.realtime();
+    port.others.push_back({i, participant(50)});
+  }
+  clock.now += 0.01;
+  loop.wake();
+  note("then the owner of each of its 8 configured matches: %zu owners kept", loop.owners_known());
+  CHECK_EQ(loop.owners_known(), 8u);
+}
+
 // Of 8 configured matches, a claimant that hears another claimant takes the
 // ones the claim rule gives it, and steps them only after it settled.
 TEST(a_claimant_takes_its_share_after_settling) {
