@@ -58,7 +58,9 @@ static double path_acc(double k, double vh, double g) { return ((vh > 0.0 ? k * 
  * within rounding of 0 while the ball moves in (the contact, at most a few
  * ulps of the coordinates clear of it), or at tb. A ball that starts
  * touching or overlapping and moves out is followed out in doubling steps;
- * it is in contact again only if it moves in. */
+ * it is in contact again only if it moves in, and a doubling step that
+ * ends moving in is taken again halved, down to the least step: a long one
+ * could pass over its coming clear and the contact after it. */
 
 typedef struct rim_ctx {
   const ball_plane *pl;
@@ -76,7 +78,7 @@ typedef void (*state_fn)(const rim_ctx *ctx, double t, ball_vec3 *c, ball_vec3 *
 
 static int advance(state_fn at, const rim_ctx *x, double ta, double tb, double acc, double *t_hit, ball_vec3 *q,
                    ball_vec3 *n) {
-  double t = ta, out_step = 0.0;
+  double t = ta, out_step = 0.0, out_cap = INFINITY, t_prev = ta;
   int i;
   for (i = 0; i < PLANES_MAX_STEPS; i++) {
     ball_vec3 c, v, near, diff;
@@ -101,16 +103,26 @@ static int advance(state_fn at, const rim_ctx *x, double ta, double tb, double a
     eps = 1e-13 * (1.0 + ball_v3_max_abs(c) + x->radius);
     if (d <= eps) {
       if (dp < 0.0) {
+        /* moving in, come to by a follow-out step longer than the least: the
+         * ball may have come clear and back within it (a big ball along an
+         * edge it started on): that step again from its start, halved */
+        if (out_step > 1e-15 * (1.0 + fabs(t_prev))) {
+          out_cap = 0.5 * out_step;
+          out_step = 0.5 * out_cap; /* (doubled to out_cap below) */
+          t = t_prev;
+          continue;
+        }
         *t_hit = t;
         *q = c;
         *n = len > 0.0 ? ball_v3_scale(diff, 1.0 / len) : ball_v3(0.0, 0.0, 0.0);
         return 1;
       }
       /* touching or overlapping, moving out: follow it out */
-      out_step = out_step > 0.0 ? 2.0 * out_step : 1e-15 * (1.0 + fabs(t));
+      out_step = out_step > 0.0 ? fmin(2.0 * out_step, out_cap) : 1e-15 * (1.0 + fabs(t));
       tau = out_step;
     } else {
       out_step = 0.0;
+      out_cap = INFINITY;
       disc = sqrt(dp * dp + 2.0 * acc * d);
       if (dp <= 0.0)
         tau = 2.0 * d / (disc - dp); /* the root of the bound, without cancellation */
@@ -122,6 +134,7 @@ static int advance(state_fn at, const rim_ctx *x, double ta, double tb, double a
     if (!(tau >= 0.0)) tau = 0.0;
     if (!(t + tau <= tb)) return 0;
     if (t + tau == t) tau = 1e-15 * (1.0 + fabs(t)); /* below the clock's ulp: one ulp on */
+    t_prev = t;
     t += tau;
   }
   return 0; /* a search that long does not converge: the ball skims; let it be */

@@ -227,6 +227,53 @@ static void fig3_radius_moves_the_contact_plane_toward_the_ball(void **state) {
   assert_near(ev.point.z, 2.9, TOL);
 }
 
+/* A big ball (r = 0.3 m) started overlapping the net's top edge (its
+ * centre 0.2 m from the plane, 0.0374 m above the top: 0.203 m from the
+ * edge), moving up off it and along it, comes clear after 0.15 s, its top
+ * 7.5 mm clear at 0.2 s, and comes back onto the edge before 0.25 s. The
+ * search follows a ball out of an overlap in doubling steps; one from
+ * 0.141 s to 0.281 s passed over the whole time it was clear, and the
+ * contact was found at 0.281 s with the centre 0.284 m from the edge, 16 mm
+ * inside. Exact scheme: the first contact is where the path (bisected
+ * through ball_segment_eval) first comes back to r from the edge. */
+static double edge_gap(const ball_model *m, const ball_segment *seg, double t) {
+  ball_state s;
+  assert_ok(ball_segment_eval(m, seg, t, &s));
+  return hypot(s.position.x - 11.885, s.position.y - 0.914) - m->radius;
+}
+
+static void a_ball_started_on_the_nets_edge_meets_it_again_where_it_touches(void **state) {
+  ball_model m;
+  ball_sim sim;
+  ball_event ev;
+  ball_segment seg;
+  double lo, hi, dy_touch = sqrt(0.3 * 0.3 - 0.2 * 0.2), vy;
+  int k;
+  (void)state;
+  net_model(&m);
+  m.radius = 0.3;
+  vy = 0.2 * m.gravity; /* the top at 0.2 s */
+  m.initial_position = ball_v3(11.885 - 0.2, 0.914 + dy_touch + 0.01 - vy * vy / (2.0 * m.gravity), 8.0);
+  m.initial_velocity = ball_v3(0.0, vy, -3.0);
+  assert_ok(ball_sim_init(&sim, &m));
+  seg = sim.seg;
+  assert_true(edge_gap(&m, &seg, 0.0) < -0.09); /* overlapping at the start */
+  assert_true(edge_gap(&m, &seg, 0.2) > 0.007); /* clear at the top */
+  /* the truth: the gap's root after the top (it falls from there) */
+  lo = 0.2;
+  hi = 0.3;
+  assert_true(edge_gap(&m, &seg, hi) < 0.0);
+  for (k = 0; k < 200 && hi - lo > 1e-15; k++) {
+    double mid = 0.5 * (lo + hi);
+    if (edge_gap(&m, &seg, mid) > 0.0) lo = mid;
+    else hi = mid;
+  }
+  assert_true(run_events(&m, &sim, 1.0 / 60.0, 18, &ev) >= 1);
+  assert_int_equal(ev.kind, BALL_EVENT_NET);
+  assert_near(ev.time, lo, 1e-9);
+  assert_near(hypot(ev.point.x - 11.885, ev.point.y - 0.914), m.radius, 1e-9);
+}
+
 int main(void) {
   const struct CMUnitTest tests[] = {
       cmocka_unit_test(eq6_exact_net_reflection_matches_hand_values),
@@ -234,6 +281,7 @@ int main(void) {
       EACH_SCHEME(fig3_ball_beside_or_above_the_net_passes),
       cmocka_unit_test(eq6_walls_on_z_and_x_planes_reflect_the_normal_component),
       EACH_SCHEME(fig3_radius_moves_the_contact_plane_toward_the_ball),
+      cmocka_unit_test(a_ball_started_on_the_nets_edge_meets_it_again_where_it_touches),
   };
   return cmocka_run_group_tests(tests, NULL, NULL);
 }
