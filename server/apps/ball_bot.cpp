@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "client_endpoints.h"
+#include "open_domain.h"
 #include "common.h"
 #include "options.h"
 #include "player_group.h"
@@ -44,9 +45,7 @@ int main(int argc, char **argv) {
   ball_scene sc;
   if (!load_scene(scene, &sc, &err)) return fail(kProgram, err);
   install_stop_signals();
-  auto domain = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
-                                  dds_opt.discovery_server, "ball-bot", &err,
-                                  {dds_opt.security, dds_opt.identity});
+  auto domain = open_domain(dds_opt, "ball-bot", &err);
   if (!domain) return fail(kProgram, err);
   // under DDS Security a player writes in its match's partition only (docs/security.md)
   std::string partition = domain->secure() ? dds::match_partition(pp.match) : "";

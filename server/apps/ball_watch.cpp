@@ -18,6 +18,7 @@
 
 #include "ball/render.h"
 #include "client_endpoints.h"
+#include "open_domain.h"
 #include "common.h"
 #include "racket_tracks.h"
 #include "watch_feed.h"
@@ -185,9 +186,7 @@ int main(int argc, char **argv) {
   if (!(err = snap.make_dir()).empty()) return fail(kProgram, err);
 
   install_stop_signals();
-  auto domain = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
-                                  dds_opt.discovery_server, "ball-watch", &err,
-                                  {dds_opt.security, dds_opt.identity});
+  auto domain = open_domain(dds_opt, "ball-watch", &err);
   if (!domain) return fail(kProgram, err);
   dds::ClientNeeds needs{0, 0, dds::kClientRoom, true, true, "", ws.servers.bound()};
   needs.rackets = page.port >= 0 || !snap.dir.empty();  // the rackets are drawn

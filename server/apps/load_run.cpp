@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "client_endpoints.h"
+#include "open_domain.h"
 #include "load.h"
 #include "player_group.h"
 #include "process.h"
@@ -77,8 +78,7 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
            const std::function<void(const LoadPart &)> &done, std::string *err) {
   ball_scene scene;
   ball_scene_default(&scene);
-  auto domain = dds::Domain::open(o.dds.domain, find_profile(o.dds.profile), o.dds.participant,
-                                  o.dds.discovery_server, "ball-load", err, {o.dds.security, o.dds.identity});
+  auto domain = open_domain(o.dds, "ball-load", err);
   if (!domain) return false;
   int room = std::max(o.first_match + o.matches, dds::kClientRoom);
   // under DDS Security its writers are in every match's partition it plays (an identity granted

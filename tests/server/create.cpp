@@ -12,6 +12,7 @@
 
 #include "common.h"
 #include "domain.h"
+#include "open_domain.h"
 
 using namespace ballsrv;
 using namespace ballsrv::app;
@@ -31,9 +32,7 @@ int main(int argc, char **argv) {
 
   std::string err;
   install_stop_signals();
-  auto d = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
-                             dds_opt.discovery_server, "ball_create", &err,
-                             {dds_opt.security, dds_opt.identity});
+  auto d = open_domain(dds_opt, "ball_create", &err);
   if (!d) return fail("ball_create", err);
   auto controls = d->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {1}, &err);
   auto infos = d->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {dds::kClientRoom}, &err);

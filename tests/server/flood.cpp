@@ -18,6 +18,7 @@
 #include "ball/vec3.h"
 #include "common.h"
 #include "domain.h"
+#include "open_domain.h"
 #include "sim_clock.h"
 
 using namespace ballsrv;
@@ -49,13 +50,8 @@ int main(int argc, char **argv) {
 
   std::string err;
   install_stop_signals();
-  std::string profile = find_profile(dds_opt.profile);
-  auto participant = [&](const char *name) {
-    return dds::Domain::open(dds_opt.domain, profile, dds_opt.participant, dds_opt.discovery_server, name, &err,
-                             dds::Security{dds_opt.security, dds_opt.identity});
-  };
-  auto a = participant("flood A");
-  auto b = a ? participant("flood B") : nullptr;
+  auto a = open_domain(dds_opt, "flood A", &err);
+  auto b = a ? open_domain(dds_opt, "flood B", &err) : nullptr;
   if (!a || !b) return fail(kProgram, err);
   auto a_samples = a->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {16}, &err);
   auto a_controls = a->writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {1}, &err);

@@ -28,6 +28,7 @@
 #include "ball/vec3.h"
 #include "common.h"
 #include "domain.h"
+#include "open_domain.h"
 
 using namespace ballsrv;
 using namespace ballsrv::app;
@@ -69,8 +70,7 @@ int main(int argc, char **argv) {
 
   std::string err;
   install_stop_signals();
-  auto d = dds::Domain::open(dds_opt.domain, find_profile(dds_opt.profile), dds_opt.participant,
-                             dds_opt.discovery_server, kProgram, &err, {dds_opt.security, dds_opt.identity});
+  auto d = open_domain(dds_opt, kProgram, &err);
   if (!d) return fail(kProgram, err);
   int keys = static_cast<int>(std::max<uint32_t>(1, junk));
   dds::Writer<RacketSampleIn> samples;

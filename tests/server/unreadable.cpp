@@ -20,6 +20,7 @@
 #include "ball/vec3.h"
 #include "common.h"
 #include "domain.h"
+#include "open_domain.h"
 
 using namespace ballsrv;
 using namespace ballsrv::app;
@@ -79,14 +80,9 @@ int main(int argc, char **argv) {
 
   std::string err;
   install_stop_signals();
-  std::string profile = find_profile(dds_opt.profile);
-  auto open = [&](const char *name) {
-    return dds::Domain::open(dds_opt.domain, profile, dds_opt.participant, dds_opt.discovery_server, name, &err,
-                             dds::Security{dds_opt.security, dds_opt.identity});
-  };
   // a participant that listens, and one whose topics carry raw payloads (one type per name)
-  auto ear = open("unreadable ear");
-  auto raw = ear ? open("unreadable") : nullptr;
+  auto ear = open_domain(dds_opt, "unreadable ear", &err);
+  auto raw = ear ? open_domain(dds_opt, "unreadable", &err) : nullptr;
   if (!ear || !raw) return fail(kProgram, err);
   auto infos = ear->reader<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {dds::kClientRoom}, &err);
   if (!infos.valid()) return fail(kProgram, err);
