@@ -19,6 +19,7 @@ class ClientPort {
   virtual bool take(StateOut *state) = 0;
   virtual bool take(EventOut *event) = 0;
   virtual bool take(StatusOut *status) = 0;
+  virtual bool take(MatchModelOut *) { return false; }
   // the players' racket samples, read only (a watcher draws the rackets); `from` filled in
   virtual bool take(RacketSampleIn *) { return false; }
   // false: the write was refused (the caller counts it)

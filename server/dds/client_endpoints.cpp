@@ -21,7 +21,8 @@ std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNe
   p->segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {n.matches}, err);
   p->infos_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {n.matches}, err);
   p->states_ = d.reader<StateOut>(kStateTopic, kStateProfile, {n.matches}, err);
-  if (!p->segments_.valid() || !p->infos_.valid() || !p->states_.valid()) return nullptr;
+  p->models_ = d.reader<MatchModelOut>(kModelTopic, kModelProfile, {n.matches}, err);
+  if (!p->segments_.valid() || !p->infos_.valid() || !p->states_.valid() || !p->models_.valid()) return nullptr;
   if (n.events) {
     p->events_ = d.reader<EventOut>(kEventTopic, kEventProfile, {n.matches}, err);
     if (!p->events_.valid()) return nullptr;

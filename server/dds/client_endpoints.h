@@ -43,6 +43,7 @@ class ClientEndpoints : public ClientPort {
   bool take(StateOut *state) override { return take_trusted(states_, state); }
   bool take(EventOut *event) override { return take_trusted(events_, event); }
   bool take(StatusOut *status) override { return take_trusted(status_, status); }
+  bool take(MatchModelOut *model) override { return take_trusted(models_, model); }
   bool take(RacketSampleIn *sample) override;
   uint64_t untrusted() const override { return untrusted_; }
   bool write(const RacketSampleIn &sample) override { return samples_.write(sample); }
@@ -79,6 +80,7 @@ class ClientEndpoints : public ClientPort {
   Reader<StateOut> states_;
   Reader<EventOut> events_;
   Reader<StatusOut> status_;
+  Reader<MatchModelOut> models_;
   Reader<RacketSampleIn> rackets_;
 };
 

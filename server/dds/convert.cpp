@@ -113,7 +113,97 @@ PlayState play_from_idl(const balldds::Play &in) {
   return p;
 }
 
+// libball's ball_model, ball_plane and ball_racket_def against their IDL
+// twins (Model, Plane, RacketDef), field for field in the order of
+// ball.h; the arrays (net, walls, rackets, vectors) apart.
+#define BALL_MODEL_NUMBERS(X)                                                                               \
+  X(gravity) X(mass) X(air_friction) X(radius) X(spin_damping) X(floor_level) X(floor_damping)             \
+  X(bounce_threshold) X(sound_threshold) X(spin_floor_damping) X(has_net) X(n_walls) X(n_rackets)           \
+  X(collision_distance) X(v_min) X(v_max) X(v_up) X(friendly_factor) X(spin_rack_damping)                  \
+  X(extrapolation_time) X(stale_time) X(sleep_frames) X(v_up_from_racket) X(history) X(effects)
+// libball's enums, each with its count: a value outside [0, count] comes in as the count, which
+// ball_model_check refuses (a cast of any other number to the enum would not be one of its values)
+#define BALL_MODEL_ENUMS(X) \
+  X(detect, BALL_DETECT_COUNT) X(normal_mode, BALL_NORMAL_COUNT) X(response, BALL_RESPONSE_COUNT) \
+  X(scheme, BALL_SCHEME_COUNT) X(level, BALL_LEVEL_COUNT)
+#define BALL_MODEL_VECTORS(X) X(initial_position) X(initial_velocity) X(initial_spin)
+#define BALL_PLANE_NUMBERS(X) X(axis) X(position) X(lo) X(hi) X(bottom) X(top) X(damping)
+#define BALL_RACKET_NUMBERS(X) X(radius) X(partner) X(goal_reach)
+static_assert(balldds::MAX_WALLS == BALL_MAX_WALLS, "IDL MAX_WALLS");
+
+balldds::Plane plane_to_idl(const ball_plane &p) {
+  balldds::Plane o;
+#define BALL_PUT(f) o.f(Cast<std::decay_t<decltype(o.f())>>::of(p.f));
+  BALL_PLANE_NUMBERS(BALL_PUT)
+#undef BALL_PUT
+  return o;
+}
+
+ball_plane plane_from_idl(const balldds::Plane &in) {
+  ball_plane p{};
+#define BALL_GET(f) p.f = Cast<std::decay_t<decltype(p.f)>>::of(in.f());
+  BALL_PLANE_NUMBERS(BALL_GET)
+#undef BALL_GET
+  return p;
+}
+
 }  // namespace
+
+balldds::MatchModel to_idl(const MatchModelOut &in) {
+  balldds::MatchModel o;
+  o.match_id(in.match_id);
+  o.server_id(in.server_id);
+  o.model_hash(in.model_hash);
+  balldds::Model &w = o.model();
+  const ball_model &m = in.model;
+#define BALL_PUT(f) w.f(Cast<std::decay_t<decltype(w.f())>>::of(m.f));
+  BALL_MODEL_NUMBERS(BALL_PUT)
+#undef BALL_PUT
+#define BALL_PUT(f, count) w.f(static_cast<int32_t>(m.f));
+  BALL_MODEL_ENUMS(BALL_PUT)
+#undef BALL_PUT
+#define BALL_PUT(f) w.f(v3(m.f));
+  BALL_MODEL_VECTORS(BALL_PUT)
+#undef BALL_PUT
+  w.net(plane_to_idl(m.net));
+  for (int i = 0; i < BALL_MAX_WALLS; ++i) w.walls()[i] = plane_to_idl(m.walls[i]);
+  for (int i = 0; i < BALL_MAX_RACKETS; ++i) {
+    balldds::RacketDef &r = w.rackets()[i];
+#define BALL_PUT(f) r.f(Cast<std::decay_t<decltype(r.f())>>::of(m.rackets[i].f));
+    BALL_RACKET_NUMBERS(BALL_PUT)
+#undef BALL_PUT
+    r.target(v3(m.rackets[i].target));
+  }
+  return o;
+}
+
+void from_idl(const balldds::MatchModel &in, MatchModelOut *o) {
+  o->match_id = in.match_id();
+  o->server_id = in.server_id();
+  o->model_hash = in.model_hash();
+  const balldds::Model &w = in.model();
+  ball_model &m = o->model;
+  m = ball_model{};
+  // (numbers as they came: an enum or a count out of range is ball_model_check's to refuse, usable_model)
+#define BALL_GET(f) m.f = Cast<std::decay_t<decltype(m.f)>>::of(w.f());
+  BALL_MODEL_NUMBERS(BALL_GET)
+#undef BALL_GET
+#define BALL_GET(f, count) m.f = w.f() >= 0 && w.f() < (count) ? static_cast<decltype(m.f)>(w.f()) : (count);
+  BALL_MODEL_ENUMS(BALL_GET)
+#undef BALL_GET
+#define BALL_GET(f) m.f = v3(w.f());
+  BALL_MODEL_VECTORS(BALL_GET)
+#undef BALL_GET
+  m.net = plane_from_idl(w.net());
+  for (int i = 0; i < BALL_MAX_WALLS; ++i) m.walls[i] = plane_from_idl(w.walls()[i]);
+  for (int i = 0; i < BALL_MAX_RACKETS; ++i) {
+    ball_racket_def &r = m.rackets[i];
+#define BALL_GET(f) r.f = Cast<std::decay_t<decltype(r.f)>>::of(w.rackets()[i].f());
+    BALL_RACKET_NUMBERS(BALL_GET)
+#undef BALL_GET
+    r.target = v3(w.rackets()[i].target());
+  }
+}
 
 balldds::RacketSample to_idl(const RacketSampleIn &in) {
   balldds::RacketSample o;

@@ -16,6 +16,7 @@ balldds::Event to_idl(const EventOut &in);
 balldds::BallState to_idl(const StateOut &in);
 balldds::MatchInfo to_idl(const MatchInfoOut &in);
 balldds::ServerStatus to_idl(const StatusOut &in);
+balldds::MatchModel to_idl(const MatchModelOut &in);
 
 void from_idl(const balldds::RacketSample &in, RacketSampleIn *out);
 void from_idl(const balldds::MatchControl &in, ControlIn *out);
@@ -24,6 +25,7 @@ void from_idl(const balldds::Event &in, EventOut *out);
 void from_idl(const balldds::BallState &in, StateOut *out);
 void from_idl(const balldds::MatchInfo &in, MatchInfoOut *out);
 void from_idl(const balldds::ServerStatus &in, StatusOut *out);
+void from_idl(const balldds::MatchModel &in, MatchModelOut *out);
 
 }  // namespace dds
 }  // namespace ballsrv

@@ -144,6 +144,7 @@ BALL_WIRE(EventOut, Event)
 BALL_WIRE(StateOut, BallState)
 BALL_WIRE(MatchInfoOut, MatchInfo)
 BALL_WIRE(StatusOut, ServerStatus)
+BALL_WIRE(MatchModelOut, MatchModel)
 #undef BALL_WIRE
 
 namespace {
@@ -864,6 +865,7 @@ BALL_ENDPOINTS(EventOut)
 BALL_ENDPOINTS(StateOut)
 BALL_ENDPOINTS(MatchInfoOut)
 BALL_ENDPOINTS(StatusOut)
+BALL_ENDPOINTS(MatchModelOut)
 #undef BALL_ENDPOINTS
 
 }  // namespace dds

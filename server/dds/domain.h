@@ -36,6 +36,7 @@ constexpr const char *kSegmentTopic = "ball/segments";
 constexpr const char *kEventTopic = "ball/events";
 constexpr const char *kControlTopic = "ball/match_control";
 constexpr const char *kInfoTopic = "ball/match_info";
+constexpr const char *kModelTopic = "ball/match_model";
 constexpr const char *kStatusTopic = "ball/server_status";
 
 // Endpoint profiles of the XML file, by purpose.
@@ -47,6 +48,7 @@ constexpr const char *kSegmentProfile = "segments";
 constexpr const char *kEventProfile = "events";
 constexpr const char *kControlProfile = "control";
 constexpr const char *kInfoProfile = "match_info";
+constexpr const char *kModelProfile = "match_model";
 constexpr const char *kStatusProfile = "server_status";
 
 // Instances a client's readers make room for: the matches it may see on a

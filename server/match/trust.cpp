@@ -114,4 +114,9 @@ bool segment_fits(uint32_t seq, uint32_t newest, uint32_t info_seq) {
   return d >= -static_cast<int64_t>(kMaxSeqAhead) && d <= static_cast<int64_t>(kMaxSeqAhead);
 }
 
+bool usable_model(const MatchModelOut &m, uint64_t info_hash) {
+  return m.model_hash == info_hash && ball_model_check(&m.model, nullptr) == BALL_OK &&
+         ball_model_hash(&m.model) == m.model_hash;
+}
+
 }  // namespace ballsrv

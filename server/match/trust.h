@@ -60,6 +60,11 @@ bool usable_other_info(const MatchInfoOut &info);
 // among the IDL's, its t0 in [0, kMaxSimTime] and its Play fitting that t0.
 bool usable_segment(const SegmentOut &segment);
 
+// A MatchModel a reader may use for a match whose newest usable MatchInfo
+// names `info_hash` (docs/protocol.md, "The match's model"): its model
+// passes ball_model_check and hashes to its model_hash, which is info_hash.
+bool usable_model(const MatchModelOut &m, uint64_t info_hash);
+
 // A segment whose numbers are all finite: a forged NaN or infinity must
 // reach no evaluation (nor a JSON record, which has no such numbers).
 bool finite_segment(const ball_segment &s);

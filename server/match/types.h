@@ -353,6 +353,15 @@ struct MatchInfoOut {
   double racket_margin = 0.0;      // m: how far beyond its half a racket may be
 };
 
+// server -> clients: the whole model a match is stepped with (MatchModel:
+// docs/protocol.md, "The match's model").
+struct MatchModelOut {
+  uint32_t match_id = 0;      // the match
+  uint32_t server_id = 0;     // the server that wrote it
+  uint64_t model_hash = 0;    // ball_model_hash(&model), as its writer says
+  ball_model model{};         // libball's model, every field
+};
+
 // A reader's segments of one match, by seq.
 using Segments = std::map<uint32_t, SegmentOut>;
 

@@ -1,0 +1,170 @@
+// The match's model on the wire (docs/protocol.md, "The match's model"):
+// every field of libball's ball_model, as its field table lists them, goes
+// through the IDL and comes back the same; an enum or a count out of range
+// comes back as one ball_model_check refuses; a reader uses a MatchModel only
+// with a checked model whose hash is its own and the MatchInfo's.
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <random>
+#include <utility>
+#include <vector>
+
+#include "check.hpp"
+#include "convert.h"
+#include "trust.h"
+
+using namespace ballsrv;
+
+namespace {
+
+// Every field of a struct described by a field table, filled with random
+// values of its type (in range or not: the wire carries what it is given).
+void fill(std::mt19937_64 &rng, void *base, const ball_field *f, int n) {
+  std::uniform_real_distribution<double> real(-1e3, 1e3);
+  for (int i = 0; i < n; ++i, ++f) {
+    char *p = static_cast<char *>(base) + f->offset;
+    auto between = [&](int lo, int hi) { return std::uniform_int_distribution<int>(lo, hi)(rng); };
+    switch (f->type) {
+      case BALL_FIELD_REAL: *reinterpret_cast<double *>(p) = real(rng); break;
+      case BALL_FIELD_INT: *reinterpret_cast<int *>(p) = between(static_cast<int>(f->lo), static_cast<int>(f->hi)); break;
+      case BALL_FIELD_BOOL: *reinterpret_cast<int *>(p) = between(0, 1); break;
+      case BALL_FIELD_ENUM: *reinterpret_cast<int *>(p) = between(0, static_cast<int>(f->hi)); break;
+      case BALL_FIELD_AXIS: *reinterpret_cast<int *>(p) = between(0, 1) * 2; break;
+      case BALL_FIELD_EFFECTS: *reinterpret_cast<unsigned *>(p) = static_cast<unsigned>(between(0, BALL_EFFECT_ALL)); break;
+      case BALL_FIELD_VEC3: *reinterpret_cast<ball_vec3 *>(p) = ball_vec3{real(rng), real(rng), real(rng)}; break;
+      case BALL_FIELD_PLANE: {
+        int k = 0;
+        const ball_field *pf = ball_plane_fields(&k);
+        fill(rng, p, pf, k);
+        break;
+      }
+      case BALL_FIELD_PLANES: {
+        int k = 0;
+        const ball_field *pf = ball_plane_fields(&k);
+        for (int w = 0; w < BALL_MAX_WALLS; ++w) fill(rng, reinterpret_cast<ball_plane *>(p) + w, pf, k);
+        break;
+      }
+      case BALL_FIELD_RACKETS: {
+        int k = 0;
+        const ball_field *rf = ball_racket_fields(&k);
+        for (int r = 0; r < BALL_MAX_RACKETS; ++r) fill(rng, reinterpret_cast<ball_racket_def *>(p) + r, rf, k);
+        break;
+      }
+      case BALL_FIELD_TYPE_COUNT: break;
+    }
+  }
+}
+
+// The first field (by its table) where a and b differ, or "" when none.
+std::string differs(const void *a, const void *b, const ball_field *f, int n, const std::string &prefix = "") {
+  for (int i = 0; i < n; ++i, ++f) {
+    const char *pa = static_cast<const char *>(a) + f->offset;
+    const char *pb = static_cast<const char *>(b) + f->offset;
+    std::string name = prefix + f->name;
+    size_t size = 0;
+    switch (f->type) {
+      case BALL_FIELD_REAL: size = sizeof(double); break;
+      case BALL_FIELD_INT:
+      case BALL_FIELD_BOOL:
+      case BALL_FIELD_ENUM:
+      case BALL_FIELD_AXIS: size = sizeof(int); break;
+      case BALL_FIELD_EFFECTS: size = sizeof(unsigned); break;
+      case BALL_FIELD_VEC3: size = sizeof(ball_vec3); break;
+      case BALL_FIELD_PLANE: {
+        int k = 0;
+        const ball_field *pf = ball_plane_fields(&k);
+        std::string d = differs(pa, pb, pf, k, name + ".");
+        if (!d.empty()) return d;
+        break;
+      }
+      case BALL_FIELD_PLANES:
+      case BALL_FIELD_RACKETS: {
+        int k = 0;
+        bool walls = f->type == BALL_FIELD_PLANES;
+        const ball_field *sf = walls ? ball_plane_fields(&k) : ball_racket_fields(&k);
+        size_t stride = walls ? sizeof(ball_plane) : sizeof(ball_racket_def);
+        for (int e = 0; e < (walls ? BALL_MAX_WALLS : BALL_MAX_RACKETS); ++e) {
+          std::string d = differs(pa + e * stride, pb + e * stride, sf, k, name + "[" + std::to_string(e) + "].");
+          if (!d.empty()) return d;
+        }
+        break;
+      }
+      case BALL_FIELD_TYPE_COUNT: break;
+    }
+    if (size && std::memcmp(pa, pb, size) != 0) return name;
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(every_field_of_the_model_crosses_the_wire) {
+  std::mt19937_64 rng(20261206);
+  int n = 0;
+  const ball_field *fields = ball_model_fields(&n);
+  int same = 0;
+  for (int k = 0; k < 2000; ++k) {
+    MatchModelOut in;
+    std::memset(&in.model, 0, sizeof in.model);
+    fill(rng, &in.model, fields, n);
+    in.match_id = static_cast<uint32_t>(rng());
+    in.server_id = static_cast<uint32_t>(rng());
+    in.model_hash = rng();
+    MatchModelOut out;
+    dds::from_idl(dds::to_idl(in), &out);
+    std::string d = differs(&in.model, &out.model, fields, n);
+    CHECK_MSG(d.empty(), "model %d: %s differs after the wire", k, d.c_str());
+    CHECK(out.match_id == in.match_id && out.server_id == in.server_id && out.model_hash == in.model_hash);
+    same += d.empty();
+  }
+  check::note("2000 random models: %d came back field for field (%d fields in the table)", same, n);
+}
+
+TEST(an_enum_out_of_range_comes_back_refused) {
+  ball_model m;
+  ball_model_default(&m);
+  MatchModelOut in;
+  in.model = m;
+  balldds::MatchModel w = dds::to_idl(in);
+  const std::vector<std::pair<const char *, std::function<void(balldds::Model &)>>> bad = {
+      {"detect", [](balldds::Model &x) { x.detect(99); }},
+      {"normal_mode", [](balldds::Model &x) { x.normal_mode(-1); }},
+      {"response", [](balldds::Model &x) { x.response(4); }},
+      {"scheme", [](balldds::Model &x) { x.scheme(0x7fffffff); }},
+      {"level", [](balldds::Model &x) { x.level(-5); }},
+  };
+  for (const auto &b : bad) {
+    balldds::MatchModel forged = w;
+    b.second(forged.model());
+    MatchModelOut out;
+    dds::from_idl(forged, &out);
+    const char *field = nullptr;
+    ball_status st = ball_model_check(&out.model, &field);
+    CHECK_MSG(st != BALL_OK && field && std::string(field) == b.first, "%s: %s refused as %s", b.first,
+              ball_strerror(st), field ? field : "(none)");
+  }
+}
+
+TEST(a_reader_uses_a_model_only_when_it_is_the_infos) {
+  ball_model m;
+  ball_model_default(&m);
+  MatchModelOut good;
+  good.model = m;
+  good.model_hash = ball_model_hash(&m);
+  CHECK(usable_model(good, good.model_hash));
+  CHECK(!usable_model(good, good.model_hash + 1));  // another model than the MatchInfo's
+  MatchModelOut lying = good;
+  lying.model.gravity = 3.7;  // under the default's hash
+  CHECK(!usable_model(lying, good.model_hash));
+  MatchModelOut broken = good;
+  broken.model.floor_damping = 2.0;
+  broken.model_hash = ball_model_hash(&broken.model);
+  CHECK(!usable_model(broken, broken.model_hash));  // fails ball_model_check
+  MatchModelOut nan = good;
+  nan.model.mass = NAN;
+  nan.model_hash = ball_model_hash(&nan.model);
+  CHECK(!usable_model(nan, nan.model_hash));
+}
+
+CHECK_MAIN
