@@ -23,6 +23,7 @@ set(BALL_DDS_DOMAINS
   "dds_standby_killed|110|test: a standby killed: nothing a client sees changes"
   "dds_primary_back|111|test: the old primary restarted takes nothing back"
   "dds_claim|112|test: two claimants started together split the matches"
+  "dds_standby_no_scene|130|test: a standby without the primary's scene file takes its court over from the wire"
   "dds_key_flood|113|test: a stranger floods a player's own keys: the player never vanishes"
   "dds_create_expires|114|test: a created match nobody joins goes, its MatchInfo disposed"
   "dds_secure|115|test: DDS Security: no plaintext on the wire, strangers and other matches' players kept out"

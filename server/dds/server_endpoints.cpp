@@ -96,7 +96,8 @@ std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, i
   if (p->segments_.valid()) p->events_ = d.writer<EventOut>(kEventTopic, kEventProfile, {match_room}, err, role);
   if (p->events_.valid()) p->states_ = d.writer<StateOut>(kStateTopic, kStateProfile, {match_room}, err, role);
   if (p->states_.valid()) p->infos_ = d.writer<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room}, err, role);
-  if (p->infos_.valid()) p->status_ = d.writer<StatusOut>(kStatusTopic, kStatusProfile, {1}, err);
+  if (p->infos_.valid()) p->models_ = d.writer<MatchModelOut>(kModelTopic, kModelProfile, {match_room}, err, role);
+  if (p->models_.valid()) p->status_ = d.writer<StatusOut>(kStatusTopic, kStatusProfile, {1}, err);
   if (!p->status_.valid()) return nullptr;
   // under DDS Security players write in their match's partition (docs/security.md)
   std::string from_players = d.secure() ? kAnyMatchPartition : "";
@@ -112,9 +113,10 @@ std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, i
   p->others_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room + 64}, err);
   // (only a standby reads segments: every other server would take its own back)
   if (follows) p->other_segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {match_room + 64}, err);
+  if (follows) p->other_models_ = d.reader<MatchModelOut>(kModelTopic, kModelProfile, {match_room + 64}, err);
   p->other_status_ = d.reader<StatusOut>(kStatusTopic, kStatusProfile, {kServerRoom}, err);
   if (!p->samples_.valid() || !p->controls_.valid() || !p->others_.valid() ||
-      (follows && !p->other_segments_.valid()) || !p->other_status_.valid())
+      (follows && (!p->other_segments_.valid() || !p->other_models_.valid())) || !p->other_status_.valid())
     return nullptr;
   return p;
 }
@@ -125,6 +127,7 @@ bool ServerEndpoints::assert_liveliness() {
   bool ok = segments_.assert_liveliness();
   ok = events_.assert_liveliness() && ok;
   ok = infos_.assert_liveliness() && ok;
+  ok = models_.assert_liveliness() && ok;
   ok = status_.assert_liveliness() && ok;
   states_.assert_liveliness();
   return ok;
@@ -133,7 +136,10 @@ bool ServerEndpoints::assert_liveliness() {
 bool ServerEndpoints::dispose_match(uint32_t match_id) {
   MatchInfoOut key;
   key.match_id = match_id;
-  return infos_.dispose(key);
+  MatchModelOut model_key;
+  model_key.match_id = match_id;
+  bool ok = infos_.dispose(key);
+  return models_.dispose(model_key) && ok;
 }
 
 void ServerEndpoints::take_notes(std::vector<PortNote> *out) {
@@ -142,6 +148,7 @@ void ServerEndpoints::take_notes(std::vector<PortNote> *out) {
   others_.drain_status(&notes_);
   other_segments_.drain_status(&notes_);
   other_status_.drain_status(&notes_);
+  other_models_.drain_status(&notes_);
   for (const auto &n : notes_)
     if (n.kind == StatusNote::writer_lost && n.who != domain_.id()) out->push_back({PortNote::server_lost, n.who, 1});
   // the controls DDS refused or lost (drained, never left to pile up)
@@ -213,6 +220,9 @@ bool ServerEndpoints::take_other_segment(SegmentOut *segment, ParticipantId *fro
 }
 bool ServerEndpoints::take_other_status(StatusOut *status, ParticipantId *from) {
   return take_others(other_status_, domain_.id(), status, from);
+}
+bool ServerEndpoints::take_other_model(MatchModelOut *model, ParticipantId *from) {
+  return other_models_.valid() && take_others(other_models_, domain_.id(), model, from);
 }
 
 }  // namespace dds

@@ -16,8 +16,8 @@ class ServerEndpoints : public ServerPort {
   // Endpoints sized for `matches` x `players` and `create_ids` ids a CREATE
   // may name (Fast DDS allows 10 instances per topic by default), the match
   // writers with the ownership
-  // strength of `role` (kPrimaryProfile, kStandbyProfile), and a reader of
-  // the other servers' segments when it follows their matches (a standby);
+  // strength of `role` (kPrimaryProfile, kStandbyProfile), and readers of
+  // the other servers' segments and models when it follows their matches (a standby);
   // nullptr with err when one cannot be made.
   static std::unique_ptr<ServerEndpoints> open(Domain &domain, int matches, int players, uint32_t create_ids,
                                                const char *role, bool follows, std::string *err);
@@ -29,11 +29,13 @@ class ServerEndpoints : public ServerPort {
   bool take_other_info(MatchInfoOut *info, ParticipantId *from) override;
   bool take_other_segment(SegmentOut *segment, ParticipantId *from) override;
   bool take_other_status(StatusOut *status, ParticipantId *from) override;
+  bool take_other_model(MatchModelOut *model, ParticipantId *from) override;
   bool write(const SegmentOut &s) override { return segments_.write(s); }
   bool write(const EventOut &e) override { return events_.write(e); }
   bool write(const StateOut &s) override { return states_.write(s); }
   bool write(const MatchInfoOut &i) override { return infos_.write(i); }
   bool write(const StatusOut &s) override { return status_.write(s); }
+  bool write(const MatchModelOut &m) override { return models_.write(m); }
   bool assert_liveliness() override;
   bool dispose_match(uint32_t match_id) override;
 
@@ -46,11 +48,13 @@ class ServerEndpoints : public ServerPort {
   Writer<StateOut> states_;
   Writer<MatchInfoOut> infos_;
   Writer<StatusOut> status_;
+  Writer<MatchModelOut> models_;
   Reader<RacketSampleIn> samples_;
   Reader<ControlIn> controls_;
   Reader<MatchInfoOut> others_;
   Reader<SegmentOut> other_segments_;
   Reader<StatusOut> other_status_;
+  Reader<MatchModelOut> other_models_;
   std::vector<StatusNote> notes_;
 };
 

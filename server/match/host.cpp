@@ -27,13 +27,22 @@ const ball_scene *Host::scene(const std::string &name, std::string *err) {
   return &(scenes_[name] = sc);
 }
 
-Match *Host::follow(const MatchInfoOut &info, std::string *err) {
+Match *Host::follow(const MatchInfoOut &info, const ball_model *model, std::string *err) {
   if (find(info.match_id)) {
     *err = "match " + std::to_string(info.match_id) + " is here already";
     return nullptr;
   }
-  const ball_scene *sc = scene(info.scene, err);
-  if (!sc) return nullptr;
+  // the owner's model from the wire needs no scene file: the match is built
+  // over it as over a scene's (build_match_model gives that model back)
+  ball_scene from_wire;
+  const ball_scene *sc = &from_wire;
+  if (model) {
+    ball_scene_default(&from_wire);
+    from_wire.model = *model;
+  } else {
+    sc = scene(info.scene, err);
+    if (!sc) return nullptr;
+  }
   MatchConfig c = template_;
   c.id = info.match_id;
   c.scene_name = info.scene;
@@ -58,7 +67,8 @@ Match *Host::follow(const MatchInfoOut &info, std::string *err) {
     *err = "level " + std::to_string(info.level) + " is not a game level";
     return nullptr;
   }
-  if (!add_match(c, *sc, err)) return nullptr;
+  // (a model from the wire is not a scene of this server's: it joins no catalogue)
+  if (!(model ? insert_match(c, *sc, err) : add_match(c, *sc, err))) return nullptr;
   Match *m = find(c.id);
   if (!m->follow(info, err)) {
     remove(c.id);
@@ -85,6 +95,12 @@ void Host::remove(uint32_t id) {
 }
 
 bool Host::add_match(const MatchConfig &config, const ball_scene &scene, std::string *err) {
+  if (!insert_match(config, scene, err)) return false;
+  scenes_.emplace(config.scene_name, scene);  // a standby may follow it by that name
+  return true;
+}
+
+bool Host::insert_match(const MatchConfig &config, const ball_scene &scene, std::string *err) {
   if (by_id_.count(config.id)) {
     *err = "match id " + std::to_string(config.id) + " is used twice";
     return false;
@@ -95,7 +111,6 @@ bool Host::add_match(const MatchConfig &config, const ball_scene &scene, std::st
   }
   auto m = std::make_unique<Match>();
   if (!m->init(config, scene, err)) return false;
-  scenes_.emplace(config.scene_name, scene);  // a standby may follow it by that name
   by_id_[config.id] = m.get();
   matches_.push_back(std::move(m));
   return true;

@@ -44,9 +44,11 @@ class Host {
   const ball_scene *scene(const std::string &name, std::string *err);
 
   // Another server's match, followed (Match::follow) from its MatchInfo:
-  // its settings and scene; nullptr with err when there is no room, no such
-  // scene, or it does not fit.
-  Match *follow(const MatchInfoOut &info, std::string *err);
+  // its settings, and its model from the wire (`model`, the MatchModel the
+  // info names: usable_model) or else from the scene the info names;
+  // nullptr with err when there is no room, no model nor such scene, or it
+  // does not fit.
+  Match *follow(const MatchInfoOut &info, const ball_model *model, std::string *err);
   // A match this server neither steps nor follows any more.
   void remove(uint32_t id);
 
@@ -70,6 +72,7 @@ class Host {
   int max_players() const;  // over the matches and what CREATE allows
 
  private:
+  bool insert_match(const MatchConfig &config, const ball_scene &scene, std::string *err);  // add_match's, no catalogue
   size_t max_matches_;
   bool allow_create_;
   MatchConfig template_;

@@ -153,6 +153,12 @@ void ServerLoop::take_others() {
     p.status = st;
     p.alive = true;
   }
+  // the models before the infos: a standby follows a match with the model its info names
+  MatchModelOut model;
+  while (port_.take_other_model(&model, &from)) {
+    if (other_models_.size() >= kMaxPeers && !other_models_.count(model.match_id)) continue;
+    other_models_[model.match_id] = model;
+  }
   MatchInfoOut info;
   while (port_.take_other_info(&info, &from)) other_info(info, from);
   SegmentOut seg;
@@ -209,7 +215,11 @@ void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from)
   auto it = followed_.find(info.match_id);
   if (it == followed_.end()) {
     std::string err;
-    if (!host_.follow(info, &err)) {
+    auto model = other_models_.find(info.match_id);
+    const ball_model *wire = model != other_models_.end() && usable_model(model->second, info.model_hash)
+                                 ? &model->second.model
+                                 : nullptr;
+    if (!host_.follow(info, wire, &err)) {
       if (stats_.follow_failures++ == 0 || stats_.follow_failures % 1000 == 0)
         say("cannot follow match " + std::to_string(info.match_id) + " of server " + std::to_string(info.server_id) +
             ": " + err);
@@ -435,6 +445,20 @@ void ServerLoop::publish_info(Scheduled &s) {
   info.server_time = s.last_frame_real;  // sim_time holds from the newest frame's deadline
   info.revision = ++s.revision;
   write(info, &stats_.infos_out);
+  // the whole model, when the server starts serving the match and when it changes (docs/protocol.md)
+  if (info.model_hash != s.model_written) {
+    MatchModelOut m;
+    m.match_id = info.match_id;
+    m.server_id = settings_.server_id;
+    m.model_hash = info.model_hash;
+    m.model = s.match->model();
+    if (port_.write(m)) {
+      stats_.models_out++;
+      s.model_written = info.model_hash;
+    } else {
+      stats_.totals.write_failures++;  // (written again with the next MatchInfo)
+    }
+  }
 }
 
 // ---- the phases ----------------------------------------------------------------

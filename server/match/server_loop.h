@@ -82,17 +82,20 @@ class ServerPort {
   virtual bool take_other_info(MatchInfoOut *info, ParticipantId *from) = 0;
   virtual bool take_other_segment(SegmentOut *segment, ParticipantId *from) = 0;
   virtual bool take_other_status(StatusOut *status, ParticipantId *from) = 0;
+  // the MatchModel of another server's match (a standby follows matches with it); false: none left
+  virtual bool take_other_model(MatchModelOut *model, ParticipantId *from) = 0;
   // false: the write was refused (counted as a write failure)
   [[nodiscard]] virtual bool write(const SegmentOut &s) = 0;
   [[nodiscard]] virtual bool write(const EventOut &e) = 0;
   [[nodiscard]] virtual bool write(const StateOut &s) = 0;
   [[nodiscard]] virtual bool write(const MatchInfoOut &i) = 0;
   [[nodiscard]] virtual bool write(const StatusOut &s) = 0;
+  [[nodiscard]] virtual bool write(const MatchModelOut &m) = 0;
   // Asserts the liveliness of every writer (docs/protocol.md: manual by
   // topic, lease 1 s); the loop calls it every kLivelinessPeriod. false: refused.
   virtual bool assert_liveliness() = 0;
-  // A match this server no longer has: its MatchInfo instance disposed (a
-  // late joiner is not handed it). false: refused.
+  // A match this server no longer has: its MatchInfo and MatchModel
+  // instances disposed (a late joiner is not handed them). false: refused.
   virtual bool dispose_match(uint32_t match_id) = 0;
 };
 
@@ -155,7 +158,7 @@ struct LoopSettings {
 // The loop's counters: the status line, ServerStatus, the stats file.
 struct LoopStats {
   StatusOut totals;             // the counters ServerStatus carries: samples, drops, controls, writes, frames, overruns
-  uint64_t infos_out = 0, statuses_out = 0;  // MatchInfo and ServerStatus written
+  uint64_t infos_out = 0, statuses_out = 0, models_out = 0;  // MatchInfo, ServerStatus and MatchModel written
   uint64_t skipped = 0;         // frames skipped after a stall
   uint64_t deadline_missed = 0, writers_lost = 0;
   uint64_t controls_at_door = 0;  // controls the control reader's door turned away (in controls_refused too)
@@ -245,6 +248,7 @@ class ServerLoop {
     double last_frame_real = 0.0;  // server s of the newest frame's deadline
     double next_info = 0.0;        // mono s of the next periodic MatchInfo
     uint32_t revision = 0;
+    uint64_t model_written = 0;    // the model hash of the newest MatchModel written (0: none yet)
     double firm_at = 0.0;          // mono s: no frame before (a claim settling)
     double since = 0.0;            // server s: when this server began to step it
     bool taken_over = false;       // from another server
@@ -305,6 +309,8 @@ class ServerLoop {
   std::function<void(const MatchInfoOut &, const ParticipantId &)> on_conflict_;
   std::function<void(const std::string &)> on_note_;
   std::map<uint32_t, Followed> followed_;
+  // the newest MatchModel of other servers' matches (a standby's), at most kMaxPeers matches
+  std::map<uint32_t, MatchModelOut> other_models_;
   std::map<ParticipantId, Peer> peers_;
   // a claimant's configured match -> its owner heard of, mono s it was lost (-1: alive)
   std::map<uint32_t, std::pair<ParticipantId, double>> owners_;

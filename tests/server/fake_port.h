@@ -47,11 +47,13 @@ struct FakePort : ServerPort {
   std::deque<std::pair<MatchInfoOut, ParticipantId>> others;
   std::deque<std::pair<SegmentOut, ParticipantId>> other_segments;
   std::deque<std::pair<StatusOut, ParticipantId>> other_status;
+  std::deque<std::pair<MatchModelOut, ParticipantId>> other_models;
   std::vector<SegmentOut> segments;
   std::vector<EventOut> events;
   std::vector<StateOut> states;
   std::vector<MatchInfoOut> infos;
   std::vector<StatusOut> statuses;
+  std::vector<MatchModelOut> models;
 
   void take_notes(std::vector<PortNote> *out) override {  // the first phase of every wake-up
     auto it = work.find(wakes++);
@@ -70,6 +72,7 @@ struct FakePort : ServerPort {
   bool take_other_info(MatchInfoOut *info, ParticipantId *from) override { return pop_from(others, info, from); }
   bool take_other_segment(SegmentOut *s, ParticipantId *from) override { return pop_from(other_segments, s, from); }
   bool take_other_status(StatusOut *s, ParticipantId *from) override { return pop_from(other_status, s, from); }
+  bool take_other_model(MatchModelOut *m, ParticipantId *from) override { return pop_from(other_models, m, from); }
   template <class T>
   static bool pop_from(std::deque<std::pair<T, ParticipantId>> &q, T *out, ParticipantId *from) {
     if (q.empty()) return false;
@@ -95,6 +98,7 @@ struct FakePort : ServerPort {
     return true;
   }
   bool write(const StatusOut &s) override { return keep(statuses, s); }
+  bool write(const MatchModelOut &m) override { return keep(models, m); }
   int asserted = 0;
   bool assert_liveliness() override {
     asserted++;

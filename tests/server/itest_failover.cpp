@@ -7,6 +7,7 @@
 // server stepped which match from when.
 #include <map>
 #include <set>
+#include <sstream>
 
 #include "ball/vec3.h"
 #include "itest_kit.h"
@@ -400,9 +401,75 @@ void case_claim(const Env &env) {
   CHECK_EQ(r1.yields + r2.yields, 0u);
 }
 
+// A primary on a court of its own scene file, a standby that has no such
+// file: the standby follows the match from the MatchModel on the wire
+// (docs/protocol.md, "The match's model") and takes it over at the kill;
+// the players rally on with it.
+void case_standby_no_scene(const Env &env) {
+  Case c{env};
+  // a longer, wider court than any scene the standby could find by its name
+  std::string court = path(env, "court_long.yaml");
+  {
+    std::ifstream in(env.source + "/libball/scenes/tennis.yaml");
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string s = text.str();
+    auto put = [&s](const std::string &from, const std::string &to) {
+      size_t at = s.find(from);
+      CHECK_MSG(at != std::string::npos, "tennis.yaml has no \"%s\"", from.c_str());
+      if (at != std::string::npos) s.replace(at, from.size(), to);
+    };
+    put("name: tennis", "name: court_long");
+    put("position: 11.885", "position: 14.0");
+    put("hi: 10.97", "hi: 12.5");
+    std::ofstream(court) << s;
+  }
+  Process primary = server(env, "primary", 1, {"--matches", "1", "--scene", court, "--startup-wait", "0"});
+  Process standby = server(env, "standby", 2, {"--standby", "--startup-wait", "0.5"});
+  Process w = ready_watcher(c, path(env, "watch.jsonl"), {});
+  Process b0 = program(env, "bot0", "ball-bot", {"--match", "0", "--player", "0", "--scene", court});
+  Process b1 = program(env, "bot1", "ball-bot", {"--match", "0", "--player", "1", "--scene", court});
+  Tail t(path(env, "watch.jsonl"));
+  CHECK_MSG(rallies(t, 1, 2, 30.0), "no 2 hits within 30 s on the long court");
+  usleep(1000000);  // the standby follows it
+  double killed = realtime_now();
+  primary.signal(SIGKILL);
+  primary.wait(2.0);
+  double end = mono_now() + 20.0;
+  int hits_after = 0;
+  bool owned = false;
+  while (mono_now() < end && hits_after < 3) {
+    usleep(100000);
+    t.poll();
+    hits_after = 0;
+    for (const auto &j : t.lines) {
+      if (!j.contains("recv") || recv(j) <= killed) continue;
+      owned = owned || (is_type(j, "match_info") && j.get<MatchInfoOut>().server_id == 2);
+      hits_after += is_hit(j) && j.get<EventOut>().server_id == 2;
+    }
+  }
+  b0.stop();
+  b1.stop();
+  w.stop();
+  stop_server(standby, "the standby");
+  ServerReport r = report(env, "standby");
+  std::string err = file_text(path(env, "standby.err")) + file_text(path(env, "standby.out"));
+  note("the standby without court_long.yaml: %llu take-overs, %llu follow failures; %d hits of its own after the "
+       "kill",
+       static_cast<unsigned long long>(r.takeovers), static_cast<unsigned long long>(r.follow_failures), hits_after);
+  CHECK(owned);
+  CHECK_EQ(r.takeovers, 1u);
+  CHECK_EQ(r.follow_failures, 0u);
+  CHECK_MSG(err.find("No such file") == std::string::npos, "the standby looked for a file: %s", err.c_str());
+  CHECK_MSG(hits_after >= 3, "%d hits from the standby after the kill", hits_after);
+  std::map<uint32_t, Seen> seen = by_match(t.lines);
+  check_stream(0, seen[0]);
+}
+
 }  // namespace
 
 TEST(failover) { itest::in_case(case_failover); }
+TEST(standby_no_scene) { itest::in_case(case_standby_no_scene); }
 TEST(standby_killed) { itest::in_case(case_standby_killed); }
 TEST(primary_back) { itest::in_case(case_primary_back); }
 TEST(claim) { itest::in_case(case_claim); }

@@ -145,11 +145,14 @@ struct StandbyRig {
   std::unique_ptr<ServerLoop> loop;
   Game owner;
   size_t segments_given = 0;
-  StandbyRig() {
+  bool give_model = false;  // the owner's MatchModel to the standby's port with every info
+  uint32_t revision = 0;    // the owner's MatchInfo revision
+  // with_scene: the standby has the owner's scene itself, by its name
+  explicit StandbyRig(bool with_scene = true) {
     ball_scene scene;
     ball_scene_default(&scene);
     std::string err;
-    host.add_scene("tennis", scene, &err);
+    if (with_scene) host.add_scene("tennis", scene, &err);
     port.clock = &clock;
     LoopSettings s;
     s.server_id = 2;
@@ -186,7 +189,15 @@ struct StandbyRig {
       MatchInfoOut i = owner.match.info();
       i.server_id = 1;
       i.server_time = clock.realtime();
-      i.revision = static_cast<uint32_t>(k + 1);
+      i.revision = ++revision;
+      if (give_model) {
+        MatchModelOut m;
+        m.match_id = i.match_id;
+        m.server_id = 1;
+        m.model = owner.match.model();
+        m.model_hash = ball_model_hash(&m.model);
+        port.other_models.push_back({m, owner_participant()});
+      }
       port.others.push_back({i, owner_participant()});
       clock.now += 1.0 / 60.0;
       loop->wake();
@@ -282,6 +293,58 @@ TEST(a_standby_takes_a_match_over_when_its_owner_is_lost) {
     CHECK_EQ(r.port.segments[k].seq, last_seq + 1 + static_cast<uint32_t>(k));
   ServerReport rep = r.loop->report();
   CHECK(rep.matches.size() == 1u && rep.matches[0].taken_over);
+}
+
+// A standby with no scene of the match's name follows the match from the
+// owner's MatchModel alone (docs/protocol.md, "The match's model"), through
+// a level change, and takes it over; without the model it cannot follow it,
+// and a model whose hash is not the info's is not taken.
+TEST(a_standby_without_the_scene_follows_from_the_wire_model) {
+  {
+    StandbyRig r(false);
+    r.play(1.0);
+    note("no scene, no model: %llu follow failures", (unsigned long long)r.loop->stats().follow_failures);
+    CHECK(r.loop->stats().follow_failures > 0u);
+    CHECK_EQ(r.loop->status_now().following, 0u);
+  }
+  {
+    StandbyRig r(false);
+    MatchModelOut forged;
+    forged.match_id = 7;
+    forged.model = r.owner.match.model();
+    forged.model.gravity = 3.7;  // not the owner's, under its hash
+    forged.model_hash = r.owner.match.info().model_hash;
+    r.port.other_models.push_back({forged, participant(99)});
+    r.play(0.5);
+    CHECK(r.loop->stats().follow_failures > 0u);
+    CHECK_EQ(r.loop->status_now().following, 0u);
+  }
+  StandbyRig r(false);
+  r.give_model = true;
+  r.play(2.0);
+  CHECK_EQ(r.loop->stats().follow_failures, 0u);
+  CHECK_EQ(r.loop->status_now().following, 1u);
+  uint64_t easy = r.owner.match.info().model_hash;
+  CHECK_EQ(r.host.find(7)->info().model_hash, easy);
+  // the owner's players go to the advanced level: a new model, followed
+  CHECK(r.owner.control(ControlKind::level, participant(1), -1, 3) == Reason::none);
+  r.play(1.0);
+  uint64_t advanced = r.owner.match.info().model_hash;
+  CHECK(advanced != easy);
+  CHECK_EQ(r.host.find(7)->info().model_hash, advanced);
+  r.port.notes.push_back({PortNote::server_lost, owner_participant(), 1});
+  double lost = r.clock.now;
+  while (r.loop->stats().takeovers == 0 && r.clock.now < lost + 2.0) r.loop->step();
+  CHECK_EQ(r.loop->stats().takeovers, 1u);
+  // the new owner writes the model it steps, once
+  while (r.clock.now < lost + 3.0) r.loop->step();
+  CHECK_EQ(r.port.models.size(), 1u);
+  if (!r.port.models.empty()) {
+    CHECK_EQ(r.port.models[0].server_id, 2u);
+    CHECK_EQ(r.port.models[0].model_hash, advanced);
+    CHECK_EQ(ball_model_hash(&r.port.models[0].model), advanced);
+  }
+  CHECK(!r.port.infos.empty() && r.port.infos.back().model_hash == advanced);
 }
 
 // A stranger writes one forged MatchInfo (or Segment) of the followed match

@@ -797,16 +797,18 @@ TEST(refused_writes_are_counted) {
   std::string err;
   CHECK(host.add_match(default_config(), scene, &err));
   ServerLoop loop(host, port, clock, LoopSettings{});
-  loop.start();  // one MatchInfo
+  loop.start();  // one MatchInfo and its MatchModel
   while (!loop.step()) {
-  }  // its periodic MatchInfo at 0.326 s (id 7: 7 x 0.618 mod 1 of the interval), then the status
-  CHECK_EQ(loop.stats().totals.write_failures, 3u);
+  }  // its periodic MatchInfo at 0.326 s (id 7: 7 x 0.618 mod 1 of the interval) and the model again, then the status
+  CHECK_EQ(loop.stats().totals.write_failures, 5u);
+  CHECK_EQ(loop.stats().models_out, 0u);
+  CHECK_EQ(port.models.size(), 0u);
   CHECK_EQ(loop.stats().infos_out, 0u);
   CHECK_EQ(port.infos.size(), 0u);
   port.refuse = false;
   loop.finish();
   CHECK_EQ(port.statuses.size(), 1u);
-  CHECK_EQ(loop.report().status.write_failures, 3u);
+  CHECK_EQ(loop.report().status.write_failures, 5u);
 }
 
 TEST(a_create_schedules_the_new_match) {
