@@ -14,6 +14,10 @@ const char *ball_strerror(ball_status status) {
     case BALL_EIO: return "file cannot be read";
     case BALL_ENOMEM: return "out of memory";
     case BALL_EDUPLICATE: return "racket sample identical to one already kept: ignored";
+    case BALL_ENOMATCH: return "no such match on this client (not followed, or no slot held)";
+    case BALL_EAGAIN: return "not yet: the server has not said enough";
+    case BALL_ENETWORK: return "the network refused";
+    case BALL_ECLOSED: return "the client is closed";
     case BALL_STATUS_COUNT: break;
   }
   return "unknown status";

@@ -67,6 +67,11 @@ typedef enum ball_status {
   BALL_EIO,         /* a file that cannot be read */
   BALL_ENOMEM,      /* an allocation failed (scene loader only) */
   BALL_EDUPLICATE,  /* a racket sample identical to one already kept: ignored */
+  /* the client library's (ball/net.h) */
+  BALL_ENOMATCH,    /* a match the client does not follow, or holds no slot of */
+  BALL_EAGAIN,      /* not yet: the server has not said enough (no clock, segment or model) */
+  BALL_ENETWORK,    /* the network refused: a DDS entity could not be made, a write was refused */
+  BALL_ECLOSED,     /* the client is closed */
   BALL_STATUS_COUNT
 } ball_status;
 
