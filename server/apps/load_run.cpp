@@ -128,7 +128,7 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
     bool ok = group.tick(port, now, real, [&](const SegmentOut &seg, double tick) {
       if (!measuring || seg.cause != Cause::racket || !seg.sample.valid) return;
       // when DDS received it, not this tick's time (ticks are kTick apart)
-      double recv = seg.received > 0.0 ? seg.received : tick;
+      double recv = seg.reception.received > 0.0 ? seg.reception.received : tick;
       part.latency.push_back(recv - seg.sample.source_time);
       const MatchInfoOut *info = port.info(seg.match_id);
       // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one;
@@ -136,9 +136,9 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       if (info && info->time_base > 0.0 && info->server_time > 0.0 && !seg.correction) {
         double hit = server_time_of(*info, seg.segment.t0);
         part.hit_to_wire.push_back(recv - hit);
-        if (seg.written > 0.0 && seg.received > 0.0) {  // its two parts, where DDS said both
-          part.hit_to_write.push_back(seg.written - hit);
-          part.delivery.push_back(seg.received - seg.written);
+        if (seg.reception.written > 0.0 && seg.reception.received > 0.0) {  // its two parts, where DDS said both
+          part.hit_to_write.push_back(seg.reception.written - hit);
+          part.delivery.push_back(seg.reception.received - seg.reception.written);
         }
       }
     });

@@ -63,12 +63,6 @@ class CountingPort : public ClientPort {
   std::map<uint32_t, MatchInfoOut> infos_;
 };
 
-// Bytes of one sample of each topic's type as written: its CDR encoding
-// with the 4-byte encapsulation header (the types are fixed-size, so every
-// sample of a type has the same size; dds::wire_sizes() gives them).
-struct WireSizes {
-  uint64_t sample = 0, control = 0, segment = 0, event = 0, state = 0, info = 0, status = 0;
-};
 // Payload bytes of the server's samples among `c` (taken), and of the
 // client's own (written). RTPS, UDP and IP headers, heartbeats,
 // acknowledgements, resends and discovery are not in them.

@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "domain.h"
-#include "load.h"
 #include "port.h"
 
 namespace ballsrv {
@@ -61,9 +60,9 @@ class ClientEndpoints : public ClientPort {
     while (r.take(out, &meta)) {
       auto it = bound_.find(out->server_id);
       if (it == bound_.end() || prefix_fits(meta.from, it->second)) {
-        if constexpr (std::is_same_v<T, SegmentOut>) {
-          out->received = meta.reception_time;
-          out->written = meta.source_time;
+        if constexpr (!std::is_same_v<T, StatusOut> && !std::is_same_v<T, MatchModelOut>) {
+          out->reception.received = meta.reception_time;
+          out->reception.written = meta.source_time;
         }
         return true;
       }

@@ -35,6 +35,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <future>
 #include <iterator>
 #include <thread>
 #include <algorithm>
@@ -527,21 +528,26 @@ std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_f
            std::to_string(kMaxDomain) + " onto UDP ports";
     return nullptr;
   }
-  {
+  const bool builtin = profile_file.empty();
+  const std::string profiles = builtin ? std::string("the built-in QoS profiles") : "QoS profile file " + profile_file;
+  if (!builtin) {
     std::ifstream f(profile_file);
     if (!f) {
-      *err = "QoS profile file " + profile_file + ": " + std::strerror(errno);
+      *err = profiles + ": " + std::strerror(errno);
       return nullptr;
     }
   }
   auto *factory = fdds::DomainParticipantFactory::get_instance();
+  // Fast DDS keeps the profiles it loaded for the process: each source is loaded once
   static std::mutex load_mutex;
   static std::set<std::string> loaded;
   {
     std::lock_guard<std::mutex> lock(load_mutex);
     if (!loaded.count(profile_file)) {
-      if (factory->load_XML_profiles_file(profile_file) != ReturnCode_t::RETCODE_OK) {
-        *err = "QoS profile file " + profile_file + ": not a valid Fast DDS profile file";
+      ReturnCode_t rc = builtin ? factory->load_XML_profiles_string(kBuiltinProfiles, std::strlen(kBuiltinProfiles))
+                                : factory->load_XML_profiles_file(profile_file);
+      if (rc != ReturnCode_t::RETCODE_OK) {
+        *err = profiles + ": not a valid Fast DDS profile file";
         return nullptr;
       }
       loaded.insert(profile_file);
@@ -549,7 +555,7 @@ std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_f
   }
   fdds::DomainParticipantQos qos;
   if (factory->get_participant_qos_from_profile(participant_profile, qos) != ReturnCode_t::RETCODE_OK) {
-    *err = "QoS profile file " + profile_file + ": no participant profile \"" + participant_profile + "\"";
+    *err = profiles + ": no participant profile \"" + participant_profile + "\"";
     return nullptr;
   }
   if (!discovery_servers.empty() && !use_discovery_servers(discovery_servers, &qos, err)) {
@@ -613,6 +619,26 @@ void run_bounded(const std::function<void()> &work, double limit, const std::str
 }
 
 Domain::Domain(Key) {}
+
+bool Domain::close(double limit) {
+  if (!impl_) return true;
+  // the entities are deleted on a thread of their own that this one waits for at most `limit`
+  std::shared_ptr<Impl> impl(impl_.release());
+  auto done = std::make_shared<std::promise<void>>();
+  std::future<void> finished = done->get_future();
+  std::thread worker([impl, done]() mutable {
+    impl.reset();
+    done->set_value();
+  });
+  impl.reset();
+  if (finished.wait_for(std::chrono::duration<double>(limit)) == std::future_status::ready) {
+    worker.join();
+    return true;
+  }
+  worker.detach();  // (stuck inside Fast DDS: its entities are left to it)
+  return false;
+}
+
 Domain::~Domain() {
   if (!impl_ || !impl_->participant) return;
   std::string name = impl_->participant->get_qos().name().c_str();

@@ -29,6 +29,10 @@ class DataReader;
 namespace ballsrv {
 namespace dds {
 
+// The QoS profiles of server/qos/ball_qos.xml, built into the code (a
+// client library needs no file): the text of the file, as the build read it.
+extern const char *const kBuiltinProfiles;
+
 // Topic names (docs/protocol.md).
 constexpr const char *kRacketTopic = "ball/racket_samples";
 constexpr const char *kStateTopic = "ball/ball_state";
@@ -219,7 +223,7 @@ class Domain {
 
  public:
   explicit Domain(Key);
-  // Loads `profile_file` (once per process), then creates the participant
+  // Loads `profile_file` (once per process; "": kBuiltinProfiles), then creates the participant
   // with `participant_profile` on `domain_id`. A non-empty
   // `discovery_servers` (HOST:PORT[;HOST:PORT...], ROS_DISCOVERY_SERVER's
   // syntax: the n-th entry is server id n) replaces the Discovery Servers of
@@ -234,6 +238,11 @@ class Domain {
                                       const std::string &participant_profile, const std::string &discovery_servers,
                                       const std::string &name, std::string *err, const Security &security = {});
   ~Domain();
+  // Deletes the entities as the destructor does, but never ends the
+  // process (for a library): false when Fast DDS did not finish within
+  // `limit` s; its entities are left to it, and the Domain is closed all
+  // the same (every handle of it is dead from now on).
+  bool close(double limit);
   Domain(const Domain &) = delete;
   Domain &operator=(const Domain &) = delete;
 

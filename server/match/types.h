@@ -244,6 +244,13 @@ inline bool operator==(const PlayState &a, const PlayState &b) {
   return same;
 }
 
+// When a reader's DDS took a server sample, for its clock and its delays:
+// not on the wire.
+struct Reception {
+  double received = 0.0;  // realtime s its DDS reader received it (0: unknown)
+  double written = 0.0;   // its DDS source timestamp, the writer's realtime s (0: unknown)
+};
+
 // server -> clients: a flight segment (Segment). Every server sample carries
 // the server's id and the server s of its publication; the loop fills them in.
 struct SegmentOut {
@@ -259,8 +266,7 @@ struct SegmentOut {
   uint64_t model_hash = 0;    // ball_model_hash of the model that made it
   SampleRef sample;           // RACKET: the hitting racket's newest sample
   PlayState play;             // the rules' state once its collision is judged
-  double received = 0.0;      // a reader's: realtime s its DDS reader received it (0: unknown); not on the wire
-  double written = 0.0;       // a reader's: its DDS source timestamp, the writer's realtime s (0: unknown); not on the wire
+  Reception reception;        // a reader's, not on the wire
 };
 
 // server -> clients: a collision or a match event (Event).
@@ -282,6 +288,7 @@ struct EventOut {
   Reason reason = Reason::none;    // POINT, PAUSE, REFUSED: why
   std::array<int, 2> score{0, 0};  // points of side 0 and side 1 after the event
   double value = 0.0;              // LEVEL: the level; TIME_BASE: sim s per real s; REFUSED: the control's seq
+  Reception reception;             // a reader's, not on the wire
 };
 
 // server -> clients: the ball after a frame (BallState).
@@ -295,6 +302,7 @@ struct StateOut {
   uint32_t segment_seq = 0;   // the segment this state lies on
   ball_state ball{};          // position m, velocity m/s, spin m/s (libball's ball_state)
   uint64_t sim_hash = 0;      // ball_sim_hash after the step
+  Reception reception;             // a reader's, not on the wire
 };
 
 // A player slot as MatchInfo shows it.
@@ -351,6 +359,7 @@ struct MatchInfoOut {
   uint64_t seed = 0;               // the serves' placement
   double max_racket_speed = 0.0;   // m/s: a faster implied racket is refused
   double racket_margin = 0.0;      // m: how far beyond its half a racket may be
+  Reception reception;             // a reader's, not on the wire
 };
 
 // server -> clients: the whole model a match is stepped with (MatchModel:

@@ -1,7 +1,7 @@
-// What a client takes from and gives to the network, free of DDS: the bots
-// (PlayerGroup), the load generator and the watcher are fed through it.
-// server/dds implements it over DDS (dds::ClientEndpoints); the tests feed
-// the same cores from a Match.
+// What a client takes from and gives to the network, free of DDS: the
+// client library's core (ClientCore), the bots (PlayerGroup), the load
+// generator and the watcher are fed through it. server/dds implements it
+// over DDS (dds::ClientEndpoints); the tests feed the same cores from a Match.
 #pragma once
 
 #include <cstdint>
@@ -9,6 +9,13 @@
 #include "types.h"
 
 namespace ballsrv {
+
+// Bytes of one sample of each topic's type as written: its CDR encoding
+// with the 4-byte encapsulation header (the types are fixed-size, so every
+// sample of a type has the same size; dds::wire_sizes() gives them).
+struct WireSizes {
+  uint64_t sample = 0, control = 0, segment = 0, event = 0, state = 0, info = 0, status = 0;
+};
 
 class ClientPort {
  public:

@@ -12,6 +12,8 @@
 // latency alone: a fraction of a millisecond on loopback.
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 
@@ -44,6 +46,9 @@ class SimClock {
     outliers_ = 0;
     offsets_[next_ % kWindow] = offset;
     next_++;
+    best_ = offsets_[0];  // the minimum kept, for every reading of the clock
+    for (size_t i = 1, n = next_ < kWindow ? next_ : kWindow; i < n; ++i)
+      if (offsets_[i] < best_) best_ = offsets_[i];
     // the newest anchor wins when it is at least as recent (pairs can arrive out of order)
     if (!valid_ || server_time >= server_time_) {
       sim_time_ = sim_time;
@@ -57,12 +62,16 @@ class SimClock {
 
   bool valid() const { return valid_; }
 
-  double offset() const {
+  double offset() const { return best_; }
+  // How far one pair's offset strays above the minimum: the median of the
+  // window's offsets less their minimum (s; 0 without pairs).
+  double spread() const {
     size_t n = next_ < kWindow ? next_ : kWindow;
-    double best = offsets_[0];
-    for (size_t i = 1; i < n; ++i)
-      if (offsets_[i] < best) best = offsets_[i];
-    return best;
+    if (n == 0) return 0.0;
+    std::array<double, kWindow> sorted;
+    std::copy(offsets_, offsets_ + n, sorted.begin());
+    std::nth_element(sorted.begin(), sorted.begin() + n / 2, sorted.begin() + n);
+    return sorted[n / 2] - best_;
   }
 
   double server_now(double local_now) const { return local_now - offset(); }
@@ -73,6 +82,13 @@ class SimClock {
     double ahead = server_now(local_now) - server_time_;
     if (ahead < 0.0) ahead = 0.0;
     return sim_time_ + ahead * time_base_;
+  }
+
+  // The local time at which the sim clock reads `sim` (while it runs; else
+  // the present reading's: local_now). The inverse of sim_now.
+  double local_at(double sim, double local_now) const {
+    if (!valid_ || !running_) return local_now;
+    return server_time_ + (sim - sim_time_) / time_base_ + offset();
   }
 
   bool running() const { return running_; }
@@ -88,6 +104,7 @@ class SimClock {
   int outliers_ = 0;            // pairs in a row that did not fit
   double outlier_offset_ = 0.0; // the newest of them
   double offsets_[kWindow] = {0};
+  double best_ = 0.0;  // their minimum
   size_t next_ = 0;
   bool valid_ = false;
   bool running_ = false;

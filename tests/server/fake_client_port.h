@@ -18,6 +18,7 @@ struct FakeClientPort : ClientPort {
   std::deque<EventOut> events;
   std::deque<StateOut> states;
   std::deque<StatusOut> statuses;
+  std::deque<MatchModelOut> models;
   std::deque<RacketSampleIn> rackets;  // the players' samples, as a watcher reads them
   std::vector<RacketSampleIn> samples;
   std::vector<ControlIn> controls;
@@ -35,6 +36,7 @@ struct FakeClientPort : ClientPort {
   bool take(StateOut *s) override { return pop(states, s); }
   bool take(EventOut *e) override { return pop(events, e); }
   bool take(StatusOut *s) override { return pop(statuses, s); }
+  bool take(MatchModelOut *m) override { return pop(models, m); }
   bool take(RacketSampleIn *s) override { return pop(rackets, s); }
   bool write(const RacketSampleIn &s) override {
     if (!refuse) samples.push_back(s);

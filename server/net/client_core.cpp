@@ -1,0 +1,278 @@
+#include "client_core.h"
+
+#include <cmath>
+
+namespace ballsrv {
+
+namespace {
+
+constexpr double kMinNormal = 1e-6;  // a racket normal shorter than this is none (the server's zero_normal)
+constexpr double kMaxNormal = 1e6;   // longer: out of range
+
+bool finite3(const ball_vec3 &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+double norm(const ball_vec3 &v) { return std::sqrt(v.x * v.x + v.y * v.y + v.z * v.z); }
+
+ball_status refuse(ball_status st, const std::string &sentence, std::string *why) {
+  *why = sentence;
+  return st;
+}
+
+std::string match_name(uint32_t m) { return "match " + std::to_string(m); }
+
+}  // namespace
+
+ClientCore::ClientCore(const CoreSettings &settings, const ParticipantId &me) : settings_(settings), me_(me) {}
+
+ClientCore::Followed *ClientCore::followed(uint32_t match) {
+  auto it = followed_.find(match);
+  return it == followed_.end() ? nullptr : &it->second;
+}
+
+const MatchView *ClientCore::view(uint32_t match) const {
+  auto it = followed_.find(match);
+  return it == followed_.end() ? nullptr : it->second.view.get();
+}
+
+const OwnCounters *ClientCore::own(uint32_t match) const {
+  auto it = followed_.find(match);
+  return it == followed_.end() ? nullptr : &it->second.own;
+}
+
+ClientCore::Followed *ClientCore::follow(uint32_t match, std::string *why) {
+  if (Followed *f = followed(match)) return f;
+  if (followed_.size() >= settings_.max_matches) {
+    *why = "the client follows " + std::to_string(followed_.size()) + " matches, its room (max_matches)";
+    return nullptr;
+  }
+  Followed &f = followed_[match];
+  f.view = std::make_unique<MatchView>(match, settings_.servers, me_);
+  // what the listing holds of it already: the view starts from it
+  auto l = listed_.find(match);
+  if (l != listed_.end()) {
+    scratch_.clear();
+    f.view->on_info(l->second.info, l->second.heard, &scratch_);
+    events_.insert(events_.end(), scratch_.begin(), scratch_.end());
+  }
+  return &f;
+}
+
+void ClientCore::take_info(const MatchInfoOut &info, double local) {
+  if (!settings_.servers.accepts(info.server_id) || !usable_info(info)) {
+    if (!followed(info.match_id)) refused_++;
+  } else if (listed_.count(info.match_id) || listed_.size() < settings_.max_matches) {
+    Listed &l = listed_[info.match_id];
+    l.info = info;
+    l.heard = local;
+  }
+  if (Followed *f = followed(info.match_id)) f->view->on_info(info, local, &scratch_);
+}
+
+void ClientCore::pump(ClientPort &port, double local, double real) {
+  const double shift = local - real;  // the realtime clock to the caller's
+  auto at = [&](const Reception &r) { return r.received > 0.0 ? r.received + shift : local; };
+  auto delay = [&](MatchView *v, const Reception &r) {
+    if (r.received > 0.0 && r.written > 0.0) v->on_delay(r.received - r.written);
+  };
+  scratch_.clear();
+  // models before infos: a view takes the model its info names at once
+  MatchModelOut model;
+  while (port.take(&model))
+    if (Followed *f = followed(model.match_id)) f->view->on_model(model);
+  MatchInfoOut info;
+  while (port.take(&info)) {
+    take_info(info, at(info.reception));
+    if (Followed *f = followed(info.match_id)) delay(f->view.get(), info.reception);
+  }
+  StateOut state;
+  while (port.take(&state))
+    if (Followed *f = followed(state.match_id)) f->view->on_state(state, at(state.reception));
+  SegmentOut seg;
+  while (port.take(&seg))
+    if (Followed *f = followed(seg.match_id)) {
+      f->view->on_segment(seg, at(seg.reception), &scratch_);
+      delay(f->view.get(), seg.reception);
+    }
+  EventOut ev;
+  while (port.take(&ev))
+    if (Followed *f = followed(ev.match_id)) f->view->on_event(ev, at(ev.reception), &scratch_);
+  StatusOut status;
+  while (port.take(&status)) {
+  }
+  events_.insert(events_.end(), scratch_.begin(), scratch_.end());
+  send_due(port, local);
+}
+
+bool ClientCore::write(ClientPort &port, const ControlIn &c, Followed *f) {
+  if (port.write(c)) return true;
+  if (f) f->own.write_failures++;
+  else lost_writes_++;
+  return false;
+}
+
+void ClientCore::send_due(ClientPort &port, double local) {
+  for (auto &kv : followed_) {
+    Followed &f = kv.second;
+    int slot = f.view->slot();
+    bool holds = slot >= 0 && (f.want < 0 || slot == f.want);
+    if (!f.joining || holds || local < f.next_join) continue;
+    ControlIn c;
+    c.match_id = kv.first;
+    c.seq = ++control_seq_;
+    c.kind = ControlKind::join;
+    c.player = f.want;
+    write(port, c, &f);
+    f.next_join = local + settings_.retry;
+  }
+  for (auto it = creating_.begin(); it != creating_.end();) {
+    if (listed_.count(it->first)) {  // its MatchInfo came: created (by whomever)
+      it = creating_.erase(it);
+      continue;
+    }
+    if (local >= it->second.next) {
+      it->second.control.seq = ++control_seq_;
+      write(port, it->second.control, followed(it->first));
+      it->second.next = local + settings_.retry;
+    }
+    ++it;
+  }
+}
+
+ball_status ClientCore::watch(uint32_t match, std::string *why) {
+  return follow(match, why) ? BALL_OK : BALL_ENOSPACE;
+}
+
+ball_status ClientCore::unwatch(uint32_t match, ClientPort &port, std::string *why) {
+  Followed *f = followed(match);
+  if (!f) return refuse(BALL_ENOMATCH, "the client does not follow " + match_name(match), why);
+  if (f->view->slot() >= 0) leave(match, port, why);
+  followed_.erase(match);
+  return BALL_OK;
+}
+
+ball_status ClientCore::join(uint32_t match, int slot, ClientPort &port, double local, std::string *why) {
+  if (slot < -1 || slot >= kMaxPlayers)
+    return refuse(BALL_ERANGE, "slot " + std::to_string(slot) + " is not -1 (any) or in [0, " +
+                                   std::to_string(kMaxPlayers - 1) + "]",
+                  why);
+  Followed *f = follow(match, why);
+  if (!f) return BALL_ENOSPACE;
+  f->joining = true;
+  f->want = slot;
+  f->next_join = local;
+  send_due(port, local);
+  return BALL_OK;
+}
+
+ball_status ClientCore::leave(uint32_t match, ClientPort &port, std::string *why) {
+  Followed *f = followed(match);
+  if (!f || (!f->joining && f->view->slot() < 0))
+    return refuse(BALL_ENOMATCH, "the client has not joined " + match_name(match), why);
+  f->joining = false;
+  int slot = f->view->slot();
+  if (slot < 0) return BALL_OK;  // (it never got one: nothing to give up)
+  ControlIn c;
+  c.match_id = match;
+  c.seq = ++control_seq_;
+  c.kind = ControlKind::leave;
+  c.player = slot;
+  if (!write(port, c, f)) return refuse(BALL_ENETWORK, "DDS refused the LEAVE of " + match_name(match), why);
+  return BALL_OK;
+}
+
+int ClientCore::leave_all(ClientPort &port) {
+  int n = 0;
+  std::string why;
+  for (auto &kv : followed_)
+    if (kv.second.view->slot() >= 0) n += leave(kv.first, port, &why) == BALL_OK;
+  return n;
+}
+
+ball_status ClientCore::create(uint32_t match, const std::string &scene, int players, int level, ClientPort &port,
+                               double local, std::string *why) {
+  if (players < 1 || players > kMaxPlayers)
+    return refuse(BALL_ERANGE, "players " + std::to_string(players) + " is not in [1, " + std::to_string(kMaxPlayers) + "]",
+                  why);
+  if (level < BALL_LEVEL_CUSTOM || level > BALL_LEVEL_ADVANCED)
+    return refuse(BALL_ERANGE, "level " + std::to_string(level) + " is not in [0, 3]", why);
+  if (scene.empty() || scene.size() >= static_cast<size_t>(kNameLen) || !plain_scene_name(scene))
+    return refuse(BALL_ERANGE, "scene \"" + scene + "\" is not a name of 1 to 31 letters, digits, '_' or '-'", why);
+  Creating &c = creating_[match];
+  c.control.match_id = match;
+  c.control.kind = ControlKind::create;
+  c.control.scene = scene;
+  c.control.players = players;
+  c.control.level = level;
+  c.next = local;
+  send_due(port, local);
+  return BALL_OK;
+}
+
+ball_status ClientCore::ask(uint32_t match, ControlKind kind, double value, ClientPort &port, std::string *why) {
+  Followed *f = followed(match);
+  if (!f || f->view->slot() < 0) return refuse(BALL_ENOMATCH, "the client holds no slot of " + match_name(match), why);
+  ControlIn c;
+  c.match_id = match;
+  c.seq = ++control_seq_;
+  c.kind = kind;
+  c.player = f->view->slot();
+  if (kind == ControlKind::level) {
+    if (!(value >= BALL_LEVEL_EASY && value <= BALL_LEVEL_ADVANCED) || value != std::floor(value))
+      return refuse(BALL_ERANGE, "level " + std::to_string(value) + " is not 1, 2 or 3", why);
+    c.level = static_cast<int>(value);
+  } else if (kind == ControlKind::time_base) {
+    if (!(value >= 0.05 && value <= 20.0)) return refuse(BALL_ERANGE, "time base " + std::to_string(value) + " is not in [0.05, 20]", why);
+    c.time_base = value;
+  } else if (kind != ControlKind::serve && kind != ControlKind::pause && kind != ControlKind::resume) {
+    return refuse(BALL_EINVAL, std::string("a player does not ask for ") + name_of(kind), why);
+  }
+  if (!write(port, c, f)) return refuse(BALL_ENETWORK, "DDS refused the request", why);
+  return BALL_OK;
+}
+
+ball_status ClientCore::push(uint32_t match, double local, ball_vec3 center, ball_vec3 normal, ClientPort &port,
+                             std::string *why) {
+  Followed *f = followed(match);
+  if (!f || f->view->slot() < 0) return refuse(BALL_ENOMATCH, "the client holds no slot of " + match_name(match), why);
+  if (!std::isfinite(local) || !finite3(center) || !finite3(normal))
+    return refuse(BALL_ENONFINITE, "a racket pose with NaN or infinity in its time, centre or normal", why);
+  double n = norm(normal);
+  if (!(n >= kMinNormal && n <= kMaxNormal))
+    return refuse(BALL_ERANGE, "a racket normal of length " + std::to_string(n) + ", not in [1e-6, 1e6]", why);
+  if (std::fabs(center.x) > BALL_MAX_COORD || std::fabs(center.y) > BALL_MAX_COORD || std::fabs(center.z) > BALL_MAX_COORD)
+    return refuse(BALL_ERANGE, "a racket centre beyond 1e9 m", why);
+  const MatchView &v = *f->view;
+  if (!v.clock().valid()) return refuse(BALL_EAGAIN, "the clock of " + match_name(match) + " is not known yet", why);
+  if (f->pushed && !(local > f->last_push))
+    return refuse(BALL_ESTALE, "a racket pose at " + std::to_string(local) + " s, not after the previous one's", why);
+  RacketSampleIn s;
+  s.match_id = match;
+  s.player = v.slot();
+  s.seq = f->sample_seq + 1;
+  s.capture_time = v.clock().sim_now(local);
+  s.center = center;
+  s.normal = normal;
+  if (!port.write(s)) {
+    f->own.write_failures++;
+    return refuse(BALL_ENETWORK, "DDS refused the racket sample", why);
+  }
+  f->sample_seq = s.seq;
+  f->pushed = true;
+  f->last_push = local;
+  f->own.samples++;
+  return BALL_OK;
+}
+
+std::vector<const Listed *> ClientCore::matches(double local) const {
+  std::vector<const Listed *> out;
+  for (const auto &kv : listed_)
+    if (local - kv.second.heard <= settings_.silence) out.push_back(&kv.second);
+  return out;
+}
+
+const Listed *ClientCore::listed(uint32_t match, double local) const {
+  auto it = listed_.find(match);
+  if (it == listed_.end() || local - it->second.heard > settings_.silence) return nullptr;
+  return &it->second;
+}
+
+}  // namespace ballsrv

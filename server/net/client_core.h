@@ -1,0 +1,104 @@
+// The client library's core (docs/client.md), free of DDS: the matches a
+// client follows (a MatchView each), the matches the domain serves, and
+// what the client asked for (JOIN, CREATE), sent again until the server
+// answers, as docs/protocol.md says a client must. A ClientPort brings the
+// server's samples and takes the client's; ball/net.h's C API is a thin
+// shell over one, and the tests drive one from a Match.
+#pragma once
+
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "match_view.h"
+#include "port.h"
+
+namespace ballsrv {
+
+struct CoreSettings {
+  ServerChoice servers;         // whose samples it takes
+  double retry = 0.5;           // s between a JOIN or a CREATE and the next while the server has not answered
+  double silence = 3.0;         // s a match goes unheard before it is not listed (a server writes it once a second)
+  size_t max_matches = 4096;    // matches listed and followed at most (the readers' room)
+};
+
+// A match the domain serves: its newest usable MatchInfo.
+struct Listed {
+  MatchInfoOut info;
+  double heard = 0.0;  // the caller's clock when it came
+};
+
+// What a followed match counts of the client's own writes.
+struct OwnCounters {
+  uint64_t samples = 0;         // racket poses written
+  uint64_t write_failures = 0;  // poses and controls DDS refused
+};
+
+class ClientCore {
+ public:
+  ClientCore(const CoreSettings &settings, const ParticipantId &me);
+
+  // Takes everything `port` holds to the matches; then writes the JOINs and
+  // CREATEs due. `local` is the caller's clock now, `real` the realtime
+  // clock now (DDS stamps a reception with it).
+  void pump(ClientPort &port, double local, double real);
+
+  // The client's requests; false with a sentence in *why (the status in
+  // *status) when refused, and nothing changes.
+  ball_status watch(uint32_t match, std::string *why);
+  ball_status unwatch(uint32_t match, ClientPort &port, std::string *why);
+  ball_status join(uint32_t match, int slot, ClientPort &port, double local, std::string *why);
+  ball_status leave(uint32_t match, ClientPort &port, std::string *why);
+  ball_status create(uint32_t match, const std::string &scene, int players, int level, ClientPort &port,
+                     double local, std::string *why);
+  ball_status ask(uint32_t match, ControlKind kind, double value, ClientPort &port, std::string *why);
+  // The racket's pose at `local`, mapped to the sim clock, numbered and written.
+  ball_status push(uint32_t match, double local, ball_vec3 center, ball_vec3 normal, ClientPort &port,
+                   std::string *why);
+  // A LEAVE for every slot held (a client closing); how many were written.
+  int leave_all(ClientPort &port);
+
+  const MatchView *view(uint32_t match) const;  // nullptr: not followed
+  const OwnCounters *own(uint32_t match) const;
+  std::vector<const Listed *> matches(double local) const;  // listed now (heard within `silence`), by id
+  const Listed *listed(uint32_t match, double local) const;
+  std::deque<ViewEvent> &events() { return events_; }  // of every followed match, in order, not taken yet
+  uint64_t refused() const { return refused_; }        // samples of matches it does not follow that were not usable
+
+ private:
+  struct Followed {
+    std::unique_ptr<MatchView> view;
+    bool joining = false;   // it wants a slot (join until leave)
+    int want = -1;          // the slot wanted, -1 any
+    double next_join = 0.0; // the caller's clock of the next JOIN
+    uint32_t sample_seq = 0;
+    bool pushed = false;
+    double last_push = 0.0; // the caller's clock of the newest pose
+    OwnCounters own;
+  };
+  struct Creating {
+    ControlIn control;
+    double next = 0.0;  // the caller's clock of the next CREATE
+  };
+  Followed *followed(uint32_t match);
+  Followed *follow(uint32_t match, std::string *why);
+  bool write(ClientPort &port, const ControlIn &c, Followed *f);
+  void take_info(const MatchInfoOut &info, double local);
+  void send_due(ClientPort &port, double local);
+
+  CoreSettings settings_;
+  ParticipantId me_;
+  std::map<uint32_t, Followed> followed_;
+  std::map<uint32_t, Listed> listed_;
+  std::map<uint32_t, Creating> creating_;
+  std::deque<ViewEvent> events_;
+  std::vector<ViewEvent> scratch_;
+  uint32_t control_seq_ = 0;
+  uint64_t refused_ = 0;
+  uint64_t lost_writes_ = 0;  // controls DDS refused outside a followed match (CREATE)
+};
+
+}  // namespace ballsrv

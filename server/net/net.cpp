@@ -1,0 +1,579 @@
+// ball/net.h: the client library's C API, a thin shell over ClientCore
+// (client_core.h) and a DDS participant (server/dds's Domain and client
+// endpoints). Every call checks its arguments, catches every exception,
+// keeps its sentence in the client and returns a ball_status.
+#include "ball/net.h"
+
+#include <time.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <memory>
+#include <new>
+#include <string>
+
+#include "client_core.h"
+#include "client_endpoints.h"
+#include "domain.h"
+
+using namespace ballsrv;
+
+// The C enums are the wire's, value for value (types.h lists the wire's once).
+static_assert(static_cast<int>(MatchState::waiting) == BALL_NET_WAITING && static_cast<int>(MatchState::playing) == BALL_NET_PLAYING &&
+                  static_cast<int>(MatchState::paused) == BALL_NET_PAUSED && kEnumCount<MatchState> == BALL_NET_STATE_COUNT,
+              "ball_net_state is MatchState");
+static_assert(static_cast<int>(Cause::serve) == BALL_NET_CAUSE_SERVE && static_cast<int>(Cause::racket) == BALL_NET_CAUSE_RACKET &&
+                  kEnumCount<Cause> == BALL_NET_CAUSE_COUNT,
+              "ball_net_cause is Cause");
+static_assert(static_cast<int>(EventKind::floor) == BALL_NET_EVENT_FLOOR &&
+                  static_cast<int>(EventKind::refused) == BALL_NET_EVENT_REFUSED &&
+                  kEnumCount<EventKind> == BALL_NET_EVENT_SERVER,
+              "ball_net_event_kind begins with EventKind");
+static_assert(static_cast<int>(Reason::refused_state) == BALL_NET_REFUSED_STATE && kEnumCount<Reason> == BALL_NET_REASON_COUNT,
+              "ball_net_reason is Reason");
+static_assert(kMaxPlayers == BALL_NET_MAX_PLAYERS && kNameLen == BALL_NET_NAME_LEN, "ball/net.h's sizes are the wire's");
+
+namespace {
+
+constexpr double kLeaveGrace = 0.2;      // s a LEAVE is given to get out before the participant goes
+constexpr double kTeardownLimit = 3.0;   // s Fast DDS is given to delete the entities (dds::kTeardownLimit)
+constexpr int kMaxMatches = dds::kClientRoom;
+constexpr int kWritersPerMatch = 1;      // a client writes one slot's samples in a match
+
+double system_clock(clockid_t id) {
+  struct timespec ts;
+  clock_gettime(id, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+double monotonic(void *) { return system_clock(CLOCK_MONOTONIC); }
+
+// The client's port: the endpoints' readers, and its writers, one pair per
+// DDS partition (under DDS Security a player writes in its match's,
+// match/<id>, made when first needed; on an open domain one pair).
+class NetPort : public ClientPort {
+ public:
+  NetPort(dds::Domain &domain, std::unique_ptr<dds::ClientEndpoints> readers, int matches)
+      : domain_(domain), readers_(std::move(readers)), matches_(matches) {}
+  bool take(MatchInfoOut *i) override { return readers_->take(i); }
+  bool take(SegmentOut *s) override { return readers_->take(s); }
+  bool take(StateOut *s) override { return readers_->take(s); }
+  bool take(EventOut *e) override { return readers_->take(e); }
+  bool take(StatusOut *s) override { return readers_->take(s); }
+  bool take(MatchModelOut *m) override { return readers_->take(m); }
+  bool write(const RacketSampleIn &s) override {
+    Pair *p = pair(s.match_id);
+    return p && p->samples.write(s);
+  }
+  bool write(const ControlIn &c) override {
+    Pair *p = pair(c.match_id);
+    return p && p->controls.write(c);
+  }
+  bool hears_server() const override { return readers_->hears_server(); }
+  uint64_t untrusted() const override { return readers_->untrusted(); }
+  const std::string &error() const { return error_; }
+
+ private:
+  struct Pair {
+    dds::Writer<RacketSampleIn> samples;
+    dds::Writer<ControlIn> controls;
+  };
+  Pair *pair(uint32_t match) {
+    std::string partition = domain_.secure() ? dds::match_partition(match) : "";
+    auto it = pairs_.find(partition);
+    if (it != pairs_.end()) return it->second.samples.valid() ? &it->second : nullptr;
+    Pair &p = pairs_[partition];  // (kept even when refused: a refusal is not asked again)
+    int instances = domain_.secure() ? kMaxPlayers : matches_ * kWritersPerMatch;
+    p.samples = domain_.writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {instances, 0, partition}, &error_);
+    if (p.samples.valid())
+      p.controls = domain_.writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {domain_.secure() ? 1 : matches_, 0, partition},
+                                             &error_);
+    if (!p.controls.valid()) p.samples = dds::Writer<RacketSampleIn>();
+    return p.samples.valid() ? &p : nullptr;
+  }
+  dds::Domain &domain_;
+  std::unique_ptr<dds::ClientEndpoints> readers_;
+  int matches_;
+  std::map<std::string, Pair> pairs_;
+  std::string error_;
+};
+
+const char *or_empty(const char *s) { return s ? s : ""; }
+
+void copy_text(const std::string &text, char *out, size_t size) {
+  if (!out || size == 0) return;
+  size_t n = std::min(text.size(), size - 1);
+  std::memcpy(out, text.data(), n);
+  out[n] = '\0';
+}
+
+ball_vec3 v3(const ball_vec3 &v) { return v; }
+
+}  // namespace
+
+struct ball_net_client {
+  ball_net_clock clock = monotonic;
+  void *clock_user = nullptr;
+  std::unique_ptr<dds::Domain> domain;
+  std::unique_ptr<NetPort> port;
+  std::unique_ptr<ClientCore> core;
+  bool closed = false;
+  std::string message;
+
+  double now() const { return clock(clock_user); }
+  ball_status fail(ball_status st, const std::string &why) {
+    message = why;
+    return st;
+  }
+  ball_status ok() {
+    message.clear();
+    return BALL_OK;
+  }
+};
+
+namespace {
+
+// The client ready for a call; BALL_EINVAL for NULL, BALL_ECLOSED once closed.
+ball_status usable(const ball_net_client *c) {
+  if (!c) return BALL_EINVAL;
+  if (c->closed) {
+    const_cast<ball_net_client *>(c)->message = "the client is closed";
+    return BALL_ECLOSED;
+  }
+  return BALL_OK;
+}
+
+// Runs a call's body: no exception leaves it (an allocation that fails is BALL_ENOMEM).
+template <class F>
+ball_status guarded(ball_net_client *c, F &&body) {
+  try {
+    return body();
+  } catch (const std::bad_alloc &) {
+    if (c) c->message = "out of memory";
+    return BALL_ENOMEM;
+  } catch (const std::exception &e) {
+    if (c) c->message = std::string("unexpected: ") + e.what();
+    return BALL_ENETWORK;
+  } catch (...) {
+    if (c) c->message = "unexpected failure";
+    return BALL_ENETWORK;
+  }
+}
+
+ball_status with_why(ball_net_client *c, ball_status st, const std::string &why) {
+  return st == BALL_OK ? c->ok() : c->fail(st, why);
+}
+
+const MatchView *followed(const ball_net_client *c, uint32_t match) {
+  const MatchView *v = c->core->view(match);
+  if (!v) const_cast<ball_net_client *>(c)->message = "the client does not follow match " + std::to_string(match);
+  return v;
+}
+
+void to_c(const MatchInfoOut &i, double sim_now, ball_net_match *out, const ParticipantId &me) {
+  std::memset(out, 0, sizeof *out);
+  out->id = i.match_id;
+  out->server = i.server_id;
+  copy_text(i.scene, out->scene, sizeof out->scene);
+  out->level = i.level;
+  out->state = static_cast<ball_net_state>(i.state);
+  out->players = i.players;
+  for (int k = 0; k < BALL_NET_MAX_PLAYERS; ++k) {
+    out->slots[k].held = i.slots[k].held;
+    out->slots[k].present = i.slots[k].present;
+    out->slots[k].mine = i.slots[k].held && i.slots[k].owner == me;
+  }
+  out->score[0] = i.play.score[0];
+  out->score[1] = i.play.score[1];
+  out->rally = i.play.rally;
+  out->serving_side = i.play.serving_side;
+  out->time_base = i.time_base;
+  out->sim_time = sim_now;
+}
+
+void to_c(const ViewEvent &v, const MatchView *view, double now, ball_net_event *out) {
+  std::memset(out, 0, sizeof *out);
+  const EventOut &e = v.event;
+  out->match = e.match_id;
+  out->seq = v.note == ViewNote::none ? e.seq : 0;
+  switch (v.note) {
+    case ViewNote::none: out->kind = static_cast<ball_net_event_kind>(e.kind); break;
+    case ViewNote::server: out->kind = BALL_NET_EVENT_SERVER; break;
+    case ViewNote::slot: out->kind = BALL_NET_EVENT_SLOT; break;
+    case ViewNote::voided: out->kind = BALL_NET_EVENT_VOIDED; break;
+    case ViewNote::gap: out->kind = BALL_NET_EVENT_GAP; break;
+  }
+  out->index = e.index;
+  out->side = e.side;
+  out->in_play = e.in_play;
+  out->sound = e.sound;
+  out->time = e.time;
+  out->local_time = view ? view->clock().local_at(e.time, now) : now;
+  out->point = v3(e.point);
+  out->velocity_in = v3(e.velocity_in);
+  out->velocity_out = v3(e.velocity_out);
+  out->reason = static_cast<ball_net_reason>(e.reason);
+  out->score[0] = e.score[0];
+  out->score[1] = e.score[1];
+  out->value = e.value;
+  out->server = e.server_id;
+}
+
+}  // namespace
+
+extern "C" {
+
+void ball_net_config_default(ball_net_config *config) {
+  if (!config) return;
+  std::memset(config, 0, sizeof *config);
+  config->participant = "loopback";
+}
+
+ball_status ball_net_open(const ball_net_config *config, ball_net_client **client, char *why, size_t why_size) {
+  if (client) *client = nullptr;
+  auto say = [&](ball_status st, const std::string &text) {
+    copy_text(text, why, why_size);
+    return st;
+  };
+  if (!config || !client) return say(BALL_EINVAL, "config and client must not be NULL");
+  try {
+    if (config->domain < 0 || config->domain > kMaxDomain)
+      return say(BALL_ERANGE, "domain " + std::to_string(config->domain) + " is not in [0, " + std::to_string(kMaxDomain) + "]");
+    if (config->max_matches < 0 || config->max_matches > kMaxMatches)
+      return say(BALL_ERANGE, "max_matches " + std::to_string(config->max_matches) + " is not in [0, " +
+                                  std::to_string(kMaxMatches) + "]");
+    if (config->identity && !config->security_dir) return say(BALL_EINVAL, "an identity needs security_dir");
+    if (config->security_dir && !config->identity) return say(BALL_EINVAL, "security_dir needs an identity");
+    CoreSettings settings;
+    std::string err;
+    if (!ServerChoice::parse(or_empty(config->servers), &settings.servers, &err)) return say(BALL_ERANGE, err);
+    if (!config->security_dir && !settings.servers.bound().empty())
+      return say(BALL_EINVAL, "servers bound to certificates (ID=IDENTITY) need security_dir");
+    int matches = config->max_matches ? config->max_matches : kMaxMatches;
+    settings.max_matches = static_cast<size_t>(matches);
+    auto c = std::make_unique<ball_net_client>();
+    if (config->clock) {
+      c->clock = config->clock;
+      c->clock_user = config->clock_user;
+    }
+    dds::Security security{or_empty(config->security_dir), or_empty(config->identity)};
+    c->domain = dds::Domain::open(config->domain, or_empty(config->qos_file),
+                                  config->participant ? config->participant : "loopback",
+                                  or_empty(config->discovery_servers), config->name ? config->name : "ball-net", &err,
+                                  security);
+    if (!c->domain) return say(BALL_ENETWORK, err);
+    dds::ClientNeeds needs;
+    needs.players = 0;  // the writers are the port's, per partition
+    needs.matches = matches;
+    needs.events = true;
+    needs.server_certs = settings.servers.bound();
+    auto readers = dds::ClientEndpoints::open(*c->domain, needs, &err);
+    if (!readers) {
+      c->domain->close(kTeardownLimit);
+      return say(BALL_ENETWORK, err);
+    }
+    c->port = std::make_unique<NetPort>(*c->domain, std::move(readers), matches);
+    c->core = std::make_unique<ClientCore>(settings, c->domain->id());
+    *client = c.release();
+    return say(BALL_OK, "");
+  } catch (const std::bad_alloc &) {
+    return say(BALL_ENOMEM, "out of memory");
+  } catch (const std::exception &e) {
+    return say(BALL_ENETWORK, std::string("unexpected: ") + e.what());
+  } catch (...) {
+    return say(BALL_ENETWORK, "unexpected failure");
+  }
+}
+
+ball_status ball_net_close(ball_net_client *c) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  return guarded(c, [&] {
+    if (c->core->leave_all(*c->port) > 0) usleep(static_cast<useconds_t>(kLeaveGrace * 1e6));
+    c->closed = true;
+    c->port.reset();  // handles only: the Domain owns the entities
+    bool done = c->domain->close(kTeardownLimit);
+    c->domain.reset();
+    return done ? c->ok()
+                : c->fail(BALL_ENETWORK, "Fast DDS did not delete the client's entities within 3 s (left to it)");
+  });
+}
+
+void ball_net_free(ball_net_client *c) {
+  if (!c) return;
+  if (!c->closed) ball_net_close(c);
+  delete c;
+}
+
+const char *ball_net_message(const ball_net_client *c) { return c ? c->message.c_str() : ""; }
+
+ball_status ball_net_matches(ball_net_client *c, ball_net_match *out, int cap, int *n) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!n || cap < 0 || (cap > 0 && !out)) return c->fail(BALL_EINVAL, "n must not be NULL, out not NULL when cap > 0");
+  return guarded(c, [&] {
+    double now = c->now();
+    std::vector<const Listed *> list = c->core->matches(now);
+    *n = static_cast<int>(list.size());
+    for (int k = 0; k < cap && k < *n; ++k) {
+      const Listed &l = *list[static_cast<size_t>(k)];
+      const MatchView *v = c->core->view(l.info.match_id);
+      double sim = v && v->clock().valid() ? v->clock().sim_now(now)
+                   : l.info.state == MatchState::playing ? l.info.sim_time + (now - l.heard) * l.info.time_base
+                                                         : l.info.sim_time;
+      to_c(l.info, sim, &out[k], c->domain->id());
+    }
+    return c->ok();
+  });
+}
+
+ball_status ball_net_match_info(ball_net_client *c, uint32_t match, ball_net_match *out) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!out) return c->fail(BALL_EINVAL, "out must not be NULL");
+  return guarded(c, [&] {
+    double now = c->now();
+    const Listed *l = c->core->listed(match, now);
+    if (!l) return c->fail(BALL_ENOMATCH, "no server serves match " + std::to_string(match) + " (none heard within 3 s)");
+    const MatchView *v = c->core->view(match);
+    double sim = v && v->clock().valid() ? v->clock().sim_now(now) : l->info.sim_time;
+    to_c(l->info, sim, out, c->domain->id());
+    return c->ok();
+  });
+}
+
+ball_status ball_net_create(ball_net_client *c, uint32_t match, const char *scene, int players, ball_level level) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!scene) return c->fail(BALL_EINVAL, "scene must not be NULL");
+  return guarded(c, [&] {
+    std::string why;
+    return with_why(c, c->core->create(match, scene, players, static_cast<int>(level), *c->port, c->now(), &why), why);
+  });
+}
+
+ball_status ball_net_join(ball_net_client *c, uint32_t match, int slot) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  return guarded(c, [&] {
+    std::string why;
+    return with_why(c, c->core->join(match, slot, *c->port, c->now(), &why), why);
+  });
+}
+
+ball_status ball_net_leave(ball_net_client *c, uint32_t match) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  return guarded(c, [&] {
+    std::string why;
+    return with_why(c, c->core->leave(match, *c->port, &why), why);
+  });
+}
+
+ball_status ball_net_slot_of(ball_net_client *c, uint32_t match, int *slot) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!slot) return c->fail(BALL_EINVAL, "slot must not be NULL");
+  const MatchView *v = followed(c, match);
+  if (!v) return BALL_ENOMATCH;
+  *slot = v->slot();
+  return c->ok();
+}
+
+ball_status ball_net_watch(ball_net_client *c, uint32_t match) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  return guarded(c, [&] {
+    std::string why;
+    return with_why(c, c->core->watch(match, &why), why);
+  });
+}
+
+ball_status ball_net_unwatch(ball_net_client *c, uint32_t match) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  return guarded(c, [&] {
+    std::string why;
+    return with_why(c, c->core->unwatch(match, *c->port, &why), why);
+  });
+}
+
+ball_status ball_net_ask(ball_net_client *c, uint32_t match, ball_net_request request, double value) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  static const ControlKind kinds[BALL_NET_REQUEST_COUNT] = {ControlKind::serve, ControlKind::level, ControlKind::pause,
+                                                            ControlKind::resume, ControlKind::time_base};
+  if (static_cast<unsigned>(request) >= BALL_NET_REQUEST_COUNT)
+    return c->fail(BALL_EINVAL, "request " + std::to_string(static_cast<int>(request)) + " is not a ball_net_request");
+  if (!std::isfinite(value)) return c->fail(BALL_ENONFINITE, "a request's value must be finite");
+  return guarded(c, [&] {
+    std::string why;
+    return with_why(c, c->core->ask(match, kinds[request], value, *c->port, &why), why);
+  });
+}
+
+ball_status ball_net_push(ball_net_client *c, uint32_t match, double time, ball_vec3 center, ball_vec3 normal) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  return guarded(c, [&] {
+    std::string why;
+    ball_status r = c->core->push(match, time, center, normal, *c->port, &why);
+    if (r == BALL_ENETWORK && !c->port->error().empty()) why += ": " + c->port->error();
+    return with_why(c, r, why);
+  });
+}
+
+ball_status ball_net_ball_at(const ball_net_client *cc, uint32_t match, double time, ball_net_ball *out) {
+  auto *c = const_cast<ball_net_client *>(cc);
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!out) return c->fail(BALL_EINVAL, "out must not be NULL");
+  const MatchView *v = followed(c, match);
+  if (!v) return BALL_ENOMATCH;
+  ViewBall b;
+  st = v->ball(time, &b);
+  if (st == BALL_EAGAIN) return c->fail(st, "match " + std::to_string(match) + " has no clock or segment yet");
+  if (st != BALL_OK) return c->fail(st, std::string("the ball at that time: ") + ball_strerror(st));
+  out->state = b.state;
+  out->sim_time = b.sim_time;
+  out->segment = b.segment->seq;
+  out->cause = static_cast<ball_net_cause>(b.segment->cause);
+  out->cause_index = b.segment->cause_index;
+  out->sound = b.segment->sound;
+  out->t0 = b.segment->segment.t0;
+  return c->ok();
+}
+
+ball_status ball_net_predict(const ball_net_client *cc, uint32_t match, double time, double horizon, double dt,
+                             ball_prediction *out) {
+  auto *c = const_cast<ball_net_client *>(cc);
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!out) return c->fail(BALL_EINVAL, "out must not be NULL");
+  const MatchView *v = followed(c, match);
+  if (!v) return BALL_ENOMATCH;
+  st = v->predict(time, horizon, dt, out);
+  if (st == BALL_EAGAIN)
+    return c->fail(st, "match " + std::to_string(match) + ": its whole model, clock or segment has not come yet");
+  if (st != BALL_OK) return c->fail(st, std::string("ball_predict: ") + ball_strerror(st));
+  return c->ok();
+}
+
+ball_status ball_net_sim_time(const ball_net_client *cc, uint32_t match, double time, double *sim) {
+  auto *c = const_cast<ball_net_client *>(cc);
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!sim) return c->fail(BALL_EINVAL, "sim must not be NULL");
+  if (!std::isfinite(time)) return c->fail(BALL_ENONFINITE, "the time must be finite");
+  const MatchView *v = followed(c, match);
+  if (!v) return BALL_ENOMATCH;
+  if (!v->clock().valid()) return c->fail(BALL_EAGAIN, "the clock of match " + std::to_string(match) + " is not known yet");
+  *sim = v->clock().sim_now(time);
+  return c->ok();
+}
+
+ball_status ball_net_local_time(const ball_net_client *cc, uint32_t match, double sim, double *time) {
+  auto *c = const_cast<ball_net_client *>(cc);
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!time) return c->fail(BALL_EINVAL, "time must not be NULL");
+  if (!std::isfinite(sim)) return c->fail(BALL_ENONFINITE, "the sim time must be finite");
+  const MatchView *v = followed(c, match);
+  if (!v) return BALL_ENOMATCH;
+  if (!v->clock().valid()) return c->fail(BALL_EAGAIN, "the clock of match " + std::to_string(match) + " is not known yet");
+  *time = v->clock().local_at(sim, c->now());
+  return c->ok();
+}
+
+ball_status ball_net_model(const ball_net_client *cc, uint32_t match, ball_model *out) {
+  auto *c = const_cast<ball_net_client *>(cc);
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!out) return c->fail(BALL_EINVAL, "out must not be NULL");
+  const MatchView *v = followed(c, match);
+  if (!v) return BALL_ENOMATCH;
+  if (!v->model()) return c->fail(BALL_EAGAIN, "the model of match " + std::to_string(match) + " has not come yet");
+  *out = *v->model();
+  return c->ok();
+}
+
+ball_status ball_net_poll(ball_net_client *c, ball_net_event *out, int cap, int *n) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!n || cap < 0 || (cap > 0 && !out)) return c->fail(BALL_EINVAL, "n must not be NULL, out not NULL when cap > 0");
+  return guarded(c, [&] {
+    double now = c->now();
+    c->core->pump(*c->port, now, system_clock(CLOCK_REALTIME));
+    std::deque<ViewEvent> &events = c->core->events();
+    int k = 0;
+    for (; k < cap && !events.empty(); ++k) {
+      to_c(events.front(), c->core->view(events.front().event.match_id), now, &out[k]);
+      events.pop_front();
+    }
+    *n = k;
+    return c->ok();
+  });
+}
+
+const char *ball_net_event_kind_name(ball_net_event_kind kind) {
+  static const char *const own[] = {"server", "slot", "voided", "gap"};
+  if (kind >= 0 && kind < BALL_NET_EVENT_SERVER) return name_of(static_cast<EventKind>(kind));
+  if (kind >= BALL_NET_EVENT_SERVER && kind < BALL_NET_EVENT_KIND_COUNT) return own[kind - BALL_NET_EVENT_SERVER];
+  return "unknown";
+}
+
+const char *ball_net_reason_name(ball_net_reason reason) {
+  return reason >= 0 && reason < BALL_NET_REASON_COUNT ? name_of(static_cast<Reason>(reason)) : "unknown";
+}
+
+const char *ball_net_state_name(ball_net_state state) {
+  return state >= 0 && state < BALL_NET_STATE_COUNT ? name_of(static_cast<MatchState>(state)) : "unknown";
+}
+
+const char *ball_net_cause_name(ball_net_cause cause) {
+  return cause >= 0 && cause < BALL_NET_CAUSE_COUNT ? name_of(static_cast<Cause>(cause)) : "unknown";
+}
+
+ball_status ball_net_status_of(const ball_net_client *cc, uint32_t match, ball_net_status *out) {
+  auto *c = const_cast<ball_net_client *>(cc);
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!out) return c->fail(BALL_EINVAL, "out must not be NULL");
+  const MatchView *v = followed(c, match);
+  if (!v) return BALL_ENOMATCH;
+  std::memset(out, 0, sizeof *out);
+  out->server = v->info().server_id;
+  out->clock_known = v->clock().valid();
+  out->clock_offset = v->clock().offset();
+  out->clock_uncertainty = v->clock().spread();
+  out->delay = v->delay();
+  const ViewCounters &k = v->counters();
+  out->segments = k.segments;
+  out->events = k.events;
+  out->refused = k.refused;
+  out->lost = k.lost;
+  out->late = k.late;
+  out->voided = k.voided;
+  const OwnCounters *own = c->core->own(match);
+  out->samples = own->samples;
+  out->write_failures = own->write_failures;
+  return c->ok();
+}
+
+size_t ball_net_sizeof(ball_net_type type) {
+  switch (type) {
+    case BALL_NET_TYPE_CONFIG: return sizeof(ball_net_config);
+    case BALL_NET_TYPE_MATCH: return sizeof(ball_net_match);
+    case BALL_NET_TYPE_BALL: return sizeof(ball_net_ball);
+    case BALL_NET_TYPE_EVENT: return sizeof(ball_net_event);
+    case BALL_NET_TYPE_STATUS: return sizeof(ball_net_status);
+    case BALL_NET_TYPE_PREDICTION: return sizeof(ball_prediction);
+    case BALL_NET_TYPE_COUNT: break;
+  }
+  return 0;
+}
+
+}  // extern "C"

@@ -1,0 +1,413 @@
+// The client library's core offline (docs/client.md): a MatchView and a
+// ClientCore fed from a Match through a fake port, on a client clock 1000 s
+// off the server's. The ball it answers is libball's evaluation of the
+// segment in effect, to the bit; events come once and in order through a
+// failover's replay, gaps and corrections; a match started anew drops what
+// was held; the whole model is used only when the MatchInfo names it; JOIN
+// and CREATE are sent again until the server answers; and every request
+// with a bad argument is refused with nothing changed.
+#include <cmath>
+#include <map>
+#include <random>
+
+#include "check.hpp"
+#include "client_core.h"
+#include "fake_client_port.h"
+#include "game.h"
+
+using namespace test;
+using check::note;
+
+namespace {
+
+constexpr double kSkew = 1000.0;     // the client's clock runs this far ahead of the server's
+constexpr double kLatency = 0.001;   // s from a server's write to the client's reception
+
+ParticipantId me() { return participant(9); }
+
+// A game's MatchInfo as a server writes it at game time g.now.
+MatchInfoOut info_of(Game &g, uint32_t server = 1) {
+  static uint32_t revision = 0;
+  MatchInfoOut i = g.match.info();
+  i.server_id = server;
+  i.server_time = g.now;
+  i.revision = ++revision;
+  return i;
+}
+
+MatchModelOut model_of(Game &g, uint32_t server = 1) {
+  MatchModelOut m;
+  m.match_id = g.match.id();
+  m.server_id = server;
+  m.model = g.match.model();
+  m.model_hash = ball_model_hash(&m.model);
+  return m;
+}
+
+bool same_bits(const ball_vec3 &a, const ball_vec3 &b) {
+  return std::memcmp(&a.x, &b.x, sizeof a.x) == 0 && std::memcmp(&a.y, &b.y, sizeof a.y) == 0 &&
+         std::memcmp(&a.z, &b.z, sizeof a.z) == 0;
+}
+
+EventOut event(uint32_t seq, EventKind kind = EventKind::floor, double time = 1.0, uint32_t server = 1) {
+  EventOut e;
+  e.match_id = 7;
+  e.server_id = server;
+  e.seq = seq;
+  e.kind = kind;
+  e.time = time;
+  return e;
+}
+
+// What a view handed on: the server's events' seqs, and its notes
+struct Handed {
+  std::vector<uint32_t> seqs;
+  std::map<ViewNote, int> notes;
+  std::vector<ViewEvent> all;
+  void take(std::vector<ViewEvent> &out) {
+    for (const auto &v : out) {
+      all.push_back(v);
+      if (v.note == ViewNote::none) seqs.push_back(v.event.seq);
+      else notes[v.note]++;
+    }
+    out.clear();
+  }
+};
+
+}  // namespace
+
+// 20 s of a match (serves, bounces written ahead, points), every MatchInfo
+// and segment given to a view as it is written; at 2000 random times the
+// view's ball is ball_segment_eval of the segment in effect among every
+// segment written, at the sim time the server's clock says, to the bit.
+TEST(the_ball_is_libballs_evaluation_of_the_segment_in_effect) {
+  Game g;
+  CHECK(g.ok);
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  MatchView v(7, ServerChoice{}, me());
+  std::vector<ViewEvent> out;
+  Segments all;
+  size_t given = 0;
+  std::mt19937_64 rng(7);
+  int compared = 0, bits = 0, ahead_in_effect = 0;
+  MatchInfoOut anchor;
+  double worst_clock = 0.0;
+  for (int k = 0; k < 20 * 60; ++k) {
+    g.run(1.0 / 60.0);
+    double local = g.now + kSkew + kLatency;
+    if (k % 6 == 0) {
+      anchor = info_of(g);
+      CHECK(v.on_info(anchor, local, &out));
+    }
+    for (; given < g.segments.size(); ++given) {
+      SegmentOut s = g.segments[given];
+      s.server_id = 1;
+      all[s.seq] = s;
+      CHECK(v.on_segment(s, local, &out));
+    }
+    for (int r = 0; r < 2; ++r) {
+      // a time within the next frame of the client's clock
+      double at = g.now + kSkew + std::uniform_real_distribution<double>(0.0, 1.0 / 60.0)(rng);
+      ViewBall b;
+      if (v.ball(at, &b) != BALL_OK) continue;
+      // the server's sim time then: the info's pair, less the client's kLatency (the min filter keeps it)
+      // the newest pair's mapping (never before its sim time: the clock does not go back)
+      double sim = anchor.state == MatchState::playing
+                       ? anchor.sim_time + std::max(0.0, at - kSkew - kLatency - anchor.server_time) * anchor.time_base
+                       : anchor.sim_time;
+      worst_clock = std::max(worst_clock, std::fabs(b.sim_time - sim));
+      const SegmentOut *want = segment_in_effect(all, b.sim_time);
+      CHECK(want && b.segment && want->seq == b.segment->seq);
+      if (!want) continue;
+      ball_state ref;
+      CHECK_EQ(ball_segment_eval(&g.match.model(), &want->segment, b.sim_time, &ref), BALL_OK);
+      bits += same_bits(ref.position, b.state.position) && same_bits(ref.velocity, b.state.velocity) &&
+              same_bits(ref.spin, b.state.spin);
+      ahead_in_effect += want->cause == Cause::floor || want->cause == Cause::net;
+      compared++;
+    }
+  }
+  note("%d balls compared, %d to the bit (%d on a segment written ahead of its bounce); sim clock within %.3g s",
+       compared, bits, ahead_in_effect, worst_clock);
+  CHECK(compared > 2000);
+  CHECK_EQ(bits, compared);
+  CHECK(ahead_in_effect > 100);
+  CHECK(worst_clock < 1e-9);
+  CHECK_EQ(v.counters().refused, 0u);
+}
+
+// A failover: the new owner goes on from events the client has given
+// already (seqs 15..20 again), then its own; a gap of 3 is one GAP note and
+// 3 lost; a forged seq far ahead is refused and blinds nobody; the server's
+// change is one SERVER note.
+TEST(events_come_once_and_in_order) {
+  Game g;
+  MatchView v(7, ServerChoice{}, me());
+  std::vector<ViewEvent> out;
+  Handed h;
+  CHECK(v.on_info(info_of(g, 1), kSkew, &out));
+  for (uint32_t s = 1; s <= 20; ++s) v.on_event(event(s), kSkew, &out);
+  h.take(out);
+  CHECK(v.on_info(info_of(g, 2), kSkew, &out));  // server 2 took it over
+  for (uint32_t s = 15; s <= 30; ++s) v.on_event(event(s, EventKind::floor, 1.0, 2), kSkew, &out);
+  CHECK(!v.on_event(event(0xFFFFFFF0u, EventKind::point, 1.0, 2), kSkew, &out));  // behind: given already
+  CHECK(!v.on_event(event(30 + 5000, EventKind::point, 1.0, 2), kSkew, &out));     // forged, far ahead
+  for (uint32_t s = 34; s <= 36; ++s) v.on_event(event(s, EventKind::floor, 1.0, 2), kSkew, &out);
+  h.take(out);
+  std::vector<uint32_t> want;
+  for (uint32_t s = 1; s <= 30; ++s) want.push_back(s);
+  for (uint32_t s = 34; s <= 36; ++s) want.push_back(s);
+  CHECK(h.seqs == want);
+  CHECK_EQ(h.notes[ViewNote::server], 1);
+  CHECK_EQ(h.notes[ViewNote::gap], 1);
+  CHECK_EQ(v.counters().lost, 3u);
+  CHECK_EQ(v.counters().events, 33u);
+  CHECK_EQ(v.counters().refused, 1u);
+}
+
+// A correction voids the collision and point events given for a later time
+// (a VOIDED note each, with its seq) and those that come after it.
+TEST(a_correction_voids_events_given_and_to_come) {
+  Game g;
+  MatchView v(7, ServerChoice{}, me());
+  std::vector<ViewEvent> out;
+  Handed h;
+  CHECK(v.on_info(info_of(g), kSkew, &out));
+  SegmentOut base;
+  base.match_id = 7;
+  base.server_id = 1;
+  base.seq = 5;
+  base.segment.p0 = ball_v3(1, 1, 1);
+  CHECK(v.on_segment(base, kSkew, &out));
+  EventOut bounce = event(1, EventKind::floor, 2.0), point = event(2, EventKind::point, 2.5), serve = event(3, EventKind::serve, 2.6);
+  bounce.segment_seq = point.segment_seq = serve.segment_seq = 5;
+  v.on_event(bounce, kSkew, &out);
+  v.on_event(point, kSkew, &out);
+  v.on_event(serve, kSkew, &out);
+  SegmentOut corr = base;
+  corr.seq = 6;
+  corr.segment.t0 = 1.5;
+  corr.correction = true;
+  CHECK(v.on_segment(corr, kSkew, &out));
+  EventOut late = event(4, EventKind::net, 3.0);  // written before the correction, arriving after it
+  late.segment_seq = 5;
+  v.on_event(late, kSkew, &out);
+  h.take(out);
+  CHECK((h.seqs == std::vector<uint32_t>{1, 2, 3}));
+  CHECK_EQ(h.notes[ViewNote::voided], 2);  // the bounce and the point, not the serve
+  CHECK_EQ(v.counters().voided, 3u);        // and the net event that came after
+}
+
+// A MatchInfo more than a second behind the newest: the match started anew;
+// its new stream's seqs and events are taken from 1 again.
+TEST(a_match_started_anew_drops_what_was_held) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  g.run(5.0);
+  MatchView v(7, ServerChoice{}, me());
+  std::vector<ViewEvent> out;
+  Handed h;
+  CHECK(v.on_info(info_of(g), g.now + kSkew, &out));
+  for (const auto &s : g.segments) v.on_segment(s, g.now + kSkew, &out);
+  for (const auto &e : g.events) v.on_event(e, g.now + kSkew, &out);
+  size_t before = v.window().size();
+  uint32_t newest = g.segments.back().seq;
+  h.take(out);
+  Game fresh;  // the same match id, started anew on another server
+  fresh.join(0, participant(1));
+  fresh.join(1, participant(2));
+  fresh.run(1.0);
+  CHECK(v.on_info(info_of(fresh, 3), g.now + kSkew, &out));
+  for (const auto &s : fresh.segments) CHECK(v.on_segment(s, g.now + kSkew, &out));
+  for (const auto &e : fresh.events) v.on_event(e, g.now + kSkew, &out);
+  h.take(out);
+  note("held %zu segments up to seq %u; started anew: %zu segments, newest %u", before, newest, v.window().size(),
+       v.window().empty() ? 0u : v.window().back().segment.seq);
+  CHECK_EQ(v.counters().anew, 1u);
+  CHECK(!v.window().empty() && v.window().back().segment.seq == fresh.segments.back().seq);
+  CHECK(v.window().back().segment.seq < newest);
+  CHECK(h.seqs.size() == g.events.size() + fresh.events.size());
+}
+
+// What does not fit is refused, counted, and changes nothing: another
+// server's samples (when one is chosen), a MatchInfo out of range, a
+// segment with NaN or a seq 1000 past the newest, a clock pair 1e6 s away.
+TEST(what_does_not_fit_is_refused) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  g.run(3.0);
+  ServerChoice one;
+  std::string err;
+  CHECK(ServerChoice::parse("1", &one, &err));
+  MatchView v(7, one, me());
+  std::vector<ViewEvent> out;
+  CHECK(v.on_info(info_of(g), g.now + kSkew, &out));
+  for (const auto &s : g.segments) v.on_segment(s, g.now + kSkew, &out);
+  ViewBall before;
+  CHECK_EQ(v.ball(g.now + kSkew, &before), BALL_OK);
+  uint64_t refused = v.counters().refused;
+  MatchInfoOut other = info_of(g, 5);
+  CHECK(!v.on_info(other, g.now + kSkew, &out));
+  MatchInfoOut bad = info_of(g);
+  bad.players = 9;
+  CHECK(!v.on_info(bad, g.now + kSkew, &out));
+  MatchInfoOut far = info_of(g);
+  far.server_time += 1e6;
+  CHECK(!v.on_info(far, g.now + kSkew, &out));
+  SegmentOut nan = g.segments.back();
+  nan.seq += 1;
+  nan.segment.v0.x = NAN;
+  CHECK(!v.on_segment(nan, g.now + kSkew, &out));
+  SegmentOut forged = g.segments.back();
+  forged.seq += 1001;
+  CHECK(!v.on_segment(forged, g.now + kSkew, &out));
+  SegmentOut stranger = g.segments.back();
+  stranger.seq += 1;
+  stranger.server_id = 5;
+  CHECK(!v.on_segment(stranger, g.now + kSkew, &out));
+  CHECK_EQ(v.counters().refused, refused + 6);
+  ViewBall after;
+  CHECK_EQ(v.ball(g.now + kSkew, &after), BALL_OK);
+  CHECK(same_bits(before.state.position, after.state.position) && before.segment->seq == after.segment->seq);
+}
+
+// The whole model is used only once a MatchInfo names it (its hash): one
+// that came first waits for it; one under a hash not its own never counts.
+// predict then gives ball_predict's path from the segment in effect.
+TEST(the_whole_model_is_the_one_the_info_names) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  g.run(2.0);
+  MatchView v(7, ServerChoice{}, me());
+  std::vector<ViewEvent> out;
+  MatchModelOut m = model_of(g);
+  MatchModelOut lying = m;
+  lying.model.gravity = 3.0;
+  CHECK(!v.on_model(lying));
+  CHECK(v.on_model(m));  // before any MatchInfo: waits
+  CHECK(v.model() == nullptr);
+  double local = g.now + kSkew;
+  ball_state states[32];
+  ball_event events[8];
+  ball_prediction pr{};
+  pr.states = states;
+  pr.cap_states = 32;
+  pr.events = events;
+  pr.cap_events = 8;
+  CHECK_EQ(v.predict(local, 1.0, 0.05, &pr), BALL_EAGAIN);
+  CHECK(v.on_info(info_of(g), local, &out));
+  for (const auto &s : g.segments) v.on_segment(s, local, &out);
+  CHECK(v.model() != nullptr);
+  CHECK_EQ(v.predict(local, 1.0, 0.05, &pr), BALL_OK);
+  ViewBall b;
+  CHECK_EQ(v.ball(local, &b), BALL_OK);
+  ball_state ref[32];
+  ball_prediction want{};
+  want.states = ref;
+  want.cap_states = 32;
+  CHECK_EQ(ball_predict(&g.match.model(), &b.segment->segment, b.sim_time, b.sim_time + 1.0, 0.05, &want), BALL_OK);
+  CHECK_EQ(pr.n_states, want.n_states);
+  bool same = pr.n_states > 0;
+  for (int k = 0; k < pr.n_states; ++k) same = same && same_bits(states[k].position, ref[k].position);
+  CHECK(same);
+  // a new level: a new hash the held model is not; its model comes after the info
+  CHECK(g.control(ControlKind::level, participant(1), -1, 3) == Reason::none);
+  CHECK(v.on_info(info_of(g), local, &out));
+  CHECK(v.model() == nullptr);
+  CHECK(v.on_model(model_of(g)));
+  CHECK(v.model() != nullptr && ball_model_hash(v.model()) == g.match.info().model_hash);
+}
+
+// ---- the core of many matches ------------------------------------------------
+
+// JOIN goes out at once and every retry (0.5 s) until the MatchInfo shows
+// the slot held by this client; a SLOT note then, and again when it is
+// lost, and JOIN again. A pose before the slot or the clock, with NaN, a
+// zero normal or a time not after the previous one is refused, nothing
+// written; the poses written carry seqs 1, 2, ... and the sim time the
+// clock maps their time to.
+TEST(the_core_joins_until_the_server_answers_and_pushes_poses) {
+  Game g;
+  ClientCore core(CoreSettings{}, me());
+  FakeClientPort port;
+  std::string why;
+  double t = kSkew;
+  CHECK_EQ(core.push(7, t, ball_v3(1, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_ENOMATCH);
+  CHECK_EQ(core.join(7, 5, port, t, &why), BALL_ERANGE);
+  CHECK(port.controls.empty());
+  CHECK_EQ(core.join(7, -1, port, t, &why), BALL_OK);
+  CHECK_EQ(port.controls.size(), 1u);
+  for (int k = 1; k <= 20; ++k) core.pump(port, t + 0.1 * k, t + 0.1 * k);  // 2 s unanswered
+  note("JOINs in 2 s unanswered: %zu", port.controls.size());
+  CHECK_EQ(port.controls.size(), 5u);  // at 0, 0.5, 1.0, 1.5, 2.0
+  CHECK_EQ(core.push(7, t + 2.0, ball_v3(1, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_ENOMATCH);
+  CHECK_EQ(g.join(0, me()), Reason::none);
+  port.infos.push_back(info_of(g));
+  port.infos.back().reception.received = g.now + 0.001;
+  core.pump(port, g.now + kSkew + 0.001, g.now + 0.001);
+  CHECK_EQ(core.view(7)->slot(), 0);
+  int slot_notes = 0;
+  for (const auto &e : core.events()) slot_notes += e.note == ViewNote::slot && e.event.index == 0;
+  CHECK_EQ(slot_notes, 1);
+  size_t joins = port.controls.size();
+  core.pump(port, g.now + kSkew + 1.0, g.now + 1.0);
+  CHECK_EQ(port.controls.size(), joins);  // answered: no more JOIN
+  double at = g.now + kSkew + 0.5;
+  CHECK_EQ(core.push(7, at, ball_v3(NAN, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_ENONFINITE);
+  CHECK_EQ(core.push(7, at, ball_v3(1, 1, 1), ball_v3(0, 1e-7, 0), port, &why), BALL_ERANGE);
+  CHECK_EQ(core.push(7, at, ball_v3(1, 1, 1), ball_v3(0, 2e6, 0), port, &why), BALL_ERANGE);
+  CHECK(port.samples.empty());
+  CHECK_EQ(core.push(7, at, ball_v3(1, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_OK);
+  CHECK_EQ(core.push(7, at, ball_v3(1, 1, 2), ball_v3(1, 0, 0), port, &why), BALL_ESTALE);
+  CHECK_EQ(core.push(7, at + 0.1, ball_v3(1, 1, 2), ball_v3(1, 0, 0), port, &why), BALL_OK);
+  CHECK_EQ(port.samples.size(), 2u);
+  CHECK(port.samples[0].seq == 1 && port.samples[1].seq == 2 && port.samples[0].player == 0);
+  // waiting: the sim clock stands still, every time maps to the info's sim time
+  CHECK_NEAR(port.samples[1].capture_time, g.match.info().sim_time, 0.0);
+  port.refuse = true;
+  CHECK_EQ(core.push(7, at + 0.2, ball_v3(1, 1, 2), ball_v3(1, 0, 0), port, &why), BALL_ENETWORK);
+  CHECK_EQ(core.own(7)->write_failures, 1u);
+  port.refuse = false;
+  // the slot taken by another: lost, and JOIN again
+  CHECK_EQ(g.control(ControlKind::leave, me(), 0), Reason::none);
+  CHECK_EQ(g.join(0, participant(3)), Reason::none);
+  port.infos.push_back(info_of(g));
+  core.pump(port, g.now + kSkew + 2.0, g.now + 2.0);
+  CHECK_EQ(core.view(7)->slot(), -1);
+  CHECK(port.controls.back().kind == ControlKind::join);
+  // leave: a LEAVE for the slot held, none when none is held
+  CHECK_EQ(core.leave(7, port, &why), BALL_OK);
+  CHECK_EQ(core.leave(7, port, &why), BALL_ENOMATCH);
+}
+
+// CREATE goes out until a MatchInfo of the match appears; the list holds
+// what was heard within `silence` (3 s); a bad CREATE is refused, not sent.
+TEST(the_core_creates_until_the_match_appears_and_lists_the_heard) {
+  Game g;
+  ClientCore core(CoreSettings{}, me());
+  FakeClientPort port;
+  std::string why;
+  CHECK_EQ(core.create(7, "../etc", 2, 1, port, 0.0, &why), BALL_ERANGE);
+  CHECK_EQ(core.create(7, "tennis", 5, 1, port, 0.0, &why), BALL_ERANGE);
+  CHECK_EQ(core.create(7, "tennis", 2, 4, port, 0.0, &why), BALL_ERANGE);
+  CHECK(port.controls.empty());
+  CHECK_EQ(core.create(7, "tennis", 2, 1, port, 0.0, &why), BALL_OK);
+  for (int k = 1; k <= 10; ++k) core.pump(port, 0.1 * k, 0.1 * k);
+  CHECK_EQ(port.controls.size(), 3u);  // at 0, 0.5 and 1.0 s
+  CHECK(port.controls[0].kind == ControlKind::create && port.controls[0].scene == "tennis" && port.controls[0].players == 2);
+  MatchInfoOut i = info_of(g);
+  i.reception.received = 1.05;
+  port.infos.push_back(i);
+  core.pump(port, 1.1, 1.1);
+  for (int k = 1; k <= 10; ++k) core.pump(port, 1.1 + 0.1 * k, 1.1 + 0.1 * k);
+  CHECK_EQ(port.controls.size(), 3u);
+  CHECK_EQ(core.matches(2.0).size(), 1u);
+  CHECK(core.listed(7, 4.0) != nullptr);
+  CHECK(core.matches(4.1).empty());  // not heard for 3 s
+}
+
+CHECK_MAIN
