@@ -109,19 +109,27 @@ bool ClientCore::write(ClientPort &port, const ControlIn &c, Followed *f) {
   return false;
 }
 
+bool ClientCore::Followed::joining() const {
+  bool w = any;
+  for (bool x : want) w = w || x;
+  return w;
+}
+
 void ClientCore::send_due(ClientPort &port, double local) {
   for (auto &kv : followed_) {
     Followed &f = kv.second;
-    int slot = f.view->slot();
-    bool holds = slot >= 0 && (f.want < 0 || slot == f.want);
-    if (!f.joining || holds || local < f.next_join) continue;
-    ControlIn c;
-    c.match_id = kv.first;
-    c.seq = ++control_seq_;
-    c.kind = ControlKind::join;
-    c.player = f.want;
-    write(port, c, &f);
-    f.next_join = local + settings_.retry;
+    // each slot wanted and not held, and `any` while none is held
+    for (int k = 0; k <= kMaxPlayers; ++k) {
+      bool wanted = k < kMaxPlayers ? f.want[k] && !f.view->holds(k) : f.any && f.view->slot() < 0;
+      if (!wanted || local < f.next_join[k]) continue;
+      ControlIn c;
+      c.match_id = kv.first;
+      c.seq = ++control_seq_;
+      c.kind = ControlKind::join;
+      c.player = k < kMaxPlayers ? k : -1;
+      write(port, c, &f);
+      f.next_join[k] = local + settings_.retry;
+    }
   }
   for (auto it = creating_.begin(); it != creating_.end();) {
     if (listed_.count(it->first)) {  // its MatchInfo came: created (by whomever)
@@ -144,7 +152,7 @@ ball_status ClientCore::watch(uint32_t match, std::string *why) {
 ball_status ClientCore::unwatch(uint32_t match, ClientPort &port, std::string *why) {
   Followed *f = followed(match);
   if (!f) return refuse(BALL_ENOMATCH, "the client does not follow " + match_name(match), why);
-  if (f->view->slot() >= 0) leave(match, port, why);
+  if (f->view->slot() >= 0) leave(match, -1, port, why);
   followed_.erase(match);
   return BALL_OK;
 }
@@ -156,26 +164,34 @@ ball_status ClientCore::join(uint32_t match, int slot, ClientPort &port, double 
                   why);
   Followed *f = follow(match, why);
   if (!f) return BALL_ENOSPACE;
-  f->joining = true;
-  f->want = slot;
-  f->next_join = local;
+  size_t k = slot < 0 ? kMaxPlayers : static_cast<size_t>(slot);
+  if (slot < 0) f->any = true;
+  else f->want[k] = true;
+  f->next_join[k] = local;
   send_due(port, local);
   return BALL_OK;
 }
 
-ball_status ClientCore::leave(uint32_t match, ClientPort &port, std::string *why) {
+ball_status ClientCore::leave(uint32_t match, int slot, ClientPort &port, std::string *why) {
   Followed *f = followed(match);
-  if (!f || (!f->joining && f->view->slot() < 0))
-    return refuse(BALL_ENOMATCH, "the client has not joined " + match_name(match), why);
-  f->joining = false;
-  int slot = f->view->slot();
-  if (slot < 0) return BALL_OK;  // (it never got one: nothing to give up)
-  ControlIn c;
-  c.match_id = match;
-  c.seq = ++control_seq_;
-  c.kind = ControlKind::leave;
-  c.player = slot;
-  if (!write(port, c, f)) return refuse(BALL_ENETWORK, "DDS refused the LEAVE of " + match_name(match), why);
+  if (slot < -1 || slot >= kMaxPlayers || !f || !(slot < 0 ? f->joining() || f->view->slot() >= 0
+                                                             : f->want[static_cast<size_t>(slot)] || f->view->holds(slot)))
+    return refuse(BALL_ENOMATCH, "the client has not joined " + (slot < 0 ? match_name(match) : "slot " +
+                  std::to_string(slot) + " of " + match_name(match)), why);
+  bool written = true;
+  for (int k = 0; k < kMaxPlayers; ++k) {
+    if (slot >= 0 && k != slot) continue;
+    f->want[static_cast<size_t>(k)] = false;
+    if (!f->view->holds(k)) continue;
+    ControlIn c;
+    c.match_id = match;
+    c.seq = ++control_seq_;
+    c.kind = ControlKind::leave;
+    c.player = k;
+    written = write(port, c, f) && written;
+  }
+  if (slot < 0) f->any = false;
+  if (!written) return refuse(BALL_ENETWORK, "DDS refused a LEAVE of " + match_name(match), why);
   return BALL_OK;
 }
 
@@ -183,7 +199,9 @@ int ClientCore::leave_all(ClientPort &port) {
   int n = 0;
   std::string why;
   for (auto &kv : followed_)
-    if (kv.second.view->slot() >= 0) n += leave(kv.first, port, &why) == BALL_OK;
+    for (int k = 0; k < kMaxPlayers; ++k) n += kv.second.view->holds(k);
+  for (auto &kv : followed_)
+    if (kv.second.view->slot() >= 0) leave(kv.first, -1, port, &why);
   return n;
 }
 
@@ -229,10 +247,12 @@ ball_status ClientCore::ask(uint32_t match, ControlKind kind, double value, Clie
   return BALL_OK;
 }
 
-ball_status ClientCore::push(uint32_t match, double local, ball_vec3 center, ball_vec3 normal, ClientPort &port,
-                             std::string *why) {
+ball_status ClientCore::push(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal,
+                             ClientPort &port, std::string *why) {
   Followed *f = followed(match);
-  if (!f || f->view->slot() < 0) return refuse(BALL_ENOMATCH, "the client holds no slot of " + match_name(match), why);
+  if (!f || !f->view->holds(slot))
+    return refuse(BALL_ENOMATCH, "the client holds no slot " + std::to_string(slot) + " of " + match_name(match), why);
+  const size_t k = static_cast<size_t>(slot);
   if (!std::isfinite(local) || !finite3(center) || !finite3(normal))
     return refuse(BALL_ENONFINITE, "a racket pose with NaN or infinity in its time, centre or normal", why);
   double n = norm(normal);
@@ -242,12 +262,12 @@ ball_status ClientCore::push(uint32_t match, double local, ball_vec3 center, bal
     return refuse(BALL_ERANGE, "a racket centre beyond 1e9 m", why);
   const MatchView &v = *f->view;
   if (!v.clock().valid()) return refuse(BALL_EAGAIN, "the clock of " + match_name(match) + " is not known yet", why);
-  if (f->pushed && !(local > f->last_push))
+  if (f->pushed[k] && !(local > f->last_push[k]))
     return refuse(BALL_ESTALE, "a racket pose at " + std::to_string(local) + " s, not after the previous one's", why);
   RacketSampleIn s;
   s.match_id = match;
-  s.player = v.slot();
-  s.seq = f->sample_seq + 1;
+  s.player = slot;
+  s.seq = f->sample_seq[k] + 1;
   s.capture_time = v.clock().sim_now(local);
   s.center = center;
   s.normal = normal;
@@ -255,9 +275,9 @@ ball_status ClientCore::push(uint32_t match, double local, ball_vec3 center, bal
     f->own.write_failures++;
     return refuse(BALL_ENETWORK, "DDS refused the racket sample", why);
   }
-  f->sample_seq = s.seq;
-  f->pushed = true;
-  f->last_push = local;
+  f->sample_seq[k] = s.seq;
+  f->pushed[k] = true;
+  f->last_push[k] = local;
   f->own.samples++;
   return BALL_OK;
 }

@@ -6,6 +6,7 @@
 // shell over one, and the tests drive one from a Match.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <deque>
 #include <map>
@@ -51,12 +52,12 @@ class ClientCore {
   ball_status watch(uint32_t match, std::string *why);
   ball_status unwatch(uint32_t match, ClientPort &port, std::string *why);
   ball_status join(uint32_t match, int slot, ClientPort &port, double local, std::string *why);
-  ball_status leave(uint32_t match, ClientPort &port, std::string *why);
+  ball_status leave(uint32_t match, int slot, ClientPort &port, std::string *why);  // slot -1: every one
   ball_status create(uint32_t match, const std::string &scene, int players, int level, ClientPort &port,
                      double local, std::string *why);
   ball_status ask(uint32_t match, ControlKind kind, double value, ClientPort &port, std::string *why);
-  // The racket's pose at `local`, mapped to the sim clock, numbered and written.
-  ball_status push(uint32_t match, double local, ball_vec3 center, ball_vec3 normal, ClientPort &port,
+  // The pose of slot `slot`'s racket at `local`, mapped to the sim clock, numbered and written.
+  ball_status push(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal, ClientPort &port,
                    std::string *why);
   // A LEAVE for every slot held (a client closing); how many were written.
   int leave_all(ClientPort &port);
@@ -71,13 +72,14 @@ class ClientCore {
  private:
   struct Followed {
     std::unique_ptr<MatchView> view;
-    bool joining = false;   // it wants a slot (join until leave)
-    int want = -1;          // the slot wanted, -1 any
-    double next_join = 0.0; // the caller's clock of the next JOIN
-    uint32_t sample_seq = 0;
-    bool pushed = false;
-    double last_push = 0.0; // the caller's clock of the newest pose
+    bool any = false;                          // it wants a slot, any (JOIN -1) until leave
+    std::array<bool, kMaxPlayers> want{};      // it wants these slots (JOIN k) until leave
+    std::array<double, kMaxPlayers + 1> next_join{};  // the caller's clock of the next JOIN of each (the last: any)
+    std::array<uint32_t, kMaxPlayers> sample_seq{};
+    std::array<bool, kMaxPlayers> pushed{};
+    std::array<double, kMaxPlayers> last_push{};  // the caller's clock of each slot's newest pose
     OwnCounters own;
+    bool joining() const;
   };
   struct Creating {
     ControlIn control;

@@ -81,16 +81,18 @@ bool MatchView::on_info(const MatchInfoOut &in, double local, std::vector<ViewEv
     v.event.server_id = in.server_id;
     out->push_back(v);
   }
-  // this client's slot
-  int mine = -1;
+  // this client's slots
+  unsigned mine = 0;
   for (int i = 0; i < in.players && i < kMaxPlayers; ++i)
-    if (in.slots[i].held && in.slots[i].owner == me_) mine = i;
-  if (mine != slot_) {
-    slot_ = mine;
-    ViewEvent v = note(ViewNote::slot, in.sim_time);
-    v.event.index = mine;
-    out->push_back(v);
-  }
+    if (in.slots[i].held && in.slots[i].owner == me_) mine |= 1u << i;
+  for (int i = 0; i < kMaxPlayers; ++i)
+    if ((mine ^ mine_) >> i & 1u) {
+      ViewEvent v = note(ViewNote::slot, in.sim_time);
+      v.event.index = i;
+      v.event.value = mine >> i & 1u;
+      out->push_back(v);
+    }
+  mine_ = mine;
   // the whole model it names, if it came first; else the one held may no longer be it
   if (!has_model_ || model_.model_hash != in.model_hash) {
     has_model_ = false;
@@ -248,6 +250,12 @@ double MatchView::delay() const {
   std::vector<double> d = delays_;
   std::nth_element(d.begin(), d.begin() + static_cast<long>(d.size() / 2), d.end());
   return d[d.size() / 2];
+}
+
+int MatchView::slot() const {
+  for (int i = 0; i < kMaxPlayers; ++i)
+    if (holds(i)) return i;
+  return -1;
 }
 
 const KeptSegment *MatchView::in_effect(double sim) const {

@@ -24,7 +24,7 @@ namespace ballsrv {
 enum class ViewNote {
   none,    // a server's event (EventOut as it came)
   server,  // the match's server changed: event.server_id the new one
-  slot,    // this client's slot: event.index the slot taken, -1 lost
+  slot,    // this client's slot event.index: event.value 1 taken, 0 lost
   voided,  // a correction took back an event given before: event.value its seq
   gap,     // events never came: event.value how many seqs were skipped
 };
@@ -87,7 +87,8 @@ class MatchView {
   const ball_model *model() const { return has_model_ ? &model_.model : nullptr; }
   // the flight model: the whole model's, else MatchInfo's flight fields
   const ball_model &flight_model() const { return has_model_ ? model_.model : info_.model; }
-  int slot() const { return slot_; }  // this client's, -1: none
+  bool holds(int slot) const { return slot >= 0 && slot < kMaxPlayers && (mine_ >> slot & 1u); }  // this client's
+  int slot() const;  // the lowest slot this client holds, -1: none
   const std::vector<KeptSegment> &window() const { return window_; }  // by seq, oldest first
   const ViewCounters &counters() const { return counters_; }
   double delay() const;  // s: the median of the recent delays (0: none)
@@ -127,7 +128,7 @@ class MatchView {
   bool any_event_ = false;
   std::deque<EventOut> given_;         // voidable events given, the last kVoidableFor sim s
   std::deque<std::pair<uint32_t, double>> corrections_;  // (seq, t0) of the newest corrections
-  int slot_ = -1;
+  unsigned mine_ = 0;  // the slots this client holds, a bit each
   std::vector<double> delays_;         // the newest one-way delays, a ring
   size_t next_delay_ = 0;
   ViewCounters counters_;

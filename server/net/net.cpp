@@ -192,6 +192,11 @@ void to_c(const MatchInfoOut &i, double sim_now, ball_net_match *out, const Part
   out->serving_side = i.play.serving_side;
   out->time_base = i.time_base;
   out->sim_time = sim_now;
+  out->net_x = i.net_x;
+  out->court_x[0] = i.court_x[0];
+  out->court_x[1] = i.court_x[1];
+  out->court_z[0] = i.court_z[0];
+  out->court_z[1] = i.court_z[1];
 }
 
 void to_c(const ViewEvent &v, const MatchView *view, double now, ball_net_event *out) {
@@ -364,12 +369,12 @@ ball_status ball_net_join(ball_net_client *c, uint32_t match, int slot) {
   });
 }
 
-ball_status ball_net_leave(ball_net_client *c, uint32_t match) {
+ball_status ball_net_leave(ball_net_client *c, uint32_t match, int slot) {
   ball_status st = usable(c);
   if (st != BALL_OK) return st;
   return guarded(c, [&] {
     std::string why;
-    return with_why(c, c->core->leave(match, *c->port, &why), why);
+    return with_why(c, c->core->leave(match, slot, *c->port, &why), why);
   });
 }
 
@@ -415,12 +420,13 @@ ball_status ball_net_ask(ball_net_client *c, uint32_t match, ball_net_request re
   });
 }
 
-ball_status ball_net_push(ball_net_client *c, uint32_t match, double time, ball_vec3 center, ball_vec3 normal) {
+ball_status ball_net_push(ball_net_client *c, uint32_t match, int slot, double time, ball_vec3 center,
+                          ball_vec3 normal) {
   ball_status st = usable(c);
   if (st != BALL_OK) return st;
   return guarded(c, [&] {
     std::string why;
-    ball_status r = c->core->push(match, time, center, normal, *c->port, &why);
+    ball_status r = c->core->push(match, slot, time, center, normal, *c->port, &why);
     if (r == BALL_ENETWORK && !c->port->error().empty()) why += ": " + c->port->error();
     return with_why(c, r, why);
   });
@@ -443,7 +449,7 @@ ball_status ball_net_ball_at(const ball_net_client *cc, uint32_t match, double t
   out->cause = static_cast<ball_net_cause>(b.segment->cause);
   out->cause_index = b.segment->cause_index;
   out->sound = b.segment->sound;
-  out->t0 = b.segment->segment.t0;
+  out->flight = b.segment->segment;
   return c->ok();
 }
 

@@ -336,7 +336,7 @@ TEST(the_core_joins_until_the_server_answers_and_pushes_poses) {
   FakeClientPort port;
   std::string why;
   double t = kSkew;
-  CHECK_EQ(core.push(7, t, ball_v3(1, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_ENOMATCH);
+  CHECK_EQ(core.push(7, 0, t, ball_v3(1, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_ENOMATCH);
   CHECK_EQ(core.join(7, 5, port, t, &why), BALL_ERANGE);
   CHECK(port.controls.empty());
   CHECK_EQ(core.join(7, -1, port, t, &why), BALL_OK);
@@ -344,32 +344,32 @@ TEST(the_core_joins_until_the_server_answers_and_pushes_poses) {
   for (int k = 1; k <= 20; ++k) core.pump(port, t + 0.1 * k, t + 0.1 * k);  // 2 s unanswered
   note("JOINs in 2 s unanswered: %zu", port.controls.size());
   CHECK_EQ(port.controls.size(), 5u);  // at 0, 0.5, 1.0, 1.5, 2.0
-  CHECK_EQ(core.push(7, t + 2.0, ball_v3(1, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_ENOMATCH);
+  CHECK_EQ(core.push(7, 0, t + 2.0, ball_v3(1, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_ENOMATCH);
   CHECK_EQ(g.join(0, me()), Reason::none);
   port.infos.push_back(info_of(g));
   port.infos.back().reception.received = g.now + 0.001;
   core.pump(port, g.now + kSkew + 0.001, g.now + 0.001);
   CHECK_EQ(core.view(7)->slot(), 0);
   int slot_notes = 0;
-  for (const auto &e : core.events()) slot_notes += e.note == ViewNote::slot && e.event.index == 0;
+  for (const auto &e : core.events()) slot_notes += e.note == ViewNote::slot && e.event.index == 0 && e.event.value == 1;
   CHECK_EQ(slot_notes, 1);
   size_t joins = port.controls.size();
   core.pump(port, g.now + kSkew + 1.0, g.now + 1.0);
   CHECK_EQ(port.controls.size(), joins);  // answered: no more JOIN
   double at = g.now + kSkew + 0.5;
-  CHECK_EQ(core.push(7, at, ball_v3(NAN, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_ENONFINITE);
-  CHECK_EQ(core.push(7, at, ball_v3(1, 1, 1), ball_v3(0, 1e-7, 0), port, &why), BALL_ERANGE);
-  CHECK_EQ(core.push(7, at, ball_v3(1, 1, 1), ball_v3(0, 2e6, 0), port, &why), BALL_ERANGE);
+  CHECK_EQ(core.push(7, 0, at, ball_v3(NAN, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_ENONFINITE);
+  CHECK_EQ(core.push(7, 0, at, ball_v3(1, 1, 1), ball_v3(0, 1e-7, 0), port, &why), BALL_ERANGE);
+  CHECK_EQ(core.push(7, 0, at, ball_v3(1, 1, 1), ball_v3(0, 2e6, 0), port, &why), BALL_ERANGE);
   CHECK(port.samples.empty());
-  CHECK_EQ(core.push(7, at, ball_v3(1, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_OK);
-  CHECK_EQ(core.push(7, at, ball_v3(1, 1, 2), ball_v3(1, 0, 0), port, &why), BALL_ESTALE);
-  CHECK_EQ(core.push(7, at + 0.1, ball_v3(1, 1, 2), ball_v3(1, 0, 0), port, &why), BALL_OK);
+  CHECK_EQ(core.push(7, 0, at, ball_v3(1, 1, 1), ball_v3(1, 0, 0), port, &why), BALL_OK);
+  CHECK_EQ(core.push(7, 0, at, ball_v3(1, 1, 2), ball_v3(1, 0, 0), port, &why), BALL_ESTALE);
+  CHECK_EQ(core.push(7, 0, at + 0.1, ball_v3(1, 1, 2), ball_v3(1, 0, 0), port, &why), BALL_OK);
   CHECK_EQ(port.samples.size(), 2u);
   CHECK(port.samples[0].seq == 1 && port.samples[1].seq == 2 && port.samples[0].player == 0);
   // waiting: the sim clock stands still, every time maps to the info's sim time
   CHECK_NEAR(port.samples[1].capture_time, g.match.info().sim_time, 0.0);
   port.refuse = true;
-  CHECK_EQ(core.push(7, at + 0.2, ball_v3(1, 1, 2), ball_v3(1, 0, 0), port, &why), BALL_ENETWORK);
+  CHECK_EQ(core.push(7, 0, at + 0.2, ball_v3(1, 1, 2), ball_v3(1, 0, 0), port, &why), BALL_ENETWORK);
   CHECK_EQ(core.own(7)->write_failures, 1u);
   port.refuse = false;
   // the slot taken by another: lost, and JOIN again
@@ -380,8 +380,43 @@ TEST(the_core_joins_until_the_server_answers_and_pushes_poses) {
   CHECK_EQ(core.view(7)->slot(), -1);
   CHECK(port.controls.back().kind == ControlKind::join);
   // leave: a LEAVE for the slot held, none when none is held
-  CHECK_EQ(core.leave(7, port, &why), BALL_OK);
-  CHECK_EQ(core.leave(7, port, &why), BALL_ENOMATCH);
+  CHECK_EQ(core.leave(7, -1, port, &why), BALL_OK);
+  CHECK_EQ(core.leave(7, -1, port, &why), BALL_ENOMATCH);
+}
+
+// Two players at one console: one client joins both slots by number, holds
+// both (a SLOT note each), pushes each slot's stream with its own seqs, and
+// gives one up without the other.
+TEST(one_client_holds_two_slots) {
+  Game g;
+  ClientCore core(CoreSettings{}, me());
+  FakeClientPort port;
+  std::string why;
+  CHECK_EQ(core.join(7, 0, port, 0.0, &why), BALL_OK);
+  CHECK_EQ(core.join(7, 1, port, 0.0, &why), BALL_OK);
+  CHECK_EQ(port.controls.size(), 2u);
+  CHECK(port.controls[0].player == 0 && port.controls[1].player == 1);
+  CHECK_EQ(g.join(0, me()), Reason::none);
+  CHECK_EQ(g.join(1, me()), Reason::none);
+  port.infos.push_back(info_of(g));
+  core.pump(port, 0.1, 0.1);
+  CHECK(core.view(7)->holds(0) && core.view(7)->holds(1) && core.view(7)->slot() == 0);
+  int taken = 0;
+  for (const auto &e : core.events()) taken += e.note == ViewNote::slot && e.event.value == 1;
+  CHECK_EQ(taken, 2);
+  CHECK_EQ(core.push(7, 1, 0.2, ball_v3(20, 1, 5), ball_v3(-1, 0, 0), port, &why), BALL_OK);
+  CHECK_EQ(core.push(7, 0, 0.2, ball_v3(2, 1, 5), ball_v3(1, 0, 0), port, &why), BALL_OK);
+  CHECK_EQ(core.push(7, 1, 0.3, ball_v3(20, 1, 5), ball_v3(-1, 0, 0), port, &why), BALL_OK);
+  CHECK_EQ(core.push(7, 2, 0.3, ball_v3(2, 1, 5), ball_v3(1, 0, 0), port, &why), BALL_ENOMATCH);
+  CHECK_EQ(port.samples.size(), 3u);
+  CHECK(port.samples[0].player == 1 && port.samples[0].seq == 1 && port.samples[1].player == 0 &&
+        port.samples[1].seq == 1 && port.samples[2].seq == 2);
+  size_t controls = port.controls.size();
+  CHECK_EQ(core.leave(7, 1, port, &why), BALL_OK);
+  CHECK_EQ(port.controls.size(), controls + 1);
+  CHECK(port.controls.back().kind == ControlKind::leave && port.controls.back().player == 1);
+  CHECK_EQ(core.leave(7, 1, port, &why), BALL_OK);  // (still held until the server says: a LEAVE again)
+  CHECK_EQ(core.leave(7, 3, port, &why), BALL_ENOMATCH);
 }
 
 // CREATE goes out until a MatchInfo of the match appears; the list holds

@@ -131,6 +131,9 @@ typedef struct ball_net_match {
   int serving_side;                          /* the side that serves next */
   double time_base;                          /* sim s per real s */
   double sim_time;                           /* sim s, now (the client's estimate) */
+  double net_x;                              /* m: the net stands on the plane x = net_x */
+  double court_x[2];                         /* m: the court the rules judge, baseline to baseline */
+  double court_z[2];                         /* m: and sideline to sideline */
 } ball_net_match;
 
 /* The matches the domain's servers serve (those the client trusts, each
@@ -152,21 +155,25 @@ BALL_NET_API ball_status ball_net_match_info(ball_net_client *client, uint32_t m
 BALL_NET_API ball_status ball_net_create(ball_net_client *client, uint32_t match, const char *scene, int players,
                                          ball_level level);
 
-/* Joins match `match` in slot `slot` (-1: any free one). The library sends
- * JOIN every 0.5 s until the match's MatchInfo shows the slot held by this
- * client, and again whenever it stops being so, until ball_net_leave; a
- * BALL_NET_EVENT_SLOT event says when the slot is taken or lost. Also
- * follows the match (ball_net_watch). BALL_ERANGE for a slot outside
+/* Joins match `match` in slot `slot` (-1: any free one, satisfied by any
+ * slot this client holds there). The library sends JOIN every 0.5 s until
+ * the match's MatchInfo shows the slot held by this client, and again
+ * whenever it stops being so, until ball_net_leave; a BALL_NET_EVENT_SLOT
+ * event says when a slot is taken or lost. A client may hold several slots
+ * of a match (two players at one console: join each slot by its number).
+ * Also follows the match (ball_net_watch). BALL_ERANGE for a slot outside
  * [-1, 3]. */
 BALL_NET_API ball_status ball_net_join(ball_net_client *client, uint32_t match, int slot);
 
-/* Gives the slot of `match` up (a LEAVE) and stops asking for it; the
- * client still follows the match until ball_net_unwatch. BALL_ENOMATCH:
- * the client did not join it. */
-BALL_NET_API ball_status ball_net_leave(ball_net_client *client, uint32_t match);
+/* Gives slot `slot` of `match` up (a LEAVE; -1: every slot this client
+ * holds there) and stops asking for it; the client still follows the
+ * match until ball_net_unwatch. BALL_ENOMATCH: the client has not joined
+ * that slot. */
+BALL_NET_API ball_status ball_net_leave(ball_net_client *client, uint32_t match, int slot);
 
-/* The slot this client holds in `match`: -1 while it has none (joining, or
- * a spectator). BALL_ENOMATCH: the client does not follow the match. */
+/* The lowest slot this client holds in `match`: -1 while it holds none
+ * (joining, or a spectator); ball_net_match_info's slots say which it holds.
+ * BALL_ENOMATCH: the client does not follow the match. */
 BALL_NET_API ball_status ball_net_slot_of(ball_net_client *client, uint32_t match, int *slot);
 
 /* Follows a match without a slot (a spectator): its ball, its events. */
@@ -184,7 +191,8 @@ typedef enum ball_net_request {
   BALL_NET_REQUEST_COUNT
 } ball_net_request;
 
-/* Sends a request for a match whose slot this client holds; the server
+/* Sends a request for a match of which this client holds a slot (it asks
+ * as the holder of the lowest); the server
  * answers with an event (BALL_NET_EVENT_LEVEL, ... or BALL_NET_EVENT_REFUSED).
  * BALL_ENOMATCH: no slot held in it; BALL_ERANGE: a value out of range. */
 BALL_NET_API ball_status ball_net_ask(ball_net_client *client, uint32_t match, ball_net_request request,
@@ -192,17 +200,18 @@ BALL_NET_API ball_status ball_net_ask(ball_net_client *client, uint32_t match, b
 
 /* ---- playing ------------------------------------------------------------- */
 
-/* The racket's pose at `time` of the caller's clock: its disc's centre (m)
- * and normal (any length in [1e-6, 1e6]). The library maps the time to the
+/* The pose of the racket of slot `slot` (one this client holds) at `time`
+ * of the caller's clock: its disc's centre (m) and normal (any length in
+ * [1e-6, 1e6]). The library maps the time to the
  * match's sim clock, numbers the sample and writes it; the rate is the
  * caller's (the server wants one at least every player timeout, 1 s, and
  * tests hits between samples: 10 to 60 a second play well).
- * BALL_ENOMATCH: no slot held in the match; BALL_EAGAIN: the match's clock
+ * BALL_ENOMATCH: the client does not hold that slot; BALL_EAGAIN: the match's clock
  * is not known yet (no MatchInfo); BALL_ENONFINITE, BALL_ERANGE: a bad pose;
  * BALL_ESTALE: a time not after the previous pose's; BALL_ENETWORK: DDS
  * refused the write. */
-BALL_NET_API ball_status ball_net_push(ball_net_client *client, uint32_t match, double time, ball_vec3 center,
-                                       ball_vec3 normal);
+BALL_NET_API ball_status ball_net_push(ball_net_client *client, uint32_t match, int slot, double time,
+                                       ball_vec3 center, ball_vec3 normal);
 
 /* What started a flight segment (docs/protocol.md, "Segments"). */
 typedef enum ball_net_cause {
@@ -221,7 +230,7 @@ typedef struct ball_net_ball {
   ball_net_cause cause;   /* what started it */
   int cause_index;        /* the wall, or the racket's slot; -1 */
   int sound;              /* its collision made the paper's sound: play it when `segment` changes */
-  double t0;              /* sim s the segment started */
+  ball_segment flight;    /* the segment itself: t0 sim s, p0, v0, s0, grounded (ball_segment_eval's) */
 } ball_net_ball;
 
 /* The ball of `match` at `time` of the caller's clock, from the segment in
@@ -273,7 +282,7 @@ typedef enum ball_net_event_kind {
   BALL_NET_EVENT_REFUSED,    /* a request refused: index its control kind, reason why */
   /* the library's own (seq 0) */
   BALL_NET_EVENT_SERVER,     /* the match's server changed (a failover): `server` is the new one */
-  BALL_NET_EVENT_SLOT,       /* this client's slot: index the slot taken, -1 when it lost it */
+  BALL_NET_EVENT_SLOT,       /* this client's slot `index`: value 1 taken, 0 lost */
   BALL_NET_EVENT_VOIDED,     /* a correction took back an event given before: value its seq */
   BALL_NET_EVENT_GAP,        /* events never came: value how many (seqs skipped) */
   BALL_NET_EVENT_KIND_COUNT
