@@ -40,7 +40,8 @@ set(BALL_DDS_DOMAINS
   "dds_control_share|126|test: a stranger's flood of JOINs into match 1: match 0's bots join and rally"
   "web_page|125|test: the spectator page in headless Chromium follows a rally, a server killed and a new one"
   "dds_discovery|120|test: server, bots and watcher found through a Discovery Server only"
-  "test_teardown|141|test: one participant deleted within the teardown limit")
+  "test_teardown|141|test: one participant deleted within the teardown limit"
+  "test_net_api|131|test: the client library's C API refuses bad input, with a server and without")
 
 # ball_dds_domain(USER OUT): the id of USER, a fatal error if it has none.
 function(ball_dds_domain user out)
