@@ -3,8 +3,10 @@
  * path (to meet the ball where the server's segments say it will be, on
  * its own half), prints the rally as it happens and leaves.
  *
- *   rally [--domain D] [--match M] [--points N] [--hits H] [--seconds S]
+ *   rally [--domain D] [--match M] [--points N] [--hits H] [--seconds S] [--log 1]
  *
+ * With --log 1 it also prints every event of the server as it comes:
+ * "event SEQ KIND server ID".
  * It returns H balls a rally (default 3), then lets the next one go, so
  * that points are played. Exit status 0 when it played N points (default
  * 3) with at least one hit of its own, 1 otherwise. */
@@ -71,17 +73,19 @@ int main(int argc, char **argv) {
   ball_net_event events[32];
   char why[256];
   long match = -1;
-  int points = 3, hits = 3, played = 0, mine = 0, rally_hits = 0, slot = -1, placed = 0, n, i;
+  int points = 3, hits = 3, log = 0, played = 0, mine = 0, rally_hits = 0, slot = -1, placed = 0, n, i;
   ball_vec3 racket = {0.0, 1.0, 0.0};
   double seconds = 60.0, start, next_pose;
   ball_status st;
 
+  setvbuf(stdout, NULL, _IOLBF, 0); /* the rally as it happens, also into a file */
   ball_net_config_default(&config);
   for (i = 1; i + 1 < argc; i += 2) {
     if (strcmp(argv[i], "--domain") == 0) config.domain = atoi(argv[i + 1]);
     else if (strcmp(argv[i], "--match") == 0) match = atol(argv[i + 1]);
     else if (strcmp(argv[i], "--points") == 0) points = atoi(argv[i + 1]);
     else if (strcmp(argv[i], "--hits") == 0) hits = atoi(argv[i + 1]);
+    else if (strcmp(argv[i], "--log") == 0) log = atoi(argv[i + 1]);
     else if (strcmp(argv[i], "--seconds") == 0) seconds = atof(argv[i + 1]);
   }
   st = ball_net_open(&config, &client, why, sizeof why);
@@ -120,6 +124,7 @@ int main(int argc, char **argv) {
     }
     for (i = 0; i < n; i++) {
       const ball_net_event *e = &events[i];
+      if (log && e->seq > 0) printf("rally: event %u %s server %u\n", e->seq, ball_net_event_kind_name(e->kind), e->server);
       switch (e->kind) {
         case BALL_NET_EVENT_SLOT:
           if (e->value > 0.0) slot = e->index;
@@ -163,6 +168,7 @@ int main(int argc, char **argv) {
     sleep_until(t + 1.0 / 60.0);
   }
   printf("rally: %d points played, %d hits of mine; leaving\n", played, mine);
+  fflush(stdout);
   ball_net_leave(client, (uint32_t)match, -1);
   st = ball_net_close(client);
   if (st != BALL_OK) fprintf(stderr, "rally: close: %s\n", ball_net_message(client));

@@ -466,9 +466,72 @@ void case_standby_no_scene(const Env &env) {
   check_stream(0, seen[0]);
 }
 
+// A game on the client library (examples/c/rally.c, ball/net.h) plays
+// through a failover: the primary is killed mid-rally, the game's events
+// go on from the standby with no seq given twice and none skipped, the
+// game sees the server change and plays its points to the end.
+void case_net_failover(const Env &env) {
+  Case c{env};
+  Process primary = server(env, "primary", 1, {"--matches", "1", "--startup-wait", "0"});
+  Process standby = server(env, "standby", 2, {"--standby", "--startup-wait", "0.5"});
+  Process bot = program(env, "bot1", "ball-bot", {"--match", "0", "--player", "1"});
+  const std::string out = path(env, "rally.out");
+  Process game = Process::start({env.bin + "/../examples/rally", "--domain", env.dom(), "--match", "0", "--points",
+                                 "3", "--hits", "3", "--seconds", "60", "--log", "1"},
+                                out, path(env, "rally.err"));
+  auto count_in = [](const std::string &text, const std::string &what) {
+    size_t n = 0;
+    for (size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) n++;
+    return n;
+  };
+  double end = mono_now() + 30.0;
+  while (mono_now() < end && count_in(file_text(out), "(me)") < 2) usleep(100000);
+  CHECK_MSG(count_in(file_text(out), "(me)") >= 2, "the game made no 2 hits within 30 s");
+  primary.signal(SIGKILL);
+  primary.wait(2.0);
+  int rc = game.wait(60.0);
+  bot.stop();
+  stop_server(standby, "the standby");
+  std::string text = file_text(out);
+  // the events as the game got them, in order
+  std::vector<uint32_t> seqs;
+  std::istringstream lines(text);
+  std::string line;
+  size_t changed_at = std::string::npos, pos = 0;
+  int mine_after = 0, points_after = 0;
+  while (std::getline(lines, line)) {
+    unsigned seq = 0, server_id = 0;
+    char kind[32];
+    if (std::sscanf(line.c_str(), "rally: event %u %31s server %u", &seq, kind, &server_id) == 3) seqs.push_back(seq);
+    if (line.find("now served by server 2") != std::string::npos && changed_at == std::string::npos) changed_at = pos;
+    if (changed_at != std::string::npos) {
+      mine_after += line.find("(me)") != std::string::npos;
+      points_after += line.find("rally: point") != std::string::npos;
+    }
+    pos++;
+  }
+  size_t repeats = 0, skipped = 0;
+  for (size_t k = 1; k < seqs.size(); ++k) {
+    repeats += seqs[k] <= seqs[k - 1];
+    skipped += seqs[k] > seqs[k - 1] + 1 ? seqs[k] - seqs[k - 1] - 1 : 0;
+  }
+  note("the game through the failover: exit %d, %zu events (seq %u to %u), %zu given twice, %zu skipped; after "
+       "the change of server %d hits of its own, %d points",
+       rc, seqs.size(), seqs.empty() ? 0u : seqs.front(), seqs.empty() ? 0u : seqs.back(), repeats, skipped,
+       mine_after, points_after);
+  CHECK_EQ(rc, 0);
+  CHECK(changed_at != std::string::npos);
+  CHECK(seqs.size() > 20u);
+  CHECK_EQ(repeats, 0u);
+  CHECK_EQ(skipped, 0u);
+  CHECK(mine_after >= 1);
+  CHECK(points_after >= 1);
+}
+
 }  // namespace
 
 TEST(failover) { itest::in_case(case_failover); }
+TEST(net_failover) { itest::in_case(case_net_failover); }
 TEST(standby_no_scene) { itest::in_case(case_standby_no_scene); }
 TEST(standby_killed) { itest::in_case(case_standby_killed); }
 TEST(primary_back) { itest::in_case(case_primary_back); }

@@ -96,7 +96,8 @@ add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp ${CMAKE_CURRENT_LI
 target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static ball_render)
 target_include_directories(ball_itest PRIVATE ${PROJECT_SOURCE_DIR}/tests/render ${PROJECT_SOURCE_DIR}/tests/support)
 target_compile_options(ball_itest PRIVATE ${BALL_CXX_WARNINGS})
-add_dependencies(ball_itest ball-server ball-bot ball-watch ball-load ball_flood ball_create ball_intrude ball_unreadable)
+add_dependencies(ball_itest ball-server ball-bot ball-watch ball-load ball_flood ball_create ball_intrude ball_unreadable
+  rally_c)
 
 # each case on the DDS domain cmake/dds_domains.cmake gives it: parallel runs
 # never meet; the discovery case runs Debian's fastdds-tools (./run setup)
@@ -106,7 +107,7 @@ find_program(BALL_FASTDDS fastdds)
 find_program(BALL_TCPDUMP tcpdump PATHS /usr/bin /usr/sbin)
 find_program(BALL_ITEST_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
 set(BALL_ITEST_CASES rally desync lag lag_own pause flood key_flood junk_keys unreadable control_share create_flood forged_server inbox_share create_expires late_join lossy server_cli busy snapshots discovery
-  failover standby_killed primary_back claim standby_no_scene secure load_secure discovery_flood)
+  failover standby_killed primary_back claim standby_no_scene net_failover secure load_secure discovery_flood)
 foreach(case ${BALL_ITEST_CASES})
   ball_dds_domain(dds_${case} domain)
   add_test(NAME dds_${case}
