@@ -10,6 +10,7 @@ set(BALL_DDS_DOMAINS
   "ball-load|90|`./run bench-server` (ball-load's default `--domain`)"
   "bench-security|91|`./run bench-security` (its `--domain`)"
   "bench-hit-cost|127|`./run hit-cost --server` (its `--domain`)"
+  "bench-client|92|`./run bench-client` (its `--domain`)"
   "dds_rally|100|test: two bots rally"
   "dds_desync|101|test: the watcher's ball against the server's states"
   "dds_pause|102|test: a killed bot pauses its match"

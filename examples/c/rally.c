@@ -3,10 +3,11 @@
  * path (to meet the ball where the server's segments say it will be, on
  * its own half), prints the rally as it happens and leaves.
  *
- *   rally [--domain D] [--match M] [--points N] [--hits H] [--seconds S] [--log 1]
+ *   rally [--domain D] [--match M] [--points N] [--hits H] [--seconds S] [--log 1] [--states 1]
  *
  * With --log 1 it also prints every event of the server as it comes:
- * "event SEQ KIND server ID".
+ * "event SEQ KIND server ID". With --states 1 it reads the server's ball
+ * states too (ball_net_config.ball_states).
  * It returns H balls a rally (default 3), then lets the next one go, so
  * that points are played. Exit status 0 when it played N points (default
  * 3) with at least one hit of its own, 1 otherwise. */
@@ -86,6 +87,7 @@ int main(int argc, char **argv) {
     else if (strcmp(argv[i], "--points") == 0) points = atoi(argv[i + 1]);
     else if (strcmp(argv[i], "--hits") == 0) hits = atoi(argv[i + 1]);
     else if (strcmp(argv[i], "--log") == 0) log = atoi(argv[i + 1]);
+    else if (strcmp(argv[i], "--states") == 0) config.ball_states = atoi(argv[i + 1]);
     else if (strcmp(argv[i], "--seconds") == 0) seconds = atof(argv[i + 1]);
   }
   st = ball_net_open(&config, &client, why, sizeof why);
@@ -152,6 +154,11 @@ int main(int argc, char **argv) {
         default: break;
       }
     }
+    /* what a game draws every frame: the ball now */
+    {
+      ball_net_ball b;
+      ball_net_ball_at(client, (uint32_t)match, t, &b);
+    }
     /* the racket's pose, 30 a second */
     if (slot >= 0 && t >= next_pose && ball_net_match_info(client, (uint32_t)match, &m) == BALL_OK) {
       ball_vec3 to = target(client, (uint32_t)match, &m, slot % 2, t, rally_hits < hits), normal;
@@ -166,6 +173,13 @@ int main(int argc, char **argv) {
       if (next_pose < t) next_pose = t + 1.0 / 30.0;
     }
     sleep_until(t + 1.0 / 60.0);
+  }
+  {
+    ball_net_status s;
+    if (ball_net_status_of(client, (uint32_t)match, &s) == BALL_OK)
+      printf("rally: %.1f s: %lu poses, %lu segments, %lu events taken; bytes in %lu, out %lu\n", now() - start,
+             (unsigned long)s.samples, (unsigned long)s.segments, (unsigned long)s.events, (unsigned long)s.bytes_in,
+             (unsigned long)s.bytes_out);
   }
   printf("rally: %d points played, %d hits of mine; leaving\n", played, mine);
   fflush(stdout);

@@ -20,9 +20,10 @@ std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNe
   }
   p->segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {n.matches}, err);
   p->infos_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {n.matches}, err);
-  p->states_ = d.reader<StateOut>(kStateTopic, kStateProfile, {n.matches}, err);
+  if (n.states) p->states_ = d.reader<StateOut>(kStateTopic, kStateProfile, {n.matches}, err);
   p->models_ = d.reader<MatchModelOut>(kModelTopic, kModelProfile, {n.matches}, err);
-  if (!p->segments_.valid() || !p->infos_.valid() || !p->states_.valid() || !p->models_.valid()) return nullptr;
+  if (!p->segments_.valid() || !p->infos_.valid() || (n.states && !p->states_.valid()) || !p->models_.valid())
+    return nullptr;
   if (n.events) {
     p->events_ = d.reader<EventOut>(kEventTopic, kEventProfile, {n.matches}, err);
     if (!p->events_.valid()) return nullptr;
@@ -60,6 +61,7 @@ WireSizes wire_sizes() {
   s.state = serialized_size<StateOut>();
   s.info = serialized_size<MatchInfoOut>();
   s.status = serialized_size<StatusOut>();
+  s.model = serialized_size<MatchModelOut>();
   return s;
 }
 

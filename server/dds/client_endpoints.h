@@ -27,6 +27,7 @@ struct ClientNeeds {
   // participant are refused and counted (untrusted)
   std::vector<std::pair<uint32_t, std::string>> server_certs;
   bool rackets = false;   // reads ball/racket_samples (a watcher that draws the rackets)
+  bool states = true;     // reads ball/ball_state
 };
 
 // The size of one sample of every topic (load.h).

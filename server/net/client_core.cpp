@@ -69,41 +69,52 @@ void ClientCore::take_info(const MatchInfoOut &info, double local) {
 
 void ClientCore::pump(ClientPort &port, double local, double real) {
   const double shift = local - real;  // the realtime clock to the caller's
+  const WireSizes size = port.sizes();
   auto at = [&](const Reception &r) { return r.received > 0.0 ? r.received + shift : local; };
-  auto delay = [&](MatchView *v, const Reception &r) {
-    if (r.received > 0.0 && r.written > 0.0) v->on_delay(r.received - r.written);
+  // the followed match a sample is of, its bytes counted; nullptr: not followed
+  auto of = [&](uint32_t match, uint64_t bytes) {
+    Followed *f = followed(match);
+    if (f) f->own.bytes_in += bytes;
+    return f;
+  };
+  auto delay = [&](Followed *f, const Reception &r) {
+    if (r.received > 0.0 && r.written > 0.0) f->view->on_delay(r.received - r.written);
   };
   scratch_.clear();
   // models before infos: a view takes the model its info names at once
   MatchModelOut model;
   while (port.take(&model))
-    if (Followed *f = followed(model.match_id)) f->view->on_model(model);
+    if (Followed *f = of(model.match_id, size.model)) f->view->on_model(model);
   MatchInfoOut info;
   while (port.take(&info)) {
     take_info(info, at(info.reception));
-    if (Followed *f = followed(info.match_id)) delay(f->view.get(), info.reception);
+    if (Followed *f = of(info.match_id, size.info)) delay(f, info.reception);
   }
   StateOut state;
   while (port.take(&state))
-    if (Followed *f = followed(state.match_id)) f->view->on_state(state, at(state.reception));
+    if (Followed *f = of(state.match_id, size.state)) f->view->on_state(state, at(state.reception));
   SegmentOut seg;
   while (port.take(&seg))
-    if (Followed *f = followed(seg.match_id)) {
+    if (Followed *f = of(seg.match_id, size.segment)) {
       f->view->on_segment(seg, at(seg.reception), &scratch_);
-      delay(f->view.get(), seg.reception);
+      delay(f, seg.reception);
     }
   EventOut ev;
   while (port.take(&ev))
-    if (Followed *f = followed(ev.match_id)) f->view->on_event(ev, at(ev.reception), &scratch_);
+    if (Followed *f = of(ev.match_id, size.event)) f->view->on_event(ev, at(ev.reception), &scratch_);
   StatusOut status;
   while (port.take(&status)) {
   }
   events_.insert(events_.end(), scratch_.begin(), scratch_.end());
+  sizes_ = size;
   send_due(port, local);
 }
 
 bool ClientCore::write(ClientPort &port, const ControlIn &c, Followed *f) {
-  if (port.write(c)) return true;
+  if (port.write(c)) {
+    if (f) f->own.bytes_out += sizes_.control;
+    return true;
+  }
   if (f) f->own.write_failures++;
   else lost_writes_++;
   return false;
@@ -275,6 +286,7 @@ ball_status ClientCore::push(uint32_t match, int slot, double local, ball_vec3 c
     f->own.write_failures++;
     return refuse(BALL_ENETWORK, "DDS refused the racket sample", why);
   }
+  f->own.bytes_out += port.sizes().sample;
   f->sample_seq[k] = s.seq;
   f->pushed[k] = true;
   f->last_push[k] = local;

@@ -36,6 +36,8 @@ struct Listed {
 struct OwnCounters {
   uint64_t samples = 0;         // racket poses written
   uint64_t write_failures = 0;  // poses and controls DDS refused
+  uint64_t bytes_in = 0;        // payload bytes of the match's samples taken (ClientPort::sizes)
+  uint64_t bytes_out = 0;       // and of the samples and controls written for it
 };
 
 class ClientCore {
@@ -99,6 +101,7 @@ class ClientCore {
   std::deque<ViewEvent> events_;
   std::vector<ViewEvent> scratch_;
   uint32_t control_seq_ = 0;
+  WireSizes sizes_;  // the port's, as the newest pump saw them
   uint64_t refused_ = 0;
   uint64_t lost_writes_ = 0;  // controls DDS refused outside a followed match (CREATE)
 };

@@ -258,18 +258,11 @@ int MatchView::slot() const {
   return -1;
 }
 
-const KeptSegment *MatchView::in_effect(double sim) const {
-  for (auto it = window_.rbegin(); it != window_.rend(); ++it)
-    if (it->segment.segment.t0 <= sim) return &*it;
-  return nullptr;
-}
-
 ball_status MatchView::ball(double local, ViewBall *out) const {
   if (!std::isfinite(local)) return BALL_ENONFINITE;
-  if (!clock_.valid()) return BALL_EAGAIN;
-  double sim = clock_.sim_now(local);
-  const KeptSegment *k = in_effect(sim);
-  if (!k || !k->ready) return BALL_EAGAIN;
+  double sim = 0.0;
+  const KeptSegment *k = at(local, &sim);
+  if (!k) return BALL_EAGAIN;
   ball_status st = ball_flight_eval(&k->flight, sim, &out->state);
   if (st != BALL_OK) return st;
   out->sim_time = sim;

@@ -95,7 +95,20 @@ class MatchView {
 
   // The segment in effect at sim time t: of those kept, the highest seq
   // whose t0 is not after t; nullptr: none.
-  const KeptSegment *in_effect(double sim) const;
+  const KeptSegment *in_effect(double sim) const {
+    for (auto it = window_.rbegin(); it != window_.rend(); ++it)
+      if (it->segment.segment.t0 <= sim) return &*it;
+    return nullptr;
+  }
+  // The segment in effect at `local` of the caller's clock and that sim
+  // time: what ball() evaluates (nullptr: no clock, or no segment in
+  // effect yet). The library's ball query, kept to a few comparisons.
+  const KeptSegment *at(double local, double *sim) const {
+    if (!clock_.valid()) return nullptr;
+    *sim = clock_.sim_now(local);
+    const KeptSegment *k = in_effect(*sim);
+    return k && k->ready ? k : nullptr;
+  }
   // The ball at `local` of the caller's clock. BALL_EAGAIN: no clock or
   // no segment in effect yet; BALL_ENONFINITE: a NaN or infinite time.
   ball_status ball(double local, ViewBall *out) const;

@@ -73,6 +73,7 @@ class NetPort : public ClientPort {
     return p && p->controls.write(c);
   }
   bool hears_server() const override { return readers_->hears_server(); }
+  WireSizes sizes() const override { return sizes_; }
   uint64_t untrusted() const override { return readers_->untrusted(); }
   const std::string &error() const { return error_; }
 
@@ -99,6 +100,7 @@ class NetPort : public ClientPort {
   int matches_;
   std::map<std::string, Pair> pairs_;
   std::string error_;
+  WireSizes sizes_ = dds::wire_sizes();
 };
 
 const char *or_empty(const char *s) { return s ? s : ""; }
@@ -122,6 +124,9 @@ struct ball_net_client {
   std::unique_ptr<ClientCore> core;
   bool closed = false;
   std::string message;
+  // the view the newest ball query found, by match: a game asks for one match's ball every frame
+  uint32_t hot_match = 0;
+  const MatchView *hot_view = nullptr;
 
   double now() const { return clock(clock_user); }
   ball_status fail(ball_status st, const std::string &why) {
@@ -129,7 +134,7 @@ struct ball_net_client {
     return st;
   }
   ball_status ok() {
-    message.clear();
+    if (!message.empty()) message.clear();
     return BALL_OK;
   }
 };
@@ -250,6 +255,7 @@ ball_status ball_net_open(const ball_net_config *config, ball_net_client **clien
     if (config->max_matches < 0 || config->max_matches > kMaxMatches)
       return say(BALL_ERANGE, "max_matches " + std::to_string(config->max_matches) + " is not in [0, " +
                                   std::to_string(kMaxMatches) + "]");
+    if (config->ball_states != 0 && config->ball_states != 1) return say(BALL_ERANGE, "ball_states must be 0 or 1");
     if (config->identity && !config->security_dir) return say(BALL_EINVAL, "an identity needs security_dir");
     if (config->security_dir && !config->identity) return say(BALL_EINVAL, "security_dir needs an identity");
     CoreSettings settings;
@@ -274,6 +280,7 @@ ball_status ball_net_open(const ball_net_config *config, ball_net_client **clien
     needs.players = 0;  // the writers are the port's, per partition
     needs.matches = matches;
     needs.events = true;
+    needs.states = config->ball_states != 0;
     needs.server_certs = settings.servers.bound();
     auto readers = dds::ClientEndpoints::open(*c->domain, needs, &err);
     if (!readers) {
@@ -400,6 +407,7 @@ ball_status ball_net_watch(ball_net_client *c, uint32_t match) {
 ball_status ball_net_unwatch(ball_net_client *c, uint32_t match) {
   ball_status st = usable(c);
   if (st != BALL_OK) return st;
+  c->hot_view = nullptr;  // (the view may go)
   return guarded(c, [&] {
     std::string why;
     return with_why(c, c->core->unwatch(match, *c->port, &why), why);
@@ -432,24 +440,40 @@ ball_status ball_net_push(ball_net_client *c, uint32_t match, int slot, double t
   });
 }
 
+namespace {
+// ball_net_ball_at's refusals, out of its way (it runs every frame)
+__attribute__((cold, noinline)) ball_status ball_refused(ball_net_client *c, uint32_t match, ball_status st) {
+  if (!c) return BALL_EINVAL;
+  if (st == BALL_EAGAIN) return c->fail(st, "match " + std::to_string(match) + " has no clock or segment yet");
+  if (st == BALL_EINVAL) return c->fail(st, "out must not be NULL");
+  if (st == BALL_ENONFINITE) return c->fail(st, "the time must be finite");
+  if (st == BALL_ENOMATCH || st == BALL_ECLOSED) return st;  // (said by followed or usable)
+  return c->fail(st, std::string("the ball at that time: ") + ball_strerror(st));
+}
+}  // namespace
+
+// (the call a game makes every frame: docs/client.md, "What it costs", measures it against ball_segment_eval)
 ball_status ball_net_ball_at(const ball_net_client *cc, uint32_t match, double time, ball_net_ball *out) {
   auto *c = const_cast<ball_net_client *>(cc);
-  ball_status st = usable(c);
-  if (st != BALL_OK) return st;
-  if (!out) return c->fail(BALL_EINVAL, "out must not be NULL");
-  const MatchView *v = followed(c, match);
-  if (!v) return BALL_ENOMATCH;
-  ViewBall b;
-  st = v->ball(time, &b);
-  if (st == BALL_EAGAIN) return c->fail(st, "match " + std::to_string(match) + " has no clock or segment yet");
-  if (st != BALL_OK) return c->fail(st, std::string("the ball at that time: ") + ball_strerror(st));
-  out->state = b.state;
-  out->sim_time = b.sim_time;
-  out->segment = b.segment->seq;
-  out->cause = static_cast<ball_net_cause>(b.segment->cause);
-  out->cause_index = b.segment->cause_index;
-  out->sound = b.segment->sound;
-  out->flight = b.segment->segment;
+  if (!c || c->closed) return ball_refused(c, match, usable(c));
+  if (!out) return ball_refused(c, match, BALL_EINVAL);
+  const MatchView *v = c->hot_view && c->hot_match == match ? c->hot_view : followed(c, match);
+  if (!v) return ball_refused(c, match, BALL_ENOMATCH);
+  c->hot_match = match;
+  c->hot_view = v;
+  if (!std::isfinite(time)) return ball_refused(c, match, BALL_ENONFINITE);
+  double sim = 0.0;
+  const KeptSegment *k = v->at(time, &sim);
+  if (!k) return ball_refused(c, match, BALL_EAGAIN);
+  ball_status st = ball_flight_eval(&k->flight, sim, &out->state);
+  if (st != BALL_OK) return ball_refused(c, match, st);
+  const SegmentOut &s = k->segment;
+  out->sim_time = sim;
+  out->segment = s.seq;
+  out->cause = static_cast<ball_net_cause>(s.cause);
+  out->cause_index = s.cause_index;
+  out->sound = s.sound;
+  out->flight = s.segment;
   return c->ok();
 }
 
@@ -566,6 +590,8 @@ ball_status ball_net_status_of(const ball_net_client *cc, uint32_t match, ball_n
   const OwnCounters *own = c->core->own(match);
   out->samples = own->samples;
   out->write_failures = own->write_failures;
+  out->bytes_in = own->bytes_in;
+  out->bytes_out = own->bytes_out;
   return c->ok();
 }
 

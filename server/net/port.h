@@ -14,7 +14,7 @@ namespace ballsrv {
 // with the 4-byte encapsulation header (the types are fixed-size, so every
 // sample of a type has the same size; dds::wire_sizes() gives them).
 struct WireSizes {
-  uint64_t sample = 0, control = 0, segment = 0, event = 0, state = 0, info = 0, status = 0;
+  uint64_t sample = 0, control = 0, segment = 0, event = 0, state = 0, info = 0, status = 0, model = 0;
 };
 
 class ClientPort {
@@ -34,6 +34,8 @@ class ClientPort {
   [[nodiscard]] virtual bool write(const ControlIn &control) = 0;
   // a server's segments, events and match info reach this client from now on
   virtual bool hears_server() const = 0;
+  // the bytes of one sample of each type on this port (a client counts its traffic by them; zeros: uncounted)
+  virtual WireSizes sizes() const { return {}; }
   // samples refused because they claimed a server id bound to a
   // certificate their writer does not hold (ServerChoice, trust.h)
   virtual uint64_t untrusted() const { return 0; }

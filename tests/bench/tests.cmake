@@ -9,3 +9,12 @@ target_link_libraries(ball_bench PRIVATE ball_kit)
 set_target_properties(ball_bench PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/tests/bench)
 add_test(NAME ball_bench_smoke COMMAND ball_bench --smoke --scenes ${PROJECT_SOURCE_DIR}/libball/scenes)
 set_tests_properties(ball_bench_smoke PROPERTIES LABELS bench TIMEOUT 120)
+
+# net_query: the client library's ball query against ball_segment_eval, in
+# one run (./run bench-client, tests/bench/client_bench.py; docs/client.md)
+if(TARGET ball_net)
+  add_executable(net_query ${CMAKE_CURRENT_LIST_DIR}/net_query.c)
+  target_compile_options(net_query PRIVATE ${BALL_C_WARNINGS})
+  target_link_libraries(net_query PRIVATE ball_net)
+  set_target_properties(net_query PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/tests/bench)
+endif()

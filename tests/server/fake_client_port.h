@@ -47,6 +47,8 @@ struct FakeClientPort : ClientPort {
     return !refuse;
   }
   bool hears_server() const override { return heard; }
+  WireSizes wire{};  // what sizes() says
+  WireSizes sizes() const override { return wire; }
 };
 
 }  // namespace test

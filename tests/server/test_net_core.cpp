@@ -386,12 +386,16 @@ TEST(the_core_joins_until_the_server_answers_and_pushes_poses) {
 
 // Two players at one console: one client joins both slots by number, holds
 // both (a SLOT note each), pushes each slot's stream with its own seqs, and
-// gives one up without the other.
+// gives one up without the other; the bytes of what it took and wrote are counted.
 TEST(one_client_holds_two_slots) {
   Game g;
   ClientCore core(CoreSettings{}, me());
   FakeClientPort port;
+  port.wire.sample = 40;
+  port.wire.control = 60;
+  port.wire.info = 1000;
   std::string why;
+  core.pump(port, 0.0, 0.0);  // (the core learns the port's sizes)
   CHECK_EQ(core.join(7, 0, port, 0.0, &why), BALL_OK);
   CHECK_EQ(core.join(7, 1, port, 0.0, &why), BALL_OK);
   CHECK_EQ(port.controls.size(), 2u);
@@ -409,6 +413,8 @@ TEST(one_client_holds_two_slots) {
   CHECK_EQ(core.push(7, 1, 0.3, ball_v3(20, 1, 5), ball_v3(-1, 0, 0), port, &why), BALL_OK);
   CHECK_EQ(core.push(7, 2, 0.3, ball_v3(2, 1, 5), ball_v3(1, 0, 0), port, &why), BALL_ENOMATCH);
   CHECK_EQ(port.samples.size(), 3u);
+  CHECK_EQ(core.own(7)->bytes_out, 3u * 40u + 2u * 60u);  // three poses, two JOINs
+  CHECK_EQ(core.own(7)->bytes_in, 1000u);                 // one MatchInfo
   CHECK(port.samples[0].player == 1 && port.samples[0].seq == 1 && port.samples[1].player == 0 &&
         port.samples[1].seq == 1 && port.samples[2].seq == 2);
   size_t controls = port.controls.size();

@@ -75,6 +75,9 @@ typedef struct ball_net_config {
                                      server 1 to that certificate (with security_dir); NULL: any */
   const char *name;               /* the DDS participant's name; NULL: "ball-net" */
   int max_matches;                /* matches its readers make room for, [1, 4096]; 0: 4096 */
+  int ball_states;                /* 1: also read the server's ball states (up to its frame rate: a clock pair
+                                     each, and their bytes); 0: the clock from MatchInfo alone, once a second and
+                                     at every change (docs/client.md, "What it costs") */
   ball_net_clock clock;           /* the caller's clock; NULL: CLOCK_MONOTONIC */
   void *clock_user;               /* passed to clock */
 } ball_net_config;
@@ -359,6 +362,9 @@ typedef struct ball_net_status {
   uint64_t voided;             /* events a correction took back */
   uint64_t samples;            /* racket poses written */
   uint64_t write_failures;     /* writes DDS refused (poses and controls) */
+  uint64_t bytes_in;           /* payload bytes of the match's samples taken (CDR, without the RTPS, UDP and IP
+                                  headers, acknowledgements, resends and discovery) */
+  uint64_t bytes_out;          /* and of the poses and requests written for it */
 } ball_net_status;
 
 /* The status of a match the client follows. BALL_ENOMATCH: it does not. */
