@@ -72,12 +72,17 @@ int main(int argc, char **argv) {
   std::string secure;
   cli.add_option("--secure", secure,
                  "DDS Security: the folder of ./run certs (identities server1, watch, m0-a, m0-b; docs/security.md)");
+  std::string game;
+  cli.add_option("--game", game,
+                 "slot 0 played by PROGRAM, a game on the client library (docs/client.md), run as PROGRAM "
+                 "--domain D --match 0, instead of a ball-bot; the demo ends with it");
   int http = -1;
   cli.add_option("--http", http, "watch in a browser: the watcher serves the spectator page on PORT of 127.0.0.1 "
                                  "(0: a free port; the URL is printed)")->check(CLI::Range(0, 65535));
   bot_opt.add(cli, player_fields(), bots, {"rate", "delay", "miss", "noise", "seed"});
   CLI11_PARSE(cli, argc, argv);
   bot_opt.apply(&bots);
+  if (!game.empty() && !secure.empty()) return fail(kProgram, "--game does not go with --secure (the game opens an open domain)");
 
   install_stop_signals();
   std::vector<std::string> shm_before = dds_shm_files();
@@ -104,7 +109,8 @@ int main(int argc, char **argv) {
                                        "server1"),
                                     dir + "/server.log", dir + "/server.err");
     std::vector<Process> bot;
-    for (int i = 0; i < 2; ++i)
+    if (!game.empty()) bot.push_back(Process::start({game, "--domain", dom, "--match", "0"}));  // its output is the demo's
+    for (int i = game.empty() ? 0 : 1; i < 2; ++i)
       bot.push_back(Process::start(as({bin + "/ball-bot", "--domain", dom, "--player", std::to_string(i), "--rate",
                                        fmt(bots.rate), "--delay", fmt(bots.delay), "--miss", fmt(bots.miss), "--noise",
                                        fmt(bots.noise), "--seed", std::to_string(bots.seed + i), "--scene", scene,
@@ -115,8 +121,12 @@ int main(int argc, char **argv) {
     if (http >= 0) watch_args.insert(watch_args.end(), {"--http", std::to_string(http)});
     Process watch = Process::start(as(watch_args, "watch"));
     if (server.pid() <= 0 || watch.pid() <= 0 || bot[0].pid() <= 0 || bot[1].pid() <= 0) rc = 1;
-    // the watcher ends the demo; a stop signal ends it early
-    while (rc == 0 && watch.running() && !stop_requested()) usleep(50000);
+    // the watcher ends the demo (or the game); a stop signal ends it early
+    while (rc == 0 && watch.running() && (game.empty() || bot[0].running()) && !stop_requested()) usleep(50000);
+    if (!game.empty() && !bot[0].running() && bot[0].status() != 0) {
+      std::fprintf(stderr, "%s: the game %s ended with status %d\n", kProgram, game.c_str(), bot[0].status());
+      rc = 1;
+    }
     if (watch.running()) watch.stop();
     for (auto &b : bot) b.stop();
     if (watch.status() != 0) rc = 1;
