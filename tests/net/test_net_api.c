@@ -282,6 +282,7 @@ static void poses_of_a_slot_held(void **state) {
   ball_net_status s;
   ball_vec3 center = {1.0, 1.0, 5.0}, normal = {1, 0, 0}, bad;
   double start, t;
+  uint64_t pushed;
   int n, slot = -1;
   (void)state;
   if (!server_program) skip();
@@ -300,6 +301,21 @@ static void poses_of_a_slot_held(void **state) {
     pause_seconds(0.02);
   }
   assert_int_equal(slot, 0);
+  /* both slots held (two players at one console) and present: the match serves */
+  {
+    ball_net_match m;
+    ball_net_ball b;
+    ball_vec3 far = {20.0, 1.0, 5.0}, back = {-1, 0, 0};
+    assert_int_equal(ball_net_join(c, 0, 1), BALL_OK);
+    for (start = now(); now() - start < 15.0 && ball_net_ball_at(c, 0, now(), &b) != BALL_OK;) {
+      assert_int_equal(ball_net_poll(c, e, 32, &n), BALL_OK);
+      ball_net_push(c, 0, 1, now(), far, back);
+      pause_seconds(0.05);
+    }
+    assert_int_equal(ball_net_match_info(c, 0, &m), BALL_OK);
+    assert_true(m.slots[0].mine && m.slots[1].mine);
+    assert_int_equal(ball_net_ball_at(c, 0, now(), &b), BALL_OK);
+  }
   t = now();
   bad = center;
   bad.y = NAN;
@@ -312,21 +328,37 @@ static void poses_of_a_slot_held(void **state) {
   bad = center;
   bad.z = 2e9;
   assert_int_equal(ball_net_push(c, 0, 0, t, bad, normal), BALL_ERANGE);
-  assert_int_equal(ball_net_push(c, 0, 1, t, center, normal), BALL_ENOMATCH); /* not its slot */
+  assert_int_equal(ball_net_push(c, 0, 2, t, center, normal), BALL_ENOMATCH); /* not its slot */
   assert_int_equal(ball_net_status_of(c, 0, &s), BALL_OK);
-  assert_int_equal(s.samples, 0);
+  pushed = s.samples; /* (slot 1's poses so far: nothing refused counted) */
   assert_int_equal(ball_net_push(c, 0, 0, t, center, normal), BALL_OK);
   assert_string_equal(ball_net_message(c), "");
   assert_int_equal(ball_net_push(c, 0, 0, t, center, normal), BALL_ESTALE);
   assert_int_equal(ball_net_push(c, 0, 0, t - 1.0, center, normal), BALL_ESTALE);
   assert_int_equal(ball_net_push(c, 0, 0, t + 0.05, center, normal), BALL_OK);
   assert_int_equal(ball_net_status_of(c, 0, &s), BALL_OK);
-  assert_int_equal(s.samples, 2);
+  assert_int_equal(s.samples, pushed + 2);
   assert_int_equal(s.write_failures, 0);
   assert_int_equal(s.clock_known, 1);
+  /* the server goes away: the ball still answers from what came; the
+     match leaves the list 3 s after its last MatchInfo (docs/client.md) */
+  {
+    ball_net_match m;
+    ball_net_ball b;
+    double gone;
+    assert_int_equal(ball_net_match_info(c, 0, &m), BALL_OK);
+    stop_server();
+    gone = now();
+    while (now() - gone < 5.0 && ball_net_match_info(c, 0, &m) == BALL_OK) {
+      assert_int_equal(ball_net_poll(c, e, 32, &n), BALL_OK);
+      pause_seconds(0.05);
+    }
+    assert_int_equal(ball_net_match_info(c, 0, &m), BALL_ENOMATCH);
+    assert_true(now() - gone > 2.0 && now() - gone < 4.2); /* its last info came up to 1 s before the stop */
+    assert_int_equal(ball_net_ball_at(c, 0, now(), &b), BALL_OK);
+  }
   assert_int_equal(ball_net_close(c), BALL_OK);
   ball_net_free(c);
-  stop_server();
 }
 
 int main(int argc, char **argv) {
