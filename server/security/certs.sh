@@ -48,7 +48,7 @@ for name in "${identities[@]}"; do
   rm -f "$name.csr"
 done
 
-server_topics="<topic>ball/ball_state</topic><topic>ball/segments</topic><topic>ball/events</topic><topic>ball/match_info</topic><topic>ball/server_status</topic>"
+server_topics="<topic>ball/ball_state</topic><topic>ball/segments</topic><topic>ball/events</topic><topic>ball/match_info</topic><topic>ball/match_model</topic><topic>ball/server_status</topic>"
 player_topics="<topic>ball/racket_samples</topic><topic>ball/match_control</topic>"
 domains="<domains><id_range><min>0</min><max>232</max></id_range></domains>"
 not_before=$(date -u -d '-1 day' +%Y-%m-%dT%H:%M:%S)
