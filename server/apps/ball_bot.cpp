@@ -1,8 +1,10 @@
 // ball-bot: an autonomous player (docs/server.md, "Bots"). One BotPlayer
-// (player.h) in a PlayerGroup over the DDS client port: it joins a slot,
-// maps its clock to the match's sim clock, plans every ball from the
-// server's segments and sends its racket pose at its sample rate through a
-// link with the chosen delay, jitter, loss and noise. One loop, one thread.
+// (player.h) in a PlayerGroup over the DDS client port: the client
+// library's core joins its slot and maps its clock to the match's sim
+// clock; the bot plans every ball from the segment in effect with the
+// match's model from the wire (no scene file) and sends its racket pose at
+// its sample rate through a link with the chosen delay, jitter, loss and
+// noise. One loop, one thread.
 #include <CLI/CLI.hpp>
 #include <cinttypes>
 #include <cstdio>
@@ -25,12 +27,11 @@ int main(int argc, char **argv) {
   CLI::App cli{"ball-bot: an autonomous player for ball-server (docs/server.md, \"Bots\")"};
   PlayerParams pp;
   double duration = 0.0;
-  std::string scene, stats_json;
+  std::string stats_json;
   bool quiet = false, stay = false;
   DdsOptions dds_opt;
   FieldOptions<PlayerParams> player_opt;
   player_opt.add(cli, player_fields(), pp);
-  cli.add_option("--scene", scene, "the match's scene (for ball_predict): a file, a libball scene name, default");
   cli.add_option("--duration", duration, "stop after S real seconds (0: until SIGINT/SIGTERM)")->check(CLI::Range(0.0, 1e9));
   cli.add_flag("--stay", stay, "keep the slot on exit (no LEAVE): the match pauses as if the bot vanished");
   cli.add_option("--stats-json", stats_json, "write the bot's counters to FILE as JSON at exit");
@@ -42,8 +43,6 @@ int main(int argc, char **argv) {
   std::string err;
   ServerChoice chosen;
   if (!ServerChoice::parse(pp.servers, &chosen, &err)) return fail(kProgram, err);
-  ball_scene sc;
-  if (!load_scene(scene, &sc, &err)) return fail(kProgram, err);
   install_stop_signals();
   auto domain = open_domain(dds_opt, "ball-bot", &err);
   if (!domain) return fail(kProgram, err);
@@ -52,27 +51,22 @@ int main(int argc, char **argv) {
   auto port = dds::ClientEndpoints::open(
       *domain, {kMaxPlayers, 1, dds::kClientRoom, false, false, partition, chosen.bound()}, &err);
   if (!port) return fail(kProgram, err);
-  PlayerGroup group({BotPlayer(sc, domain->id(), pp)});
+  PlayerGroup group({BotPlayer(pp)}, domain->id(), chosen);
   const BotPlayer &bot = group.bots()[0];
-  bool was_joined = false, warned_hash = false;
+  bool was_joined = false;
   const double start = mono_now();
   for (double next_tick = start; !stop_requested(); sleep_until(next_tick)) {
     double now = mono_now();
     if (duration > 0.0 && now - start >= duration) break;
-    if (!group.tick(*port, now, realtime_now())) return fail(kProgram, group.error());
+    group.tick(*port, now, realtime_now());
     if (bot.joined() != was_joined && !quiet)
       std::printf("%s: %s match %u slot %d\n", kProgram, bot.joined() ? "holds" : "lost", pp.match, bot.slot());
     was_joined = bot.joined();
-    if (bot.counters().hash_differs && !warned_hash)
-      std::fprintf(stderr, "%s: my model differs from the server's (hash %016" PRIx64 " vs %016" PRIx64
-                           "): is --scene the match's scene?\n",
-                   kProgram, bot.model_hash(), bot.server_hash());
-    warned_hash = warned_hash || bot.counters().hash_differs;
     next_tick += kTick;
     if (next_tick < now) next_tick = now + kTick;
   }
   int left = stay ? 0 : group.leave(*port);
-  BotReport r = group.report(0, domain->id());
+  BotReport r = group.report(0);
   r.untrusted = port->untrusted();
   r.refused += r.untrusted;
   if (!quiet)

@@ -113,7 +113,7 @@ int main(int argc, char **argv) {
     for (int i = game.empty() ? 0 : 1; i < 2; ++i)
       bot.push_back(Process::start(as({bin + "/ball-bot", "--domain", dom, "--player", std::to_string(i), "--rate",
                                        fmt(bots.rate), "--delay", fmt(bots.delay), "--miss", fmt(bots.miss), "--noise",
-                                       fmt(bots.noise), "--seed", std::to_string(bots.seed + i), "--scene", scene,
+                                       fmt(bots.noise), "--seed", std::to_string(bots.seed + i),
                                        "--duration", fmt(duration + 15.0)},
                                       i == 0 ? "m0-a" : "m0-b"),
                                    dir + "/bot" + std::to_string(i) + ".log", dir + "/bot" + std::to_string(i) + ".err"));

@@ -1,6 +1,7 @@
 #include "common.h"
 
 #include "court.h"
+#include "match_model.h"
 
 #include <pthread.h>
 #include <sched.h>

@@ -76,8 +76,6 @@ void add_usage(const Snapshot &a, const Snapshot &b, double seconds, LoadRow *ro
 // window's start and end.
 bool drive(const LoadOptions &o, const std::function<void()> &at_window,
            const std::function<void(const LoadPart &)> &done, std::string *err) {
-  ball_scene scene;
-  ball_scene_default(&scene);
   auto domain = open_domain(o.dds, "ball-load", err);
   if (!domain) return false;
   int room = std::max(o.first_match + o.matches, dds::kClientRoom);
@@ -97,9 +95,9 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       p.match = static_cast<uint32_t>(m);
       p.player = slot;
       p.seed = o.bot.seed + static_cast<uint64_t>(m * 2 + slot);
-      bots.emplace_back(scene, domain->id(), p);
+      bots.emplace_back(p);
     }
-  PlayerGroup group(std::move(bots));
+  PlayerGroup group(std::move(bots), domain->id(), ServerChoice{});
   const double start = mono_now();
   group.start_at(bot_starts(o.first_match, o.matches, o.bot.seed, stagger_of(o), start));
   LoadPart part;
@@ -125,7 +123,7 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       counts_before = port.counts();
       if (at_window) at_window();
     }
-    bool ok = group.tick(port, now, real, [&](const SegmentOut &seg, double tick) {
+    group.tick(port, now, real, [&](const SegmentOut &seg, double tick) {
       if (!measuring || seg.cause != Cause::racket || !seg.sample.valid) return;
       // when DDS received it, not this tick's time (ticks are kTick apart)
       double recv = seg.reception.received > 0.0 ? seg.reception.received : tick;
@@ -142,10 +140,6 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
         }
       }
     });
-    if (!ok) {
-      *err = group.error();
-      return false;
-    }
     StatusOut so;
     while (port.take(&so)) {
       if (!measuring) continue;

@@ -46,6 +46,8 @@ class CountingPort : public ClientPort {
   bool take(StateOut *state) override { return count(inner_.take(state), &counts_.states); }
   bool take(EventOut *event) override { return count(inner_.take(event), &counts_.events); }
   bool take(StatusOut *status) override { return count(inner_.take(status), &counts_.statuses); }
+  bool take(MatchModelOut *model) override { return inner_.take(model); }
+  WireSizes sizes() const override { return inner_.sizes(); }
   bool write(const RacketSampleIn &sample) override { return count(inner_.write(sample), &counts_.samples_written); }
   bool write(const ControlIn &control) override { return count(inner_.write(control), &counts_.controls_written); }
   bool hears_server() const override { return inner_.hears_server(); }

@@ -1,21 +1,20 @@
 // One autonomous player of one match, free of DDS: what ball-bot runs once
-// and ball-load runs for every slot of many matches. It reads what the
-// server says (match info, ball states, segments), holds its slot (JOIN
-// until the match info shows it), maps its clock to the sim clock, plans
-// with BotBrain, and says which racket samples and control messages to
-// write and when; the caller writes them.
+// and ball-load runs for every slot of many matches. It plays from what the
+// client library's core holds of its match (a MatchView: the trusted
+// MatchInfo, the whole model from the wire, the sim clock, the segment in
+// effect), plans with BotBrain, and says which racket samples to write and
+// when, numbered by the core and sent through a link that delays and loses
+// them as a network would; its group (PlayerGroup) joins its slot and
+// writes them. No scene file: the match's model comes from the wire.
 #pragma once
 
 #include <string>
 #include <vector>
 
-#include "ball/scene.h"
 #include "bot.h"
+#include "client_core.h"
 #include "fields.h"
 #include "link.h"
-#include "segment_feed.h"
-#include "sim_clock.h"
-#include "trust.h"
 #include "types.h"
 
 namespace ballsrv {
@@ -43,64 +42,37 @@ struct PlayerCounters {
   uint64_t taken = 0;     // samples taken
   uint64_t lost = 0;      // of those, lost on the link
   uint64_t delivered = 0; // handed to the caller to write
-  uint64_t segments = 0;  // newer segments seen
-  uint64_t refused = 0;   // server samples not taken: another server, numbers out of range, a clock pair or
-                          // a segment seq that does not fit (trust.h)
-  bool hash_differs = false;  // its model is not the server's (another scene?)
 };
 
 class BotPlayer {
  public:
-  BotPlayer(const ball_scene &scene, const ParticipantId &me, const PlayerParams &params);
+  explicit BotPlayer(const PlayerParams &params);
 
-  // What the server said; `real` is the local realtime clock at reception.
-  // What does not fit (trust.h) is refused and counted; a MatchInfo whose
-  // model cannot be built from the scene leaves the bot as it was, with
-  // error() saying why. Nothing from the wire ends the bot.
-  void on_info(const MatchInfoOut &info, double real);
-  void on_state(const StateOut &state, double real);
-  void on_segment(const SegmentOut &segment, double real);
-
-  // Advances to local time (monotonic `mono`, realtime `real`): appends the
-  // samples whose (simulated) network trip ends now and the control
-  // messages due.
-  void tick(double mono, double real, std::vector<RacketSampleIn> *samples, std::vector<ControlIn> *controls);
-
-  // The LEAVE to send on a clean exit; false when not joined.
-  bool leave(ControlIn *out);
+  // Advances to the monotonic clock's `mono` (the core's clock) with its
+  // match's view (nullptr: not followed yet): plays the segment in effect,
+  // takes a sample at its rate (numbered and mapped to the sim clock by
+  // `core`) and appends those whose (simulated) network trip ends now.
+  void tick(const MatchView *view, ClientCore &core, double mono, std::vector<RacketSampleIn> *samples);
 
   uint32_t match() const { return p_.match; }
+  int wanted() const { return p_.player; }  // the slot it joins, -1: any
   bool joined() const { return joined_; }
   int slot() const { return slot_; }
-  const std::string &error() const { return error_; }
   const PlayerCounters &counters() const { return counters_; }
   const BotCounters &brain_counters() const { return brain_.counters(); }
-  uint64_t model_hash() const { return model_hash_; }
-  uint64_t server_hash() const { return server_hash_; }
 
  private:
-  ball_scene scene_;
-  ParticipantId me_;
   PlayerParams p_;
-  SimClock clock_;
-  ServerChoice servers_;
   BotBrain brain_;
   Link<RacketSampleIn> link_;
   Rng noise_;
-  MatchInfoOut info_;
-  bool have_info_ = false, model_ready_ = false, brain_ready_ = false, joined_ = false;
+  bool brain_ready_ = false, joined_ = false;
   int slot_ = -1;
-  ball_model model_{};
-  Court court_;
-  uint64_t model_hash_ = 0, server_hash_ = 0;
-  int level_ = -1, players_ = 0;
-  double extrapolation_ = -1.0, stale_ = -1.0;
-  SegmentFeed feed_;
-  uint32_t newest_seq_ = 0, sample_seq_ = 0, control_seq_ = 0;
-  void hand_over(double real);
-  double next_sample_ = -1.0, next_join_ = -1.0;
-  std::string error_;
+  uint64_t model_hash_ = 0;  // the model the brain plays with
+  EffectFeed feed_;          // the segment in effect, handed to the brain
+  double next_sample_ = -1.0;
   PlayerCounters counters_;
+  void plan(const MatchView &view, double sim);
 };
 
 }  // namespace ballsrv

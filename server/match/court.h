@@ -1,12 +1,11 @@
-// The court a match is played on and the model it is played with: shared by
-// the server, the bots and the watchers so that all of them build the same
-// ball_model (and so the same ball_model_hash) from the same scene.
+// The court a match is played on: shared by the server, the bots and the
+// watchers (the wire's vocabulary). The model a match is played with, built
+// from its scene, is the server's: match_model.h.
 #pragma once
 
 #include <string>
 
 #include "ball/ball.h"
-#include "ball/scene.h"
 #include "types.h"
 
 namespace ballsrv {
@@ -40,28 +39,6 @@ struct Court {
 // x in [net_x - L, net_x + L] with L = net_x - x_lo (a court that starts at
 // x_lo, 0 for libball's tennis scene) and z over the net's width.
 bool court_from_model(const ball_model &model, double x_lo, Court *court, std::string *err);
-
-// What a match changes in its scene's model.
-struct ModelSetup {
-  int players = 2;                  // [1, kMaxPlayers]
-  ball_level level = BALL_LEVEL_CUSTOM;  // custom: the scene's own racket fields
-  double extrapolation_time = -1.0; // s; < 0: the scene's
-  double stale_time = -1.0;         // s; < 0: the scene's
-};
-
-// The scene's model with the match's level and network settings, and with
-// rackets added for players the scene has none for: default radius, the
-// partner the racket on the other side, the other side's ready spot as
-// target. Checked with ball_model_check; err names the field.
-bool build_match_model(const ball_scene &scene, const Court &court, const ModelSetup &setup,
-                       ball_model *out, std::string *err);
-
-// The model and court a MatchInfo's match is played with, from its scene
-// (the level, players, extrapolation and stale times and the court's x_lo
-// as the info states them): what a client builds to step or draw the
-// match as its server does (ball_model_hash then agrees).
-bool match_model_of(const ball_scene &scene, const MatchInfoOut &info, ball_model *model, Court *court,
-                    std::string *err);
 
 // A launch velocity from `from` with vertical speed v_up whose first floor
 // contact (with this model's drag; no net, no rackets) is at (x, z) of

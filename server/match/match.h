@@ -16,6 +16,7 @@
 #include "ball/ball.h"
 #include "ball/scene.h"
 #include "court.h"
+#include "match_model.h"
 #include "match_config.h"
 #include "rules.h"
 #include "types.h"

@@ -46,7 +46,9 @@ ClientCore::Followed *ClientCore::follow(uint32_t match, std::string *why) {
   }
   Followed &f = followed_[match];
   f.view = std::make_unique<MatchView>(match, settings_.servers, me_);
-  // what the listing holds of it already: the view starts from it
+  // what the client holds of it already: the view starts from it
+  auto m = models_.find(match);
+  if (m != models_.end()) f.view->on_model(m->second);
   auto l = listed_.find(match);
   if (l != listed_.end()) {
     scratch_.clear();
@@ -83,8 +85,10 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
   scratch_.clear();
   // models before infos: a view takes the model its info names at once
   MatchModelOut model;
-  while (port.take(&model))
+  while (port.take(&model)) {
+    if (models_.count(model.match_id) || models_.size() < settings_.max_matches) models_[model.match_id] = model;
     if (Followed *f = of(model.match_id, size.model)) f->view->on_model(model);
+  }
   MatchInfoOut info;
   while (port.take(&info)) {
     take_info(info, at(info.reception));
@@ -98,13 +102,11 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
     if (Followed *f = of(seg.match_id, size.segment)) {
       f->view->on_segment(seg, at(seg.reception), &scratch_);
       delay(f, seg.reception);
+      if (on_segment_) on_segment_(seg);
     }
   EventOut ev;
   while (port.take(&ev))
     if (Followed *f = of(ev.match_id, size.event)) f->view->on_event(ev, at(ev.reception), &scratch_);
-  StatusOut status;
-  while (port.take(&status)) {
-  }
   events_.insert(events_.end(), scratch_.begin(), scratch_.end());
   sizes_ = size;
   send_due(port, local);
@@ -258,8 +260,8 @@ ball_status ClientCore::ask(uint32_t match, ControlKind kind, double value, Clie
   return BALL_OK;
 }
 
-ball_status ClientCore::push(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal,
-                             ClientPort &port, std::string *why) {
+ball_status ClientCore::sample(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal,
+                               RacketSampleIn *out, std::string *why) {
   Followed *f = followed(match);
   if (!f || !f->view->holds(slot))
     return refuse(BALL_ENOMATCH, "the client holds no slot " + std::to_string(slot) + " of " + match_name(match), why);
@@ -282,16 +284,28 @@ ball_status ClientCore::push(uint32_t match, int slot, double local, ball_vec3 c
   s.capture_time = v.clock().sim_now(local);
   s.center = center;
   s.normal = normal;
-  if (!port.write(s)) {
-    f->own.write_failures++;
-    return refuse(BALL_ENETWORK, "DDS refused the racket sample", why);
-  }
-  f->own.bytes_out += port.sizes().sample;
   f->sample_seq[k] = s.seq;
   f->pushed[k] = true;
   f->last_push[k] = local;
   f->own.samples++;
+  f->own.bytes_out += sizes_.sample;
+  *out = s;
   return BALL_OK;
+}
+
+ball_status ClientCore::push(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal,
+                             ClientPort &port, std::string *why) {
+  RacketSampleIn s;
+  ball_status st = sample(match, slot, local, center, normal, &s, why);
+  if (st != BALL_OK) return st;
+  if (port.write(s)) return BALL_OK;
+  // not written: its number is the next one's, and it counts as refused, not written
+  OwnCounters &own = followed(match)->own;
+  followed(match)->sample_seq[static_cast<size_t>(slot)]--;
+  own.samples--;
+  own.bytes_out -= sizes_.sample;
+  own.write_failures++;
+  return refuse(BALL_ENETWORK, "DDS refused the racket sample", why);
 }
 
 std::vector<const Listed *> ClientCore::matches(double local) const {

@@ -9,6 +9,7 @@
 #include <array>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <string>
@@ -61,6 +62,12 @@ class ClientCore {
   // The pose of slot `slot`'s racket at `local`, mapped to the sim clock, numbered and written.
   ball_status push(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal, ClientPort &port,
                    std::string *why);
+  // The sample push() would write, not written (counted as written): for a
+  // caller that sends it itself, a bot through its simulated network.
+  ball_status sample(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal, RacketSampleIn *out,
+                     std::string *why);
+  // Every segment of a followed match as it is taken (a meter's: ball-load's latencies).
+  void on_segment(std::function<void(const SegmentOut &)> fn) { on_segment_ = std::move(fn); }
   // A LEAVE for every slot held (a client closing); how many were written.
   int leave_all(ClientPort &port);
 
@@ -97,11 +104,15 @@ class ClientCore {
   ParticipantId me_;
   std::map<uint32_t, Followed> followed_;
   std::map<uint32_t, Listed> listed_;
+  // the newest MatchModel of every match heard (written once per model, transient local: a match
+  // followed later starts from it); at most max_matches
+  std::map<uint32_t, MatchModelOut> models_;
   std::map<uint32_t, Creating> creating_;
   std::deque<ViewEvent> events_;
   std::vector<ViewEvent> scratch_;
   uint32_t control_seq_ = 0;
   WireSizes sizes_;  // the port's, as the newest pump saw them
+  std::function<void(const SegmentOut &)> on_segment_;
   uint64_t refused_ = 0;
   uint64_t lost_writes_ = 0;  // controls DDS refused outside a followed match (CREATE)
 };

@@ -147,6 +147,25 @@ class MatchView {
   ViewCounters counters_;
 };
 
+// The segment in effect on a view, handed on once each time it changes: a
+// segment written ahead when its t0 has come, never one a racket hit
+// superseded (what a bot's brain plays).
+class EffectFeed {
+ public:
+  // The segment in effect at sim time `sim` if it was not handed on yet; nullptr otherwise.
+  const SegmentOut *due(const MatchView &view, double sim) {
+    const KeptSegment *k = view.in_effect(sim);
+    if (!k || (any_ && k->segment.seq == seq_)) return nullptr;
+    seq_ = k->segment.seq;
+    any_ = true;
+    return &k->segment;
+  }
+
+ private:
+  uint32_t seq_ = 0;
+  bool any_ = false;
+};
+
 // The events a correction (a segment with `correction` set) voids
 // (docs/protocol.md, "Corrections"): a collision's or a point's, written
 // before it (its segment older, serial arithmetic) for a later time.

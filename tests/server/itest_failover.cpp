@@ -427,8 +427,8 @@ void case_standby_no_scene(const Env &env) {
   Process primary = server(env, "primary", 1, {"--matches", "1", "--scene", court, "--startup-wait", "0"});
   Process standby = server(env, "standby", 2, {"--standby", "--startup-wait", "0.5"});
   Process w = ready_watcher(c, path(env, "watch.jsonl"), {});
-  Process b0 = program(env, "bot0", "ball-bot", {"--match", "0", "--player", "0", "--scene", court});
-  Process b1 = program(env, "bot1", "ball-bot", {"--match", "0", "--player", "1", "--scene", court});
+  Process b0 = program(env, "bot0", "ball-bot", {"--match", "0", "--player", "0"});
+  Process b1 = program(env, "bot1", "ball-bot", {"--match", "0", "--player", "1"});
   Tail t(path(env, "watch.jsonl"));
   CHECK_MSG(rallies(t, 1, 2, 30.0), "no 2 hits within 30 s on the long court");
   usleep(1000000);  // the standby follows it

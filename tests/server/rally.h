@@ -4,8 +4,8 @@
 
 #include "bot.h"
 #include "game.h"
+#include "client_feed.h"
 #include "link.h"
-#include "segment_feed.h"
 
 namespace test {
 
@@ -55,7 +55,7 @@ inline RallyResult play(const MatchConfig &c, const Net &net, double seconds, ui
   Game g(c);
   std::vector<size_t> segments_before;
   BotBrain brain[2];
-  SegmentFeed feed;  // the segment in effect, for the bots
+  ClientFeed feed(g.match.id());  // the segment in effect, for the bots
   Link<RacketSampleIn> link[2] = {Link<RacketSampleIn>({net.delay, net.jitter, net.loss}, seed * 2 + 1),
                                   Link<RacketSampleIn>({net.delay, net.jitter, net.loss}, seed * 2 + 2)};
   Rng noise(seed * 7 + 3);

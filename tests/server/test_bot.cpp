@@ -149,7 +149,7 @@ TEST(a_racket_parked_off_the_court_wins_nothing_at_easy) {
   c.level = BALL_LEVEL_EASY;
   Game g(c);
   BotBrain honest;
-  SegmentFeed feed;  // the segment in effect, for the bot
+  ClientFeed feed(g.match.id());  // the segment in effect, for the bot
   BotParams p;
   p.slot = 0;
   p.lead = bot_lead(15.0, 0.0, 0.0, 0.0);

@@ -6,6 +6,7 @@
 
 #include <deque>
 #include <map>
+#include <memory>
 
 #include "check.hpp"
 #include "fake_client_port.h"
@@ -82,77 +83,96 @@ TEST(link_delays_reorders_and_loses) {
   CHECK(overtaken > 1000);  // 50 ms of jitter at 1 kHz: samples overtake each other
 }
 
+namespace {
+// A game's MatchInfo and MatchModel, as its server writes them, to a client's port.
+void server_says(Game &g, FakeClientPort &port, uint32_t server = 1) {
+  MatchInfoOut i = g.match.info();
+  i.server_id = server;
+  i.server_time = g.now;
+  port.infos.push_back(i);
+  MatchModelOut m;
+  m.match_id = g.match.id();
+  m.server_id = server;
+  m.model = g.match.model();
+  m.model_hash = ball_model_hash(&m.model);
+  port.models.push_back(m);
+}
+}  // namespace
+
+// A bot's group joins its slot through the client core (JOIN now and every
+// 0.5 s until the MatchInfo shows it), then plays with the model from the
+// wire, no scene file, and sends at its rate what the server accepts.
 TEST(player_joins_then_sends) {
   Game g;
-  ball_scene scene;
-  ball_scene_default(&scene);
   ParticipantId me = participant(9);
   PlayerParams p;
   p.match = g.match.id();
   p.player = 1;
   p.rate = 20.0;
-  BotPlayer bot(scene, me, p);
-  std::vector<RacketSampleIn> samples;
-  std::vector<ControlIn> controls;
-  MatchInfoOut info = g.match.info();
-  bot.on_info(info, 0.0);
-  CHECK_EQ(bot.counters().refused, 0u);
-  CHECK_EQ(bot.model_hash(), info.model_hash);  // the bot builds the server's model
-  bot.tick(0.0, 0.0, &samples, &controls);
-  CHECK_EQ(controls.size(), 1u);
-  CHECK(controls[0].kind == ControlKind::join && controls[0].player == 1);
-  CHECK(samples.empty());  // nothing before the slot is its own
-  bot.tick(0.2, 0.2, &samples, &controls);
-  CHECK_EQ(controls.size(), 1u);  // resent every 0.5 s, not sooner
-  bot.tick(0.6, 0.6, &samples, &controls);
-  CHECK_EQ(controls.size(), 2u);
+  PlayerGroup group({BotPlayer(p)}, me, ServerChoice{});
+  FakeClientPort port;
+  group.tick(port, 0.0, 0.0);
+  CHECK_EQ(port.controls.size(), 1u);
+  CHECK(port.controls[0].kind == ControlKind::join && port.controls[0].player == 1);
+  CHECK(port.samples.empty());  // nothing before the slot is its own
+  group.tick(port, 0.2, 0.2);
+  CHECK_EQ(port.controls.size(), 1u);  // resent every 0.5 s, not sooner
+  group.tick(port, 0.6, 0.6);
+  CHECK_EQ(port.controls.size(), 2u);
   g.control(ControlKind::join, me, 1);
-  bot.on_info(g.match.info(), 0.7);
+  server_says(g, port);
+  group.tick(port, 0.7, 0.7);
+  const BotPlayer &bot = group.bots()[0];
   CHECK(bot.joined());
   CHECK_EQ(bot.slot(), 1);
-  for (int k = 0; k < 20; ++k) bot.tick(0.7 + k * 0.05, 0.7 + k * 0.05, &samples, &controls);
-  CHECK(samples.size() >= 19 && samples.size() <= 21);  // 20 Hz for 1 s
-  CHECK_EQ(controls.size(), 2u);
-  for (size_t i = 1; i < samples.size(); ++i) CHECK(samples[i].seq > samples[i - 1].seq);
+  for (int k = 1; k <= 20; ++k) group.tick(port, 0.7 + k * 0.05, 0.7 + k * 0.05);
+  CHECK(port.samples.size() >= 19 && port.samples.size() <= 21);  // 20 Hz for 1 s
+  CHECK_EQ(port.controls.size(), 2u);
+  for (size_t i = 1; i < port.samples.size(); ++i) CHECK(port.samples[i].seq > port.samples[i - 1].seq);
   // what it sends, the server accepts
-  for (const auto &s : samples) {
+  for (const auto &s : port.samples) {
     RacketSampleIn in = s;
     in.from = me;
     CHECK(g.match.on_sample(in, g.now) == SampleResult::idle);  // the match waits for slot 0
   }
-  ControlIn bye;
-  CHECK(bot.leave(&bye));
-  CHECK(bye.kind == ControlKind::leave && bye.player == 1);
+  CHECK_EQ(group.leave(port), 1);
+  CHECK(port.controls.back().kind == ControlKind::leave && port.controls.back().player == 1);
 }
 
 // Players sample on phases of their own (from their seeds), not in step: 60
-// bots at 30 Hz in one process, joined at the same instant, write their
-// samples spread over the period, not 60 at once (a burst that held the
-// server's and the bots' cores), and keep their phases after a wait.
+// bots at 30 Hz in one process (30 matches, both slots, one participant),
+// joined at the same instant, write their samples spread over the period,
+// not 60 at once (a burst that held the server's and the bots' cores), and
+// keep their phases after a wait.
 TEST(players_sample_on_their_own_phases) {
-  Game g;
-  ball_scene scene;
-  ball_scene_default(&scene);
+  std::vector<std::unique_ptr<Game>> games;
   std::vector<BotPlayer> bots;
   for (int i = 0; i < 60; ++i) {
     PlayerParams p;
-    p.match = g.match.id();
-    p.player = 0;
+    p.match = static_cast<uint32_t>(100 + i / 2);
+    p.player = i % 2;
     p.rate = 30.0;
     p.seed = static_cast<uint64_t>(i + 1);
-    bots.emplace_back(scene, participant(9), p);
+    bots.emplace_back(p);
   }
-  std::vector<RacketSampleIn> samples;
-  std::vector<ControlIn> controls;
-  for (auto &b : bots) b.tick(0.0, 0.0, &samples, &controls);
-  g.control(ControlKind::join, participant(9), 0);
-  for (auto &b : bots) b.on_info(g.match.info(), 0.5);
+  PlayerGroup group(std::move(bots), participant(9), ServerChoice{});
+  FakeClientPort port;
+  group.tick(port, 0.0, 0.0);
+  for (uint32_t m = 0; m < 30; ++m) {
+    MatchConfig c = default_config();
+    c.id = 100 + m;
+    games.push_back(std::make_unique<Game>(c));
+    games.back()->control(ControlKind::join, participant(9), 0);
+    games.back()->control(ControlKind::join, participant(9), 1);
+    server_says(*games.back(), port);
+  }
+  group.tick(port, 0.5, 0.5);
   std::map<int, int> per_ms;  // samples written per millisecond tick
-  for (int k = 0; k <= 200; ++k) {
+  for (int k = 1; k <= 200; ++k) {
     double t = 0.5 + k * 0.001;
-    samples.clear();
-    for (auto &b : bots) b.tick(t, t, &samples, &controls);
-    if (!samples.empty()) per_ms[k] = static_cast<int>(samples.size());
+    size_t before = port.samples.size();
+    group.tick(port, t, t);
+    if (port.samples.size() > before) per_ms[k] = static_cast<int>(port.samples.size() - before);
   }
   int most = 0, total = 0;
   for (const auto &m : per_ms) {
@@ -160,62 +180,67 @@ TEST(players_sample_on_their_own_phases) {
     total += m.second;
   }
   check::note("%d samples in 0.2 s over %zu ticks of 1 ms, at most %d in one", total, per_ms.size(), most);
-  CHECK(bots[0].joined());
+  CHECK(group.all_joined());
   CHECK(total >= 60 * 6 - 60 && total <= 60 * 7);  // 30 Hz each
   CHECK(most <= 8);                                // (60 in the first tick and every 33 ms, in step)
   CHECK(per_ms.size() >= 100u);
 }
 
-// A bot takes nothing that does not fit and ends on nothing from the wire:
-// a MatchInfo with level 99 or a NaN clock, another server's samples when
-// it chose server 1, a segment seq 0xFFFFFFFF; the real stream goes on.
+// A bot's group takes only what fits (the client core's rules, test_net_core):
+// a MatchInfo with level 99 or a NaN clock, another server's samples when it
+// chose server 1, a segment seq 0xFFFFFFFF are counted refused; the real
+// stream goes on.
 TEST(a_bot_takes_nothing_that_does_not_fit) {
   Game g;
   g.join(0, participant(1));
   g.join(1, participant(9));
   g.run(2.0);  // serves
-  ball_scene scene;
-  ball_scene_default(&scene);
   PlayerParams p;
   p.match = g.match.id();
   p.player = 1;
-  p.servers = "1";
-  BotPlayer bot(scene, participant(9), p);
-  MatchInfoOut info = g.match.info();
+  ServerChoice one;
+  std::string err;
+  CHECK(ServerChoice::parse("1", &one, &err));
+  PlayerGroup group({BotPlayer(p)}, participant(9), one);
+  FakeClientPort port;
+  server_says(g, port);
+  group.tick(port, g.now, g.now);
+  CHECK(group.bots()[0].joined());
+  CHECK_EQ(group.refused(), 0u);
+  MatchInfoOut info = port.infos.empty() ? g.match.info() : port.infos.front();
+  info = g.match.info();
   info.server_id = 1;
-  info.server_time = 1000.0;
-  bot.on_info(info, 1000.0);
-  CHECK(bot.joined());
-  CHECK_EQ(bot.counters().refused, 0u);
+  info.server_time = g.now;
   MatchInfoOut bad = info;
   bad.level = 99;
-  bot.on_info(bad, 1000.1);
+  port.infos.push_back(bad);
   bad = info;
   bad.sim_time = std::nan("");
-  bot.on_info(bad, 1000.1);
+  port.infos.push_back(bad);
   bad = info;
   bad.server_id = 2;  // not chosen
-  bot.on_info(bad, 1000.1);
-  CHECK_EQ(bot.counters().refused, 3u);
-  CHECK_EQ(bot.model_hash(), info.model_hash);  // still the real match's model
+  port.infos.push_back(bad);
+  group.tick(port, g.now + 0.1, g.now + 0.1);
+  CHECK_EQ(group.refused(), 3u);
   CHECK(!g.segments.empty());
   SegmentOut real = g.segments.back();
   real.server_id = 1;
-  uint64_t seen = bot.counters().segments;
+  port.segments.push_back(real);
+  group.tick(port, g.now + 0.15, g.now + 0.15);
+  uint64_t seen = group.segments();
   SegmentOut forged = real;
-  forged.seq = 0xFFFFFFFFu;
-  bot.on_segment(forged, 1000.2);
   forged.seq = real.seq + kMaxSeqAhead + 1;
-  bot.on_segment(forged, 1000.2);
-  CHECK_EQ(bot.counters().refused, 5u);
+  port.segments.push_back(forged);
+  group.tick(port, g.now + 0.2, g.now + 0.2);
+  CHECK_EQ(group.refused(), 4u);
   real.seq += 1;  // the server's next segment still gets through
-  bot.on_segment(real, 1000.3);
-  CHECK_EQ(bot.counters().segments, seen + 1);
+  port.segments.push_back(real);
+  group.tick(port, g.now + 0.3, g.now + 0.3);
+  CHECK_EQ(group.segments(), seen + 1);
   CHECK(segment_is_news(5, 0xFFFFFFFEu, 0));  // across the wrap
   CHECK(!segment_is_news(3, 5, 0));
   CHECK(segment_is_news(3, 5, 3));            // a match started anew: the info says so
   ServerChoice any, two;
-  std::string err;
   CHECK(ServerChoice::parse("", &any, &err) && any.accepts(77));
   CHECK(ServerChoice::parse("1,2", &two, &err) && two.accepts(2) && !two.accepts(3));
   CHECK(!ServerChoice::parse("1,x", &two, &err) && err.find("server ids") != std::string::npos);
@@ -233,32 +258,30 @@ TEST(a_bot_takes_nothing_that_does_not_fit) {
 
 TEST(a_group_routes_by_match_and_counts_refused_writes) {
   Game g;  // match 7
-  ball_scene scene;
-  ball_scene_default(&scene);
   const ParticipantId me = participant(4);
   std::vector<BotPlayer> bots;
   for (int slot = 0; slot < 2; ++slot) {
     PlayerParams p;
     p.match = 7;
     p.player = slot;
-    bots.emplace_back(scene, me, p);
+    bots.emplace_back(p);
   }
   PlayerParams other;
   other.match = 8;
-  bots.emplace_back(scene, me, other);
-  PlayerGroup group(std::move(bots));
+  bots.emplace_back(other);
+  PlayerGroup group(std::move(bots), me, ServerChoice{});
   FakeClientPort port;
   port.refuse = true;
-  CHECK(group.tick(port, 0.0, 0.0));  // three JOINs, every one refused
+  group.tick(port, 0.0, 0.0);  // three JOINs, every one refused
   CHECK_EQ(group.write_failures(), 3u);
   CHECK(port.controls.empty());
   port.refuse = false;
   // both slots of match 7 taken by the group's participant; match 8 is not there
   g.control(ControlKind::join, me, 0);
   g.control(ControlKind::join, me, 1);
-  port.infos.push_back(g.match.info());
+  server_says(g, port);
   int segments_seen = 0;
-  CHECK(group.tick(port, 0.6, 0.6, [&](const SegmentOut &, double) { segments_seen++; }));
+  group.tick(port, 0.6, 0.6, [&](const SegmentOut &, double) { segments_seen++; });
   CHECK(group.bots()[0].joined() && group.bots()[1].joined());
   CHECK(!group.bots()[2].joined());
   CHECK(!group.all_joined());
@@ -270,16 +293,16 @@ TEST(a_group_routes_by_match_and_counts_refused_writes) {
   SegmentOut seg = g.segments.front(), stray = seg;
   stray.match_id = 9;
   port.segments = {seg, stray};
-  CHECK(group.tick(port, 0.7, 0.7, [&](const SegmentOut &, double) { segments_seen++; }));
+  group.tick(port, 0.7, 0.7, [&](const SegmentOut &, double) { segments_seen++; });
   CHECK_EQ(segments_seen, 1);
-  CHECK_EQ(group.bots()[0].counters().segments, 1u);
-  CHECK_EQ(group.bots()[2].counters().segments, 0u);
+  CHECK_EQ(group.report(0).segments, 1u);
+  CHECK_EQ(group.report(2).segments, 0u);
   // samples at 30 Hz from both joined bots over 1 s, all written
   for (int k = 1; k <= 100; ++k) group.tick(port, 0.7 + k * 0.01, 0.7 + k * 0.01);
   CHECK(port.samples.size() >= 58 && port.samples.size() <= 62);
   CHECK_EQ(group.samples_written(), port.samples.size());
   CHECK_EQ(group.leave(port), 2);  // the two joined bots say LEAVE
-  BotReport r = group.report(0, me);
+  BotReport r = group.report(0);
   CHECK_EQ(r.match, 7u);
   CHECK_EQ(r.slot, 0);
   CHECK_EQ(r.write_failures, 3u);
@@ -289,25 +312,23 @@ TEST(a_group_routes_by_match_and_counts_refused_writes) {
 // A bot given a later start says nothing before it (no JOIN, no sample);
 // starts that are not one for every bot change nothing.
 TEST(a_group_begins_each_bot_at_its_start) {
-  ball_scene scene;
-  ball_scene_default(&scene);
   std::vector<BotPlayer> bots;
   for (int slot = 0; slot < 2; ++slot) {
     PlayerParams p;
     p.match = 7;
     p.player = slot;
-    bots.emplace_back(scene, participant(4), p);
+    bots.emplace_back(p);
   }
-  PlayerGroup group(std::move(bots));
+  PlayerGroup group(std::move(bots), participant(4), ServerChoice{});
   group.start_at({0.0});  // one start for two bots: ignored
   group.start_at({0.0, 1.0});
   FakeClientPort port;
-  CHECK(group.tick(port, 0.0, 0.0));
-  CHECK(group.tick(port, 0.999, 0.999));
+  group.tick(port, 0.0, 0.0);
+  group.tick(port, 0.999, 0.999);
   CHECK_EQ(port.controls.size(), 2u);  // bot 0's JOIN, and again 0.5 s on (unanswered)
   for (const ControlIn &c : port.controls) CHECK_EQ(c.player, 0);
   size_t before = port.controls.size();
-  CHECK(group.tick(port, 1.0, 1.0));
+  group.tick(port, 1.0, 1.0);
   CHECK_EQ(port.controls.size(), before + 1);
   CHECK_EQ(port.controls.back().player, 1);
 }

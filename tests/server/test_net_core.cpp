@@ -425,6 +425,24 @@ TEST(one_client_holds_two_slots) {
   CHECK_EQ(core.leave(7, 3, port, &why), BALL_ENOMATCH);
 }
 
+// A match's model is written once (transient local): one that came before
+// the client followed the match is the view's as soon as it does (a game
+// that lists and joins later, a bot that began late). It once never came:
+// ball-load's bots never played with the primary that wrote it.
+TEST(a_model_taken_before_the_match_is_followed_is_kept) {
+  Game g;
+  ClientCore core(CoreSettings{}, me());
+  FakeClientPort port;
+  port.models.push_back(model_of(g));
+  port.infos.push_back(info_of(g));
+  core.pump(port, 0.0, 0.0);
+  CHECK(core.view(7) == nullptr);
+  std::string why;
+  CHECK_EQ(core.watch(7, &why), BALL_OK);
+  CHECK(core.view(7)->model() != nullptr);
+  CHECK_EQ(ball_model_hash(core.view(7)->model()), g.match.info().model_hash);
+}
+
 // CREATE goes out until a MatchInfo of the match appears; the list holds
 // what was heard within `silence` (3 s); a bad CREATE is refused, not sent.
 TEST(the_core_creates_until_the_match_appears_and_lists_the_heard) {

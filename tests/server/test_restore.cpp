@@ -81,7 +81,7 @@ Outcome run(const Trial &tr) {
   Segments published;
   SegmentOut seg;
   bool have_seg = false;
-  SegmentFeed feed;  // the segment in effect, for the bots
+  ClientFeed feed(a.match.id());  // the segment in effect, for the bots
   uint32_t newest_published = 0;
   std::string err;
   CHECK_MSG(b.match.follow(info, &err), "follow: %s", err.c_str());

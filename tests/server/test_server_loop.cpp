@@ -18,7 +18,7 @@
 #include "rally.h"
 #include "rng.h"
 #include "fake_port.h"
-#include "segment_feed.h"
+#include "client_feed.h"
 #include "server_loop.h"
 
 using namespace test;
@@ -113,7 +113,7 @@ struct LoopRally {
       p.aim_error = 0.02;
       brain[i].init(r.host.find(id)->model(), r.host.find(id)->court(), p);
     }
-    SegmentFeed feed;
+    ClientFeed feed(id);
     size_t given = 0, looked = 0;
     size_t st = SIZE_MAX;  // the rally's newest ball state
     uint32_t seq[2] = {0, 0};

@@ -10,7 +10,7 @@ foreach(name test_match test_ahead test_hit_instant test_lag test_bot test_clien
              test_placement)
   add_executable(${name} ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp)
   target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
-  target_link_libraries(${name} PRIVATE ball_client ball_kit_headers)
+  target_link_libraries(${name} PRIVATE ball_client ball_match ball_kit_headers)
   target_compile_options(${name} PRIVATE ${BALL_CXX_WARNINGS})
   add_test(NAME ${name} COMMAND ${name})
   set_tests_properties(${name} PROPERTIES LABELS server TIMEOUT 120)

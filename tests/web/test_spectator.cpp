@@ -17,6 +17,7 @@
 #include "spectator.h"
 #include "watch_feed.h"
 #include "watcher.h"
+#include "match_model.h"
 
 using namespace test;
 
