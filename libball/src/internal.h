@@ -21,6 +21,16 @@
 
 static inline int ball__has(const ball_model *m, unsigned effect) { return (m->effects & effect) != 0; }
 
+/* ---- elementary functions (elementary.c) ---- */
+
+/* e^x, e^x - 1, ln x, ln(1 + x): fdlibm's algorithms in portable C99, the
+ * same bits on every platform (libm's differ between C libraries and, with
+ * glibc, between CPUs); within 1 ulp. No errno, no flags. */
+double ball__exp(double x);
+double ball__expm1(double x);
+double ball__log(double x);
+double ball__log1p(double x);
+
 /* ---- flight (flight.c) ---- */
 
 /* b = m / beta, or +Inf when drag is off or beta = 0. */
