@@ -20,11 +20,11 @@
 # The module is a reactor (-mexec-model=reactor): no main; its _initialize
 # (C++ constructors) is called once before anything else. It exports the
 # functions named, malloc and free, and its memory. The floating point is the
-# native build's (gcc -std=c99 -O2 on x86_64: IEEE double, no contraction):
-# -ffp-contract=off, no -ffast-math, and wasm has no fused multiply-add;
-# libm is wasi-libc's, not glibc's (the test, tests/web/wasm_check.py, says
-# what that costs).
+# native build's (IEEE double, no contraction: BALL_C_FLOAT, BallFloat.cmake),
+# no -ffast-math, and wasm has no fused multiply-add; libm is wasi-libc's, not
+# glibc's (the test, tests/web/wasm_check.py, says what that costs).
 include_guard(GLOBAL)
+include(BallFloat)
 
 option(BALL_BUILD_WASM "Build libball for the browser (WebAssembly, clang 14 + wasi-libc)" ON)
 
@@ -68,7 +68,7 @@ function(ball_wasm_module target)
   if(NOT W_OUTPUT OR NOT W_EXPORTS)
     message(FATAL_ERROR "ball_wasm_module(${target}): OUTPUT and EXPORTS are needed")
   endif()
-  set(common --target=wasm32-wasi -O2 -DNDEBUG -ffp-contract=off)
+  set(common --target=wasm32-wasi -O2 -DNDEBUG ${BALL_C_FLOAT})
   set(includes "")
   foreach(dir ${W_INCLUDES})
     list(APPEND includes -I${dir})

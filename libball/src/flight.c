@@ -66,7 +66,7 @@ int ball__plane_tau(double b, double x0, double v, double target, double tau_fro
     t = u;
   } else {
     if (u >= b) return 0; /* drag stops the ball short of the plane */
-    t = -b * log1p(-u / b);
+    t = -b * ball__log1p(-u / b);
   }
   if (!(t >= tau_from)) {
     /* already past the plane, unless only rounding puts the crossing before tau_from */

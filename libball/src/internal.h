@@ -21,6 +21,16 @@
 
 static inline int ball__has(const ball_model *m, unsigned effect) { return (m->effects & effect) != 0; }
 
+/* ---- elementary functions (elementary.c) ---- */
+
+/* e^x, e^x - 1, ln x, ln(1 + x): fdlibm's algorithms in portable C99, the
+ * same bits on every platform (libm's differ between C libraries and, with
+ * glibc, between CPUs); within 1 ulp. No errno, no flags. */
+double ball__exp(double x);
+double ball__expm1(double x);
+double ball__log(double x);
+double ball__log1p(double x);
+
 /* ---- flight (flight.c) ---- */
 
 /* b = m / beta, or +Inf when drag is off or beta = 0. */
@@ -62,7 +72,8 @@ static inline void ball__flight_of(const ball_model *m, ball__flight *f) {
 }
 
 /* eq 3 for both horizontal terms at once: *d = b (1 - e^(-t/b)) and
- * *f = e^(-t/b), from one transcendental call. For t/b < ln 2, expm1 gives
+ * *f = e^(-t/b), from one transcendental call (libball's own, elementary.c:
+ * the same bits on every platform). For t/b < ln 2, expm1 gives
  * both without cancellation (f = 1 + expm1 >= 1/2 is exact to an ulp);
  * beyond, f = e^(-t/b) <= 1/2 and 1 - f is as exact. k = 1/b, 0 for no drag. */
 static inline void ball__drag_terms(double b, double k, double t, double *d, double *f) {
@@ -74,11 +85,11 @@ static inline void ball__drag_terms(double b, double k, double t, double *d, dou
   }
   x = t * k;
   if (x < 0.69314718055994531) {
-    double e = expm1(-x);
+    double e = ball__expm1(-x);
     *d = -b * e;
     *f = 1.0 + e;
   } else {
-    *f = exp(-x);
+    *f = ball__exp(-x);
     *d = b * (1.0 - *f);
   }
 }

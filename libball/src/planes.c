@@ -160,7 +160,7 @@ static double tau_of_distance(const ball__flight *fl, double d) {
   if (!(d > 0.0)) return 0.0;
   if (fl->k == 0.0) return d;
   if (d >= fl->b) return INFINITY;
-  return -fl->b * log1p(-d / fl->b);
+  return -fl->b * ball__log1p(-d / fl->b);
 }
 
 /* The taus at which a horizontal coordinate x0 + v D(tau) is in [lo, hi]:
@@ -215,7 +215,7 @@ static int rim_exact(const ball_model *m, const ball__flight *fl, const ball_seg
      * remaining distance is below a femtometre nothing moves */
     double vh = sqrt(seg->v0.x * seg->v0.x + seg->v0.z * seg->v0.z);
     if (fl->k == 0.0 || !(vh > 0.0)) w1 = w0;
-    else w1 = fmax(w0, fl->b * log(fmax(vh * fl->b / 1e-15, 1.0)));
+    else w1 = fmax(w0, fl->b * ball__log(fmax(vh * fl->b / 1e-15, 1.0)));
   }
   if (!(w0 <= w1)) return 0;
   {

@@ -10,6 +10,17 @@ set_target_properties(ball_bench PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_B
 add_test(NAME ball_bench_smoke COMMAND ball_bench --smoke --scenes ${PROJECT_SOURCE_DIR}/libball/scenes)
 set_tests_properties(ball_bench_smoke PROPERTIES LABELS bench TIMEOUT 120)
 
+# ball_bench_libm: libball's own exp, expm1, log and log1p against glibc's, in
+# ns per call (docs/benchmarks.md; `./run bench`). White box (it calls the
+# library's internal ball__ functions, so it lives beside the white-box tests
+# in libball/src/tests/ and links the static library); a smoke run in ctest.
+add_executable(ball_bench_libm ${PROJECT_SOURCE_DIR}/libball/src/tests/bench_elementary.c)
+target_compile_options(ball_bench_libm PRIVATE ${BALL_C_WARNINGS})
+target_link_libraries(ball_bench_libm PRIVATE ball_kit ball_static m)
+set_target_properties(ball_bench_libm PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/tests/bench)
+add_test(NAME ball_bench_libm_smoke COMMAND ball_bench_libm --smoke)
+set_tests_properties(ball_bench_libm_smoke PROPERTIES LABELS bench TIMEOUT 120)
+
 # net_query: the client library's ball query against ball_segment_eval, in
 # one run (./run bench-client, tests/bench/client_bench.py; docs/client.md)
 if(TARGET ball_net)

@@ -71,6 +71,7 @@ PROGRAMS = {  # program -> where the build puts it
     "ball-demo": "server/ball-demo",
     "ball_validate": "validation/ball_validate",
     "ball_bench": "tests/bench/ball_bench",
+    "ball_bench_libm": "tests/bench/ball_bench_libm",
     "ball_bench_mujoco": "validation/ball_bench_mujoco",
     "ball_accuracy": "validation/ball_accuracy",
 }

@@ -24,13 +24,14 @@ set_tests_properties(web_page PROPERTIES LABELS "dds;web" TIMEOUT 180
   ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
 
 # libball on WebAssembly (cmake/BallWasm.cmake, server/web/page/ballwasm.js)
-# in the browser: every double of 1000 random segments equal to the native
-# ball_segment_eval's, bit for bit, and the C++ probe's answer
+# in the browser: every double of 20,000 random segments (two seeds) equal to
+# the native ball_segment_eval's, bit for bit, and the C++ probe's answer
 if(TARGET ball_wasm)
   add_test(NAME web_wasm
     COMMAND ${BALL_WEB_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/wasm_check.py --chromium ${BALL_CHROMIUM}
             --probe $<TARGET_FILE:web_probe> --wasm $<TARGET_PROPERTY:ball_wasm,BALL_WASM_FILE>
-            --glue ${PROJECT_SOURCE_DIR}/server/web/page/ballwasm.js --work ${CMAKE_CURRENT_BINARY_DIR}/web_wasm)
+            --glue ${PROJECT_SOURCE_DIR}/server/web/page/ballwasm.js --work ${CMAKE_CURRENT_BINARY_DIR}/web_wasm
+            --count 10000 --seed 2026 --seed 7)
   set_tests_properties(web_wasm PROPERTIES LABELS "web" TIMEOUT 120
     PASS_REGULAR_EXPRESSION "wasm_check: passed" FAIL_REGULAR_EXPRESSION "FAIL")
 endif()

@@ -16,19 +16,20 @@ Checks, each with its numbers printed:
   3. the C++17 probe (std::map, std::vector, std::deque over libball's C
      API; tests/web/wasm_probe.cpp) gives its known answer, 64 n - 2080, and
      grows the module's memory on the way;
-  4. COUNT random segments (web_probe segments COUNT SEED): the glue's
-     segmentEval, that is ball_segment_eval in the module, equals the native
-     ball_segment_eval BIT FOR BIT, each of the nine doubles compared by its
-     IEEE bits (so -0 is not +0): the count compared and the mismatches;
+  4. COUNT random segments of each SEED (web_probe segments COUNT SEED): the
+     glue's segmentEval, that is ball_segment_eval in the module, equals the
+     native ball_segment_eval BIT FOR BIT, each of the nine doubles compared
+     by its IEEE bits (so -0 is not +0): the count compared and the
+     mismatches;
   5. no console errors, no uncaught exception.
 
-Bit for bit holds for the arithmetic (IEEE doubles, no contraction on either
-side); libm is another matter: the module's expm1 and exp are wasi-libc's
-(musl's), the native ones glibc's, which on a CPU with FMA picks other code
-again. On 200,000 segments of seeds 1 and 2, 59 differed in the last bits
-(docs/benchmarks.md, "WebAssembly toolchain"); seed 2026's 1000 do not.
+Bit for bit holds for any seed: the arithmetic is IEEE doubles without
+contraction on both sides (BALL_C_FLOAT, cmake/BallFloat.cmake), and libball
+computes exp, expm1, log and log1p itself (libball/src/elementary.c), so
+neither wasi-libc's libm nor glibc's is in the numbers (docs/benchmarks.md,
+"WebAssembly toolchain").
 
-  wasm_check.py --chromium PATH --probe PATH --wasm FILE --glue FILE --work DIR [--count N] [--seed S]
+  wasm_check.py --chromium PATH --probe PATH --wasm FILE --glue FILE --work DIR [--count N] [--seed S]...
 """
 import argparse
 import functools
@@ -75,9 +76,10 @@ def main():
     ap.add_argument("--wasm", required=True)
     ap.add_argument("--glue", required=True)
     ap.add_argument("--work", required=True)
-    ap.add_argument("--count", type=int, default=1000)
-    ap.add_argument("--seed", type=int, default=2026)
+    ap.add_argument("--count", type=int, default=1000, help="segments of each seed")
+    ap.add_argument("--seed", type=int, action="append", help="again for more seeds (default 2026)")
     a = ap.parse_args()
+    seeds = a.seed or [2026]
     shutil.rmtree(a.work, ignore_errors=True)
     www = os.path.join(a.work, "www")
     os.makedirs(www)
@@ -93,11 +95,14 @@ def main():
     shutil.copy(a.wasm, os.path.join(www, "ball.wasm"))
     with open(os.path.join(www, "index.html"), "w") as f:
         f.write(PAGE)
-    cases_text = subprocess.run([a.probe, "segments", str(a.count), str(a.seed)], capture_output=True, text=True,
-                                check=True).stdout
+    # each seed's JSON array as web_probe printed it (the doubles' text untouched), joined into one
+    texts = [subprocess.run([a.probe, "segments", str(a.count), str(seed)], capture_output=True, text=True,
+                            check=True).stdout.strip() for seed in seeds]
+    cases_text = "[" + ",".join(t[1:-1] for t in texts if t[1:-1].strip()) + "]\n"
     with open(os.path.join(www, "cases.json"), "w") as f:
         f.write(cases_text)
     cases = json.loads(cases_text, parse_int=float)  # "-0" is -0.0, not the int 0
+    names = ["seed %d case %d" % (seed, i) for seed in seeds for i in range(a.count)]
     # Browser runs the path it is given: this one sets PR_SET_PDEATHSIG and execs chromium (and
     # Debian's /usr/bin/chromium execs the browser), so the browser dies with this script
     chromium = os.path.join(a.work, "chromium")
@@ -161,13 +166,14 @@ def main():
                             signs += apart < 0
                             worst = max(worst, apart)
                             if len(shown) < 5:
-                                shown.append("case %d %s[%d]: native %s, wasm %s" % (first + i, key, j, want, have))
+                                shown.append("%s %s[%d]: native %s, wasm %s" % (names[first + i], key, j, want, have))
                 segments += mismatches > before
         for s in shown:
             print("     " + s)
-        check(compared == 9 * len(cases) and mismatches == 0,
-              "%d segments of seed %d, %d doubles compared by their bits: %d mismatches, in %d segments (%d of "
-              "sign, the largest other %d ulp)" % (len(cases), a.seed, compared, mismatches, segments, signs, worst))
+        check(len(cases) == a.count * len(seeds) and compared == 9 * len(cases) and mismatches == 0,
+              "%d segments of seeds %s, %d doubles compared by their bits: %d mismatches, in %d segments (%d of "
+              "sign, the largest other %d ulp)" % (len(cases), ", ".join(map(str, seeds)), compared, mismatches,
+                                                   segments, signs, worst))
 
         stubs = browser.evaluate("ball.stubCalls")
         check(not stubs, "WASI stubs called: %s" % (stubs or "none"))
