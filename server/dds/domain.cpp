@@ -870,6 +870,18 @@ std::vector<uint8_t> serialized(const T &sample) {
 }
 
 template <class T>
+bool deserialized(const std::vector<uint8_t> &bytes, T *out) {
+  typename Wire<T>::Idl wire;
+  typename Wire<T>::Support support;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(bytes.size()));
+  std::copy(bytes.begin(), bytes.end(), payload.data);
+  payload.length = static_cast<uint32_t>(bytes.size());
+  if (!support.deserialize(&payload, &wire)) return false;  // (the guarded support: never throws)
+  from_idl(wire, out);
+  return true;
+}
+
+template <class T>
 uint64_t serialized_size() {
   typename Wire<T>::Idl wire;
   typename Wire<T>::Support support;
@@ -879,6 +891,7 @@ uint64_t serialized_size() {
 #define BALL_ENDPOINTS(T)                                                                      \
   template uint64_t serialized_size<T>();                                                      \
   template std::vector<uint8_t> serialized<T>(const T &);                                       \
+  template bool deserialized<T>(const std::vector<uint8_t> &, T *);                              \
   template class Writer<T>;                                                                    \
   template class Reader<T>;                                                                    \
   template Writer<T> Domain::writer<T>(const char *, const char *, Sizing, std::string *, const char *); \

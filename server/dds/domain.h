@@ -146,6 +146,11 @@ uint64_t serialized_size();
 template <class T>
 std::vector<uint8_t> serialized(const T &sample);
 
+// A sample's bytes as a reader takes them (serialized's inverse, through
+// the same guarded type support); false for bytes that do not read as T.
+template <class T>
+bool deserialized(const std::vector<uint8_t> &bytes, T *out);
+
 class Domain;
 
 template <class T>

@@ -1,17 +1,18 @@
 // The match's model on the wire (docs/protocol.md, "The match's model"):
 // every field of libball's ball_model, as its field table lists them, goes
-// through the IDL and comes back the same; an enum or a count out of range
-// comes back as one ball_model_check refuses; a reader uses a MatchModel only
-// with a checked model whose hash is its own and the MatchInfo's.
+// into a MatchModel sample's bytes and comes back the same; an enum out of
+// range in the bytes comes back as one ball_model_check refuses; a reader
+// uses a MatchModel only with a checked model whose hash is its own and the
+// MatchInfo's. Through server/dds's serialized and deserialized: the bytes a
+// writer sends and a reader takes, no DDS header here.
 #include <cmath>
 #include <cstring>
-#include <functional>
 #include <random>
-#include <utility>
+#include <string>
 #include <vector>
 
 #include "check.hpp"
-#include "convert.h"
+#include "domain.h"
 #include "trust.h"
 
 using namespace ballsrv;
@@ -112,7 +113,7 @@ TEST(every_field_of_the_model_crosses_the_wire) {
     in.server_id = static_cast<uint32_t>(rng());
     in.model_hash = rng();
     MatchModelOut out;
-    dds::from_idl(dds::to_idl(in), &out);
+    CHECK(dds::deserialized(dds::serialized(in), &out));
     std::string d = differs(&in.model, &out.model, fields, n);
     CHECK_MSG(d.empty(), "model %d: %s differs after the wire", k, d.c_str());
     CHECK(out.match_id == in.match_id && out.server_id == in.server_id && out.model_hash == in.model_hash);
@@ -121,29 +122,46 @@ TEST(every_field_of_the_model_crosses_the_wire) {
   check::note("2000 random models: %d came back field for field (%d fields in the table)", same, n);
 }
 
+// Each of libball's enums of the model, at a number the IDL's long carries
+// but the enum has not, in the bytes (found where two samples differing in
+// that field alone differ): it comes back as a value ball_model_check names.
 TEST(an_enum_out_of_range_comes_back_refused) {
   ball_model m;
   ball_model_default(&m);
-  MatchModelOut in;
-  in.model = m;
-  balldds::MatchModel w = dds::to_idl(in);
-  const std::vector<std::pair<const char *, std::function<void(balldds::Model &)>>> bad = {
-      {"detect", [](balldds::Model &x) { x.detect(99); }},
-      {"normal_mode", [](balldds::Model &x) { x.normal_mode(-1); }},
-      {"response", [](balldds::Model &x) { x.response(4); }},
-      {"scheme", [](balldds::Model &x) { x.scheme(0x7fffffff); }},
-      {"level", [](balldds::Model &x) { x.level(-5); }},
+  // (ball_model's enums are ints in memory: the field by its offset)
+  auto field_at = [](ball_model &x, const char *name) -> int * {
+    int n = 0;
+    const ball_field *f = ball_model_fields(&n);
+    for (int i = 0; i < n; ++i)
+      if (std::string(f[i].name) == name) return reinterpret_cast<int *>(reinterpret_cast<char *>(&x) + f[i].offset);
+    return nullptr;
   };
-  for (const auto &b : bad) {
-    balldds::MatchModel forged = w;
-    b.second(forged.model());
-    MatchModelOut out;
-    dds::from_idl(forged, &out);
-    const char *field = nullptr;
-    ball_status st = ball_model_check(&out.model, &field);
-    CHECK_MSG(st != BALL_OK && field && std::string(field) == b.first, "%s: %s refused as %s", b.first,
-              ball_strerror(st), field ? field : "(none)");
+  for (const char *name : {"detect", "normal_mode", "response", "scheme", "level"}) {
+    MatchModelOut a, b;
+    a.model = b.model = m;
+    *field_at(a.model, name) = 0;
+    *field_at(b.model, name) = 1;
+    std::vector<uint8_t> x = dds::serialized(a), y = dds::serialized(b);
+    CHECK_EQ(x.size(), y.size());
+    size_t at = 0;
+    while (at < x.size() && x[at] == y[at]) ++at;
+    CHECK_MSG(at + 4 <= x.size(), "%s: no byte differs", name);
+    if (at + 4 > x.size()) continue;
+    for (int32_t bad : {99, -1, 0x7fffffff}) {
+      std::vector<uint8_t> forged = x;
+      std::memcpy(&forged[at], &bad, 4);  // (the sample is little-endian CDR, as this host writes it)
+      MatchModelOut out;
+      CHECK(dds::deserialized(forged, &out));
+      const char *field = nullptr;
+      ball_status st = ball_model_check(&out.model, &field);
+      CHECK_MSG(st != BALL_OK && field && std::string(field) == name, "%s = %d: %s refused as %s", name, bad,
+                ball_strerror(st), field ? field : "(none)");
+    }
   }
+  std::vector<uint8_t> cut = dds::serialized(MatchModelOut{});
+  cut.resize(cut.size() / 2);
+  MatchModelOut out;
+  CHECK(!dds::deserialized(cut, &out));  // a sample cut short is not one
 }
 
 TEST(a_reader_uses_a_model_only_when_it_is_the_infos) {

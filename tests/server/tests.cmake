@@ -16,10 +16,10 @@ foreach(name test_match test_ahead test_hit_instant test_lag test_bot test_clien
   set_tests_properties(${name} PROPERTIES LABELS server TIMEOUT 120)
 endforeach()
 
-# the wire's conversions (server/dds/convert.cpp), offline: the generated IDL types, no participant
+# the wire's bytes of a MatchModel (server/dds's serialized and deserialized), offline: no participant
 add_executable(test_wire ${CMAKE_CURRENT_LIST_DIR}/test_wire.cpp)
 target_include_directories(test_wire PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
-target_link_libraries(test_wire PRIVATE ball_dds ball_idl)
+target_link_libraries(test_wire PRIVATE ball_dds_client ball_static)
 target_compile_options(test_wire PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_wire COMMAND test_wire)
 set_tests_properties(test_wire PROPERTIES LABELS server TIMEOUT 60)
