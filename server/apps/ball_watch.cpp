@@ -65,7 +65,9 @@ struct Snapshots {
     if (!renderer && ball_renderer_create(size[0], size[1], &renderer) != BALL_OK)
       return "cannot create an OSMesa renderer";
     auto it = courts.find(d.match);
-    if (it == courts.end()) it = courts.emplace(d.match, court_model(d.info)).first;
+    // the court the server judges: the match's model from the wire, else a scene of its name
+    if (it == courts.end() || (d.has_model && ball_model_hash(&it->second) != ball_model_hash(&d.model)))
+      it = courts.insert_or_assign(d.match, d.has_model ? d.model : court_model(d.info)).first;
     ball_camera cam;
     ball_camera_preset preset = BALL_CAMERA_SIDE;
     for (int i = 0; i < BALL_CAMERA_PRESET_COUNT; ++i)

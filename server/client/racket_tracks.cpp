@@ -11,7 +11,7 @@ bool RacketTracks::take(const RacketSampleIn &s, const Watcher &w) {
   }
   Match &m = matches_[s.match_id];
   if (!m.sim || m.server != v.info->server_id) {  // a new match or server: its tracks start anew
-    ball_model model = court_(*v.info);
+    ball_model model = v.model ? *v.model : court_(*v.info);  // the wire's model, else a scene's
     auto sim = std::make_unique<ball_sim>();
     if (ball_sim_init(sim.get(), &model) != BALL_OK) {
       dropped_++;

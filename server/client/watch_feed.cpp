@@ -5,6 +5,8 @@ namespace ballsrv {
 void take_all(ClientPort &port, Watcher &w, RacketTracks *rackets, double real, std::vector<RacketSampleIn> *drawn) {
   // events are not kept for late joiners: what came before "ready" is not seen
   if (port.hears_server()) w.on_ready(real);
+  MatchModelOut model;  // (before the infos: a view takes the model its info names at once)
+  while (port.take(&model)) w.on_model(model);
   MatchInfoOut info;
   while (port.take(&info)) w.on_info(info, real);
   SegmentOut seg;

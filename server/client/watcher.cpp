@@ -10,16 +10,13 @@ namespace ballsrv {
 
 namespace {
 
-constexpr size_t kKeepSegments = 256;  // per match, for states that arrive late
+constexpr size_t kKeepLeads = 256;     // contacts written ahead a match keeps until they happen
 constexpr size_t kMaxPending = 4096;   // states waiting for a segment that never comes: counted and forgotten
 constexpr double kLeadSettle = 1.0;    // sim s after a contact by which a hit that superseded it has come
 constexpr double kTrailSeconds = 1.0;  // sim s of trail and of event markers
 constexpr size_t kTrailPoints = 2048;
 constexpr size_t kMarkers = 64;
 constexpr size_t kKeepEvents = 64;     // per match, for a view
-constexpr size_t kKeepCorrections = 16;  // per match: the newest corrections, that may void events still to come
-constexpr double kVoidableFor = 5.0;     // sim s an event stays where a correction may void it (beyond any rewind window)
-constexpr double kAnew = 1.0;          // sim s: a MatchInfo this far behind the last is a match started anew
 
 std::string point_text(ball_vec3 p) {
   char buf[96];
@@ -85,7 +82,11 @@ std::string rally_line(const EventOut &e) {
   return buf;
 }
 
-Watcher::Watched &Watcher::watched(uint32_t id) { return matches_[id]; }
+Watcher::Watched &Watcher::watched(uint32_t id) {
+  Watched &w = matches_[id];
+  if (!w.view) w.view = std::make_unique<MatchView>(id, settings_.servers, ParticipantId{});  // (it holds no slot)
+  return w;
+}
 
 void Watcher::say(uint32_t match, double sim_time, const std::string &text) {
   if (settings_.log && !text.empty()) out_.log.push_back(LogLine{match, sim_time, text});
@@ -106,35 +107,25 @@ void Watcher::on_info(const MatchInfoOut &info, double real) {
   if (!wanted(info.match_id)) return;
   Watched &w = watched(info.match_id);
   out_.records.push_back(record_line(info, real));  // what arrived; used only if it fits (trust.h)
-  if (!settings_.servers.accepts(info.server_id) || !usable_info(info) ||
-      !w.clock.observe(info.sim_time, info.server_time, info.time_base, info.state == MatchState::playing, real)) {
+  bool first = !w.view->has_info();
+  MatchState before = w.view->info().state;
+  std::vector<ViewEvent> given;
+  if (!w.view->on_info(info, real, &given)) {
     w.tally.not_taken++;
     return;
   }
-  bool first = !w.has_info;
-  if (!first && info.sim_time + kAnew < w.info.sim_time) {
+  if (w.view->counters().anew != w.anew) {
     // the sim clock went back: a server started the match anew (its seqs
     // start over too), so nothing held of the old one applies
+    w.anew = w.view->counters().anew;
     say(info.match_id, info.sim_time, "match started anew by server " + std::to_string(info.server_id));
-    w.segments.clear();
     w.pending.clear();
     w.leads.clear();
-    w.counted.clear();
-    w.corrections.clear();
     w.trail.clear();
     w.recent.clear();
-    w.last_event_seq = 0;
     w.next_snapshot = -1.0;
   }
-  MatchState before = w.info.state;
-  w.info = info;
-  w.has_info = true;
-  w.info_real = real;
-  // the segment in effect, when no Segment sample brought it (a watcher
-  // that joined after a failover, whose new server has written none yet)
-  if (info.segment_seq > 0 && !w.segments.count(info.segment_seq) &&
-      (w.segments.empty() || info.segment_seq > w.segments.rbegin()->first))
-    w.segments[info.segment_seq] = current_segment(info);
+  take(w, given);
   if (first || before != info.state)
     say(info.match_id, info.sim_time,
         std::string("match ") + name_of(info.state) + " (" + info.scene + ", level " +
@@ -142,25 +133,22 @@ void Watcher::on_info(const MatchInfoOut &info, double real) {
             " players, server " + std::to_string(info.server_id) + ")");
 }
 
+void Watcher::on_model(const MatchModelOut &model) {
+  if (!wanted(model.match_id)) return;
+  if (!watched(model.match_id).view->on_model(model)) watched(model.match_id).tally.not_taken++;
+}
+
 void Watcher::on_segment(const SegmentOut &seg, double real) {
   if (!wanted(seg.match_id)) return;
   Watched &w = watched(seg.match_id);
   out_.records.push_back(record_line(seg, real));  // what arrived; used only if it fits
-  uint32_t newest = w.segments.empty() ? 0 : w.segments.rbegin()->first;
-  if (!settings_.servers.accepts(seg.server_id) || !segment_fits(seg.seq, newest, w.info.segment_seq) ||
-      !finite_segment(seg.segment)) {
+  std::vector<ViewEvent> given;
+  if (!w.view->on_segment(seg, real, &given)) {
     w.tally.not_taken++;
     return;
   }
+  take(w, given);  // (the events it voids)
   if (first_segment_after_ < 0.0) first_segment_after_ = real - start_real_;
-  if (!segment_fits(seg.seq, newest, 0)) {  // a match started anew (its MatchInfo says so)
-    w.segments.clear();
-    w.counted.clear();
-    w.corrections.clear();
-  }
-  if (seg.correction) void_events(w, seg.seq, seg.segment.t0);
-  w.segments[seg.seq] = seg;
-  while (w.segments.size() > kKeepSegments) w.segments.erase(w.segments.begin());
   if (seg.cause == Cause::racket && seg.sample.valid) {
     latency_.add(real - seg.sample.source_time);
     latency_server_.add(seg.server_time - seg.sample.source_time);
@@ -174,16 +162,17 @@ void Watcher::on_segment(const SegmentOut &seg, double real) {
       ++it;
     }
   }
+  const MatchView &v = *w.view;
   bool contact = seg.cause == Cause::floor || seg.cause == Cause::net || seg.cause == Cause::wall;
-  if (contact && w.clock.valid() && w.info.time_base > 0.0 && w.leads.size() < kKeepSegments)
-    w.leads[seg.seq] = {seg.segment.t0, (seg.segment.t0 - w.clock.sim_now(real)) / w.info.time_base};
+  if (contact && v.clock().valid() && v.info().time_base > 0.0 && w.leads.size() < kKeepLeads)
+    w.leads[seg.seq] = {seg.segment.t0, (seg.segment.t0 - v.clock().sim_now(real)) / v.info().time_base};
 }
 
 // The contacts whose time has passed by kLeadSettle: they happened (a hit
 // that superseded one would have come by then); their leads are counted.
 void Watcher::settle_leads(Watched &w, double real) {
-  if (!w.clock.valid()) return;
-  double now = w.clock.sim_now(real);
+  if (!w.view->clock().valid()) return;
+  double now = w.view->clock().sim_now(real);
   for (auto it = w.leads.begin(); it != w.leads.end();) {
     if (it->second.first > now - kLeadSettle) {
       ++it;
@@ -223,58 +212,43 @@ void Watcher::tally(Watched &w, const EventOut &e, int sign) {
   }
 }
 
-// Events a correction voids (docs/protocol.md, "Corrections"): a
-// collision's or a point's, of a lower seq (written before the correction:
-// the segment in effect then was older) and after its t0.
-static bool voidable(const EventOut &e) {
-  return e.kind == EventKind::racket || e.kind == EventKind::floor || e.kind == EventKind::net ||
-         e.kind == EventKind::wall || e.kind == EventKind::sound || e.kind == EventKind::point;
-}
-static bool voids(uint32_t correction_seq, double t0, const EventOut &e) {
-  // (seqs in serial number arithmetic, as segment_fits)
-  return voidable(e) && e.time > t0 && static_cast<int32_t>(correction_seq - e.segment_seq) > 0;
-}
-
-void Watcher::void_events(Watched &w, uint32_t seq, double t0) {
-  w.corrections.push_back({seq, t0});
-  if (w.corrections.size() > kKeepCorrections) w.corrections.pop_front();
-  for (auto it = w.counted.begin(); it != w.counted.end();) {
-    if (voids(seq, t0, *it)) {
-      tally(w, *it, -1);
-      w.tally.voided++;
-      it = w.counted.erase(it);
-    } else {
-      ++it;
+// What the view gave, each once and in order: the server's events tallied,
+// logged and kept (for the page and the snapshots' markers), the events a
+// correction voided taken off the tally, the seqs that never came counted.
+void Watcher::take(Watched &w, std::vector<ViewEvent> &given) {
+  for (const ViewEvent &v : given) {
+    const EventOut &e = v.event;
+    switch (v.note) {
+      case ViewNote::none: {
+        tally(w, e, +1);
+        ball_event marker;
+        if (settings_.snapshot_every > 0.0 && event_marker(e, &marker)) w.recent.push_back(marker);
+        w.events.push_back(e);
+        w.events_taken++;
+        if (w.events.size() > kKeepEvents) w.events.pop_front();
+        say(e.match_id, e.time, rally_line(e));
+        break;
+      }
+      case ViewNote::voided: tally(w, e, -1); break;
+      case ViewNote::gap: w.tally.events_missed += static_cast<uint64_t>(e.value); break;
+      case ViewNote::server:
+        say(e.match_id, e.time, "match now served by server " + std::to_string(e.server_id));
+        break;
+      case ViewNote::slot: break;  // (a watcher holds none)
     }
   }
+  given.clear();
 }
 
 void Watcher::on_event(const EventOut &e, double real) {
   if (!wanted(e.match_id)) return;
   Watched &w = watched(e.match_id);
-  WatchedMatchSummary &t = w.tally;
-  if (w.last_event_seq && e.seq > w.last_event_seq + 1) t.events_missed += e.seq - w.last_event_seq - 1;
-  if (e.seq > w.last_event_seq) w.last_event_seq = e.seq;
-  bool voided = false;  // by a correction that came first (another topic: it may)
-  for (const auto &c : w.corrections) voided = voided || voids(c.first, c.second, e);
-  if (voided) {
-    t.voided++;
-  } else {
-    tally(w, e, +1);
-    if (voidable(e)) {
-      w.counted.push_back(e);
-      while (!w.counted.empty() && w.counted.front().time < e.time - kVoidableFor) w.counted.pop_front();
-    }
-  }
-  ball_event marker;
-  if (settings_.snapshot_every > 0.0 && event_marker(e, &marker)) w.recent.push_back(marker);
-  if (settings_.servers.accepts(e.server_id)) {
-    w.events.push_back(e);
-    w.events_taken++;
-    if (w.events.size() > kKeepEvents) w.events.pop_front();
-  }
-  say(e.match_id, e.time, rally_line(e));
-  out_.records.push_back(record_line(e, real));
+  out_.records.push_back(record_line(e, real));  // what arrived; given once, in order, if it fits
+  std::vector<ViewEvent> given;
+  uint64_t refused = w.view->counters().refused;
+  w.view->on_event(e, real, &given);
+  if (w.view->counters().refused != refused) w.tally.not_taken++;
+  take(w, given);
 }
 
 void Watcher::on_state(const StateOut &s, double real) {
@@ -282,8 +256,7 @@ void Watcher::on_state(const StateOut &s, double real) {
   Watched &w = watched(s.match_id);
   w.tally.states++;
   out_.records.push_back(record_line(s, real));
-  if (!settings_.servers.accepts(s.server_id) ||
-      !w.clock.observe(s.sim_time, s.server_time, w.info.time_base, s.state == MatchState::playing, real)) {
+  if (!w.view->on_state(s, real)) {
     w.tally.not_taken++;
     return;
   }
@@ -295,40 +268,52 @@ void Watcher::on_status(const StatusOut &s) { servers_[s.server_id] = s; }
 std::vector<uint32_t> Watcher::match_ids() const {
   std::vector<uint32_t> ids;
   for (const auto &kv : matches_)
-    if (kv.second.has_info) ids.push_back(kv.first);
+    if (kv.second.view->has_info()) ids.push_back(kv.first);
   return ids;
 }
 
 bool Watcher::view(uint32_t match, WatchedView *out) const {
   auto it = matches_.find(match);
-  if (it == matches_.end() || !it->second.has_info) return false;
+  if (it == matches_.end() || !it->second.view->has_info()) return false;
   const Watched &w = it->second;
-  out->info = &w.info;
-  out->segments = &w.segments;
+  out->info = &w.view->info();
+  out->segments = &w.view->window();
+  out->model = w.view->model();
   out->events = &w.events;
   out->events_taken = w.events_taken;
-  out->clock = &w.clock;
-  out->info_real = w.info_real;
+  out->clock = &w.view->clock();
+  out->info_real = w.view->info_local();
   return true;
 }
 
+const ball_model *Watcher::model(uint32_t match) const {
+  auto it = matches_.find(match);
+  return it == matches_.end() ? nullptr : it->second.view->model();
+}
+
 // each server state against the ball evaluated here from the segment it
-// names (eq 3 and 4 with MatchInfo's flight model)
+// names (eq 3 and 4 with the match's flight model)
 void Watcher::check_states() {
   for (auto &kv : matches_) {
     Watched &w = kv.second;
-    if (!w.has_info) continue;
+    const MatchView &v = *w.view;
+    if (!v.has_info()) continue;
+    const std::vector<KeptSegment> &window = v.window();
     size_t keep = 0;
     for (size_t i = 0; i < w.pending.size(); ++i) {
       const StateOut &st = w.pending[i];
-      auto it = w.segments.find(st.segment_seq);
-      if (it == w.segments.end()) {
-        if (!w.segments.empty() && st.segment_seq < w.segments.begin()->first) w.tally.states_unmatched++;  // too old
-        else w.pending[keep++] = st;  // its segment is on the way
+      const KeptSegment *k = nullptr;
+      for (const auto &s : window)
+        if (s.segment.seq == st.segment_seq) k = &s;
+      if (!k) {
+        if (!window.empty() && static_cast<int32_t>(st.segment_seq - window.front().segment.seq) < 0)
+          w.tally.states_unmatched++;  // too old: out of the window
+        else
+          w.pending[keep++] = st;  // its segment is on the way
         continue;
       }
       ball_state b;
-      if (ball_segment_eval(&w.info.model, &it->second.segment, st.sim_time, &b) != BALL_OK) {
+      if (ball_segment_eval(&v.flight_model(), &k->segment.segment, st.sim_time, &b) != BALL_OK) {
         w.tally.states_unmatched++;
         continue;
       }
@@ -347,15 +332,15 @@ void Watcher::frame(double real) {
   const double every = settings_.snapshot_every;
   for (auto &kv : matches_) {
     Watched &w = kv.second;
-    if (!w.has_info || !w.clock.valid()) continue;
+    const MatchView &v = *w.view;
+    if (!v.has_info() || !v.clock().valid()) continue;
     settle_leads(w, real);
-    double t = w.clock.sim_now(real);
-    const SegmentOut *sg = segment_in_effect(w.segments, t);
-    if (!sg) continue;
-    ball_state b;
-    if (ball_segment_eval(&w.info.model, &sg->segment, t, &b) != BALL_OK) continue;
+    ViewBall vb;
+    if (v.ball(real, &vb) != BALL_OK) continue;
+    const double t = vb.sim_time;
+    const ball_state &b = vb.state;
     w.tally.frames++;
-    if (settings_.record_frames) out_.records.push_back(OwnFrame{real, kv.first, t, sg->seq, b.position});
+    if (settings_.record_frames) out_.records.push_back(OwnFrame{real, kv.first, t, vb.segment->seq, b.position});
     if (every <= 0.0) continue;
     // the last second of the ball and of its collisions, then a frame
     // every `every` sim seconds, on multiples of it
@@ -369,7 +354,9 @@ void Watcher::frame(double real) {
     if (t < w.next_snapshot) continue;
     SnapshotDue due;
     due.match = kv.first;
-    due.info = w.info;
+    due.info = v.info();
+    due.has_model = v.model() != nullptr;
+    if (due.has_model) due.model = *v.model();
     due.sim_time = t;
     due.ball = b.position;
     for (const auto &p : w.trail) due.trail.push_back(p.second);
@@ -396,7 +383,9 @@ WatchSummary Watcher::summary(double seconds) const {
   for (const auto &kv : matches_) {
     WatchedMatchSummary m = kv.second.tally;
     m.match = kv.first;
-    m.segments = kv.second.segments.empty() ? 0 : kv.second.segments.rbegin()->first;
+    const std::vector<KeptSegment> &window = kv.second.view->window();
+    m.segments = window.empty() ? 0 : window.back().segment.seq;
+    m.voided = kv.second.view->counters().voided;
     s.matches.push_back(m);
   }
   for (const auto &kv : servers_) s.servers.push_back(kv.second);

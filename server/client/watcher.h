@@ -1,12 +1,14 @@
 // A watcher's mind, free of DDS and of drawing (docs/server.md,
-// "Watchers"): fed with what the server says (on_info, on_segment,
-// on_event, on_state, on_status) and ticked at its own frame rate
-// (frame), it keeps the tally of every watched match, checks each server
-// ball state against the ball evaluated here from the segment it names
-// (the desync check), evaluates its own ball from the newest segment at its
-// estimate of the sim clock, says when a snapshot frame is due, and writes
-// everything as record lines (records.h). ball-watch prints, records and
-// draws what it produces; the tests feed it from a Match.
+// "Watchers"): fed with what the server says (on_info, on_model,
+// on_segment, on_event, on_state, on_status) and ticked at its own frame
+// rate (frame), it records every sample as it arrived (records.h) and
+// takes each match through the client library's view of it (MatchView:
+// the trust rules, the sim clock, the segment window, a match started
+// anew, corrections): from what the view took it keeps the tally, checks
+// each server ball state against the ball evaluated from the segment it
+// names (the desync check), evaluates its own ball from the segment in
+// effect and says when a snapshot frame is due. ball-watch prints, records
+// and draws what it produces; the tests feed it from a Match.
 #pragma once
 
 #include <cstdint>
@@ -15,10 +17,11 @@
 #include <string>
 #include <vector>
 
+#include <memory>
+
 #include "frame_clock.h"
+#include "match_view.h"
 #include "records.h"
-#include "sim_clock.h"
-#include "trust.h"
 
 namespace ballsrv {
 
@@ -42,7 +45,9 @@ struct LogLine {
 // Watcher::snapshot_written).
 struct SnapshotDue {
   uint32_t match = 0;
-  MatchInfoOut info;               // the match: its scene's name and flight model, for the court
+  MatchInfoOut info;               // the match: its scene's name and flight model
+  bool has_model = false;          // `model` came from the wire (docs/protocol.md, "The match's model")
+  ball_model model{};              // the whole model the match is stepped with: the court to draw
   double sim_time = 0.0;           // sim s
   ball_vec3 ball{0, 0, 0};         // m, the own ball
   std::vector<ball_vec3> trail;    // m, the last second of the own ball, oldest first
@@ -65,7 +70,8 @@ struct WatchOutput {
 // spectator page, server/web/spectator.h).
 struct WatchedView {
   const MatchInfoOut *info = nullptr;      // the newest usable MatchInfo
-  const Segments *segments = nullptr;      // the segments taken, by seq
+  const std::vector<KeptSegment> *segments = nullptr;  // the segments taken, by seq (the view's window)
+  const ball_model *model = nullptr;       // the whole model from the wire (nullptr: not come)
   const std::deque<EventOut> *events = nullptr;  // the newest events taken, oldest first
   uint64_t events_taken = 0;               // events taken so far (the deque holds the newest of them)
   const SimClock *clock = nullptr;         // the estimate of the match's sim clock
@@ -80,6 +86,7 @@ class Watcher {
   void on_ready(double real);  // a server's writers reach us: the "ready" line (once)
   // `real`: the local realtime clock at reception, s
   void on_info(const MatchInfoOut &info, double real);
+  void on_model(const MatchModelOut &model);
   void on_segment(const SegmentOut &segment, double real);
   void on_event(const EventOut &event, double real);
   void on_state(const StateOut &state, double real);
@@ -100,34 +107,27 @@ class Watcher {
   // The matches with a usable MatchInfo, and what was taken of one (false: none).
   std::vector<uint32_t> match_ids() const;
   bool view(uint32_t match, WatchedView *out) const;
+  // The whole model of a match from the wire; nullptr: it has not come.
+  const ball_model *model(uint32_t match) const;
 
  private:
   struct Watched {
-    MatchInfoOut info;
-    bool has_info = false;
-    SimClock clock;
-    Segments segments;                        // by seq, the newest kKeepSegments
+    std::unique_ptr<MatchView> view;          // the client library's view of the match
     std::vector<StateOut> pending;            // states whose segment has not arrived yet
     WatchedMatchSummary tally;
-    uint32_t last_event_seq = 0;
+    uint64_t anew = 0;                        // the view's starts anew seen
     // the last second of the own ball and of the collisions, the next snapshot's sim time
     std::deque<std::pair<double, ball_vec3>> trail;
     std::deque<ball_event> recent;
-    std::deque<EventOut> events;  // the newest events of the servers it uses
+    std::deque<EventOut> events;  // the newest events given
     uint64_t events_taken = 0;
-    double info_real = 0.0;
     double next_snapshot = -1.0;
     // floor, net and wall segments received, not yet happened or superseded:
     // seq -> (t0 sim s, lead at reception real s)
     std::map<uint32_t, std::pair<double, double>> leads;
-    // the collision and point events counted over the last kVoidableFor sim
-    // s, and the newest corrections (seq, t0): a correction voids the events
-    // written before it for a later time (docs/protocol.md, "Corrections")
-    std::deque<EventOut> counted;
-    std::deque<std::pair<uint32_t, double>> corrections;
   };
   void tally(Watched &w, const EventOut &e, int sign);
-  void void_events(Watched &w, uint32_t seq, double t0);
+  void take(Watched &w, std::vector<ViewEvent> &given);  // what the view gave: tallied, logged, kept
   bool wanted(uint32_t id) const { return settings_.match < 0 || id == static_cast<uint32_t>(settings_.match); }
   Watched &watched(uint32_t id);
   void settle_leads(Watched &w, double real);

@@ -159,6 +159,7 @@ void ServerLoop::take_others() {
     if (other_models_.size() >= kMaxPeers && !other_models_.count(model.match_id)) continue;
     other_models_[model.match_id] = model;
   }
+  if (model_waits_.size() > kMaxPeers) model_waits_.clear();  // (matches no model came for: forgotten)
   MatchInfoOut info;
   while (port_.take_other_info(&info, &from)) other_info(info, from);
   SegmentOut seg;
@@ -219,6 +220,13 @@ void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from)
     const ball_model *wire = model != other_models_.end() && usable_model(model->second, info.model_hash)
                                  ? &model->second.model
                                  : nullptr;
+    // the MatchModel may come after the MatchInfo (another topic): it is
+    // waited for kModelWait before a scene of the info's name is looked for
+    if (!wire) {
+      auto first = model_waits_.emplace(info.match_id, clock_.mono()).first;
+      if (clock_.mono() - first->second < kModelWait) return;
+    }
+    model_waits_.erase(info.match_id);
     if (!host_.follow(info, wire, &err)) {
       if (stats_.follow_failures++ == 0 || stats_.follow_failures % 1000 == 0)
         say("cannot follow match " + std::to_string(info.match_id) + " of server " + std::to_string(info.server_id) +

@@ -120,6 +120,10 @@ constexpr uint64_t kMaxLostPerNote = 1000;
 // frame's deadline, and the servers of a domain keep their clocks in step
 // (NTP); a take-over maps the owner's sim clock by that stamp
 constexpr double kMaxClockGap = 10.0;
+// real s a standby waits for the MatchModel a followed match's MatchInfo
+// names before it looks for a scene of the info's name (docs/protocol.md,
+// "Several servers on one domain": the two topics' samples come apart)
+constexpr double kModelWait = 2.0;
 // other servers' ServerStatus writers a loop keeps at most: the remote
 // participants the QoS profiles allow (total_participants), so that forged
 // writers cannot grow it without bound; a lost one is forgotten
@@ -311,6 +315,8 @@ class ServerLoop {
   std::map<uint32_t, Followed> followed_;
   // the newest MatchModel of other servers' matches (a standby's), at most kMaxPeers matches
   std::map<uint32_t, MatchModelOut> other_models_;
+  // mono s a followed match's MatchInfo first came without its MatchModel
+  std::map<uint32_t, double> model_waits_;
   std::map<ParticipantId, Peer> peers_;
   // a claimant's configured match -> its owner heard of, mono s it was lost (-1: alive)
   std::map<uint32_t, std::pair<ParticipantId, double>> owners_;

@@ -170,9 +170,9 @@ void MatchView::void_given(const SegmentOut &c, std::vector<ViewEvent> *out) {
   if (corrections_.size() > kCorrections) corrections_.pop_front();
   for (auto it = given_.begin(); it != given_.end();) {
     if (voids(c.seq, c.segment.t0, *it)) {
-      ViewEvent v = note(ViewNote::voided, it->time);
-      v.event.value = it->seq;
-      v.event.score = c.play.score;
+      ViewEvent v;
+      v.note = ViewNote::voided;
+      v.event = *it;
       out->push_back(v);
       counters_.voided++;
       it = given_.erase(it);

@@ -25,13 +25,14 @@ enum class ViewNote {
   none,    // a server's event (EventOut as it came)
   server,  // the match's server changed: event.server_id the new one
   slot,    // this client's slot event.index: event.value 1 taken, 0 lost
-  voided,  // a correction took back an event given before: event.value its seq
+  voided,  // a correction took back an event given before: event is that event
   gap,     // events never came: event.value how many seqs were skipped
 };
 
 struct ViewEvent {
   ViewNote note = ViewNote::none;
-  EventOut event;  // the server's event; for a note, match_id, time and the fields the note names
+  EventOut event;  // the server's event (voided: the event taken back); for another note, match_id,
+                   // time and the fields the note names
 };
 
 // A segment kept, with its flight prepared for evaluation (ball_flight).

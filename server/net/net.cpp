@@ -213,7 +213,7 @@ void to_c(const ViewEvent &v, const MatchView *view, double now, ball_net_event 
     case ViewNote::none: out->kind = static_cast<ball_net_event_kind>(e.kind); break;
     case ViewNote::server: out->kind = BALL_NET_EVENT_SERVER; break;
     case ViewNote::slot: out->kind = BALL_NET_EVENT_SLOT; break;
-    case ViewNote::voided: out->kind = BALL_NET_EVENT_VOIDED; break;
+    case ViewNote::voided: out->kind = BALL_NET_EVENT_VOIDED; break;  // (the rest: the event taken back)
     case ViewNote::gap: out->kind = BALL_NET_EVENT_GAP; break;
   }
   out->index = e.index;
@@ -228,7 +228,7 @@ void to_c(const ViewEvent &v, const MatchView *view, double now, ball_net_event 
   out->reason = static_cast<ball_net_reason>(e.reason);
   out->score[0] = e.score[0];
   out->score[1] = e.score[1];
-  out->value = e.value;
+  out->value = v.note == ViewNote::voided ? e.seq : e.value;
   out->server = e.server_id;
 }
 

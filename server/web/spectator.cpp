@@ -77,8 +77,10 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
   const MatchInfoOut &info = *v.info;
   Mirror &m = matches_[id];
   // the court, again when the match changed scene or model
-  if (m.court.empty() || m.scene != info.scene || m.model_hash != info.model_hash) {
-    m.court = court_message(id, info, court_(info), settings_.aspect);
+  if (m.court.empty() || m.scene != info.scene || m.model_hash != info.model_hash || m.court_from_wire != (v.model != nullptr)) {
+    // the court the server judges: the match's model from the wire, else a scene of its name
+    m.court = court_message(id, info, v.model ? *v.model : court_(info), settings_.aspect);
+    m.court_from_wire = v.model != nullptr;
     m.scene = info.scene;
     m.model_hash = info.model_hash;
     send(m.court);
@@ -99,8 +101,8 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
     send(m.info);
   }
   // segments: the watcher's, from the newest page_segments; anew when it dropped ours (a match started anew)
-  const Segments &segs = *v.segments;
-  std::pair<uint32_t, size_t> watched{segs.empty() ? 0 : segs.rbegin()->first, segs.size()};
+  const std::vector<KeptSegment> &segs = *v.segments;
+  std::pair<uint32_t, size_t> watched{segs.empty() ? 0 : segs.back().segment.seq, segs.size()};
   if (watched != m.watched) mirror_segments(id, segs, &m);
   m.watched = watched;
   // events taken since the last update (those the watcher still holds)
@@ -135,17 +137,24 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
 
 // The watcher's newest page_segments segments the page has not got; all of
 // them anew when the watcher dropped ours (a match started anew).
-void Spectator::mirror_segments(uint32_t id, const Segments &segs, Mirror *m) {
-  if (!m->segments.empty() && !segs.count(m->segments.rbegin()->first)) {
+void Spectator::mirror_segments(uint32_t id, const std::vector<KeptSegment> &segs, Mirror *m) {
+  auto held = [&segs](uint32_t seq) {
+    for (const auto &k : segs)
+      if (k.segment.seq == seq) return true;
+    return false;
+  };
+  // anew when the view dropped ours: a match started anew (its seqs start over)
+  if (!m->segments.empty() && !segs.empty() && !held(m->segments.rbegin()->first) &&
+      static_cast<int32_t>(segs.back().segment.seq - m->segments.rbegin()->first) < 0) {
     m->segments.clear();
     send(json{{"type", "reset"}, {"match", id}}.dump());
   }
-  auto from = segs.begin();
-  if (segs.size() > settings_.page_segments) std::advance(from, segs.size() - settings_.page_segments);
-  for (auto it = from; it != segs.end(); ++it) {
-    if (m->segments.count(it->first)) continue;
-    std::string text = json{{"type", "segment"}, {"match", id}, {"segment", it->second}}.dump();
-    m->segments[it->first] = text;
+  size_t from = segs.size() > settings_.page_segments ? segs.size() - settings_.page_segments : 0;
+  for (size_t i = from; i < segs.size(); ++i) {
+    const SegmentOut &s = segs[i].segment;
+    if (m->segments.count(s.seq)) continue;
+    std::string text = json{{"type", "segment"}, {"match", id}, {"segment", s}}.dump();
+    m->segments[s.seq] = text;
     send(text);
   }
   while (m->segments.size() > settings_.page_segments) m->segments.erase(m->segments.begin());

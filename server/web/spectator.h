@@ -61,6 +61,7 @@ class Spectator {
  private:
   struct Mirror {
     std::string court;                   // the court message
+    bool court_from_wire = false;        // ... drawn from the match's model on the wire
     std::string scene;                   // ... of this scene and model hash
     uint64_t model_hash = 0;
     uint32_t server = 0;
@@ -81,7 +82,7 @@ class Spectator {
   };
   void send(std::string text);
   void mirror(uint32_t id, const WatchedView &v, double real);
-  void mirror_segments(uint32_t id, const Segments &segs, Mirror *m);
+  void mirror_segments(uint32_t id, const std::vector<KeptSegment> &segs, Mirror *m);
 
   SpectatorSettings settings_;
   std::function<ball_model(const MatchInfoOut &)> court_;

@@ -297,11 +297,14 @@ TEST(a_standby_takes_a_match_over_when_its_owner_is_lost) {
 
 // A standby with no scene of the match's name follows the match from the
 // owner's MatchModel alone (docs/protocol.md, "The match's model"), through
-// a level change, and takes it over; without the model it cannot follow it,
-// and a model whose hash is not the info's is not taken.
+// a level change, and takes it over; without the model it waits kModelWait
+// for it, then cannot follow it, and a model whose hash is not the info's is
+// not taken.
 TEST(a_standby_without_the_scene_follows_from_the_wire_model) {
   {
     StandbyRig r(false);
+    r.play(kModelWait - 0.2);  // the model may still come: nothing tried yet
+    CHECK_EQ(r.loop->stats().follow_failures, 0u);
     r.play(1.0);
     note("no scene, no model: %llu follow failures", (unsigned long long)r.loop->stats().follow_failures);
     CHECK(r.loop->stats().follow_failures > 0u);
@@ -315,7 +318,7 @@ TEST(a_standby_without_the_scene_follows_from_the_wire_model) {
     forged.model.gravity = 3.7;  // not the owner's, under its hash
     forged.model_hash = r.owner.match.info().model_hash;
     r.port.other_models.push_back({forged, participant(99)});
-    r.play(0.5);
+    r.play(kModelWait + 0.5);
     CHECK(r.loop->stats().follow_failures > 0u);
     CHECK_EQ(r.loop->status_now().following, 0u);
   }

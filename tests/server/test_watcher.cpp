@@ -37,10 +37,15 @@ TEST(tally_and_desync_from_a_match) {
   Watcher w(WatcherSettings{});
   w.on_start(1000.0);
   w.on_info(g.match.info(), 1000.0);
-  for (const auto &s : g.segments) w.on_segment(s, 1000.1);
+  // as they come: a state after the segments written up to it (one ahead of its bounce included)
+  size_t given = 0;
+  for (const auto &st : g.states) {
+    for (; given < g.segments.size() && static_cast<int32_t>(g.segments[given].seq - st.segment_seq) <= 1; ++given)
+      w.on_segment(g.segments[given], 1000.1);
+    w.on_state(st, 1000.1);
+    w.check_states();
+  }
   for (const auto &e : g.events) w.on_event(e, 1000.1);
-  for (const auto &s : g.states) w.on_state(s, 1000.1);
-  w.check_states();
   WatchSummary sum = w.summary(12.0);
   CHECK_EQ(sum.matches.size(), 1u);
   const WatchedMatchSummary &m = sum.matches[0];

@@ -286,7 +286,8 @@ typedef enum ball_net_event_kind {
   /* the library's own (seq 0) */
   BALL_NET_EVENT_SERVER,     /* the match's server changed (a failover): `server` is the new one */
   BALL_NET_EVENT_SLOT,       /* this client's slot `index`: value 1 taken, 0 lost */
-  BALL_NET_EVENT_VOIDED,     /* a correction took back an event given before: value its seq */
+  BALL_NET_EVENT_VOIDED,     /* a correction took back an event given before: value its seq, the other
+                                fields that event's (its kind aside) */
   BALL_NET_EVENT_GAP,        /* events never came: value how many (seqs skipped) */
   BALL_NET_EVENT_KIND_COUNT
 } ball_net_event_kind;
