@@ -37,9 +37,9 @@ static void sleep_until(double t) {
 
 /* Where the racket wants to be at `t`: onto the ball 0.05 s ahead while the
  * ball is on this side of the net, coming in, and not yet 2 m past the
- * baseline (a racket far off the court is refused: the server's
- * racket_margin), and this rally has not had its `hits` of ours yet; else
- * waiting 1 m inside its baseline. */
+ * baseline or a sideline (a racket far off the court is refused: the
+ * server's racket_margin), and this rally has not had its `hits` of ours
+ * yet; else waiting 1 m inside its baseline. */
 static ball_vec3 target(const ball_net_client *c, uint32_t match, const ball_net_match *m, int side, double t,
                         int chase) {
   ball_net_ball b;
@@ -50,7 +50,8 @@ static ball_vec3 target(const ball_net_client *c, uint32_t match, const ball_net
   ready.z = 0.5 * (m->court_z[0] + m->court_z[1]);
   if (!chase || ball_net_ball_at(c, match, t + 0.05, &b) != BALL_OK) return ready;
   if ((b.state.position.x - m->net_x) * toward < 0.0 && b.state.velocity.x * toward < 0.0 &&
-      (b.state.position.x - (side == 0 ? m->court_x[0] : m->court_x[1])) * toward > -2.0 && b.state.position.y < 3.0)
+      (b.state.position.x - (side == 0 ? m->court_x[0] : m->court_x[1])) * toward > -2.0 &&
+      b.state.position.z > m->court_z[0] - 2.0 && b.state.position.z < m->court_z[1] + 2.0 && b.state.position.y < 3.0)
     return b.state.position;
   return ready;
 }

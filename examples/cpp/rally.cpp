@@ -165,8 +165,8 @@ Time::duration secs(double s) { return duration_cast<Time::duration>(duration<do
 
 // Where the racket wants to be at `t`: onto the ball 0.05 s ahead while the
 // ball is on this side of the net, coming in, and not yet 2 m past the
-// baseline (a racket far off the court is refused: the server's
-// racket_margin), and this rally has not had its `hits` of ours yet; else
+// baseline or a sideline (a racket far off the court is refused: the
+// server's racket_margin), and this rally has not had its `hits` of ours yet; else
 // waiting 1 m inside its baseline.
 ball_vec3 target(const ballnet::Client &c, uint32_t match, const ball_net_match &m, int side, Time t, bool chase) {
   const double toward_net = side == 0 ? 1.0 : -1.0;  // the net is toward +x from side 0
@@ -175,7 +175,8 @@ ball_vec3 target(const ballnet::Client &c, uint32_t match, const ball_net_match 
   std::optional<ball_net_ball> b = c.ball_at(match, t + secs(0.05));
   const double baseline = side == 0 ? m.court_x[0] : m.court_x[1];
   if (b && (b->state.position.x - m.net_x) * toward_net < 0.0 && b->state.velocity.x * toward_net < 0.0 &&
-      (b->state.position.x - baseline) * toward_net > -2.0 && b->state.position.y < 3.0)
+      (b->state.position.x - baseline) * toward_net > -2.0 && b->state.position.z > m.court_z[0] - 2.0 &&
+      b->state.position.z < m.court_z[1] + 2.0 && b->state.position.y < 3.0)
     return b->state.position;
   return ready;
 }

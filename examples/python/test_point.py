@@ -153,7 +153,7 @@ def server_and_bot(tmp_path):
 
 def racket_target(client, m, side, t, chase):
     """rally.c's scripted racket: onto the ball 0.05 s ahead while it comes in on this side, not yet
-    2 m past the baseline (the server refuses a racket beyond its racket_margin), else 1 m inside
+    2 m past the baseline or a sideline (the server refuses a racket beyond its racket_margin), else 1 m inside
     the baseline."""
     toward_net = 1.0 if side == 0 else -1.0
     ready = (m.court_x[0] + 1.0 if side == 0 else m.court_x[1] - 1.0, 1.0, 0.5 * (m.court_z[0] + m.court_z[1]))
@@ -162,7 +162,7 @@ def racket_target(client, m, side, t, chase):
         p, v = b.state.position, b.state.velocity
         baseline = m.court_x[0] if side == 0 else m.court_x[1]
         if ((p.x - m.net_x) * toward_net < 0.0 and v.x * toward_net < 0.0 and (p.x - baseline) * toward_net > -2.0
-                and p.y < 3.0):
+                and m.court_z[0] - 2.0 < p.z < m.court_z[1] + 2.0 and p.y < 3.0):
             return tuple(p)
     return ready
 
