@@ -43,6 +43,7 @@ set(BALL_DDS_DOMAINS
   "dds_discovery|120|test: server, bots and watcher found through a Discovery Server only"
   "test_teardown|141|test: one participant deleted within the teardown limit"
   "dds_net_failover|135|test: a game on the client library plays through a failover: its events go on, none twice, none skipped"
+  "test_net_secure|136|test: the client library under DDS Security plays its own match, no other"
   "test_net_api|131|test: the client library's C API refuses bad input, with a server and without"
   "net_example_c|132|test: examples/c/rally.c plays 3 points against a ball-bot through libball-net"
   "net_example_cpp|133|test: examples/cpp/rally.cpp, the same game in C++17"
