@@ -215,8 +215,8 @@ class Event(_Struct):  # ball_net_event
                 ("server", ctypes.c_uint32)]
 
 
-# (struct, ball_net_type): what ball_net_sizeof checks at load
-LAYOUTS = [(Config, 0), (Match, 1), (Ball, 2), (Event, 3)]
+# (struct, ball_net_type): what ball_net_sizeof and ball_net_offsetof check at load
+LAYOUTS = [(Config, 0), (Match, 1), (Ball, 2), (Event, 3), (Slot, 6)]
 
 
 # ---- the library --------------------------------------------------------------------------------
@@ -253,6 +253,8 @@ _P = ctypes.c_void_p  # ball_net_client *: opaque
 _ST = ctypes.c_int    # ball_status
 _SIGNATURES = {
     "ball_net_sizeof": (ctypes.c_size_t, [ctypes.c_int]),
+    "ball_net_offsetof": (ctypes.c_size_t, [ctypes.c_int, ctypes.c_char_p]),
+    "ball_net_field": (ctypes.c_char_p, [ctypes.c_int, ctypes.c_int]),
     "ball_net_config_default": (None, [ctypes.POINTER(Config)]),
     "ball_net_open": (_ST, [ctypes.POINTER(Config), ctypes.POINTER(_P), ctypes.c_char_p, ctypes.c_size_t]),
     "ball_net_close": (_ST, [_P]),
@@ -281,6 +283,22 @@ for _struct, _type in LAYOUTS:
         raise ImportError("ballnet: layout mismatch: %s is %d bytes in %s (ball_net_sizeof(%d)) but %d here: "
                           "ballnet.py does not mirror that library's ball/net.h" %
                           (_struct.__name__, _theirs, library_path, _type, _ours))
+    # every member the library's struct has, here at its place (one added in what was padding
+    # changes no size and moves nothing else)
+    _ours = {_field: getattr(_struct, _field).offset for _field, _ in _struct._fields_}
+    _k = 0
+    while _lib.ball_net_field(_type, _k) is not None:
+        _field = _lib.ball_net_field(_type, _k).decode()
+        _at = _lib.ball_net_offsetof(_type, _field.encode())
+        if _ours.get(_field) != _at:
+            raise ImportError("ballnet: layout mismatch: %s.%s is at byte %d in %s (ball_net_offsetof) but %s here: "
+                              "ballnet.py does not mirror that library's ball/net.h" %
+                              (_struct.__name__, _field, _at, library_path,
+                               "missing" if _field not in _ours else _ours[_field]))
+        _k += 1
+    if _k != len(_ours):
+        raise ImportError("ballnet: layout mismatch: %s has %d members in %s but %d here" %
+                          (_struct.__name__, _k, library_path, len(_ours)))
 
 
 # ---- errors and the client ----------------------------------------------------------------------

@@ -31,7 +31,10 @@ def test_layouts_are_the_librarys():
     for struct, kind in ballnet.LAYOUTS:
         assert ctypes.sizeof(struct) == ballnet._lib.ball_net_sizeof(kind), struct.__name__
     # (the sizes of x86-64 gcc's ball/net.h, so that a change there is seen here too)
-    assert [ctypes.sizeof(s) for s, _ in ballnet.LAYOUTS] == [88, 176, 184, 152]
+    assert [ctypes.sizeof(s) for s, _ in ballnet.LAYOUTS] == [88, 176, 184, 152, 12]
+    for struct, kind in ballnet.LAYOUTS:
+        for field, _ in struct._fields_:
+            assert getattr(struct, field).offset == ballnet._lib.ball_net_offsetof(kind, field.encode()), field
 
 
 def load_module_text(text):
@@ -45,6 +48,16 @@ def test_a_layout_unlike_the_librarys_is_an_import_error():
     dropped = '("serving_side", ctypes.c_int),'
     assert dropped in text
     with pytest.raises(ImportError, match=r"layout mismatch: Match is 176 bytes in .* but 168 here"):
+        load_module_text(text.replace(dropped, ""))
+
+
+def test_a_field_moved_in_padding_is_an_import_error():
+    # ball_states sits in what was padding of ball_net_config: its size is the same without it
+    with open(ballnet.__file__) as f:
+        text = f.read()
+    dropped = '("ball_states", ctypes.c_int),'
+    assert dropped in text
+    with pytest.raises(ImportError, match=r"layout mismatch: Config.ball_states is at byte \d+ in .* but missing here"):
         load_module_text(text.replace(dropped, ""))
 
 

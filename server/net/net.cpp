@@ -9,8 +9,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <map>
+#include <utility>
 #include <memory>
 #include <new>
 #include <string>
@@ -232,6 +234,62 @@ void to_c(const ViewEvent &v, const MatchView *view, double now, ball_net_event 
   out->server = e.server_id;
 }
 
+}  // namespace
+
+namespace {
+// Every member of the public structs, by name (ball_net_offsetof).
+#define BALL_NET_CONFIG_FIELDS(X)                                                                              \
+  X(domain) X(participant) X(discovery_servers) X(qos_file) X(security_dir) X(identity) X(servers) X(name)     \
+  X(max_matches) X(ball_states) X(clock) X(clock_user)
+#define BALL_NET_MATCH_FIELDS(X)                                                                               \
+  X(id) X(server) X(scene) X(level) X(state) X(players) X(slots) X(score) X(rally) X(serving_side) X(time_base) \
+  X(sim_time) X(net_x) X(court_x) X(court_z)
+#define BALL_NET_SLOT_FIELDS(X) X(held) X(present) X(mine)
+#define BALL_NET_BALL_FIELDS(X) X(state) X(sim_time) X(segment) X(cause) X(cause_index) X(sound) X(flight)
+#define BALL_NET_EVENT_FIELDS(X)                                                                               \
+  X(match) X(seq) X(kind) X(index) X(side) X(in_play) X(sound) X(time) X(local_time) X(point) X(velocity_in)   \
+  X(velocity_out) X(reason) X(score) X(value) X(server)
+#define BALL_NET_STATUS_FIELDS(X)                                                                              \
+  X(server) X(clock_known) X(clock_offset) X(clock_uncertainty) X(delay) X(segments) X(events) X(refused)      \
+  X(lost) X(late) X(voided) X(samples) X(write_failures) X(bytes_in) X(bytes_out)
+#define BALL_NET_PREDICTION_FIELDS(X)                                                                          \
+  X(states) X(cap_states) X(n_states) X(events) X(cap_events) X(n_events) X(events_missed) X(end)
+
+using Fields = std::pair<const std::pair<const char *, size_t> *, size_t>;  // a struct's members and their count
+
+Fields fields_of(ball_net_type type) {
+#define BALL_NET_FIELDS(LIST)                                                         \
+  {                                                                                   \
+    static const std::pair<const char *, size_t> fields[] = {LIST(BALL_NET_OFFSET)};  \
+    return {fields, sizeof fields / sizeof fields[0]};                                \
+  }
+  switch (type) {
+#define BALL_NET_OFFSET(f) {#f, offsetof(ball_net_config, f)},
+    case BALL_NET_TYPE_CONFIG: BALL_NET_FIELDS(BALL_NET_CONFIG_FIELDS)
+#undef BALL_NET_OFFSET
+#define BALL_NET_OFFSET(f) {#f, offsetof(ball_net_match, f)},
+    case BALL_NET_TYPE_MATCH: BALL_NET_FIELDS(BALL_NET_MATCH_FIELDS)
+#undef BALL_NET_OFFSET
+#define BALL_NET_OFFSET(f) {#f, offsetof(ball_net_slot, f)},
+    case BALL_NET_TYPE_SLOT: BALL_NET_FIELDS(BALL_NET_SLOT_FIELDS)
+#undef BALL_NET_OFFSET
+#define BALL_NET_OFFSET(f) {#f, offsetof(ball_net_ball, f)},
+    case BALL_NET_TYPE_BALL: BALL_NET_FIELDS(BALL_NET_BALL_FIELDS)
+#undef BALL_NET_OFFSET
+#define BALL_NET_OFFSET(f) {#f, offsetof(ball_net_event, f)},
+    case BALL_NET_TYPE_EVENT: BALL_NET_FIELDS(BALL_NET_EVENT_FIELDS)
+#undef BALL_NET_OFFSET
+#define BALL_NET_OFFSET(f) {#f, offsetof(ball_net_status, f)},
+    case BALL_NET_TYPE_STATUS: BALL_NET_FIELDS(BALL_NET_STATUS_FIELDS)
+#undef BALL_NET_OFFSET
+#define BALL_NET_OFFSET(f) {#f, offsetof(ball_prediction, f)},
+    case BALL_NET_TYPE_PREDICTION: BALL_NET_FIELDS(BALL_NET_PREDICTION_FIELDS)
+#undef BALL_NET_OFFSET
+    case BALL_NET_TYPE_COUNT: break;
+  }
+#undef BALL_NET_FIELDS
+  return {nullptr, 0};
+}
 }  // namespace
 
 extern "C" {
@@ -595,6 +653,18 @@ ball_status ball_net_status_of(const ball_net_client *cc, uint32_t match, ball_n
   return c->ok();
 }
 
+size_t ball_net_offsetof(ball_net_type type, const char *field) {
+  Fields f = fields_of(type);
+  for (size_t i = 0; field && i < f.second; ++i)
+    if (std::strcmp(f.first[i].first, field) == 0) return f.first[i].second;
+  return static_cast<size_t>(-1);
+}
+
+const char *ball_net_field(ball_net_type type, int index) {
+  Fields f = fields_of(type);
+  return index >= 0 && static_cast<size_t>(index) < f.second ? f.first[index].first : nullptr;
+}
+
 size_t ball_net_sizeof(ball_net_type type) {
   switch (type) {
     case BALL_NET_TYPE_CONFIG: return sizeof(ball_net_config);
@@ -603,6 +673,7 @@ size_t ball_net_sizeof(ball_net_type type) {
     case BALL_NET_TYPE_EVENT: return sizeof(ball_net_event);
     case BALL_NET_TYPE_STATUS: return sizeof(ball_net_status);
     case BALL_NET_TYPE_PREDICTION: return sizeof(ball_prediction);
+    case BALL_NET_TYPE_SLOT: return sizeof(ball_net_slot);
     case BALL_NET_TYPE_COUNT: break;
   }
   return 0;

@@ -269,6 +269,25 @@ static void names_and_sizes(void **state) {
   assert_int_equal(ball_net_sizeof(BALL_NET_TYPE_MATCH), sizeof(ball_net_match));
   assert_int_equal(ball_net_sizeof(BALL_NET_TYPE_PREDICTION), sizeof(ball_prediction));
   assert_int_equal(ball_net_sizeof(BALL_NET_TYPE_COUNT), 0);
+  assert_int_equal(ball_net_offsetof(BALL_NET_TYPE_CONFIG, "ball_states"), offsetof(ball_net_config, ball_states));
+  assert_int_equal(ball_net_offsetof(BALL_NET_TYPE_CONFIG, "clock_user"), offsetof(ball_net_config, clock_user));
+  assert_int_equal(ball_net_offsetof(BALL_NET_TYPE_MATCH, "court_z"), offsetof(ball_net_match, court_z));
+  assert_int_equal(ball_net_offsetof(BALL_NET_TYPE_SLOT, "mine"), offsetof(ball_net_slot, mine));
+  assert_int_equal(ball_net_offsetof(BALL_NET_TYPE_BALL, "flight"), offsetof(ball_net_ball, flight));
+  assert_int_equal(ball_net_offsetof(BALL_NET_TYPE_EVENT, "server"), offsetof(ball_net_event, server));
+  assert_int_equal(ball_net_offsetof(BALL_NET_TYPE_STATUS, "bytes_out"), offsetof(ball_net_status, bytes_out));
+  assert_int_equal(ball_net_offsetof(BALL_NET_TYPE_PREDICTION, "end"), offsetof(ball_prediction, end));
+  assert_true(ball_net_offsetof(BALL_NET_TYPE_MATCH, "no_such") == (size_t)-1);
+  assert_true(ball_net_offsetof(BALL_NET_TYPE_MATCH, NULL) == (size_t)-1);
+  assert_true(ball_net_offsetof(BALL_NET_TYPE_COUNT, "id") == (size_t)-1);
+  assert_string_equal(ball_net_field(BALL_NET_TYPE_SLOT, 0), "held");
+  assert_string_equal(ball_net_field(BALL_NET_TYPE_SLOT, 2), "mine");
+  assert_null(ball_net_field(BALL_NET_TYPE_SLOT, 3));
+  assert_null(ball_net_field(BALL_NET_TYPE_SLOT, -1));
+  assert_null(ball_net_field(BALL_NET_TYPE_COUNT, 0));
+  for (k = 0; ball_net_field(BALL_NET_TYPE_CONFIG, k); k++) {
+  }
+  assert_int_equal(k, 12); /* every member of ball_net_config */
   for (k = 0; k < BALL_STATUS_COUNT; k++) assert_string_not_equal(ball_strerror((ball_status)k), "unknown status");
 }
 

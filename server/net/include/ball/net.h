@@ -380,12 +380,24 @@ typedef enum ball_net_type {
   BALL_NET_TYPE_EVENT,
   BALL_NET_TYPE_STATUS,
   BALL_NET_TYPE_PREDICTION,
+  BALL_NET_TYPE_SLOT,
   BALL_NET_TYPE_COUNT
 } ball_net_type;
 
 /* sizeof the public struct, so that a binding can check its own layout; 0
  * past the list. */
 BALL_NET_API size_t ball_net_sizeof(ball_net_type type);
+
+/* offsetof a member of the public struct, by its name in this header
+ * ("clock_user", "slots", "score"); (size_t)-1 for a name the struct has
+ * not. */
+BALL_NET_API size_t ball_net_offsetof(ball_net_type type, const char *field);
+
+/* The name of the struct's member `index` (0, 1, ... in the header's
+ * order); NULL past the last. A binding walks them and finds each, at its
+ * ball_net_offsetof, in its own declaration: a member added in what was
+ * padding changes no size and no other member's place. */
+BALL_NET_API const char *ball_net_field(ball_net_type type, int index);
 
 #ifdef __cplusplus
 }
