@@ -180,6 +180,23 @@ const MatchView *followed(const ball_net_client *c, uint32_t match) {
   return v;
 }
 
+// A call on a match the client follows: the client usable, the out-pointer
+// not NULL, the match followed, then body(client, view).
+template <class F>
+ball_status on_view(const ball_net_client *cc, uint32_t match, const void *out, F &&body) {
+  auto *c = const_cast<ball_net_client *>(cc);
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (!out) return c->fail(BALL_EINVAL, "the out-pointer must not be NULL");
+  const MatchView *v = followed(c, match);
+  if (!v) return BALL_ENOMATCH;
+  return body(c, *v);
+}
+
+ball_status no_clock(ball_net_client *c, uint32_t match) {
+  return c->fail(BALL_EAGAIN, "the clock of match " + std::to_string(match) + " is not known yet");
+}
+
 void to_c(const MatchInfoOut &i, double sim_now, ball_net_match *out, const ParticipantId &me) {
   std::memset(out, 0, sizeof *out);
   out->id = i.match_id;
@@ -444,13 +461,10 @@ ball_status ball_net_leave(ball_net_client *c, uint32_t match, int slot) {
 }
 
 ball_status ball_net_slot_of(ball_net_client *c, uint32_t match, int *slot) {
-  ball_status st = usable(c);
-  if (st != BALL_OK) return st;
-  if (!slot) return c->fail(BALL_EINVAL, "slot must not be NULL");
-  const MatchView *v = followed(c, match);
-  if (!v) return BALL_ENOMATCH;
-  *slot = v->slot();
-  return c->ok();
+  return on_view(c, match, slot, [&](ball_net_client *cl, const MatchView &v) {
+    *slot = v.slot();
+    return cl->ok();
+  });
 }
 
 ball_status ball_net_watch(ball_net_client *c, uint32_t match) {
@@ -537,55 +551,39 @@ ball_status ball_net_ball_at(const ball_net_client *cc, uint32_t match, double t
 
 ball_status ball_net_predict(const ball_net_client *cc, uint32_t match, double time, double horizon, double dt,
                              ball_prediction *out) {
-  auto *c = const_cast<ball_net_client *>(cc);
-  ball_status st = usable(c);
-  if (st != BALL_OK) return st;
-  if (!out) return c->fail(BALL_EINVAL, "out must not be NULL");
-  const MatchView *v = followed(c, match);
-  if (!v) return BALL_ENOMATCH;
-  st = v->predict(time, horizon, dt, out);
-  if (st == BALL_EAGAIN)
-    return c->fail(st, "match " + std::to_string(match) + ": its whole model, clock or segment has not come yet");
-  if (st != BALL_OK) return c->fail(st, std::string("ball_predict: ") + ball_strerror(st));
-  return c->ok();
+  return on_view(cc, match, out, [&](ball_net_client *c, const MatchView &v) {
+    ball_status st = v.predict(time, horizon, dt, out);
+    if (st == BALL_EAGAIN)
+      return c->fail(st, "match " + std::to_string(match) + ": its whole model, clock or segment has not come yet");
+    if (st != BALL_OK) return c->fail(st, std::string("ball_predict: ") + ball_strerror(st));
+    return c->ok();
+  });
 }
 
 ball_status ball_net_sim_time(const ball_net_client *cc, uint32_t match, double time, double *sim) {
-  auto *c = const_cast<ball_net_client *>(cc);
-  ball_status st = usable(c);
-  if (st != BALL_OK) return st;
-  if (!sim) return c->fail(BALL_EINVAL, "sim must not be NULL");
-  if (!std::isfinite(time)) return c->fail(BALL_ENONFINITE, "the time must be finite");
-  const MatchView *v = followed(c, match);
-  if (!v) return BALL_ENOMATCH;
-  if (!v->clock().valid()) return c->fail(BALL_EAGAIN, "the clock of match " + std::to_string(match) + " is not known yet");
-  *sim = v->clock().sim_now(time);
-  return c->ok();
+  return on_view(cc, match, sim, [&](ball_net_client *c, const MatchView &v) {
+    if (!std::isfinite(time)) return c->fail(BALL_ENONFINITE, "the time must be finite");
+    if (!v.clock().valid()) return no_clock(c, match);
+    *sim = v.clock().sim_now(time);
+    return c->ok();
+  });
 }
 
 ball_status ball_net_local_time(const ball_net_client *cc, uint32_t match, double sim, double *time) {
-  auto *c = const_cast<ball_net_client *>(cc);
-  ball_status st = usable(c);
-  if (st != BALL_OK) return st;
-  if (!time) return c->fail(BALL_EINVAL, "time must not be NULL");
-  if (!std::isfinite(sim)) return c->fail(BALL_ENONFINITE, "the sim time must be finite");
-  const MatchView *v = followed(c, match);
-  if (!v) return BALL_ENOMATCH;
-  if (!v->clock().valid()) return c->fail(BALL_EAGAIN, "the clock of match " + std::to_string(match) + " is not known yet");
-  *time = v->clock().local_at(sim, c->now());
-  return c->ok();
+  return on_view(cc, match, time, [&](ball_net_client *c, const MatchView &v) {
+    if (!std::isfinite(sim)) return c->fail(BALL_ENONFINITE, "the sim time must be finite");
+    if (!v.clock().valid()) return no_clock(c, match);
+    *time = v.clock().local_at(sim, c->now());
+    return c->ok();
+  });
 }
 
 ball_status ball_net_model(const ball_net_client *cc, uint32_t match, ball_model *out) {
-  auto *c = const_cast<ball_net_client *>(cc);
-  ball_status st = usable(c);
-  if (st != BALL_OK) return st;
-  if (!out) return c->fail(BALL_EINVAL, "out must not be NULL");
-  const MatchView *v = followed(c, match);
-  if (!v) return BALL_ENOMATCH;
-  if (!v->model()) return c->fail(BALL_EAGAIN, "the model of match " + std::to_string(match) + " has not come yet");
-  *out = *v->model();
-  return c->ok();
+  return on_view(cc, match, out, [&](ball_net_client *c, const MatchView &v) {
+    if (!v.model()) return c->fail(BALL_EAGAIN, "the model of match " + std::to_string(match) + " has not come yet");
+    *out = *v.model();
+    return c->ok();
+  });
 }
 
 ball_status ball_net_poll(ball_net_client *c, ball_net_event *out, int cap, int *n) {
@@ -626,31 +624,27 @@ const char *ball_net_cause_name(ball_net_cause cause) {
 }
 
 ball_status ball_net_status_of(const ball_net_client *cc, uint32_t match, ball_net_status *out) {
-  auto *c = const_cast<ball_net_client *>(cc);
-  ball_status st = usable(c);
-  if (st != BALL_OK) return st;
-  if (!out) return c->fail(BALL_EINVAL, "out must not be NULL");
-  const MatchView *v = followed(c, match);
-  if (!v) return BALL_ENOMATCH;
-  std::memset(out, 0, sizeof *out);
-  out->server = v->info().server_id;
-  out->clock_known = v->clock().valid();
-  out->clock_offset = v->clock().offset();
-  out->clock_uncertainty = v->clock().spread();
-  out->delay = v->delay();
-  const ViewCounters &k = v->counters();
-  out->segments = k.segments;
-  out->events = k.events;
-  out->refused = k.refused;
-  out->lost = k.lost;
-  out->late = k.late;
-  out->voided = k.voided;
-  const OwnCounters *own = c->core->own(match);
-  out->samples = own->samples;
-  out->write_failures = own->write_failures;
-  out->bytes_in = own->bytes_in;
-  out->bytes_out = own->bytes_out;
-  return c->ok();
+  return on_view(cc, match, out, [&](ball_net_client *c, const MatchView &v) {
+    std::memset(out, 0, sizeof *out);
+    out->server = v.info().server_id;
+    out->clock_known = v.clock().valid();
+    out->clock_offset = v.clock().offset();
+    out->clock_uncertainty = v.clock().spread();
+    out->delay = v.delay();
+    const ViewCounters &k = v.counters();
+    out->segments = k.segments;
+    out->events = k.events;
+    out->refused = k.refused;
+    out->lost = k.lost;
+    out->late = k.late;
+    out->voided = k.voided;
+    const OwnCounters *own = c->core->own(match);
+    out->samples = own->samples;
+    out->write_failures = own->write_failures;
+    out->bytes_in = own->bytes_in;
+    out->bytes_out = own->bytes_out;
+    return c->ok();
+  });
 }
 
 size_t ball_net_offsetof(ball_net_type type, const char *field) {
