@@ -15,7 +15,9 @@ target_compile_options(test_net_api PRIVATE ${BALL_C_WARNINGS})
 target_compile_definitions(test_net_api PRIVATE BALL_TEST_DOMAIN=${api_domain})
 target_link_libraries(test_net_api PRIVATE ball_net cmocka m)
 add_test(NAME test_net_api COMMAND test_net_api $<TARGET_FILE:ball-server>)
-set_tests_properties(test_net_api PROPERTIES LABELS "net;dds" TIMEOUT 90)
+# (under ./run asan with Fast DDS 2.9's own new-delete-type mismatch waived, as ball_itest does)
+set_tests_properties(test_net_api PROPERTIES LABELS "net;dds" TIMEOUT 90
+  ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
 
 # on a secure domain: certificates made by the script ./run certs runs
 add_test(NAME test_net_secure_certs
