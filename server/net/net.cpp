@@ -107,6 +107,17 @@ class NetPort : public ClientPort {
 
 const char *or_empty(const char *s) { return s ? s : ""; }
 
+// An enum the C caller passed, as the number it is: a binding may pass any
+// int, and C++ must not read one outside the enum's values as the enum
+// (undefined; UBSan's -fsanitize=enum stops there).
+template <class E>
+int number_of(const E &e) {
+  static_assert(sizeof(E) == sizeof(int), "a C enum is an int here");
+  int v;
+  std::memcpy(&v, &e, sizeof v);
+  return v;
+}
+
 void copy_text(const std::string &text, char *out, size_t size) {
   if (!out || size == 0) return;
   size_t n = std::min(text.size(), size - 1);
@@ -274,7 +285,7 @@ namespace {
 
 using Fields = std::pair<const std::pair<const char *, size_t> *, size_t>;  // a struct's members and their count
 
-Fields fields_of(ball_net_type type) {
+Fields fields_of(int type) {
 #define BALL_NET_FIELDS(LIST)                                                         \
   {                                                                                   \
     static const std::pair<const char *, size_t> fields[] = {LIST(BALL_NET_OFFSET)};  \
@@ -438,7 +449,7 @@ ball_status ball_net_create(ball_net_client *c, uint32_t match, const char *scen
   if (!scene) return c->fail(BALL_EINVAL, "scene must not be NULL");
   return guarded(c, [&] {
     std::string why;
-    return with_why(c, c->core->create(match, scene, players, static_cast<int>(level), *c->port, c->now(), &why), why);
+    return with_why(c, c->core->create(match, scene, players, number_of(level), *c->port, c->now(), &why), why);
   });
 }
 
@@ -491,12 +502,13 @@ ball_status ball_net_ask(ball_net_client *c, uint32_t match, ball_net_request re
   if (st != BALL_OK) return st;
   static const ControlKind kinds[BALL_NET_REQUEST_COUNT] = {ControlKind::serve, ControlKind::level, ControlKind::pause,
                                                             ControlKind::resume, ControlKind::time_base};
-  if (static_cast<unsigned>(request) >= BALL_NET_REQUEST_COUNT)
-    return c->fail(BALL_EINVAL, "request " + std::to_string(static_cast<int>(request)) + " is not a ball_net_request");
+  const int r = number_of(request);
+  if (r < 0 || r >= BALL_NET_REQUEST_COUNT)
+    return c->fail(BALL_EINVAL, "request " + std::to_string(r) + " is not a ball_net_request");
   if (!std::isfinite(value)) return c->fail(BALL_ENONFINITE, "a request's value must be finite");
   return guarded(c, [&] {
     std::string why;
-    return with_why(c, c->core->ask(match, kinds[request], value, *c->port, &why), why);
+    return with_why(c, c->core->ask(match, kinds[r], value, *c->port, &why), why);
   });
 }
 
@@ -606,21 +618,25 @@ ball_status ball_net_poll(ball_net_client *c, ball_net_event *out, int cap, int 
 
 const char *ball_net_event_kind_name(ball_net_event_kind kind) {
   static const char *const own[] = {"server", "slot", "voided", "gap"};
-  if (kind >= 0 && kind < BALL_NET_EVENT_SERVER) return name_of(static_cast<EventKind>(kind));
-  if (kind >= BALL_NET_EVENT_SERVER && kind < BALL_NET_EVENT_KIND_COUNT) return own[kind - BALL_NET_EVENT_SERVER];
+  const int k = number_of(kind);
+  if (k >= 0 && k < BALL_NET_EVENT_SERVER) return name_of(static_cast<EventKind>(k));
+  if (k >= BALL_NET_EVENT_SERVER && k < BALL_NET_EVENT_KIND_COUNT) return own[k - BALL_NET_EVENT_SERVER];
   return "unknown";
 }
 
 const char *ball_net_reason_name(ball_net_reason reason) {
-  return reason >= 0 && reason < BALL_NET_REASON_COUNT ? name_of(static_cast<Reason>(reason)) : "unknown";
+  const int r = number_of(reason);
+  return r >= 0 && r < BALL_NET_REASON_COUNT ? name_of(static_cast<Reason>(r)) : "unknown";
 }
 
 const char *ball_net_state_name(ball_net_state state) {
-  return state >= 0 && state < BALL_NET_STATE_COUNT ? name_of(static_cast<MatchState>(state)) : "unknown";
+  const int v = number_of(state);
+  return v >= 0 && v < BALL_NET_STATE_COUNT ? name_of(static_cast<MatchState>(v)) : "unknown";
 }
 
 const char *ball_net_cause_name(ball_net_cause cause) {
-  return cause >= 0 && cause < BALL_NET_CAUSE_COUNT ? name_of(static_cast<Cause>(cause)) : "unknown";
+  const int v = number_of(cause);
+  return v >= 0 && v < BALL_NET_CAUSE_COUNT ? name_of(static_cast<Cause>(v)) : "unknown";
 }
 
 ball_status ball_net_status_of(const ball_net_client *cc, uint32_t match, ball_net_status *out) {
@@ -648,19 +664,19 @@ ball_status ball_net_status_of(const ball_net_client *cc, uint32_t match, ball_n
 }
 
 size_t ball_net_offsetof(ball_net_type type, const char *field) {
-  Fields f = fields_of(type);
+  Fields f = fields_of(number_of(type));
   for (size_t i = 0; field && i < f.second; ++i)
     if (std::strcmp(f.first[i].first, field) == 0) return f.first[i].second;
   return static_cast<size_t>(-1);
 }
 
 const char *ball_net_field(ball_net_type type, int index) {
-  Fields f = fields_of(type);
+  Fields f = fields_of(number_of(type));
   return index >= 0 && static_cast<size_t>(index) < f.second ? f.first[index].first : nullptr;
 }
 
 size_t ball_net_sizeof(ball_net_type type) {
-  switch (type) {
+  switch (number_of(type)) {
     case BALL_NET_TYPE_CONFIG: return sizeof(ball_net_config);
     case BALL_NET_TYPE_MATCH: return sizeof(ball_net_match);
     case BALL_NET_TYPE_BALL: return sizeof(ball_net_ball);
