@@ -19,7 +19,7 @@ add_test(NAME web_page
           --domain ${domain} --chromium ${BALL_CHROMIUM} --probe $<TARGET_FILE:web_probe>
           --work ${CMAKE_CURRENT_BINARY_DIR}/web_page)
 # (under ./run asan with Fast DDS 2.9's own new-delete-type mismatch waived, as ball_itest does)
-set_tests_properties(web_page PROPERTIES LABELS "dds;web" TIMEOUT 180
+set_tests_properties(web_page PROPERTIES LABELS "dds;web" TIMEOUT 240
   PASS_REGULAR_EXPRESSION "page_check: passed" FAIL_REGULAR_EXPRESSION "FAIL"
   ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
 
