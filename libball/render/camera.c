@@ -38,13 +38,23 @@ static void grow_plane(view_arena *a, const ball_plane *p) {
   if (p->top > a->height) a->height = p->top;
 }
 
-void view_arena_of(const ball_model *m, view_arena *a) {
+/* The arena around court ({x0, z0, x1, z1}), or around the court a net implies (NULL). */
+static void arena(const ball_model *m, const double *court, view_arena *a) {
   int i;
   memset(a, 0, sizeof *a);
   a->lo[0] = a->hi[0] = m->initial_position.x;
   a->lo[1] = a->hi[1] = m->initial_position.z;
   a->height = m->initial_position.y > 2.0 ? m->initial_position.y : 2.0;
-  if (m->has_net) {
+  if (court) {
+    a->has_court = 1;
+    a->court_lo[0] = court[0], a->court_lo[1] = court[1];
+    a->court_hi[0] = court[2], a->court_hi[1] = court[3];
+    grow(a, court[0], court[1]);
+    grow(a, court[2], court[3]);
+    /* the long axis: the one the net cuts, else the court's longer side */
+    a->long_axis = m->has_net ? (m->net.axis == 0 ? 0 : 1) : (court[3] - court[1] > court[2] - court[0] ? 1 : 0);
+    if (m->has_net) grow_plane(a, &m->net);
+  } else if (m->has_net) {
     /* the net spans the court's width; the court is a tennis court of that width */
     const ball_plane *n = &m->net;
     int across = n->axis == 0 ? 0 : 1; /* the axis the net's plane cuts */
@@ -71,7 +81,19 @@ void view_arena_of(const ball_model *m, view_arena *a) {
     if (a->lo[i] > c - MIN_HALF_SIZE) a->lo[i] = c - MIN_HALF_SIZE;
     if (a->hi[i] < c + MIN_HALF_SIZE) a->hi[i] = c + MIN_HALF_SIZE;
   }
-  if (!m->has_net) a->long_axis = (a->hi[1] - a->lo[1]) > (a->hi[0] - a->lo[0]) ? 1 : 0;
+  if (!a->has_court) a->long_axis = (a->hi[1] - a->lo[1]) > (a->hi[0] - a->lo[0]) ? 1 : 0;
+}
+
+void view_arena_of(const ball_model *m, view_arena *a) { arena(m, NULL, a); }
+
+/* A court given by a caller: finite, not empty, within BALL_MAX_COORD. */
+static ball_status check_court(const double court[4]) {
+  int i;
+  for (i = 0; i < 4; ++i) {
+    if (!isfinite(court[i])) return BALL_ENONFINITE;
+    if (fabs(court[i]) > BALL_MAX_COORD) return BALL_ERANGE;
+  }
+  return court[0] < court[2] && court[1] < court[3] ? BALL_OK : BALL_ERANGE;
 }
 
 /* A line from (a0, b) to (a1, b) along axis (0: x, 1: z), w wide, as a floor rectangle. */
@@ -84,54 +106,68 @@ static void floor_line(ball_floor_layout *f, int axis, double a0, double a1, dou
   }
 }
 
-ball_status ball_floor_layout_of(const ball_model *m, ball_floor_layout *out) {
-  view_arena a;
+/* The floor of arena a (docs/render.md, "What is drawn"). */
+static void layout_of(const ball_model *m, const view_arena *a, ball_floor_layout *out) {
   ball_floor_layout f;
-  if (!m || !out) return BALL_EINVAL;
-  view_arena_of(m, &a);
   memset(&f, 0, sizeof f);
   f.level = m->floor_level;
-  f.ground[0] = a.lo[0], f.ground[1] = a.lo[1], f.ground[2] = a.hi[0], f.ground[3] = a.hi[1];
+  f.ground[0] = a->lo[0], f.ground[1] = a->lo[1], f.ground[2] = a->hi[0], f.ground[3] = a->hi[1];
   f.grid_step = GRID_STEP;
   f.grid_width = GRID_WIDTH;
-  if (a.has_court) {
-    /* a tennis court scaled to the net: the outer lines, the centre line
-     * between the service lines, the service lines 6.40 m of 11.885 m from the net */
-    int L = m->net.axis == 0 ? 0 : 1, W = 1 - L;
-    double net = m->net.position, half = a.court_hi[L] - net;
-    double service = half * 6.40 / 11.885, mid = 0.5 * (a.court_lo[W] + a.court_hi[W]);
+  if (a->has_court) {
+    /* a tennis court on the court: the outer lines and, with a net across
+     * it, the service lines 6.40 m of 11.885 m of each half from the net and
+     * the centre line between them */
+    int L = a->long_axis, W = 1 - L;
     double lw = LINE_WIDTH;
     f.has_court = 1;
-    f.court[0] = a.court_lo[0], f.court[1] = a.court_lo[1], f.court[2] = a.court_hi[0], f.court[3] = a.court_hi[1];
-    floor_line(&f, L, a.court_lo[L], a.court_hi[L], a.court_lo[W] + 0.5 * lw, lw);
-    floor_line(&f, L, a.court_lo[L], a.court_hi[L], a.court_hi[W] - 0.5 * lw, lw);
-    floor_line(&f, W, a.court_lo[W], a.court_hi[W], a.court_lo[L] + 0.5 * lw, lw);
-    floor_line(&f, W, a.court_lo[W], a.court_hi[W], a.court_hi[L] - 0.5 * lw, lw);
-    floor_line(&f, W, a.court_lo[W], a.court_hi[W], net - service, lw);
-    floor_line(&f, W, a.court_lo[W], a.court_hi[W], net + service, lw);
-    floor_line(&f, L, net - service, net + service, mid, lw);
+    f.court[0] = a->court_lo[0], f.court[1] = a->court_lo[1], f.court[2] = a->court_hi[0], f.court[3] = a->court_hi[1];
+    floor_line(&f, L, a->court_lo[L], a->court_hi[L], a->court_lo[W] + 0.5 * lw, lw);
+    floor_line(&f, L, a->court_lo[L], a->court_hi[L], a->court_hi[W] - 0.5 * lw, lw);
+    floor_line(&f, W, a->court_lo[W], a->court_hi[W], a->court_lo[L] + 0.5 * lw, lw);
+    floor_line(&f, W, a->court_lo[W], a->court_hi[W], a->court_hi[L] - 0.5 * lw, lw);
+    if (m->has_net && (m->net.axis == 0 ? 0 : 1) == L && m->net.position > a->court_lo[L] &&
+        m->net.position < a->court_hi[L]) {
+      double net = m->net.position, mid = 0.5 * (a->court_lo[W] + a->court_hi[W]);
+      double service_lo = (net - a->court_lo[L]) * 6.40 / 11.885, service_hi = (a->court_hi[L] - net) * 6.40 / 11.885;
+      floor_line(&f, W, a->court_lo[W], a->court_hi[W], net - service_lo, lw);
+      floor_line(&f, W, a->court_lo[W], a->court_hi[W], net + service_hi, lw);
+      floor_line(&f, L, net - service_lo, net + service_hi, mid, lw);
+    }
   }
   *out = f;
+}
+
+ball_status ball_floor_layout_of(const ball_model *m, ball_floor_layout *out) {
+  view_arena a;
+  if (!m || !out) return BALL_EINVAL;
+  view_arena_of(m, &a);
+  layout_of(m, &a, out);
   return BALL_OK;
 }
 
-ball_status ball_camera_from_preset(const ball_model *model, ball_camera_preset preset, double aspect,
-                                    ball_camera *out) {
+ball_status ball_floor_layout_court(const ball_model *m, const double court[4], ball_floor_layout *out) {
   view_arena a;
+  ball_status st;
+  if (!m || !court || !out) return BALL_EINVAL;
+  if ((st = check_court(court)) != BALL_OK) return st;
+  arena(m, court, &a);
+  layout_of(m, &a, out);
+  return BALL_OK;
+}
+
+/* Preset `preset` framing arena a for an image of that aspect (checked by the caller). */
+static void preset_of(const ball_model *model, const view_arena *a, ball_camera_preset preset, double aspect,
+                      ball_camera *out) {
   ball_vec3 along, side_dir, centre, up = ball_v3(0.0, 1.0, 0.0);
   double len, wid, tan_v, tan_h, d;
   ball_camera c;
-  if (!model || !out) return BALL_EINVAL;
-  if (!isfinite(aspect)) return BALL_ENONFINITE;
-  if (!(aspect > 0.0)) return BALL_ERANGE;
-  if ((unsigned)preset >= BALL_CAMERA_PRESET_COUNT) return BALL_ERANGE;
-  view_arena_of(model, &a);
-  along = a.long_axis == 0 ? ball_v3(1.0, 0.0, 0.0) : ball_v3(0.0, 0.0, 1.0);
+  along = a->long_axis == 0 ? ball_v3(1.0, 0.0, 0.0) : ball_v3(0.0, 0.0, 1.0);
   /* the side camera's view direction: with up y, the long axis runs left to right */
   side_dir = ball_v3_cross(up, along);
-  len = a.hi[a.long_axis] - a.lo[a.long_axis];
-  wid = a.hi[1 - a.long_axis] - a.lo[1 - a.long_axis];
-  centre = ball_v3(0.5 * (a.lo[0] + a.hi[0]), model->floor_level, 0.5 * (a.lo[1] + a.hi[1]));
+  len = a->hi[a->long_axis] - a->lo[a->long_axis];
+  wid = a->hi[1 - a->long_axis] - a->lo[1 - a->long_axis];
+  centre = ball_v3(0.5 * (a->lo[0] + a->hi[0]), model->floor_level, 0.5 * (a->lo[1] + a->hi[1]));
   memset(&c, 0, sizeof c);
   c.up = up;
   switch (preset) {
@@ -142,9 +178,9 @@ ball_status ball_camera_from_preset(const ball_model *model, ball_camera_preset 
       tan_h = tan_v * aspect;
       /* the length across the image, the height of the scene above it */
       d = 0.5 * len / tan_h;
-      if (0.6 * a.height / tan_v > d) d = 0.6 * a.height / tan_v;
+      if (0.6 * a->height / tan_v > d) d = 0.6 * a->height / tan_v;
       d += 0.5 * wid;
-      c.target = ball_v3_add(centre, ball_v3(0.0, 0.3 * a.height, 0.0));
+      c.target = ball_v3_add(centre, ball_v3(0.0, 0.3 * a->height, 0.0));
       c.eye = ball_v3_add(c.target, ball_v3_add(ball_v3_scale(side_dir, -d * cos(elev)), ball_v3(0.0, d * sin(elev), 0.0)));
       break;
     }
@@ -166,9 +202,36 @@ ball_status ball_camera_from_preset(const ball_model *model, ball_camera_preset 
       c.eye = ball_v3_add(centre, ball_v3_add(ball_v3_scale(along, -sgn * 0.75 * len), ball_v3(0.0, 0.3 * len + 1.0, 0.0)));
       break;
     }
-    case BALL_CAMERA_PRESET_COUNT: return BALL_ERANGE;
+    case BALL_CAMERA_PRESET_COUNT: break;
   }
   *out = c;
+}
+
+static ball_status check_preset(ball_camera_preset preset, double aspect) {
+  if (!isfinite(aspect)) return BALL_ENONFINITE;
+  if (!(aspect > 0.0)) return BALL_ERANGE;
+  return (unsigned)preset < BALL_CAMERA_PRESET_COUNT ? BALL_OK : BALL_ERANGE;
+}
+
+ball_status ball_camera_from_preset(const ball_model *model, ball_camera_preset preset, double aspect,
+                                    ball_camera *out) {
+  view_arena a;
+  ball_status st;
+  if (!model || !out) return BALL_EINVAL;
+  if ((st = check_preset(preset, aspect)) != BALL_OK) return st;
+  view_arena_of(model, &a);
+  preset_of(model, &a, preset, aspect, out);
+  return BALL_OK;
+}
+
+ball_status ball_camera_from_preset_court(const ball_model *model, const double court[4], ball_camera_preset preset,
+                                          double aspect, ball_camera *out) {
+  view_arena a;
+  ball_status st;
+  if (!model || !court || !out) return BALL_EINVAL;
+  if ((st = check_preset(preset, aspect)) != BALL_OK || (st = check_court(court)) != BALL_OK) return st;
+  arena(model, court, &a);
+  preset_of(model, &a, preset, aspect, out);
   return BALL_OK;
 }
 

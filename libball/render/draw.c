@@ -25,25 +25,6 @@ struct ball_renderer {
   unsigned char *rgb;       /* width * height * 3, rows top first */
 };
 
-/* Fixed colours, RGB in [0, 1]: comparable frames need fixed everything. */
-static const float SKY[3] = {0.80f, 0.86f, 0.92f};
-static const float GROUND[3] = {0.30f, 0.52f, 0.32f};
-static const float COURT[3] = {0.22f, 0.42f, 0.62f};
-static const float LINE[3] = {0.95f, 0.95f, 0.95f};
-static const float GRID[3] = {0.24f, 0.44f, 0.27f};
-static const float NET[3] = {0.12f, 0.12f, 0.14f};
-static const float WALL[3] = {0.78f, 0.66f, 0.50f};
-static const float WALL_EDGE[3] = {0.45f, 0.35f, 0.25f};
-static const float BALL[3] = {0.95f, 0.90f, 0.10f};
-static const float TRAIL[3] = {1.00f, 0.55f, 0.05f};
-static const float RACKET[BALL_MAX_RACKETS][3] = {
-    {0.85f, 0.15f, 0.15f}, {0.15f, 0.30f, 0.85f}, {0.85f, 0.45f, 0.85f}, {0.20f, 0.75f, 0.75f}};
-static const float MARK[BALL_EVENT_KIND_COUNT][3] = {
-    {1.00f, 1.00f, 1.00f},  /* floor: white ring on the floor */
-    {1.00f, 0.10f, 0.80f},  /* net: magenta ring in the net */
-    {1.00f, 0.45f, 0.00f},  /* wall: orange ring on the wall */
-    {0.95f, 0.10f, 0.10f}}; /* racket: red cross */
-
 ball_status ball_renderer_create(int width, int height, ball_renderer **out) {
   ball_renderer *r;
   if (!out) return BALL_EINVAL;
@@ -102,7 +83,7 @@ static void basis(ball_vec3 n, ball_vec3 *u, ball_vec3 *w) {
   *w = ball_v3_cross(n, *u);
 }
 
-static void colour(const float c[3], float alpha) { glColor4f(c[0], c[1], c[2], alpha); }
+static void colour(ball_rgb c, float alpha) { glColor4f(c.r, c.g, c.b, alpha); }
 static void vertex(ball_vec3 p) { glVertex3d(p.x, p.y, p.z); }
 
 /* An axis-aligned rectangle on the floor plane, at height y. */
@@ -195,20 +176,20 @@ static double world_size(const ball_camera *cam, int height, ball_vec3 p, double
 
 /* ---- the picture -------------------------------------------------------- */
 
-static void draw_floor(const ball_model *m) {
+static void draw_floor(const ball_model *m, const ball_palette *pal) {
   ball_floor_layout f;
   int i;
   ball_floor_layout_of(m, &f);
-  colour(GROUND, 1.0f);
+  colour(pal->ground, 1.0f);
   floor_rect(f.ground[0], f.ground[1], f.ground[2], f.ground[3], f.level);
   if (f.has_court) {
-    colour(COURT, 1.0f);
+    colour(pal->court, 1.0f);
     floor_rect(f.court[0], f.court[1], f.court[2], f.court[3], f.level);
-    colour(LINE, 1.0f);
+    colour(pal->line, 1.0f);
     for (i = 0; i < f.n_lines; ++i) floor_rect(f.lines[i][0], f.lines[i][1], f.lines[i][2], f.lines[i][3], f.level);
   } else {
     double g, h = 0.5 * f.grid_width;
-    colour(GRID, 1.0f);
+    colour(pal->grid, 1.0f);
     for (g = ceil(f.ground[0]); g <= f.ground[2]; g += f.grid_step) floor_rect(g - h, f.ground[1], g + h, f.ground[3], f.level);
     for (g = ceil(f.ground[1]); g <= f.ground[3]; g += f.grid_step) floor_rect(f.ground[0], g - h, f.ground[2], g + h, f.level);
   }
@@ -249,11 +230,12 @@ static ball_status check_frame(const ball_model *m, const ball_camera *cam, cons
   return BALL_OK;
 }
 
-static void draw_marker(const ball_model *m, const ball_camera *cam, int height, const ball_event *e) {
+static void draw_marker(const ball_model *m, const ball_palette *pal, const ball_camera *cam, int height,
+                        const ball_event *e) {
   double r = world_size(cam, height, e->point, MIN_MARKER_PIXELS);
   ball_vec3 n = ball_v3(0.0, 1.0, 0.0), p = e->point;
   if (r < MARKER_RADIUS) r = MARKER_RADIUS;
-  colour(MARK[e->kind], 1.0f);
+  colour(pal->markers[e->kind], 1.0f);
   if (e->kind == BALL_EVENT_RACKET) {
     glBegin(GL_LINES);
     glVertex3d(p.x - r, p.y, p.z);
@@ -281,6 +263,7 @@ ball_status ball_render_draw(ball_renderer *r, const ball_model *m, const ball_c
   static const GLfloat light_ambient[4] = {0.0f, 0.0f, 0.0f, 1.0f};
   static const GLfloat scene_ambient[4] = {0.40f, 0.40f, 0.40f, 1.0f};
   double view[16], proj[16], ball_r;
+  ball_palette pal;
   ball_status st;
   int i;
 
@@ -289,9 +272,10 @@ ball_status ball_render_draw(ball_renderer *r, const ball_model *m, const ball_c
   if (!view_matrix(cam, view)) return BALL_ERANGE;
   view_projection(cam, (double)r->width / r->height, proj);
   if (!OSMesaMakeCurrent(r->ctx, r->big, GL_UNSIGNED_BYTE, r->big_w, r->big_h)) return BALL_ENOMEM;
+  ball_render_palette(&pal);
 
   glViewport(0, 0, r->big_w, r->big_h);
-  glClearColor(SKY[0], SKY[1], SKY[2], 1.0f);
+  glClearColor(pal.sky.r, pal.sky.g, pal.sky.b, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
   glMatrixMode(GL_PROJECTION);
   glLoadMatrixd(proj);
@@ -316,11 +300,11 @@ ball_status ball_render_draw(ball_renderer *r, const ball_model *m, const ball_c
    * covers the floor wherever the two overlap (and nothing z-fights). */
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_LIGHTING);
-  draw_floor(m);
+  draw_floor(m, &pal);
   ball_r = world_size(cam, r->height, f->ball, MIN_BALL_PIXELS);
   if (ball_r < m->radius) ball_r = m->radius;
   glEnable(GL_BLEND);
-  colour(NET, 0.45f); /* the shadow: straight below the ball, softer when it flies high */
+  colour(pal.net, pal.shadow_alpha); /* the shadow: straight below the ball, softer when it flies high */
   disc(ball_v3(f->ball.x, m->floor_level, f->ball.z), ball_v3(0.0, 1.0, 0.0), ball_r, 1);
   glDisable(GL_BLEND);
 
@@ -331,10 +315,10 @@ ball_status ball_render_draw(ball_renderer *r, const ball_model *m, const ball_c
   for (i = 0; i < f->n_rackets; ++i) {
     const ball_render_racket *k = &f->rackets[i];
     if (!k->visible) continue;
-    colour(RACKET[i], 1.0f);
+    colour(pal.rackets[i], 1.0f);
     disc(k->center, unit(k->normal), m->rackets[i].radius, 1);
   }
-  colour(BALL, 1.0f);
+  colour(pal.ball, 1.0f);
   sphere(f->ball, ball_r);
 
   /* Lines: racket rims, the trail, the markers. */
@@ -343,20 +327,20 @@ ball_status ball_render_draw(ball_renderer *r, const ball_model *m, const ball_c
   for (i = 0; i < f->n_rackets; ++i) {
     const ball_render_racket *k = &f->rackets[i];
     if (!k->visible) continue;
-    colour(NET, 1.0f);
+    colour(pal.net, 1.0f);
     disc(k->center, unit(k->normal), m->rackets[i].radius, 0);
   }
   if (f->n_trail > 1) {
-    colour(TRAIL, 1.0f);
+    colour(pal.trail, 1.0f);
     glBegin(GL_LINE_STRIP);
     for (i = 0; i < f->n_trail; ++i) vertex(f->trail[i]);
     glEnd();
   }
-  for (i = 0; i < f->n_events; ++i) draw_marker(m, cam, r->height, &f->events[i]);
-  colour(WALL_EDGE, 1.0f);
+  for (i = 0; i < f->n_events; ++i) draw_marker(m, &pal, cam, r->height, &f->events[i]);
+  colour(pal.wall_edge, 1.0f);
   for (i = 0; i < m->n_walls; ++i) plane_outline(&m->walls[i]);
   if (m->has_net) {
-    colour(LINE, 1.0f);
+    colour(pal.line, 1.0f);
     plane_outline(&m->net);
   }
 
@@ -365,14 +349,14 @@ ball_status ball_render_draw(ball_renderer *r, const ball_model *m, const ball_c
   glEnable(GL_BLEND);
   glDepthMask(GL_FALSE);
   for (i = 0; i < m->n_walls; ++i) {
-    colour(WALL, 0.55f);
+    colour(pal.wall, pal.wall_alpha);
     plane_rect(&m->walls[i], m->walls[i].bottom, m->walls[i].top);
   }
   if (m->has_net) {
     double tape = 0.06 * (m->net.top - m->net.bottom);
-    colour(NET, 0.45f);
+    colour(pal.net, pal.net_alpha);
     plane_rect(&m->net, m->net.bottom, m->net.top - tape);
-    colour(LINE, 0.95f);
+    colour(pal.line, pal.tape_alpha);
     plane_rect(&m->net, m->net.top - tape, m->net.top);
   }
   glDepthMask(GL_TRUE);

@@ -122,6 +122,7 @@ struct Page {
     o.address = address;
     o.port = port;
     o.page_dir = find_page_dir();
+    o.wasm_file = find_page_wasm();
     o.three_dir = find_three_dir();
     std::string err;
     if (!(web = WebServer::start(o, SpectatorSettings(), court_model, &err))) return "--http: " + err;

@@ -79,6 +79,9 @@ void sleep_until(double t) {
 #ifndef BALL_WEB_BUILD
 #define BALL_WEB_BUILD "web"
 #endif
+#ifndef BALL_WASM_BUILD
+#define BALL_WASM_BUILD "ball.wasm"
+#endif
 
 // One of the project's data files or folders: $env, else the copy installed
 // beside the programs (../share/libball/NAME, when PROBE in it, or NAME itself
@@ -97,6 +100,8 @@ std::string find_profile(const std::string &given) {
 std::string scenes_dir() { return find_data("BALL_SCENES", "scenes", "tennis.yaml", BALL_SCENES_BUILD); }
 
 std::string find_page_dir() { return find_data("BALL_WEB_DIR", "web", "index.html", BALL_WEB_BUILD); }
+
+std::string find_page_wasm() { return find_data("BALL_WEB_WASM", "web/ball.wasm", "", BALL_WASM_BUILD); }
 
 std::string find_three_dir() {
   if (const char *env = std::getenv("BALL_THREE_DIR")) return env;

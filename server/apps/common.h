@@ -80,6 +80,10 @@ ball_model court_model(const MatchInfoOut &info);
 // The spectator page's files: $BALL_WEB_DIR, else the copy installed beside
 // the program (../share/libball/web), else the build tree's server/web/page.
 std::string find_page_dir();
+// The page's WebAssembly module (libball and the client core): $BALL_WEB_WASM,
+// else the copy installed with the page (../share/libball/web/ball.wasm),
+// else the build tree's server/web/ball.wasm.
+std::string find_page_wasm();
 // three.js for the page: $BALL_THREE_DIR, else Debian's libjs-three.
 std::string find_three_dir();
 

@@ -21,6 +21,8 @@ struct Court {
 
   int side_of(double x) const { return x < net_x ? 0 : 1; }
   static int side_of_slot(int slot) { return slot % 2; }
+  // what a spectator calls a side: "near side" (0) and "far side" (1)
+  static const char *side_name(int side) { return side == 0 ? "near side" : "far side"; }
   // +1 for side 0 (the net is toward +x), -1 for side 1
   static double toward_net(int side) { return side == 0 ? 1.0 : -1.0; }
   double half_length() const { return side_length(0) > side_length(1) ? side_length(0) : side_length(1); }

@@ -50,7 +50,9 @@ std::string hex(const ParticipantId &id) {
 
 bool parse_hex(const std::string &text, ParticipantId *id) {
   if (text.size() != 2 * id->size() || text.find_first_not_of("0123456789abcdef") != std::string::npos) return false;
-  for (size_t i = 0; i < id->size(); ++i) (*id)[i] = static_cast<uint8_t>(std::stoul(text.substr(2 * i, 2), nullptr, 16));
+  // (digit by digit: std::stoul would bring the C library's printf into the page's WebAssembly module)
+  auto digit = [](char c) { return static_cast<uint8_t>(c <= '9' ? c - '0' : c - 'a' + 10); };
+  for (size_t i = 0; i < id->size(); ++i) (*id)[i] = static_cast<uint8_t>(digit(text[2 * i]) << 4 | digit(text[2 * i + 1]));
   return true;
 }
 

@@ -138,17 +138,17 @@ std::string drops_text(const std::array<uint64_t, kDropSlots> &drops);
 template <class E>
 constexpr int kEnumCount = 0;
 template <>
-constexpr int kEnumCount<MatchState> = 0 BALL_MATCH_STATES(BALL_ONE);
+inline constexpr int kEnumCount<MatchState> = 0 BALL_MATCH_STATES(BALL_ONE);
 template <>
-constexpr int kEnumCount<Cause> = 0 BALL_CAUSES(BALL_ONE);
+inline constexpr int kEnumCount<Cause> = 0 BALL_CAUSES(BALL_ONE);
 template <>
-constexpr int kEnumCount<EventKind> = 0 BALL_EVENT_KINDS(BALL_ONE);
+inline constexpr int kEnumCount<EventKind> = 0 BALL_EVENT_KINDS(BALL_ONE);
 template <>
-constexpr int kEnumCount<Reason> = 0 BALL_REASONS(BALL_ONE);
+inline constexpr int kEnumCount<Reason> = 0 BALL_REASONS(BALL_ONE);
 template <>
-constexpr int kEnumCount<ControlKind> = 0 BALL_CONTROL_KINDS(BALL_ONE);
+inline constexpr int kEnumCount<ControlKind> = 0 BALL_CONTROL_KINDS(BALL_ONE);
 template <>
-constexpr int kEnumCount<SampleResult> = kDropReasons;
+inline constexpr int kEnumCount<SampleResult> = kDropReasons;
 #undef BALL_ONE
 // The name of a value ("unknown" for a value outside the list); drop
 // reasons also name accepted and idle.

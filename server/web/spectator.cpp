@@ -1,8 +1,10 @@
 #include "spectator.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "ball/render.h"
+#include "court.h"
 #include "records.h"
 
 namespace ballsrv {
@@ -21,6 +23,82 @@ json camera_json(const ball_camera &c) {
   return {{"eye", c.eye}, {"target", c.target}, {"up", c.up}, {"fov", c.fov}};
 }
 
+json rgb_json(const ball_rgb &c) { return json::array({c.r, c.g, c.b}); }
+
+// libball's palette (ball_render_palette), by the names of ball_palette
+json palette_json() {
+  ball_palette p;
+  ball_render_palette(&p);
+  json rackets = json::array(), markers = json::object();
+  for (const ball_rgb &c : p.rackets) rackets.push_back(rgb_json(c));
+  for (int k = 0; k < BALL_EVENT_KIND_COUNT; ++k) markers[ball_event_kind_name(static_cast<ball_event_kind>(k))] = rgb_json(p.markers[k]);
+  return {{"sky", rgb_json(p.sky)},         {"ground", rgb_json(p.ground)},       {"court", rgb_json(p.court)},
+          {"line", rgb_json(p.line)},       {"grid", rgb_json(p.grid)},           {"net", rgb_json(p.net)},
+          {"wall", rgb_json(p.wall)},       {"wall_edge", rgb_json(p.wall_edge)}, {"ball", rgb_json(p.ball)},
+          {"trail", rgb_json(p.trail)},     {"rackets", rackets},                 {"markers", markers},
+          {"net_alpha", p.net_alpha},       {"tape_alpha", p.tape_alpha},         {"wall_alpha", p.wall_alpha},
+          {"shadow_alpha", p.shadow_alpha}};
+}
+
+// A struct's fields by libball's field table (ball_model_fields and the
+// plane and racket tables), by name: what the page copies into the
+// module's ball_model the same way (ballwasm.js). JSON has no infinity: an
+// infinite real (sound_threshold may be +Inf) is written "Infinity", as
+// JavaScript's Number() reads it.
+json fields_json(const ball_field *fields, int count, const unsigned char *base, int n_walls, int n_rackets);
+
+json real_json(double v) { return std::isfinite(v) ? json(v) : json(v > 0 ? "Infinity" : v < 0 ? "-Infinity" : "NaN"); }
+
+json field_json(const ball_field &f, const unsigned char *at, int n_walls, int n_rackets) {
+  int plane_count = 0, racket_count = 0;
+  const ball_field *plane = ball_plane_fields(&plane_count), *racket = ball_racket_fields(&racket_count);
+  switch (f.type) {
+    case BALL_FIELD_REAL: return real_json(*reinterpret_cast<const double *>(at));
+    case BALL_FIELD_INT:
+    case BALL_FIELD_ENUM:
+    case BALL_FIELD_AXIS: return *reinterpret_cast<const int *>(at);
+    case BALL_FIELD_BOOL: return *reinterpret_cast<const int *>(at) != 0;
+    case BALL_FIELD_EFFECTS: return *reinterpret_cast<const unsigned *>(at);
+    case BALL_FIELD_VEC3: {
+      const ball_vec3 &v = *reinterpret_cast<const ball_vec3 *>(at);
+      return json::array({real_json(v.x), real_json(v.y), real_json(v.z)});
+    }
+    case BALL_FIELD_PLANE: return fields_json(plane, plane_count, at, 0, 0);
+    case BALL_FIELD_PLANES: {
+      json a = json::array();
+      for (int i = 0; i < n_walls; ++i) a.push_back(fields_json(plane, plane_count, at + i * sizeof(ball_plane), 0, 0));
+      return a;
+    }
+    case BALL_FIELD_RACKETS: {
+      json a = json::array();
+      for (int i = 0; i < n_rackets; ++i)
+        a.push_back(fields_json(racket, racket_count, at + i * sizeof(ball_racket_def), 0, 0));
+      return a;
+    }
+    case BALL_FIELD_TYPE_COUNT: break;
+  }
+  return nullptr;
+}
+
+json fields_json(const ball_field *fields, int count, const unsigned char *base, int n_walls, int n_rackets) {
+  json j = json::object();
+  for (int i = 0; i < count; ++i) j[fields[i].name] = field_json(fields[i], base + fields[i].offset, n_walls, n_rackets);
+  return j;
+}
+
+json model_json(const ball_model &m) {
+  int count = 0;
+  const ball_field *fields = ball_model_fields(&count);
+  return fields_json(fields, count, reinterpret_cast<const unsigned char *>(&m), m.n_walls, m.n_rackets);
+}
+
+// 64 bits as 16 hex digits: a JSON number would lose bits in JavaScript's doubles
+std::string hex64(uint64_t v) {
+  char text[17];
+  std::snprintf(text, sizeof text, "%016llx", static_cast<unsigned long long>(v));
+  return text;
+}
+
 bool finite3(const ball_vec3 &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // An event a page can show: JSON has no NaN or infinity (nlohmann writes
@@ -34,8 +112,11 @@ bool drawable(const EventOut &e) {
 }  // namespace
 
 std::string court_message(uint32_t match, const MatchInfoOut &info, const ball_model &court, double aspect) {
+  // the court the match's rules judge (MatchInfo's court_x, court_z), else the one its net implies
+  const double judged[4] = {info.court_x[0], info.court_z[0], info.court_x[1], info.court_z[1]};
   ball_floor_layout f;
-  ball_floor_layout_of(&court, &f);
+  bool own = ball_floor_layout_court(&court, judged, &f) == BALL_OK;
+  if (!own) ball_floor_layout_of(&court, &f);
   json floor = {{"level", f.level},
                 {"ground", f.ground},
                 {"has_court", f.has_court != 0},
@@ -52,13 +133,36 @@ std::string court_message(uint32_t match, const MatchInfoOut &info, const ball_m
   for (int k = 0; k < BALL_CAMERA_PRESET_COUNT; ++k) {
     ball_camera c;
     auto preset = static_cast<ball_camera_preset>(k);
-    if (ball_camera_from_preset(&court, preset, aspect, &c) == BALL_OK) cameras[ball_camera_preset_name(preset)] = camera_json(c);
+    ball_status st = own ? ball_camera_from_preset_court(&court, judged, preset, aspect, &c)
+                         : ball_camera_from_preset(&court, preset, aspect, &c);
+    if (st == BALL_OK) cameras[ball_camera_preset_name(preset)] = camera_json(c);
   }
   json j = {{"type", "court"},   {"match", match},     {"scene", info.scene},     {"radius", court.radius},
             {"floor", floor},    {"walls", walls},     {"rackets", rackets},      {"cameras", cameras},
-            {"aspect", aspect},  {"trail", kTrailSeconds}};
+            {"aspect", aspect},  {"trail", kTrailSeconds}, {"palette", palette_json()},
+            {"model", model_json(court)}, {"model_hash", hex64(ball_model_hash(&court))}};
   j["net"] = court.has_net ? plane_json(court.net) : json(nullptr);
+  j["judged"] = own ? json(judged) : json(nullptr);
   return j.dump();
+}
+
+std::string info_message(uint32_t match, const MatchInfoOut &info, bool live, double real) {
+  json sides = json::array();
+  for (int side = 0; side < 2; ++side) {
+    json slots = json::array();
+    for (int i = 0; i < std::min(std::max(info.players, 0), kMaxPlayers); ++i)
+      if (Court::side_of_slot(i) == side) slots.push_back(i);
+    sides.push_back({{"name", Court::side_name(side)}, {"slots", slots}});
+  }
+  return json{{"type", "info"},
+              {"match", match},
+              {"live", live},
+              {"real", real},
+              {"model_hash", hex64(info.model_hash)},
+              {"level_name", ball_level_name(static_cast<ball_level>(info.level))},
+              {"sides", sides},
+              {"info", info}}
+      .dump();
 }
 
 void Spectator::send(std::string text) {
@@ -77,12 +181,15 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
   const MatchInfoOut &info = *v.info;
   Mirror &m = matches_[id];
   // the court, again when the match changed scene or model
-  if (m.court.empty() || m.scene != info.scene || m.model_hash != info.model_hash || m.court_from_wire != (v.model != nullptr)) {
+  std::array<double, 4> judged{info.court_x[0], info.court_z[0], info.court_x[1], info.court_z[1]};
+  if (m.court.empty() || m.scene != info.scene || m.model_hash != info.model_hash ||
+      m.court_from_wire != (v.model != nullptr) || m.judged != judged) {
     // the court the server judges: the match's model from the wire, else a scene of its name
     m.court = court_message(id, info, v.model ? *v.model : court_(info), settings_.aspect);
     m.court_from_wire = v.model != nullptr;
     m.scene = info.scene;
     m.model_hash = info.model_hash;
+    m.judged = judged;
     send(m.court);
   }
   bool live = real - v.info_real < settings_.silence;
@@ -97,7 +204,7 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
       }
       m.owners[i] = info.slots[i].owner;
     }
-    m.info = json{{"type", "info"}, {"match", id}, {"live", live}, {"info", info}}.dump();
+    m.info = info_message(id, info, live, v.info_real);
     send(m.info);
   }
   // segments: the watcher's, from the newest page_segments; anew when it dropped ours (a match started anew)

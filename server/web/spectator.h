@@ -64,6 +64,7 @@ class Spectator {
     bool court_from_wire = false;        // ... drawn from the match's model on the wire
     std::string scene;                   // ... of this scene and model hash
     uint64_t model_hash = 0;
+    std::array<double, 4> judged{};      // ... and court (MatchInfo's court_x, court_z)
     uint32_t server = 0;
     uint32_t revision = 0;
     std::string info;                    // the newest info message
@@ -92,8 +93,17 @@ class Spectator {
   uint64_t racket_dropped_ = 0, not_drawable_ = 0;
 };
 
-// The court message of a match (its floor as libball's renderer draws it,
-// net, walls, racket radii and the camera presets for `aspect`), JSON.
+// The court message of a match, JSON: its floor as libball's renderer lays
+// it out around the court the match's rules judge (MatchInfo's court_x and
+// court_z: ball_floor_layout_court), the net, walls, racket radii, the
+// camera presets for `aspect`, libball's palette (ball_render_palette), and
+// the whole model (`court`) by libball's field table with its
+// ball_model_hash in hex, for the page's WebAssembly module.
 std::string court_message(uint32_t match, const MatchInfoOut &info, const ball_model &court, double aspect);
+// The info message of a match: the MatchInfo, whether its server is heard,
+// the local realtime it came (`real`: the page's module takes it at that
+// time, as the watcher did), its model hash in hex, libball's name of its
+// level (ball_level_name) and the slots of each side with the side's name.
+std::string info_message(uint32_t match, const MatchInfoOut &info, bool live, double real);
 
 }  // namespace ballsrv

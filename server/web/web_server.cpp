@@ -24,21 +24,23 @@ struct File {
   std::string type, body;
 };
 
-// The files the page needs: URL path -> (folder, name, content type).
+// The files the page needs: URL path -> (where, name, content type).
+enum class From { page, three, wasm };
 struct Served {
   const char *path;
-  bool three;  // from three.js's folder, else the page's
-  const char *name;
+  From from;         // the page's folder, three.js's, or the WebAssembly module itself
+  const char *name;  // in that folder ("": the module's file)
   const char *type;
 };
 const Served kFiles[] = {
-    {"/", false, "index.html", "text/html; charset=utf-8"},
-    {"/index.html", false, "index.html", "text/html; charset=utf-8"},
-    {"/style.css", false, "style.css", "text/css; charset=utf-8"},
-    {"/protocol.js", false, "protocol.js", "text/javascript; charset=utf-8"},
-    {"/app.js", false, "app.js", "text/javascript; charset=utf-8"},
-    {"/lib/three.min.js", true, "build/three.min.js", "text/javascript; charset=utf-8"},
-    {"/lib/OrbitControls.js", true, "examples/js/controls/OrbitControls.js", "text/javascript; charset=utf-8"},
+    {"/", From::page, "index.html", "text/html; charset=utf-8"},
+    {"/index.html", From::page, "index.html", "text/html; charset=utf-8"},
+    {"/style.css", From::page, "style.css", "text/css; charset=utf-8"},
+    {"/ballwasm.js", From::page, "ballwasm.js", "text/javascript; charset=utf-8"},
+    {"/app.js", From::page, "app.js", "text/javascript; charset=utf-8"},
+    {"/ball.wasm", From::wasm, "", "application/wasm"},
+    {"/lib/three.min.js", From::three, "build/three.min.js", "text/javascript; charset=utf-8"},
+    {"/lib/OrbitControls.js", From::three, "examples/js/controls/OrbitControls.js", "text/javascript; charset=utf-8"},
 };
 
 bool read_all(const std::string &path, std::string *out) {
@@ -130,11 +132,15 @@ std::unique_ptr<WebServer> WebServer::start(const WebSettings &settings, const S
                                             std::string *err) {
   auto impl = std::make_unique<Impl>(settings, spectator, std::move(court));
   for (const auto &f : kFiles) {
-    std::string path = (f.three ? settings.three_dir : settings.page_dir) + "/" + f.name;
+    std::string path = f.from == From::wasm    ? settings.wasm_file
+                       : f.from == From::three ? settings.three_dir + "/" + f.name
+                                               : settings.page_dir + "/" + f.name;
     File file{f.type, ""};
     if (!read_all(path, &file.body)) {
       *err = "cannot read " + path +
-             (f.three ? " (three.js: Debian's libjs-three, which ./run setup installs)" : " (the page's files)");
+             (f.from == From::three  ? " (three.js: Debian's libjs-three, which ./run setup installs)"
+              : f.from == From::wasm ? " (the page's WebAssembly module: the build's ball_wasm target)"
+                                     : " (the page's files)");
       return nullptr;
     }
     impl->files[f.path] = std::move(file);

@@ -17,7 +17,8 @@ namespace ballsrv {
 struct WebSettings {
   std::string address = "127.0.0.1";  // where it listens (another address only when asked)
   int port = 0;                       // 0: a free port, chosen by the system
-  std::string page_dir;               // index.html, app.js, protocol.js, style.css
+  std::string page_dir;               // index.html, app.js, ballwasm.js, style.css
+  std::string wasm_file;              // ball.wasm: libball and the client core for the page (page_core.cpp)
   std::string three_dir;              // three.js: build/three.min.js, examples/js/controls/OrbitControls.js
   int max_pages = 8;                  // pages streaming at once; more are told 503
 };

@@ -223,6 +223,115 @@ static void test_floor_layout_drawn(void **state) {
   assert_true(f.ground[0] < f.ground[2] && f.ground[1] < f.ground[3]);
 }
 
+/* A court given instead of the net's (a ball server judges its own:
+ * MatchInfo's court_x, court_z): the default court given is the net's to
+ * 1e-9 m; an 18 m court (court_x_lo 2.885 on the tennis net) gets its
+ * baselines 0.04 m inside its ends, service lines 6.40 / 11.885 of each half
+ * from the net, and every preset holds its corners; a court larger than the
+ * net's (44 m) grows the ground and stays in the picture of each preset,
+ * where the net's own presets lose it; bad courts refused. */
+static void test_floor_layout_court(void **state) {
+  ball_model m;
+  ball_floor_layout f, g;
+  ball_camera c;
+  const double tennis[4] = {0.0, 0.0, 23.77, 10.97}, short_court[4] = {2.885, 0.0, 20.885, 10.97};
+  const double big[4] = {-10.0, -3.0, 33.77, 13.97};
+  double bad[4] = {0.0, 0.0, 23.77, 10.97};
+  int i, k, kept = 0;
+  (void)state;
+  ball_model_default(&m);
+  assert_ok(ball_floor_layout_of(&m, &f));
+  assert_ok(ball_floor_layout_court(&m, tennis, &g));
+  assert_int_equal(g.n_lines, f.n_lines);
+  for (i = 0; i < 4; ++i) assert_near(g.ground[i], f.ground[i], 0.0);
+  for (i = 0; i < 4 * f.n_lines; ++i) assert_near(g.lines[i / 4][i % 4], f.lines[i / 4][i % 4], 1e-9);
+  assert_ok(ball_floor_layout_court(&m, short_court, &g));
+  assert_int_equal(g.n_lines, 7);
+  for (i = 0; i < 4; ++i) assert_near(g.court[i], short_court[i], 0.0);
+  {
+    int baseline_lo = 0, baseline_hi = 0, service = 0;
+    for (i = 0; i < g.n_lines; ++i) {
+      double xm = 0.5 * (g.lines[i][0] + g.lines[i][2]), len = g.lines[i][3] - g.lines[i][1];
+      if (len < 1.0) continue; /* the lines along x */
+      baseline_lo += fabs(xm - 2.925) < 1e-12;
+      baseline_hi += fabs(xm - 20.845) < 1e-12;
+      service += fabs(fabs(xm - m.net.position) - 9.0 * 6.40 / 11.885) < 1e-12;
+    }
+    assert_int_equal(baseline_lo, 1);
+    assert_int_equal(baseline_hi, 1);
+    assert_int_equal(service, 2);
+  }
+  assert_ok(ball_floor_layout_court(&m, big, &g));
+  assert_true(g.ground[0] <= -12.0 && g.ground[2] >= 35.77 && g.ground[1] <= -5.0 && g.ground[3] >= 15.97);
+  for (k = 0; k < BALL_CAMERA_PRESET_COUNT; ++k) {
+    ball_camera n;
+    int inside = 1;
+    assert_ok(ball_camera_from_preset_court(&m, big, (ball_camera_preset)k, (double)W / H, &c));
+    assert_ok(ball_camera_from_preset(&m, (ball_camera_preset)k, (double)W / H, &n));
+    for (i = 0; i < 4; ++i) {
+      double px, py;
+      ball_vec3 corner = ball_v3(big[i & 1 ? 2 : 0], 0.0, big[i & 2 ? 3 : 1]);
+      assert_ok(ball_camera_project(&c, W, H, corner, &px, &py, NULL));
+      assert_true(px >= 0.0 && px <= W && py >= 0.0 && py <= H);
+      if (ball_camera_project(&n, W, H, corner, &px, &py, NULL) != BALL_OK || px < 0.0 || px > W || py < 0.0 || py > H)
+        inside = 0;
+    }
+    kept += inside;
+  }
+  assert_true(kept < BALL_CAMERA_PRESET_COUNT); /* the net's own presets lose a corner of it */
+  assert_int_equal(ball_floor_layout_court(NULL, tennis, &g), BALL_EINVAL);
+  assert_int_equal(ball_floor_layout_court(&m, NULL, &g), BALL_EINVAL);
+  assert_int_equal(ball_camera_from_preset_court(&m, NULL, BALL_CAMERA_SIDE, 1.0, &c), BALL_EINVAL);
+  bad[2] = 0.0;
+  assert_int_equal(ball_floor_layout_court(&m, bad, &g), BALL_ERANGE);
+  assert_int_equal(ball_camera_from_preset_court(&m, bad, BALL_CAMERA_SIDE, 1.0, &c), BALL_ERANGE);
+  bad[2] = NAN;
+  assert_int_equal(ball_floor_layout_court(&m, bad, &g), BALL_ENONFINITE);
+  bad[2] = 2e9;
+  assert_int_equal(ball_floor_layout_court(&m, bad, &g), BALL_ERANGE);
+}
+
+/* The palette is what is drawn: from the top camera, with the lights off for
+ * the floor, the sky, the ground and the court are ball_render_palette's
+ * colours to one level of 255; the racket colours differ from each other and
+ * from the ball's yellow, which the tests find the ball by. */
+static void test_palette_drawn(void **state) {
+  ball_model m;
+  ball_camera c;
+  ball_palette p;
+  ball_floor_layout f;
+  ball_frame fr = ball_only(ball_v3(-50.0, 0.5, -50.0));
+  const unsigned char *rgb;
+  const ball_rgb *want[3];
+  double where[3][2];
+  int i, j;
+  (void)state;
+  assert_int_equal(ball_render_palette(NULL), BALL_EINVAL);
+  assert_ok(ball_render_palette(&p));
+  ball_model_default(&m);
+  assert_ok(ball_floor_layout_of(&m, &f));
+  assert_ok(ball_camera_from_preset(&m, BALL_CAMERA_SIDE, (double)W / H, &c));
+  rgb = draw(&m, &c, &fr);
+  want[0] = &p.sky, where[0][0] = 2.0, where[0][1] = 2.0; /* the top-left corner: sky */
+  want[1] = &p.court;
+  want[2] = &p.ground;
+  assert_ok(ball_camera_project(&c, W, H, ball_v3(3.0, f.level, 3.0), &where[1][0], &where[1][1], NULL));
+  assert_ok(ball_camera_project(&c, W, H, ball_v3(f.ground[0] + 0.5, f.level, 0.5 * (f.ground[1] + f.ground[3])),
+                                &where[2][0], &where[2][1], NULL));
+  for (i = 0; i < 3; ++i) {
+    const unsigned char *px = rgb + 3 * ((size_t)where[i][1] * W + (size_t)where[i][0]);
+    float c3[3];
+    c3[0] = want[i]->r, c3[1] = want[i]->g, c3[2] = want[i]->b;
+    for (j = 0; j < 3; ++j) assert_true(fabs(px[j] - 255.0 * c3[j]) <= 1.0);
+  }
+  for (i = 0; i < BALL_MAX_RACKETS; ++i) {
+    assert_true(fabs(p.rackets[i].r - p.ball.r) + fabs(p.rackets[i].g - p.ball.g) + fabs(p.rackets[i].b - p.ball.b) > 0.3);
+    for (j = 0; j < i; ++j)
+      assert_true(fabs(p.rackets[i].r - p.rackets[j].r) + fabs(p.rackets[i].g - p.rackets[j].g) +
+                      fabs(p.rackets[i].b - p.rackets[j].b) > 0.3);
+  }
+}
+
 /* Cameras by name: presets, the scene's own first; unknown names refused. */
 static void test_camera_find(void **state) {
   ball_scene s;
@@ -587,6 +696,8 @@ int main(void) {
       cmocka_unit_test(test_point_ball_visible),
       cmocka_unit_test(test_presets_frame_the_court),
       cmocka_unit_test(test_floor_layout_drawn),
+      cmocka_unit_test(test_floor_layout_court),
+      cmocka_unit_test(test_palette_drawn),
       cmocka_unit_test(test_camera_find),
       cmocka_unit_test(test_racket_oriented),
       cmocka_unit_test(test_racket_moved_changes_the_frame),

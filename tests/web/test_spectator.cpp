@@ -5,6 +5,7 @@
 // its clock, racket samples only from their slot's holder, and the message
 // ring says when a reader fell behind. With numbers.
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "ball/render.h"
@@ -59,6 +60,47 @@ std::vector<json> messages(const std::vector<std::string> &texts) {
   return out;
 }
 
+// The court message's model read back by libball's field tables, as the
+// page copies it into its module (ballwasm.js): over ball_model_default,
+// the walls and rackets listed, "Infinity" for +Inf.
+double real_of(const json &j) { return j.is_string() ? std::stod(j.get<std::string>()) : j.get<double>(); }
+
+void fields_from(const json &j, const ball_field *fields, int count, unsigned char *base) {
+  int nplane = 0, nracket = 0;
+  const ball_field *plane = ball_plane_fields(&nplane), *racket = ball_racket_fields(&nracket);
+  for (int i = 0; i < count; ++i) {
+    const ball_field &f = fields[i];
+    const json &v = j.at(f.name);
+    unsigned char *at = base + f.offset;
+    switch (f.type) {
+      case BALL_FIELD_REAL: *reinterpret_cast<double *>(at) = real_of(v); break;
+      case BALL_FIELD_INT:
+      case BALL_FIELD_ENUM:
+      case BALL_FIELD_AXIS: *reinterpret_cast<int *>(at) = v.get<int>(); break;
+      case BALL_FIELD_BOOL: *reinterpret_cast<int *>(at) = v.get<bool>() ? 1 : 0; break;
+      case BALL_FIELD_EFFECTS: *reinterpret_cast<unsigned *>(at) = v.get<unsigned>(); break;
+      case BALL_FIELD_VEC3: *reinterpret_cast<ball_vec3 *>(at) = ball_v3(real_of(v[0]), real_of(v[1]), real_of(v[2])); break;
+      case BALL_FIELD_PLANE: fields_from(v, plane, nplane, at); break;
+      case BALL_FIELD_PLANES:
+        for (size_t k = 0; k < v.size(); ++k) fields_from(v[k], plane, nplane, at + k * sizeof(ball_plane));
+        break;
+      case BALL_FIELD_RACKETS:
+        for (size_t k = 0; k < v.size(); ++k) fields_from(v[k], racket, nracket, at + k * sizeof(ball_racket_def));
+        break;
+      case BALL_FIELD_TYPE_COUNT: break;
+    }
+  }
+}
+
+ball_model model_from(const json &j) {
+  ball_model m;
+  int count = 0;
+  const ball_field *fields = ball_model_fields(&count);
+  ball_model_default(&m);
+  fields_from(j, fields, count, reinterpret_cast<unsigned char *>(&m));
+  return m;
+}
+
 std::vector<json> of_type(const std::vector<json> &all, const std::string &type) {
   std::vector<json> out;
   for (const auto &m : all)
@@ -100,6 +142,33 @@ TEST(the_page_is_given_what_the_watcher_took) {
   CHECK_EQ(court.at("cameras").size(), static_cast<size_t>(BALL_CAMERA_PRESET_COUNT));
   CHECK_EQ(court.at("rackets").size(), 2u);
   CHECK(!court.at("net").is_null());
+  // ... around the court the rules judge, MatchInfo's court_x and court_z
+  const MatchInfoOut &info = g.match.info();
+  json want_court = {info.court_x[0], info.court_z[0], info.court_x[1], info.court_z[1]};
+  CHECK_EQ(court.at("floor").at("court"), want_court);
+  CHECK_EQ(court.at("judged"), want_court);
+  // ... in libball's colours, and with the whole model, which reads back to the bit (its hash)
+  ball_palette pal;
+  ball_render_palette(&pal);
+  CHECK_EQ(court.at("palette").at("ball"), json::array({pal.ball.r, pal.ball.g, pal.ball.b}));
+  CHECK_EQ(court.at("palette").at("rackets").size(), static_cast<size_t>(BALL_MAX_RACKETS));
+  CHECK_EQ(court.at("palette").at("markers").at("racket"),
+           json::array({pal.markers[BALL_EVENT_RACKET].r, pal.markers[BALL_EVENT_RACKET].g, pal.markers[BALL_EVENT_RACKET].b}));
+  ball_model back = model_from(court.at("model"));
+  ball_model sent = court_of(info);
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(ball_model_hash(&sent)));
+  CHECK_EQ(court.at("model_hash").get<std::string>(), std::string(hash));
+  CHECK_EQ(ball_model_hash(&back), ball_model_hash(&sent));
+  CHECK_EQ(ball_model_check(&back, nullptr), BALL_OK);
+  CHECK_EQ(back.n_rackets, sent.n_rackets);
+  // the info: libball's level name, each side's name and slots, the hash in hex
+  json inf = of_type(snap, "info")[0];
+  CHECK_EQ(inf.at("level_name").get<std::string>(), std::string(ball_level_name(static_cast<ball_level>(info.level))));
+  CHECK_EQ(inf.at("sides"), json::parse(R"([{"name":"near side","slots":[0]},{"name":"far side","slots":[1]}])"));
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(info.model_hash));
+  CHECK_EQ(inf.at("model_hash").get<std::string>(), std::string(hash));
+  CHECK_EQ(inf.at("real").get<double>(), 1000.0);
   // the stream: every message numbered in order, nothing new without news
   std::vector<PageMessage> got;
   CHECK(sp.since(0, 100000, &got));

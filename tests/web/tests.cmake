@@ -14,18 +14,23 @@ target_compile_options(web_probe PRIVATE ${BALL_C_WARNINGS})
 find_program(BALL_CHROMIUM NAMES chromium PATHS /usr/bin NO_DEFAULT_PATH REQUIRED)
 find_program(BALL_WEB_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH REQUIRED)
 ball_dds_domain(web_page domain)
-add_test(NAME web_page
-  COMMAND ${BALL_WEB_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/page_check.py --bin ${PROJECT_BINARY_DIR}/server
-          --domain ${domain} --chromium ${BALL_CHROMIUM} --probe $<TARGET_FILE:web_probe>
-          --work ${CMAKE_CURRENT_BINARY_DIR}/web_page)
-# (under ./run asan with Fast DDS 2.9's own new-delete-type mismatch waived, as ball_itest does)
-set_tests_properties(web_page PROPERTIES LABELS "dds;web" TIMEOUT 180
-  PASS_REGULAR_EXPRESSION "page_check: passed" FAIL_REGULAR_EXPRESSION "FAIL"
-  ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
+# (the page runs on the WebAssembly module: without it, BALL_BUILD_WASM off, there is no page to test)
+if(TARGET ball_wasm)
+  add_test(NAME web_page
+    COMMAND ${BALL_WEB_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/page_check.py --bin ${PROJECT_BINARY_DIR}/server
+            --domain ${domain} --chromium ${BALL_CHROMIUM} --probe $<TARGET_FILE:web_probe>
+            --work ${CMAKE_CURRENT_BINARY_DIR}/web_page)
+  # (under ./run asan with Fast DDS 2.9's own new-delete-type mismatch waived, as ball_itest does)
+  set_tests_properties(web_page PROPERTIES LABELS "dds;web" TIMEOUT 240
+    PASS_REGULAR_EXPRESSION "page_check: passed" FAIL_REGULAR_EXPRESSION "FAIL"
+    ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
+endif()
 
-# libball on WebAssembly (cmake/BallWasm.cmake, server/web/page/ballwasm.js)
-# in the browser: every double of 20,000 random segments (two seeds) equal to
-# the native ball_segment_eval's, bit for bit, and the C++ probe's answer
+# libball and the page's core on WebAssembly (cmake/BallWasm.cmake,
+# server/web/wasm/page_core.cpp, server/web/page/ballwasm.js) in the browser:
+# the glue's layout, the page's core over 2000 matches, and every double of
+# 20,000 random segments (two seeds) equal to the native ball_segment_eval's,
+# bit for bit
 if(TARGET ball_wasm)
   add_test(NAME web_wasm
     COMMAND ${BALL_WEB_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/wasm_check.py --chromium ${BALL_CHROMIUM}

@@ -1,5 +1,6 @@
 #!/usr/bin/env python3
-"""libball on WebAssembly in a real browser (cmake/BallWasm.cmake,
+"""libball and the page's core on WebAssembly in a real browser
+(cmake/BallWasm.cmake, server/web/wasm/page_core.cpp,
 server/web/page/ballwasm.js): the module and the glue served by Python's
 http.server on 127.0.0.1 (a free port, a thread of this script; Chromium
 refuses to fetch a .wasm from a file:// page), opened in Debian's Chromium,
@@ -11,11 +12,15 @@ Checks, each with its numbers printed:
 
   1. the module loads; it imports nothing the glue must stub, or only WASI
      functions, and none of them is called;
-  2. the glue's layout of ball_model, ball_segment, ball_state and
-     ball_field is the compiler's (wasm_probe_layout);
-  3. the C++17 probe (std::map, std::vector, std::deque over libball's C
-     API; tests/web/wasm_probe.cpp) gives its known answer, 64 n - 2080, and
-     grows the module's memory on the way;
+  2. the glue's layout of ball_model, ball_segment, ball_state, ball_field,
+     ball_plane and ball_racket_def is the compiler's (page_core_layout);
+  3. the page's core (the client library's MatchView over libc++'s
+     containers, the glue's copies by the module's paths): MATCHES matches
+     opened, each given an info and 40 segments (seq s starting at t0 = s
+     s, flying 1 m/s along x without drag), each answers the ball at
+     t = 40.5 s on seq 40 at x = 0.5 m exactly and keeps its window of 16
+     (the ball at 20.5 s is none: seq 20 is gone); the module's memory
+     grows on the way, and all of it is forgotten;
   4. COUNT random segments of each SEED (web_probe segments COUNT SEED): the
      glue's segmentEval, that is ball_segment_eval in the module, equals the
      native ball_segment_eval BIT FOR BIT, each of the nine doubles compared
@@ -47,6 +52,35 @@ import threading
 sys.dont_write_bytecode = True  # no __pycache__ of cdp.py in the source tree
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from cdp import Browser  # noqa: E402
+
+# A MatchInfo message as ball-watch --http writes it (spectator.cpp,
+# info_message; records.cpp's keys): match MATCH, playing, no drag
+def info_message(match):
+    play = {"score": [0, 0], "serving_side": 0, "rally": 0, "live": True, "striker": 0, "bounces": 0,
+            "bounce_side": 0, "net": False, "rally_start": 0.0, "serve_due": False, "serve_at": 0.0, "event_seq": 0}
+    slot = {"held": False, "present": False, "samples": 0, "last_seq": 0, "last_capture_time": 0.0,
+            "owner": "000000000000000000000000"}
+    info = {"match": match, "server": 1, "server_time": 1000.0, "revision": 1, "state": "playing", "scene": "tennis",
+            "level": 1, "players": 2, "play": play, "pause_reason": "none", "pause_slot": -1, "segment_seq": 0,
+            "frame_time": 1 / 60, "time_base": 1.0, "sim_time": 1.0, "state_rate": 60.0, "player_timeout": 1.0,
+            "max_sample_age": 2.0, "max_sample_lead": 0.5, "model_hash": 0, "net_x": 11.885, "court_x": [0, 23.77],
+            "court_z": [0, 10.97], "serve_delay": 1.5, "max_rally_time": 60.0, "serve_v_up": 4.0, "seed": 1,
+            "segment_cause": "serve", "segment_index": -1, "segment_t0": 0.0, "segment_p0": [0, 1, 0],
+            "segment_v0": [0, 0, 0], "segment_s0": [0, 0, 0], "max_racket_speed": 50.0, "racket_margin": 8.0,
+            "segment_grounded": False, "slots": [slot] * 4,
+            "model": {"gravity": 9.81, "mass": 0.057, "air_friction": 0.0, "spin_damping": 1.0, "radius": 0.0,
+                      "floor_level": 0.0, "effects": 0, "extrapolation_time": 0.25, "stale_time": 1.0}}
+    return {"type": "info", "match": match, "live": True, "real": 1000.0, "model_hash": "0000000000000000",
+            "level_name": "easy", "sides": [], "info": info}
+
+
+def segment_message(match, seq):
+    return {"type": "segment", "match": match, "segment": {
+        "match": match, "server": 1, "seq": seq, "cause": "floor", "index": -1, "t0": float(seq),
+        "p0": [0, 1, 0], "v0": [1, 0, 0], "s0": [0, 0, 0], "grounded": True, "sound": False, "correction": False,
+        "server_time": 1000.0, "model_hash": 0, "sample_seq": 0, "sample_source_time": 0, "sample_capture_time": 0,
+        "play": info_message(match)["info"]["play"]}}
+
 
 PAGE = '<!doctype html>\n<meta charset="utf-8">\n<title>ball.wasm</title>\n<link rel="icon" href="data:,">\n<script src="ballwasm.js"></script>\n'
 KEYS = ("position", "velocity", "spin")
@@ -128,22 +162,34 @@ def main():
               "%s (%d bytes) loaded from %s with WebAssembly.instantiate; it imports %s"
               % (os.path.basename(a.wasm), size, url, ", ".join(got["imports"]) or "nothing"))
 
-        # 2. the glue's layout against the compiler's, in wasm_probe.cpp's order
+        # 2. the glue's layout against the compiler's, in page_core.cpp's order
         glue = browser.evaluate(
             "(() => { const L = BallWasm.layout, s = L.segment, st = L.state, f = L.field;"
             " return [L.model, s.size, s.t0, s.p0, s.v0, s.s0, s.grounded, st.size, st.position, st.velocity,"
-            " st.spin, f.size, f.name, f.type, f.offset, L.vec3]; })()")
-        compiled = browser.evaluate("Array.from({length: %d}, (_, i) => ball.exports.wasm_probe_layout(i))" % len(glue))
-        end = browser.evaluate("ball.exports.wasm_probe_layout(%d)" % len(glue))
+            " st.spin, f.size, f.name, f.type, f.offset, L.vec3, L.plane, L.racket]; })()")
+        compiled = browser.evaluate("Array.from({length: %d}, (_, i) => ball.exports.page_core_layout(i))" % len(glue))
+        end = browser.evaluate("ball.exports.page_core_layout(%d)" % len(glue))
         check(glue == compiled and end == -1, "ballwasm.js's %d sizes and offsets are wasm32's: %s" % (len(glue), glue))
 
-        # 3. the C++ probe: libc++'s containers over libball; the memory grows under it
-        n = 100000
-        history = browser.evaluate("ball.exports.wasm_probe_history(%d)" % n)
-        grown = browser.evaluate("ball.exports.memory.buffer.byteLength")
-        check(history == 64 * n - 2080 and grown > got["bytes"],
-              "C++ probe (std::map, std::vector, std::deque): %s for n = %d, want %d; memory %d -> %d bytes"
-              % (history, n, 64 * n - 2080, got["bytes"], grown))
+        # 3. the page's core: MatchView over libc++'s containers, fed through the glue; the memory grows under it
+        matches = 2000
+        core = browser.evaluate(
+            "(() => { const p = ball.pageCore(), info = %s, seg = %s, n = %d, out = {ok: 0, info: 0, segs: 0};"
+            " for (let m = 0; m < n; ++m) {"
+            "  info.match = info.info.match = seg.match = seg.segment.match = m;"
+            "  out.info += p.take(info, 0);"
+            "  for (let s = 1; s <= 40; ++s) { seg.segment.seq = s; seg.segment.t0 = s; out.segs += p.take(seg, 0) === 0; }"
+            "  const b = p.ball(m, 40.5), gone = p.ball(m, 20.5);"
+            "  out.ok += b !== null && b.seq === 40 && b.position[0] === 0.5 && gone === null; }"
+            " out.bytes = ball.exports.memory.buffer.byteLength;"
+            " for (let m = 0; m < n; ++m) p.forget(m);"
+            " out.after = p.ball(0, 40.5); p.close(); return out; })()"
+            % (json.dumps(info_message(0)), json.dumps(segment_message(0, 1)), matches))
+        check(core["info"] == matches and core["segs"] == 40 * matches and core["ok"] == matches
+              and core["after"] is None and core["bytes"] > got["bytes"],
+              "page core: %d matches, %d infos and %d segments taken; %d answer seq 40 at x = 0.5 m and keep 16 "
+              "segments; memory %d -> %d bytes; forgotten: %s"
+              % (matches, core["info"], core["segs"], core["ok"], got["bytes"], core["bytes"], core["after"]))
 
         # 4. the cases, fetched by the page, evaluated by the module; each double's bits back
         browser.evaluate("fetch('cases.json').then(r => r.json()).then(c => { window.cases = c; return c.length; })")

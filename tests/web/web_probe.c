@@ -2,14 +2,16 @@
  *
  *   web_probe segments N SEED
  *       N random flight models, segments and times (kit/seeded.h) with
- *       ball_segment_eval's position, one JSON array: what the page's own
- *       evaluation (protocol.js) is held to
+ *       ball_segment_eval's state, one JSON array, every double to the bit
+ *       (%.17g): what the page's own evaluation (libball on WebAssembly,
+ *       fed as the page feeds it) is held to, bit for bit
  *
  *   web_probe shot PNG FOV EX EY EZ TX TY TZ UX UY UZ BX BY BZ [X Y Z]...
  *       a screenshot of the page's view (read with libball's PNG reader)
  *       against libball's projection (ball_camera_project) with that
  *       camera: one line for the ball at (BX, BY, BZ), its projection and
- *       the centroid of its yellow pixels (tests/render/ball_pixels.h), and
+ *       the centroid of the yellow pixels (tests/render/ball_pixels.h)
+ *       within 25 pixels of it, and
  *       one line per point, its projection and the brightest red of the 3 x
  *       3 pixels around it (a court line is white, the court blue)
  *
@@ -80,6 +82,26 @@ static int segments(int n, unsigned long long seed) {
   return 0;
 }
 
+/* The ball's yellow pixels within BALL_WINDOW pixels of (px, py), each way: their
+ * centroid and how many (a trail over the green ground blends into the
+ * ball's yellow elsewhere in a picture). */
+#define BALL_WINDOW 25
+static long ball_near(const unsigned char *rgb, int w, int h, double px, double py, double *cx, double *cy) {
+  unsigned char window[3 * (2 * BALL_WINDOW + 1) * (2 * BALL_WINDOW + 1)];
+  int x0 = (int)floor(px) - BALL_WINDOW, y0 = (int)floor(py) - BALL_WINDOW, x, y, side = 2 * BALL_WINDOW + 1;
+  long n;
+  for (y = 0; y < side; ++y)
+    for (x = 0; x < side; ++x) {
+      unsigned char *q = window + 3 * (y * side + x);
+      int sx = x0 + x, sy = y0 + y;
+      if (sx >= 0 && sy >= 0 && sx < w && sy < h) memcpy(q, rgb + 3 * ((size_t)sy * w + sx), 3);
+      else memset(q, 0, 3);
+    }
+  n = ball_centroid(window, side, side, cx, cy);
+  if (n) *cx += x0, *cy += y0;
+  return n;
+}
+
 static int shot(int argc, char **argv) {
   unsigned char *rgb;
   int w, h, i;
@@ -107,7 +129,7 @@ static int shot(int argc, char **argv) {
     free(rgb);
     return 1;
   }
-  n = ball_centroid(rgb, w, h, &cx, &cy);
+  n = ball_near(rgb, w, h, px, py, &cx, &cy);
   printf("ball projected=%.3f,%.3f centroid=%.3f,%.3f pixels=%ld size=%dx%d\n", px, py, cx, cy, n, w, h);
   for (i = 16; i + 2 < argc; i += 3) {
     ball_vec3 p = ball_v3(strtod(argv[i], NULL), strtod(argv[i + 1], NULL), strtod(argv[i + 2], NULL));

@@ -50,6 +50,12 @@ BALL_API const char *ball_camera_preset_name(ball_camera_preset preset);
 BALL_API ball_status ball_camera_from_preset(const ball_model *model, ball_camera_preset preset, double aspect,
                                              ball_camera *out);
 
+/* The same, framing the floor of ball_floor_layout_court (a court given
+ * instead of the one the net implies). BALL_EINVAL for NULL, BALL_ENONFINITE
+ * or BALL_ERANGE for a court ball_floor_layout_court refuses. */
+BALL_API ball_status ball_camera_from_preset_court(const ball_model *model, const double court[4],
+                                                   ball_camera_preset preset, double aspect, ball_camera *out);
+
 /* The camera called name: one of the scene's render.cameras (looked up
  * first, so a scene may redefine a preset's name) or a preset. BALL_ENOTFOUND
  * for an unknown name. */
@@ -84,6 +90,48 @@ typedef struct ball_floor_layout {
 
 /* The floor of a model as ball_render_draw draws it. BALL_EINVAL for NULL. */
 BALL_API ball_status ball_floor_layout_of(const ball_model *model, ball_floor_layout *out);
+
+/* The floor of a model around a court given instead of the one its net
+ * implies: court = {x0, z0, x1, z1} on the floor plane, x0 < x1, z0 < z1
+ * (a ball server's rules judge a court of their own: MatchInfo's court_x and
+ * court_z). The ground grows to hold it; the lines are a tennis court's on
+ * it: the outer lines and, with a net across the court, the service lines at
+ * 6.40 / 11.885 of each half from the net and the centre line between them.
+ * BALL_EINVAL for NULL, BALL_ENONFINITE for a NaN or infinite corner,
+ * BALL_ERANGE for an empty court or a corner beyond BALL_MAX_COORD. */
+BALL_API ball_status ball_floor_layout_court(const ball_model *model, const double court[4], ball_floor_layout *out);
+
+/* ---- the palette ---------------------------------------------------------- */
+
+/* A colour: red, green and blue, each in [0, 1]. */
+typedef struct ball_rgb {
+  float r, g, b;
+} ball_rgb;
+
+/* The renderer's colours and opacities (docs/render.md, "What is drawn"):
+ * fixed, so that frames compare. A client that draws a court itself (the
+ * spectator page) takes its colours from here. */
+typedef struct ball_palette {
+  ball_rgb sky;                               /* the background */
+  ball_rgb ground;                            /* the floor quad */
+  ball_rgb court;                             /* the court (with a net) */
+  ball_rgb line;                              /* court lines; the net's tape and outline */
+  ball_rgb grid;                              /* the 1 m grid (without a net) */
+  ball_rgb net;                               /* the net; the ball's shadow; racket rims */
+  ball_rgb wall;                              /* walls */
+  ball_rgb wall_edge;                         /* walls' outlines */
+  ball_rgb ball;                              /* the ball (a colour nothing else has) */
+  ball_rgb trail;                             /* the ball's trail */
+  ball_rgb rackets[BALL_MAX_RACKETS];         /* racket i's disc */
+  ball_rgb markers[BALL_EVENT_KIND_COUNT];    /* an event's marker, by ball_event_kind */
+  float net_alpha;                            /* opacity of the net, [0, 1] */
+  float tape_alpha;                           /* of the net's tape */
+  float wall_alpha;                           /* of a wall */
+  float shadow_alpha;                         /* of the ball's shadow */
+} ball_palette;
+
+/* The palette ball_render_draw draws with. BALL_EINVAL for NULL. */
+BALL_API ball_status ball_render_palette(ball_palette *out);
 
 /* ---- frames from plain data ------------------------------------------------ */
 
