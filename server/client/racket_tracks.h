@@ -12,6 +12,7 @@
 #include <memory>
 
 #include "ball/ball.h"
+#include "match_rackets.h"
 #include "watcher.h"
 
 namespace ballsrv {
@@ -31,13 +32,8 @@ class RacketTracks {
   uint64_t dropped() const { return dropped_; }
 
  private:
-  struct Match {
-    std::unique_ptr<ball_sim> sim;          // its model's rackets are the slots' tracks
-    uint32_t server = 0;
-    std::array<ParticipantId, kMaxPlayers> owners{};
-  };
   std::function<ball_model(const MatchInfoOut &)> court_;
-  std::map<uint32_t, Match> matches_;
+  std::map<uint32_t, MatchRackets> matches_;
   uint64_t taken_ = 0, dropped_ = 0;
 };
 

@@ -13,6 +13,7 @@
 #include "check.hpp"
 #include "client_core.h"
 #include "fake_client_port.h"
+#include "match_rackets.h"
 #include "game.h"
 
 using namespace test;
@@ -441,6 +442,35 @@ TEST(a_model_taken_before_the_match_is_followed_is_kept) {
   CHECK_EQ(core.watch(7, &why), BALL_OK);
   CHECK(core.view(7)->model() != nullptr);
   CHECK_EQ(ball_model_hash(core.view(7)->model()), g.match.info().model_hash);
+}
+
+// The rackets a client draws (the watcher's and the page's one rule): a
+// slot's track starts anew with a new holder, every track with a new
+// server; a new level keeps them; a slot the match has not is refused.
+TEST(the_rackets_start_anew_with_a_holder_or_a_server) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  MatchRackets r;
+  ball_racket_pose p;
+  CHECK_EQ(r.push(0, ball_racket_sample{1.0, ball_v3(1, 1, 5), ball_v3(1, 0, 0)}), BALL_EAGAIN);
+  MatchInfoOut i = info_of(g);
+  CHECK(r.follow(i, g.match.model()));
+  CHECK_EQ(r.push(0, ball_racket_sample{1.0, ball_v3(1, 1, 5), ball_v3(1, 0, 0)}), BALL_OK);
+  CHECK_EQ(r.push(1, ball_racket_sample{1.0, ball_v3(20, 1, 5), ball_v3(-1, 0, 0)}), BALL_OK);
+  CHECK_EQ(r.push(2, ball_racket_sample{1.0, ball_v3(1, 1, 5), ball_v3(1, 0, 0)}), BALL_ERANGE);
+  CHECK_EQ(r.pose(0, 1.0, &p), BALL_OK);
+  CHECK(g.control(ControlKind::level, participant(1), -1, 3) == Reason::none);  // a new model: kept
+  CHECK(r.follow(info_of(g), g.match.model()));
+  CHECK_EQ(r.pose(0, 1.0, &p), BALL_OK);
+  CHECK_EQ(g.control(ControlKind::leave, participant(1), 0), Reason::none);  // slot 0 changes hands
+  CHECK_EQ(g.join(0, participant(3)), Reason::none);
+  CHECK(r.follow(info_of(g), g.match.model()));
+  CHECK_EQ(r.pose(0, 1.0, &p), BALL_ENOTFOUND);  // its track anew
+  CHECK_EQ(r.pose(1, 1.0, &p), BALL_OK);         // the other's kept
+  MatchInfoOut other = info_of(g, 2);            // another server: every track anew
+  CHECK(r.follow(other, g.match.model()));
+  CHECK_EQ(r.pose(1, 1.0, &p), BALL_ENOTFOUND);
 }
 
 // CREATE goes out until a MatchInfo of the match appears; the list holds

@@ -6,7 +6,7 @@
 // segments, the segment in effect, corrections and the events they void),
 // its clock is the client library's SimClock over the watcher's (sim time,
 // realtime) pairs, the ball is libball's ball_flight_eval of the segment in
-// effect, the rackets are libball's tracks (a ball_sim of the match's model:
+// effect, the rackets are libball's tracks (MatchRackets, match_rackets.h:
 // ball_racket_push, ball_racket_estimate, as RacketTracks keeps them for
 // ball-watch's own frames) and the cameras libball's presets.
 //
@@ -32,6 +32,7 @@
 #include "ball/ball.h"
 #include "ball/render.h"
 #include "ball/vec3.h"
+#include "match_rackets.h"
 #include "match_view.h"
 #include "sim_clock.h"
 
@@ -241,9 +242,7 @@ struct PageMatch {
   double info_real = 0.0;
   bool has_court = false;      // the match's whole model (the court message)
   ball_model court{};
-  std::unique_ptr<ball_sim> tracks;  // its rackets: one libball track per slot
-  uint32_t tracks_server = 0;
-  std::array<ParticipantId, kMaxPlayers> owners{};
+  MatchRackets rackets;        // its rackets: one libball track per slot (the watcher's rules)
   std::vector<Kept> events;  // oldest first
 
   // The segment in effect at sim time `sim`, prepared; nullptr: none.
@@ -263,13 +262,9 @@ struct PageMatch {
     while (old < events.size() && (events.size() - old > kKeptEvents || events[old].event.time < e.time - kKeptFor)) ++old;
     events.erase(events.begin(), events.begin() + static_cast<long>(old));
   }
-  // The racket tracks anew: a new model, a new server (as RacketTracks)
-  void start_tracks() {
-    tracks.reset();
-    owners = {};
-    if (!has_court) return;
-    auto sim = std::make_unique<ball_sim>();
-    if (ball_sim_init(sim.get(), &court) == BALL_OK) tracks = std::move(sim);
+  // The rackets as the newest MatchInfo has the match, with its court's model
+  void follow_rackets() {
+    if (has_info && has_court) rackets.follow(info, court);
   }
 };
 
@@ -311,17 +306,10 @@ int take_info(page_core *core) {
   PageMatch &m = core->match(in.match);
   std::vector<ViewEvent> notes;
   if (!m.view->on_info(in.info, in.real, &notes)) return 0;
-  bool new_server = m.has_info && m.info.server_id != in.info.server_id;
   m.info = in.info;
   m.info_real = in.real;
   m.has_info = true;
-  if (new_server || !m.tracks) m.start_tracks();  // a new server: its tracks start anew (RacketTracks)
-  if (m.tracks)
-    for (int i = 0; i < kMaxPlayers; ++i)
-      if (m.owners[i] != in.info.slots[i].owner) {  // a new holder, on its own clock
-        if (i < ball_sim_model(m.tracks.get())->n_rackets) ball_racket_clear(m.tracks.get(), i);
-        m.owners[i] = in.info.slots[i].owner;
-      }
+  m.follow_rackets();
   return 1;
 }
 
@@ -485,7 +473,6 @@ PAGE_API int page_core_court(page_core *core, uint32_t match, const ball_model *
       ball_model_hash(model) != std::strtoull(hash, nullptr, 16))
     return 0;
   PageMatch &m = core->match(match);
-  bool same = m.has_court && ball_model_hash(&m.court) == ball_model_hash(model);
   m.court = *model;
   m.has_court = true;
   MatchModelOut wire;
@@ -494,7 +481,7 @@ PAGE_API int page_core_court(page_core *core, uint32_t match, const ball_model *
   wire.model_hash = ball_model_hash(model);
   wire.model = *model;
   m.view->on_model(wire);
-  if (!same) m.start_tracks();
+  m.follow_rackets();
   return 1;
 }
 
@@ -504,19 +491,17 @@ PAGE_API int page_core_court(page_core *core, uint32_t match, const ball_model *
 PAGE_API int page_core_racket(page_core *core, uint32_t match, int player, double t, double cx, double cy, double cz,
                               double nx, double ny, double nz) {
   PageMatch *m = core->find(match);
-  if (!m || !m->tracks || !m->has_info) return BALL_EAGAIN;
-  if (player < 0 || player >= std::min(m->info.players, ball_sim_model(m->tracks.get())->n_rackets)) return BALL_ERANGE;
+  if (!m) return BALL_EAGAIN;
   ball_racket_sample s{t, ball_v3(cx, cy, cz), ball_v3(nx, ny, nz)};
-  return ball_racket_push(m->tracks.get(), player, &s);
+  return m->rackets.push(player, s);
 }
 // Slot `slot`'s racket at sim time t into the number slots (kind pose): a
 // ball_status (ball_racket_estimate's; BALL_EAGAIN without tracks).
 PAGE_API int page_core_pose(page_core *core, uint32_t match, int slot, double t) {
   PageMatch *m = core->find(match);
-  if (!m || !m->tracks || !m->has_info) return BALL_EAGAIN;
-  if (slot < 0 || slot >= std::min(m->info.players, ball_sim_model(m->tracks.get())->n_rackets)) return BALL_ERANGE;
+  if (!m) return BALL_EAGAIN;
   ball_racket_pose p;
-  ball_status st = ball_racket_estimate(m->tracks.get(), slot, t, &p);
+  ball_status st = m->rackets.pose(slot, t, &p);
   if (st != BALL_OK) return st;
   const double v[] = {p.center.x, p.center.y, p.center.z, p.normal.x, p.normal.y, p.normal.z,
                       p.velocity.x, p.velocity.y, p.velocity.z};
