@@ -161,7 +161,11 @@ class Config(_Struct):  # ball_net_config
                 ("max_matches", ctypes.c_int),
                 ("ball_states", ctypes.c_int),
                 ("clock", _Clock),
-                ("clock_user", ctypes.c_void_p)]
+                ("clock_user", ctypes.c_void_p),
+                ("link_delay", ctypes.c_double),
+                ("link_jitter", ctypes.c_double),
+                ("link_loss", ctypes.c_double),
+                ("link_seed", ctypes.c_uint64)]
 
 
 class Slot(_Struct):  # ball_net_slot
@@ -183,7 +187,8 @@ class Match(_Struct):  # ball_net_match
                 ("sim_time", ctypes.c_double),
                 ("net_x", ctypes.c_double),
                 ("court_x", ctypes.c_double * 2),
-                ("court_z", ctypes.c_double * 2)]
+                ("court_z", ctypes.c_double * 2),
+                ("model_hash", ctypes.c_uint64)]
 
 
 class Ball(_Struct):  # ball_net_ball

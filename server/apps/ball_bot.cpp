@@ -1,17 +1,18 @@
-// ball-bot: an autonomous player (docs/server.md, "Bots"). One BotPlayer
-// (player.h) in a PlayerGroup over the DDS client port: the client
-// library's core joins its slot and maps its clock to the match's sim
-// clock; the bot plans every ball from the segment in effect with the
-// match's model from the wire (no scene file) and sends its racket pose at
-// its sample rate through a link with the chosen delay, jitter, loss and
-// noise. One loop, one thread.
+// ball-bot: an autonomous player (docs/server.md, "Bots"), a game on the
+// client library (ball/net.h). One BotPlayer (player.h) in a PlayerGroup
+// over one client: the library joins its slot and maps its clock to the
+// match's sim clock; the bot plans every ball from the segment in effect
+// with the match's model from the wire (no scene file) and pushes its
+// racket pose at its sample rate, with the chosen noise, through the
+// client's simulated network of the chosen delay, jitter and loss. One
+// loop, one thread.
 #include <CLI/CLI.hpp>
 #include <cinttypes>
 #include <cstdio>
+#include <cstdlib>
 
-#include "client_endpoints.h"
-#include "open_domain.h"
 #include "common.h"
+#include "open_client.h"
 #include "options.h"
 #include "player_group.h"
 
@@ -33,7 +34,7 @@ int main(int argc, char **argv) {
   FieldOptions<PlayerParams> player_opt;
   player_opt.add(cli, player_fields(), pp);
   cli.add_option("--duration", duration, "stop after S real seconds (0: until SIGINT/SIGTERM)")->check(CLI::Range(0.0, 1e9));
-  cli.add_flag("--stay", stay, "keep the slot on exit (no LEAVE): the match pauses as if the bot vanished");
+  cli.add_flag("--stay", stay, "keep the slot on exit: no LEAVE, it ends at once as if the bot vanished (the match pauses)");
   cli.add_option("--stats-json", stats_json, "write the bot's counters to FILE as JSON at exit");
   cli.add_flag("--quiet,-q", quiet, "print only errors");
   add_dds_options(cli, &dds_opt);
@@ -41,43 +42,48 @@ int main(int argc, char **argv) {
   player_opt.apply(&pp);
 
   std::string err;
-  ServerChoice chosen;
-  if (!ServerChoice::parse(pp.servers, &chosen, &err)) return fail(kProgram, err);
   install_stop_signals();
-  auto domain = open_domain(dds_opt, "ball-bot", &err);
-  if (!domain) return fail(kProgram, err);
-  // under DDS Security a player writes in its match's partition only (docs/security.md)
-  std::string partition = domain->secure() ? dds::match_partition(pp.match) : "";
-  auto port = dds::ClientEndpoints::open(
-      *domain, {kMaxPlayers, 1, dds::kClientRoom, false, false, partition, chosen.bound()}, &err);
-  if (!port) return fail(kProgram, err);
-  PlayerGroup group({BotPlayer(pp)}, domain->id(), chosen);
-  const BotPlayer &bot = group.bots()[0];
-  bool was_joined = false;
-  const double start = mono_now();
-  for (double next_tick = start; !stop_requested(); sleep_until(next_tick)) {
-    double now = mono_now();
-    if (duration > 0.0 && now - start >= duration) break;
-    group.tick(*port, now, realtime_now());
-    if (bot.joined() != was_joined && !quiet)
-      std::printf("%s: %s match %u slot %d\n", kProgram, bot.joined() ? "holds" : "lost", pp.match, bot.slot());
-    was_joined = bot.joined();
-    next_tick += kTick;
-    if (next_tick < now) next_tick = now + kTick;
+  ball_net_client *client =
+      open_client(dds_opt, "ball-bot", pp.servers, [&](ball_net_config *c) { set_link(pp, c); }, &err);
+  if (!client) return fail(kProgram, err);
+  int left = 0;
+  BotReport r;
+  {
+    PlayerGroup group({BotPlayer(pp)}, client);
+    const BotPlayer &bot = group.bots()[0];
+    bool was_joined = false;
+    const double start = mono_now();
+    for (double next_tick = start; !stop_requested(); sleep_until(next_tick)) {
+      double now = mono_now();
+      if (duration > 0.0 && now - start >= duration) break;
+      group.tick(now);
+      if (!group.error().empty()) {
+        err = group.error();
+        break;
+      }
+      if (bot.joined() != was_joined && !quiet)
+        std::printf("%s: %s match %u slot %d\n", kProgram, bot.joined() ? "holds" : "lost", pp.match, bot.slot());
+      was_joined = bot.joined();
+      next_tick += kTick;
+      if (next_tick < now) next_tick = now + kTick;
+    }
+    left = stay ? 0 : group.leave();
+    r = group.report(0);
   }
-  int left = stay ? 0 : group.leave(*port);
-  BotReport r = group.report(0);
-  r.untrusted = port->untrusted();
-  r.refused += r.untrusted;
   if (!quiet)
     std::printf("%s: match %u slot %d: %" PRIu64 " samples taken, %" PRIu64 " lost on the link, %" PRIu64
                 " written, %" PRIu64 " writes refused; %" PRIu64 " segments; %" PRIu64 " balls played (%" PRIu64
                 " late, %" PRIu64 " missed on purpose); %" PRIu64 " server samples refused\n",
                 kProgram, r.match, r.slot, r.samples, r.lost, r.written, r.write_failures, r.segments, r.plans,
                 r.late, r.missed_on_purpose, r.refused);
-  if (!stats_json.empty() && !write_file(stats_json, json(r).dump(1), &err)) return fail(kProgram, err);
+  int rc = err.empty() ? 0 : fail(kProgram, err);  // (a JOIN the client refused)
+  if (!stats_json.empty() && !write_file(stats_json, json(r).dump(1), &err)) rc = fail(kProgram, err);
+  if (stay) {  // vanish: the slot stays held until the server misses the bot (ball_net_close would LEAVE)
+    std::fflush(nullptr);
+    std::_Exit(rc);
+  }
   // a LEAVE written just now must get out before the participant goes
   if (left) sleep_until(mono_now() + 0.2);
-  dds::set_exit_status_if_stuck(0);  // all is written: a stuck DDS teardown still ends well (domain.h)
-  return 0;
+  ball_net_free(client);
+  return rc;
 }

@@ -9,8 +9,9 @@
 #include <sstream>
 
 #include "client_endpoints.h"
-#include "open_domain.h"
 #include "load.h"
+#include "open_client.h"
+#include "open_domain.h"
 #include "player_group.h"
 #include "process.h"
 
@@ -71,23 +72,31 @@ void add_usage(const Snapshot &a, const Snapshot &b, double seconds, LoadRow *ro
 }
 
 // Plays every slot of its matches over the warm-up and the window; hands
-// the part to `done` while the participant still lives (its teardown may
-// be the one that sticks: dds::run_bounded), and calls at_window at the
-// window's start and end.
+// the part to `done` while the participants still live (a teardown may be
+// the one that sticks: dds::run_bounded), and calls at_window at the
+// window's start and end. The bots play through one client of the client
+// library (ball/net.h), as games do; a meter beside them, a reader of the
+// server's topics on a participant of its own, times the hits' segments by
+// DDS's reception stamps and takes the server's statuses.
 bool drive(const LoadOptions &o, const std::function<void()> &at_window,
            const std::function<void(const LoadPart &)> &done, std::string *err) {
-  auto domain = open_domain(o.dds, "ball-load", err);
+  auto domain = open_domain(o.dds, "ball-load-meter", err);
   if (!domain) return false;
   int room = std::max(o.first_match + o.matches, dds::kClientRoom);
-  // under DDS Security its writers are in every match's partition it plays (an identity granted
-  // match/*, as ./run certs makes `load`; docs/security.md)
-  std::string partitions;
-  for (int m = o.first_match; domain->secure() && m < o.first_match + o.matches; ++m)
-    partitions += (partitions.empty() ? "" : ";") + dds::match_partition(static_cast<uint32_t>(m));
-  auto dds_port =
-      dds::ClientEndpoints::open(*domain, {o.matches * 2, o.matches, room, false, true, partitions, {}}, err);
-  if (!dds_port) return false;
-  CountingPort port(*dds_port);
+  dds::ClientNeeds reads;
+  reads.players = 0;  // it writes nothing
+  reads.matches = room;
+  reads.status = true;
+  reads.states = false;
+  auto meter_port = dds::ClientEndpoints::open(*domain, reads, err);
+  if (!meter_port) return false;
+  CountingPort meter(*meter_port);
+  ball_net_client *client = open_client(o.dds, "ball-load", "", [&](ball_net_config *c) {
+    set_link(o.bot, c);
+    c->max_matches = room;
+    c->ball_states = 1;  // the bots read the ball states the server writes (--state-rate): their cost is measured
+  }, err);
+  if (!client) return false;
   std::vector<BotPlayer> bots;
   for (int m = o.first_match; m < o.first_match + o.matches; ++m)
     for (int slot = 0; slot < 2; ++slot) {
@@ -97,74 +106,95 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       p.seed = o.bot.seed + static_cast<uint64_t>(m * 2 + slot);
       bots.emplace_back(p);
     }
-  PlayerGroup group(std::move(bots), domain->id(), ServerChoice{});
-  const double start = mono_now();
-  group.start_at(bot_starts(o.first_match, o.matches, o.bot.seed, stagger_of(o), start));
   LoadPart part;
-  bool have_first = false, measuring = false;
-  double window_start = -1.0, window_end = 0.0, samples_before = 0.0;
-  PortCounts counts_before;
-  if (o.window_start >= 0.0) {  // the parent's window, on this process's monotonic clock
-    window_start = start + (o.window_start - realtime_now());
-    window_end = window_start + o.duration;
-  }
-  for (double next_tick = start; !stop_requested(); sleep_until(next_tick)) {
-    double now = mono_now(), real = realtime_now();
-    if (window_start < 0.0 && (group.all_joined() || now - start > o.warmup * 3)) {
-      window_start = std::max(now, start + o.warmup);
+  bool refused = false;
+  {
+    PlayerGroup group(std::move(bots), client);
+    const double start = mono_now();
+    group.start_at(bot_starts(o.first_match, o.matches, o.bot.seed, stagger_of(o), start));
+    bool have_first = false, measuring = false;
+    double window_start = -1.0, window_end = 0.0;
+    uint64_t samples_before = 0, bytes_before = 0;
+    PortCounts counts_before;
+    if (o.window_start >= 0.0) {  // the parent's window, on this process's monotonic clock
+      window_start = start + (o.window_start - realtime_now());
       window_end = window_start + o.duration;
-    } else if (window_start > 0.0 && now >= window_end) {
-      break;
     }
-    if (!measuring && window_start > 0.0 && now >= window_start) {
-      measuring = true;
-      part.row.ready = group.all_joined();
-      samples_before = static_cast<double>(group.samples_written());
-      counts_before = port.counts();
-      if (at_window) at_window();
-    }
-    group.tick(port, now, real, [&](const SegmentOut &seg, double tick) {
-      if (!measuring || seg.cause != Cause::racket || !seg.sample.valid) return;
-      // when DDS received it, not this tick's time (ticks are kTick apart)
-      double recv = seg.reception.received > 0.0 ? seg.reception.received : tick;
-      part.latency.push_back(recv - seg.sample.source_time);
-      const MatchInfoOut *info = port.info(seg.match_id);
-      // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one;
-      // a correction's t0 lies back by its late sample's trip: lag compensation's, not a hit's way out)
-      if (info && info->time_base > 0.0 && info->server_time > 0.0 && !seg.correction) {
-        double hit = server_time_of(*info, seg.segment.t0);
-        part.hit_to_wire.push_back(recv - hit);
-        if (seg.reception.written > 0.0 && seg.reception.received > 0.0) {  // its two parts, where DDS said both
-          part.hit_to_write.push_back(seg.reception.written - hit);
-          part.delivery.push_back(seg.reception.received - seg.reception.written);
+    const WireSizes sizes = meter_port->sizes();
+    for (double next_tick = start; !stop_requested(); sleep_until(next_tick)) {
+      double now = mono_now(), real = realtime_now();
+      if (window_start < 0.0 && (group.all_joined() || now - start > o.warmup * 3)) {
+        window_start = std::max(now, start + o.warmup);
+        window_end = window_start + o.duration;
+      } else if (window_start > 0.0 && now >= window_end) {
+        break;
+      }
+      if (!measuring && window_start > 0.0 && now >= window_start) {
+        measuring = true;
+        part.row.ready = group.all_joined();
+        samples_before = group.samples_written();
+        bytes_before = group.bytes_out();
+        counts_before = meter.counts();
+        if (at_window) at_window();
+      }
+      group.tick(now);
+      if (!group.error().empty()) {
+        *err = group.error();
+        refused = true;
+        break;
+      }
+      MatchInfoOut info;
+      while (meter.take(&info)) {
+      }
+      SegmentOut seg;
+      while (meter.take(&seg)) {
+        if (!measuring || seg.cause != Cause::racket || !seg.sample.valid) continue;
+        // when DDS received it, not this tick's time (ticks are kTick apart)
+        double recv = seg.reception.received > 0.0 ? seg.reception.received : real;
+        part.latency.push_back(recv - seg.sample.source_time);
+        const MatchInfoOut *i = meter.info(seg.match_id);
+        // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one;
+        // a correction's t0 lies back by its late sample's trip: lag compensation's, not a hit's way out)
+        if (i && i->time_base > 0.0 && i->server_time > 0.0 && !seg.correction) {
+          double hit = server_time_of(*i, seg.segment.t0);
+          part.hit_to_wire.push_back(recv - hit);
+          if (seg.reception.written > 0.0 && seg.reception.received > 0.0) {  // its two parts, where DDS said both
+            part.hit_to_write.push_back(seg.reception.written - hit);
+            part.delivery.push_back(seg.reception.received - seg.reception.written);
+          }
         }
       }
-    });
-    StatusOut so;
-    while (port.take(&so)) {
-      if (!measuring) continue;
-      if (!have_first) part.first = so;
-      have_first = true;
-      part.last = so;
-      part.frame_p50.push_back(so.frame_p50);
-      part.frame_p99.push_back(so.frame_p99);
+      StatusOut so;
+      while (meter.take(&so)) {
+        if (!measuring) continue;
+        if (!have_first) part.first = so;
+        have_first = true;
+        part.last = so;
+        part.frame_p50.push_back(so.frame_p50);
+        part.frame_p99.push_back(so.frame_p99);
+      }
+      next_tick += kTick;
+      if (next_tick < now) next_tick = now + kTick;
     }
-    next_tick += kTick;
-    if (next_tick < now) next_tick = now + kTick;
+    if (at_window) at_window();
+    LoadRow &row = part.row;
+    row.matches = o.matches;
+    row.bots = o.matches * 2;
+    row.rate = o.bot.rate;
+    row.seconds = mono_now() - window_start;
+    row.samples_per_s = static_cast<double>(group.samples_written() - samples_before) / std::max(row.seconds, 1e-9);
+    row.write_failures = group.write_failures();
+    // the meter took what the server wrote; the bots' writes are their client's counts
+    part.counts = meter.counts() - counts_before;
+    part.counts.samples_written = group.samples_written() - samples_before;
+    uint64_t control_bytes = group.bytes_out() - bytes_before - part.counts.samples_written * sizes.sample;
+    part.counts.controls_written = sizes.control > 0 ? control_bytes / sizes.control : 0;
+    group.leave();
   }
-  if (at_window) at_window();
-  LoadRow &row = part.row;
-  row.matches = o.matches;
-  row.bots = o.matches * 2;
-  row.rate = o.bot.rate;
-  row.seconds = mono_now() - window_start;
-  row.samples_per_s = (static_cast<double>(group.samples_written()) - samples_before) / std::max(row.seconds, 1e-9);
-  row.write_failures = group.write_failures();
-  part.counts = port.counts() - counts_before;
-  group.leave(port);
   sleep_until(mono_now() + 0.3);  // the LEAVEs get out before the participant goes
-  done(part);
-  return true;
+  if (!refused) done(part);
+  ball_net_free(client);
+  return !refused;
 }
 
 // One point of a sweep or the only run: its row, measured.

@@ -1,20 +1,19 @@
 // One autonomous player of one match, free of DDS: what ball-bot runs once
-// and ball-load runs for every slot of many matches. It plays from what the
-// client library's core holds of its match (a MatchView: the trusted
-// MatchInfo, the whole model from the wire, the sim clock, the segment in
-// effect), plans with BotBrain, and says which racket samples to write and
-// when, numbered by the core and sent through a link that delays and loses
-// them as a network would; its group (PlayerGroup) joins its slot and
-// writes them. No scene file: the match's model comes from the wire.
+// and ball-load runs for every slot of many matches. It plays through the
+// client library's C API (ball/net.h), as a game does: the match's model,
+// clock and the segment in effect from the client, planned with BotBrain,
+// and its racket pose pushed at its rate; the client's simulated network
+// (ball_net_config's link_*, from the bot's delay, jitter and loss) delays
+// and loses them as a network would. No scene file: the match's model
+// comes from the wire.
 #pragma once
 
 #include <string>
 #include <vector>
 
+#include "ball/net.h"
 #include "bot.h"
-#include "client_core.h"
 #include "fields.h"
-#include "link.h"
 #include "types.h"
 
 namespace ballsrv {
@@ -38,21 +37,23 @@ struct PlayerParams {
 };
 const std::vector<Field<PlayerParams>> &player_fields();
 
+// The simulated network of a client whose bots play with these settings
+// (their delay, jitter, loss; the link's draws from their seed).
+void set_link(const PlayerParams &params, ball_net_config *config);
+
 struct PlayerCounters {
-  uint64_t taken = 0;     // samples taken
-  uint64_t lost = 0;      // of those, lost on the link
-  uint64_t delivered = 0; // handed to the caller to write
+  uint64_t taken = 0;  // poses taken and pushed (the client writes them, or its simulated network loses them)
 };
 
 class BotPlayer {
  public:
   explicit BotPlayer(const PlayerParams &params);
 
-  // Advances to the monotonic clock's `mono` (the core's clock) with its
-  // match's view (nullptr: not followed yet): plays the segment in effect,
-  // takes a sample at its rate (numbered and mapped to the sim clock by
-  // `core`) and appends those whose (simulated) network trip ends now.
-  void tick(const MatchView *view, ClientCore &core, double mono, std::vector<RacketSampleIn> *samples);
+  // Advances to `mono` of the client's clock on `client`, which follows the
+  // bot's match; `held` the slots of the match the client holds (a bit
+  // each, from its BALL_NET_EVENT_SLOT events): plays the segment in
+  // effect and pushes its racket pose at its rate.
+  void tick(ball_net_client *client, unsigned held, double mono);
 
   uint32_t match() const { return p_.match; }
   int wanted() const { return p_.player; }  // the slot it joins, -1: any
@@ -64,15 +65,15 @@ class BotPlayer {
  private:
   PlayerParams p_;
   BotBrain brain_;
-  Link<RacketSampleIn> link_;
   Rng noise_;
   bool brain_ready_ = false, joined_ = false;
   int slot_ = -1;
   uint64_t model_hash_ = 0;  // the model the brain plays with
-  EffectFeed feed_;          // the segment in effect, handed to the brain
+  bool any_segment_ = false;
+  uint32_t segment_ = 0;     // the seq of the segment in effect handed to the brain
   double next_sample_ = -1.0;
   PlayerCounters counters_;
-  void plan(const MatchView &view, double sim);
+  void plan(ball_net_client *client, double mono, double sim);
 };
 
 }  // namespace ballsrv

@@ -5,37 +5,34 @@
 namespace ballsrv {
 
 namespace {
-CoreSettings core_settings(const ServerChoice &servers) {
-  CoreSettings s;
-  s.servers = servers;
-  return s;
-}
+constexpr int kEventBatch = 64;  // events taken per ball_net_poll
 }  // namespace
 
-PlayerGroup::PlayerGroup(std::vector<BotPlayer> bots, const ParticipantId &me, const ServerChoice &servers)
-    : bots_(std::move(bots)), me_(me), core_(core_settings(servers), me), begun_(bots_.size(), false) {}
+PlayerGroup::PlayerGroup(std::vector<BotPlayer> bots, ball_net_client *client)
+    : bots_(std::move(bots)), client_(client), begun_(bots_.size(), false), events_(kEventBatch) {}
 
-void PlayerGroup::tick(ClientPort &port, double mono, double real,
-                       const std::function<void(const SegmentOut &, double)> &on_segment) {
-  core_.on_segment([&](const SegmentOut &s) {
-    if (on_segment) on_segment(s, real);
-  });
-  core_.pump(port, mono, real);
-  core_.events().clear();  // (the bots play from the views; the events are the watcher's)
-  samples_.clear();
-  std::string why;
-  for (size_t i = 0; i < bots_.size(); ++i) {
-    BotPlayer &b = bots_[i];
-    if (!starts_.empty() && mono < starts_[i]) continue;
-    if (!begun_[i]) {
-      core_.join(b.match(), b.wanted(), port, mono, &why);
+void PlayerGroup::tick(double mono, const std::function<void(const ball_net_event &)> &on_event) {
+  auto due = [&](size_t i) { return starts_.empty() || mono >= starts_[i]; };
+  for (size_t i = 0; i < bots_.size(); ++i)
+    if (!begun_[i] && due(i)) {
+      if (ball_net_join(client_, bots_[i].match(), bots_[i].wanted()) != BALL_OK && error_.empty())
+        error_ = ball_net_message(client_);
       begun_[i] = true;
     }
-    b.tick(core_.view(b.match()), core_, mono, &samples_);
-  }
-  for (const auto &s : samples_) {
-    if (port.write(s)) samples_written_++;
-    else sample_failures_++;
+  int n = kEventBatch;
+  while (n == kEventBatch && ball_net_poll(client_, events_.data(), kEventBatch, &n) == BALL_OK)
+    for (int i = 0; i < n; ++i) {
+      const ball_net_event &e = events_[static_cast<size_t>(i)];
+      if (e.kind == BALL_NET_EVENT_SLOT && e.index >= 0 && e.index < kMaxPlayers) {
+        unsigned bit = 1u << e.index;
+        held_[e.match] = e.value != 0.0 ? held_[e.match] | bit : held_[e.match] & ~bit;
+      }
+      if (on_event) on_event(e);
+    }
+  for (size_t i = 0; i < bots_.size(); ++i) {
+    if (!due(i)) continue;
+    auto h = held_.find(bots_[i].match());
+    bots_[i].tick(client_, h == held_.end() ? 0u : h->second, mono);
   }
 }
 
@@ -43,13 +40,10 @@ void PlayerGroup::start_at(std::vector<double> starts) {
   if (starts.size() == bots_.size()) starts_ = std::move(starts);
 }
 
-int PlayerGroup::leave(ClientPort &port) {
+int PlayerGroup::leave() {
   int n = 0;
-  std::string why;
-  for (auto &b : bots_) {
-    if (!b.joined()) continue;
-    n += core_.leave(b.match(), b.slot(), port, &why) == BALL_OK;
-  }
+  for (auto &b : bots_)
+    if (b.joined()) n += ball_net_leave(client_, b.match(), b.slot()) == BALL_OK;
   return n;
 }
 
@@ -59,30 +53,13 @@ bool PlayerGroup::all_joined() const {
   return true;
 }
 
-uint64_t PlayerGroup::write_failures() const {
-  uint64_t n = sample_failures_;
+uint64_t PlayerGroup::sum(uint64_t ball_net_status::*field) const {
   std::set<uint32_t> matches;
   for (const auto &b : bots_) matches.insert(b.match());
-  for (uint32_t m : matches)
-    if (const OwnCounters *own = core_.own(m)) n += own->write_failures;
-  return n;
-}
-
-uint64_t PlayerGroup::refused() const {
   uint64_t n = 0;
-  std::set<uint32_t> matches;
-  for (const auto &b : bots_) matches.insert(b.match());
+  ball_net_status s;
   for (uint32_t m : matches)
-    if (const MatchView *v = core_.view(m)) n += v->counters().refused;
-  return n;
-}
-
-uint64_t PlayerGroup::segments() const {
-  uint64_t n = 0;
-  std::set<uint32_t> matches;
-  for (const auto &b : bots_) matches.insert(b.match());
-  for (uint32_t m : matches)
-    if (const MatchView *v = core_.view(m)) n += v->counters().segments;
+    if (ball_net_status_of(client_, m, &s) == BALL_OK) n += s.*field;
   return n;
 }
 
@@ -92,16 +69,18 @@ BotReport PlayerGroup::report(size_t i) const {
   r.match = b.match();
   r.slot = b.slot();
   r.samples = b.counters().taken;
-  r.lost = b.counters().lost;
-  r.written = b.counters().delivered;
+  ball_net_status s{};
+  if (ball_net_status_of(client_, b.match(), &s) == BALL_OK) {
+    r.lost = s.link_lost;
+    r.written = s.samples;
+    r.segments = s.segments;
+    r.refused = s.refused + s.untrusted;
+    r.untrusted = s.untrusted;
+  }
   r.write_failures = write_failures();
-  const MatchView *v = core_.view(b.match());
-  r.segments = v ? v->counters().segments : 0;
   r.plans = b.brain_counters().plans;
   r.late = b.brain_counters().late;
   r.missed_on_purpose = b.brain_counters().missed_on_purpose;
-  r.refused = v ? v->counters().refused : 0;
-  r.participant = hex(me_);
   return r;
 }
 

@@ -1,15 +1,16 @@
 // The bots of one process, free of DDS: ball-bot runs one, ball-load every
-// slot of many matches. One client core (the client library's: client_core.h)
-// holds every match the bots play, joins their slots and takes what the
-// server says; each tick the bots play from their matches' views and the
-// group writes their racket samples, counting refused writes.
+// slot of many matches. One client of the client library (ball/net.h: the
+// very calls a game makes) holds every match the bots play and joins their
+// slots; each tick the group polls it, tells each bot the slots its client
+// holds, and the bots play and push their racket poses through it.
 #pragma once
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
-#include "client_core.h"
+#include "ball/net.h"
 #include "player.h"
 #include "records.h"
 
@@ -17,43 +18,46 @@ namespace ballsrv {
 
 class PlayerGroup {
  public:
-  // bots: stable in place from here on; `me` the participant of the port
-  // (a slot is the bots' when the server says it is its), `servers` whose
-  // samples the group takes
-  PlayerGroup(std::vector<BotPlayer> bots, const ParticipantId &me, const ServerChoice &servers);
+  // bots: stable in place from here on; `client`: open, the group's to
+  // use (not to close), its clock the one tick() is given
+  PlayerGroup(std::vector<BotPlayer> bots, ball_net_client *client);
   PlayerGroup(const PlayerGroup &) = delete;
   PlayerGroup &operator=(const PlayerGroup &) = delete;
 
-  // One tick at local time (monotonic `mono`, realtime `real`); every
-  // segment of the group's matches is shown to on_segment too (a meter's,
-  // with `real`: its reception's time when DDS did not say it).
-  void tick(ClientPort &port, double mono, double real,
-            const std::function<void(const SegmentOut &, double)> &on_segment = {});
+  // One tick at `mono` of the client's clock: each bot begun (its JOIN) at
+  // its start, the client polled (its events shown to on_event, if
+  // given), then the bots played.
+  void tick(double mono, const std::function<void(const ball_net_event &)> &on_event = {});
   // Each joined bot's LEAVE, written (a clean exit); how many.
-  int leave(ClientPort &port);
-  // Bot i begins (its JOIN, its first tick) at monotonic starts[i], not
-  // before; the default: at the first tick. Sizes other than the bots' are ignored.
+  int leave();
+  // Bot i begins (its JOIN, its first tick) at starts[i], not before; the
+  // default: at the first tick. Sizes other than the bots' are ignored.
   void start_at(std::vector<double> starts);
 
   std::vector<BotPlayer> &bots() { return bots_; }
   const std::vector<BotPlayer> &bots() const { return bots_; }
   bool all_joined() const;
-  uint64_t samples_written() const { return samples_written_; }  // racket samples written, all ticks
-  uint64_t write_failures() const;                                 // writes refused, samples and controls
-  uint64_t refused() const;    // server samples the core did not take, over the bots' matches
-  uint64_t segments() const;   // segments the core took, over the bots' matches
-  const ClientCore &core() const { return core_; }
+  // the client's words on the first JOIN it refused (e.g. a partition the
+  // identity is not granted under DDS Security); empty while none was
+  const std::string &error() const { return error_; }
+  // the client's counts (ball_net_status) over the bots' matches
+  uint64_t samples_written() const { return sum(&ball_net_status::samples); }
+  uint64_t write_failures() const { return sum(&ball_net_status::write_failures); }
+  uint64_t refused() const { return sum(&ball_net_status::refused); }
+  uint64_t segments() const { return sum(&ball_net_status::segments); }
+  uint64_t bytes_out() const { return sum(&ball_net_status::bytes_out); }
   // A bot's counters as its --stats-json file has them.
   BotReport report(size_t bot) const;
 
  private:
+  uint64_t sum(uint64_t ball_net_status::*field) const;
   std::vector<BotPlayer> bots_;
-  ParticipantId me_;
-  ClientCore core_;
+  ball_net_client *client_;
   std::vector<double> starts_;  // start_at's (empty: every bot at once)
   std::vector<bool> begun_;
-  std::vector<RacketSampleIn> samples_;
-  uint64_t samples_written_ = 0, sample_failures_ = 0;
+  std::map<uint32_t, unsigned> held_;  // by match, the slots the client holds (a bit each)
+  std::vector<ball_net_event> events_;
+  std::string error_;
 };
 
 }  // namespace ballsrv

@@ -189,14 +189,14 @@ void from_json(const json &j, ServerReport &r);
 struct BotReport {
   uint32_t match = 0;
   int slot = -1;
-  uint64_t samples = 0, lost = 0, written = 0, write_failures = 0, segments = 0;
+  uint64_t samples = 0;     // racket poses taken and pushed
+  uint64_t lost = 0, written = 0, write_failures = 0, segments = 0;  // the client's (ball_net_status) in the match
   uint64_t plans = 0, late = 0, missed_on_purpose = 0;
   uint64_t refused = 0;     // server samples not taken (trust.h)
   uint64_t untrusted = 0;   // of them, from a writer without the certificate bound to their server id
-  std::string participant;  // hex GUID prefix
 };
 NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(BotReport, match, slot, samples, lost, written, write_failures, segments, plans,
-                                   late, missed_on_purpose, refused, untrusted, participant)
+                                   late, missed_on_purpose, refused, untrusted)
 
 struct LoadRow {  // one point (match count, state rate) of one round of the load benchmark
   int matches = 0, bots = 0;

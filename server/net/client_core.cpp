@@ -110,6 +110,23 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
   events_.insert(events_.end(), scratch_.begin(), scratch_.end());
   sizes_ = size;
   send_due(port, local);
+  for (auto &kv : followed_) deliver(port, &kv.second, local);
+}
+
+// The poses whose simulated trip has ended by `local`, written.
+void ClientCore::deliver(ClientPort &port, Followed *f, double local) {
+  for (auto &link : f->links)
+    if (link) link->deliver(local, [&](const RacketSampleIn &s) { write(port, s, f); });
+}
+
+bool ClientCore::write(ClientPort &port, const RacketSampleIn &s, Followed *f) {
+  if (!port.write(s)) {
+    f->own.write_failures++;
+    return false;
+  }
+  f->own.samples++;
+  f->own.bytes_out += sizes_.sample;
+  return true;
 }
 
 bool ClientCore::write(ClientPort &port, const ControlIn &c, Followed *f) {
@@ -175,13 +192,25 @@ ball_status ClientCore::join(uint32_t match, int slot, ClientPort &port, double 
     return refuse(BALL_ERANGE, "slot " + std::to_string(slot) + " is not -1 (any) or in [0, " +
                                    std::to_string(kMaxPlayers - 1) + "]",
                   why);
+  const bool was_followed = followed(match) != nullptr;
   Followed *f = follow(match, why);
   if (!f) return BALL_ENOSPACE;
   size_t k = slot < 0 ? kMaxPlayers : static_cast<size_t>(slot);
+  const bool held = slot < 0 ? f->view->slot() >= 0 : f->view->holds(slot);
+  if (!held) {  // the first JOIN now: a writer the transport refuses (a partition not granted) is said here
+    ControlIn c;
+    c.match_id = match;
+    c.seq = ++control_seq_;
+    c.kind = ControlKind::join;
+    c.player = slot;
+    if (!write(port, c, f)) {
+      if (!was_followed) followed_.erase(match);
+      return refuse(BALL_ENETWORK, "the transport refused the join of " + match_name(match), why);
+    }
+  }
   if (slot < 0) f->any = true;
   else f->want[k] = true;
-  f->next_join[k] = local;
-  send_due(port, local);
+  f->next_join[k] = local + settings_.retry;
   return BALL_OK;
 }
 
@@ -227,14 +256,17 @@ ball_status ClientCore::create(uint32_t match, const std::string &scene, int pla
     return refuse(BALL_ERANGE, "level " + std::to_string(level) + " is not in [0, 3]", why);
   if (scene.empty() || scene.size() >= static_cast<size_t>(kNameLen) || !plain_scene_name(scene))
     return refuse(BALL_ERANGE, "scene \"" + scene + "\" is not a name of 1 to 31 letters, digits, '_' or '-'", why);
-  Creating &c = creating_[match];
+  Creating c;
   c.control.match_id = match;
+  c.control.seq = ++control_seq_;
   c.control.kind = ControlKind::create;
   c.control.scene = scene;
   c.control.players = players;
   c.control.level = level;
-  c.next = local;
-  send_due(port, local);
+  if (!write(port, c.control, followed(match)))
+    return refuse(BALL_ENETWORK, "the transport refused the creation of " + match_name(match), why);
+  c.next = local + settings_.retry;
+  creating_[match] = c;
   return BALL_OK;
 }
 
@@ -260,7 +292,7 @@ ball_status ClientCore::ask(uint32_t match, ControlKind kind, double value, Clie
   return BALL_OK;
 }
 
-ball_status ClientCore::sample(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal,
+ball_status ClientCore::number(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal,
                                RacketSampleIn *out, std::string *why) {
   Followed *f = followed(match);
   if (!f || !f->view->holds(slot))
@@ -287,8 +319,6 @@ ball_status ClientCore::sample(uint32_t match, int slot, double local, ball_vec3
   f->sample_seq[k] = s.seq;
   f->pushed[k] = true;
   f->last_push[k] = local;
-  f->own.samples++;
-  f->own.bytes_out += sizes_.sample;
   *out = s;
   return BALL_OK;
 }
@@ -296,15 +326,22 @@ ball_status ClientCore::sample(uint32_t match, int slot, double local, ball_vec3
 ball_status ClientCore::push(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal,
                              ClientPort &port, std::string *why) {
   RacketSampleIn s;
-  ball_status st = sample(match, slot, local, center, normal, &s, why);
+  ball_status st = number(match, slot, local, center, normal, &s, why);
   if (st != BALL_OK) return st;
-  if (port.write(s)) return BALL_OK;
-  // not written: its number is the next one's, and it counts as refused, not written
-  OwnCounters &own = followed(match)->own;
-  followed(match)->sample_seq[static_cast<size_t>(slot)]--;
-  own.samples--;
-  own.bytes_out -= sizes_.sample;
-  own.write_failures++;
+  Followed *f = followed(match);
+  const size_t k = static_cast<size_t>(slot);
+  if (settings_.link.active()) {
+    // its trip through the simulated network: numbered now, written when it ends (lost: a gap in the numbers)
+    auto &link = f->links[k];
+    if (!link)
+      link = std::make_unique<Link<RacketSampleIn>>(
+          settings_.link, settings_.link_seed * 0x9e3779b97f4a7c15ull + (static_cast<uint64_t>(match) << 2) + k + 7);
+    if (!link->send(s, local)) f->own.link_lost++;
+    deliver(port, f, local);
+    return BALL_OK;
+  }
+  if (write(port, s, f)) return BALL_OK;
+  f->sample_seq[k]--;  // not written: its number is the next one's
   return refuse(BALL_ENETWORK, "DDS refused the racket sample", why);
 }
 

@@ -15,16 +15,22 @@
 #include <string>
 #include <vector>
 
+#include "link.h"
 #include "match_view.h"
 #include "port.h"
 
 namespace ballsrv {
 
+// The most matches a client lists and follows (ball_net_config's max_matches).
+constexpr size_t kMaxClientMatches = 4096;
+
 struct CoreSettings {
   ServerChoice servers;         // whose samples it takes
   double retry = 0.5;           // s between a JOIN or a CREATE and the next while the server has not answered
   double silence = 3.0;         // s a match goes unheard before it is not listed (a server writes it once a second)
-  size_t max_matches = 4096;    // matches listed and followed at most (the readers' room)
+  size_t max_matches = kMaxClientMatches;  // matches listed and followed at most (the readers' room)
+  LinkParams link;              // a simulated network for the racket poses (none by default)
+  uint64_t link_seed = 0;       // its draws' seed (each slot's link its own stream from it)
 };
 
 // A match the domain serves: its newest usable MatchInfo.
@@ -36,6 +42,7 @@ struct Listed {
 // What a followed match counts of the client's own writes.
 struct OwnCounters {
   uint64_t samples = 0;         // racket poses written
+  uint64_t link_lost = 0;       // racket poses the simulated network lost (CoreSettings::link)
   uint64_t write_failures = 0;  // poses and controls DDS refused
   uint64_t bytes_in = 0;        // payload bytes of the match's samples taken (ClientPort::sizes)
   uint64_t bytes_out = 0;       // and of the samples and controls written for it
@@ -59,13 +66,11 @@ class ClientCore {
   ball_status create(uint32_t match, const std::string &scene, int players, int level, ClientPort &port,
                      double local, std::string *why);
   ball_status ask(uint32_t match, ControlKind kind, double value, ClientPort &port, std::string *why);
-  // The pose of slot `slot`'s racket at `local`, mapped to the sim clock, numbered and written.
+  // The pose of slot `slot`'s racket at `local`, mapped to the sim clock,
+  // numbered and written: at once, or through the simulated network
+  // (CoreSettings::link) when its trip ends (this call's or a later pump's).
   ball_status push(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal, ClientPort &port,
                    std::string *why);
-  // The sample push() would write, not written (counted as written): for a
-  // caller that sends it itself, a bot through its simulated network.
-  ball_status sample(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal, RacketSampleIn *out,
-                     std::string *why);
   // Every segment of a followed match as it is taken (a meter's: ball-load's latencies).
   void on_segment(std::function<void(const SegmentOut &)> fn) { on_segment_ = std::move(fn); }
   // A LEAVE for every slot held (a client closing); how many were written.
@@ -87,6 +92,7 @@ class ClientCore {
     std::array<uint32_t, kMaxPlayers> sample_seq{};
     std::array<bool, kMaxPlayers> pushed{};
     std::array<double, kMaxPlayers> last_push{};  // the caller's clock of each slot's newest pose
+    std::array<std::unique_ptr<Link<RacketSampleIn>>, kMaxPlayers> links;  // each slot's simulated network
     OwnCounters own;
     bool joining() const;
   };
@@ -97,6 +103,10 @@ class ClientCore {
   Followed *followed(uint32_t match);
   Followed *follow(uint32_t match, std::string *why);
   bool write(ClientPort &port, const ControlIn &c, Followed *f);
+  bool write(ClientPort &port, const RacketSampleIn &s, Followed *f);
+  ball_status number(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal, RacketSampleIn *out,
+                     std::string *why);
+  void deliver(ClientPort &port, Followed *f, double local);
   void take_info(const MatchInfoOut &info, double local);
   void send_due(ClientPort &port, double local);
 

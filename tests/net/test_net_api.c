@@ -86,6 +86,23 @@ static void open_refuses_a_bad_config(void **state) {
   ball_net_config_default(&c);
   c.max_matches = 5000;
   assert_int_equal(ball_net_open(&c, &client, why, sizeof why), BALL_ERANGE);
+  /* the simulated network's ranges (ball/net.h), each bound and NaN */
+  {
+    double *const knob[] = {&c.link_delay, &c.link_jitter, &c.link_loss};
+    const double beyond[] = {10.001, 1.001, 0.901};
+    size_t i;
+    for (i = 0; i < 3; i++) {
+      ball_net_config_default(&c);
+      *knob[i] = beyond[i];
+      assert_int_equal(ball_net_open(&c, &client, why, sizeof why), BALL_ERANGE);
+      assert_non_null(strstr(why, "link_"));
+      *knob[i] = -0.001;
+      assert_int_equal(ball_net_open(&c, &client, why, sizeof why), BALL_ERANGE);
+      *knob[i] = NAN;
+      assert_int_equal(ball_net_open(&c, &client, why, sizeof why), BALL_ERANGE);
+      assert_null(client);
+    }
+  }
   ball_net_config_default(&c);
   c.servers = "1,x";
   assert_int_equal(ball_net_open(&c, &client, why, sizeof why), BALL_ERANGE);
@@ -287,7 +304,7 @@ static void names_and_sizes(void **state) {
   assert_null(ball_net_field(BALL_NET_TYPE_COUNT, 0));
   for (k = 0; ball_net_field(BALL_NET_TYPE_CONFIG, k); k++) {
   }
-  assert_int_equal(k, 12); /* every member of ball_net_config */
+  assert_int_equal(k, 16); /* every member of ball_net_config */
   for (k = 0; k < BALL_STATUS_COUNT; k++) assert_string_not_equal(ball_strerror((ball_status)k), "unknown status");
 }
 

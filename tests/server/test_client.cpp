@@ -1,7 +1,8 @@
 // A client's side without a network: the sim clock estimate (docs/protocol.md,
-// "Time"), the link that delays and loses samples, a BotPlayer joining a
-// match from what MatchInfo says, and a PlayerGroup routing the server's
-// samples to its bots and counting refused writes.
+// "Time"), the link that delays and loses samples (alone, and as a client's
+// simulated network), a BotPlayer joining a match from what MatchInfo says,
+// and a PlayerGroup playing its bots through one client of the client
+// library (ball/net.h) and counting refused writes.
 #include <cmath>
 
 #include <deque>
@@ -9,7 +10,7 @@
 #include <memory>
 
 #include "check.hpp"
-#include "fake_client_port.h"
+#include "fake_net_client.h"
 #include "game.h"
 #include "player_group.h"
 
@@ -99,8 +100,107 @@ void server_says(Game &g, FakeClientPort &port, uint32_t server = 1) {
 }
 }  // namespace
 
+// A client's simulated network (ball_net_config's link_*): each pose pushed
+// is numbered at once and written no sooner than link_delay after its push
+// nor later than link_delay + link_jitter (and a tick), some overtaking
+// others; about link_loss of them are lost, counted, their numbers never
+// written. Every pose pushed is written or lost.
+TEST(a_clients_simulated_network_delays_reorders_and_loses_its_poses) {
+  Game g;
+  const ParticipantId me = participant(9);
+  FakeNet net(me, [](ball_net_config *c) {
+    c->link_delay = 0.1;
+    c->link_jitter = 0.05;
+    c->link_loss = 0.2;
+    c->link_seed = 3;
+  });
+  const uint32_t match = g.match.id();
+  g.control(ControlKind::join, me, 1);
+  CHECK_EQ(ball_net_join(net.client, match, 1), BALL_OK);
+  server_says(g, net.port);
+  ball_net_event ev[16];
+  int n = 0;
+  CHECK_EQ(ball_net_poll(net.client, ev, 16, &n), BALL_OK);
+  const int kPoses = 2000;
+  const double dt = 0.001;
+  std::vector<double> pushed(kPoses + 1, 0.0);  // by seq: the client's clock of its push
+  size_t seen = 0;
+  int early = 0, late = 0, overtaken = 0;
+  uint32_t newest = 0;
+  auto check_written = [&]() {
+    for (; seen < net.port.samples.size(); ++seen) {
+      const RacketSampleIn &s = net.port.samples[seen];
+      CHECK(s.seq >= 1 && s.seq <= static_cast<uint32_t>(kPoses));
+      double trip = net.now - pushed[s.seq];
+      early += trip < 0.1 - 1e-9;
+      late += trip > 0.15 + dt + 1e-9;
+      overtaken += s.seq < newest;
+      newest = std::max(newest, s.seq);
+    }
+  };
+  for (int k = 0; k < kPoses; ++k) {
+    net.now = 1.0 + k * dt;
+    CHECK_EQ(ball_net_push(net.client, match, 1, net.now, {0.0, 1.0, 0.0}, {-1.0, 0.0, 0.0}), BALL_OK);
+    pushed[static_cast<size_t>(k + 1)] = net.now;
+    check_written();
+  }
+  for (int k = 1; k <= 200; ++k) {  // the last on their way, written by the polls
+    net.now = 1.0 + kPoses * dt + k * dt;
+    CHECK_EQ(ball_net_poll(net.client, ev, 16, &n), BALL_OK);
+    check_written();
+  }
+  ball_net_status st;
+  CHECK_EQ(ball_net_status_of(net.client, match, &st), BALL_OK);
+  check::note("%d poses: %llu written, %llu lost; %d overtook another", kPoses,
+              static_cast<unsigned long long>(st.samples), static_cast<unsigned long long>(st.link_lost), overtaken);
+  CHECK_EQ(early, 0);
+  CHECK_EQ(late, 0);
+  CHECK_EQ(st.samples, net.port.samples.size());
+  CHECK_EQ(st.samples + st.link_lost, static_cast<uint64_t>(kPoses));
+  CHECK(st.link_lost >= 310 && st.link_lost <= 490);  // 400 expected, 5 standard deviations
+  CHECK(overtaken > 100);                             // 50 ms of jitter at 1 kHz
+  std::vector<bool> once(kPoses + 1, false);
+  for (const auto &s : net.port.samples) {
+    CHECK(!once[s.seq]);
+    once[s.seq] = true;
+  }
+  // the same seed, the same network: the same poses lost
+  FakeNet again(me, [](ball_net_config *c) {
+    c->link_delay = 0.1;
+    c->link_jitter = 0.05;
+    c->link_loss = 0.2;
+    c->link_seed = 3;
+  });
+  CHECK_EQ(ball_net_join(again.client, match, 1), BALL_OK);
+  server_says(g, again.port);
+  CHECK_EQ(ball_net_poll(again.client, ev, 16, &n), BALL_OK);
+  for (int k = 0; k < kPoses; ++k) {
+    again.now = 1.0 + k * dt;
+    ball_net_push(again.client, match, 1, again.now, {0.0, 1.0, 0.0}, {-1.0, 0.0, 0.0});
+  }
+  again.now += 1.0;
+  CHECK_EQ(ball_net_poll(again.client, ev, 16, &n), BALL_OK);
+  std::vector<bool> twice(kPoses + 1, false);
+  for (const auto &s : again.port.samples) twice[s.seq] = true;
+  CHECK(once == twice);
+}
+
 // A bot's group joins its slot through the client core (JOIN now and every
 // 0.5 s until the MatchInfo shows it), then plays with the model from the
+
+// Bots in a PlayerGroup over a FakeNet: tick(t) sets the client's clock to
+// t and ticks the group.
+struct Players {
+  Players(std::vector<BotPlayer> bots, const ParticipantId &me, void (*more)(ball_net_config *) = nullptr)
+      : net(me, more), group(std::move(bots), net.client) {}
+  void tick(double t) {
+    net.now = t;
+    group.tick(t);
+  }
+  FakeNet net;
+  PlayerGroup group;
+};
+
 // wire, no scene file, and sends at its rate what the server accepts.
 TEST(player_joins_then_sends) {
   Game g;
@@ -109,23 +209,25 @@ TEST(player_joins_then_sends) {
   p.match = g.match.id();
   p.player = 1;
   p.rate = 20.0;
-  PlayerGroup group({BotPlayer(p)}, me, ServerChoice{});
-  FakeClientPort port;
-  group.tick(port, 0.0, 0.0);
+  Players players({BotPlayer(p)}, me);
+  FakeClientPort &port = players.net.port;
+  PlayerGroup &group = players.group;
+  auto tick = [&](double t) { players.tick(t); };
+  tick(0.0);
   CHECK_EQ(port.controls.size(), 1u);
   CHECK(port.controls[0].kind == ControlKind::join && port.controls[0].player == 1);
   CHECK(port.samples.empty());  // nothing before the slot is its own
-  group.tick(port, 0.2, 0.2);
+  tick(0.2);
   CHECK_EQ(port.controls.size(), 1u);  // resent every 0.5 s, not sooner
-  group.tick(port, 0.6, 0.6);
+  tick(0.6);
   CHECK_EQ(port.controls.size(), 2u);
   g.control(ControlKind::join, me, 1);
   server_says(g, port);
-  group.tick(port, 0.7, 0.7);
+  tick(0.7);
   const BotPlayer &bot = group.bots()[0];
   CHECK(bot.joined());
   CHECK_EQ(bot.slot(), 1);
-  for (int k = 1; k <= 20; ++k) group.tick(port, 0.7 + k * 0.05, 0.7 + k * 0.05);
+  for (int k = 1; k <= 20; ++k) tick(0.7 + k * 0.05);
   CHECK(port.samples.size() >= 19 && port.samples.size() <= 21);  // 20 Hz for 1 s
   CHECK_EQ(port.controls.size(), 2u);
   for (size_t i = 1; i < port.samples.size(); ++i) CHECK(port.samples[i].seq > port.samples[i - 1].seq);
@@ -135,7 +237,7 @@ TEST(player_joins_then_sends) {
     in.from = me;
     CHECK(g.match.on_sample(in, g.now) == SampleResult::idle);  // the match waits for slot 0
   }
-  CHECK_EQ(group.leave(port), 1);
+  CHECK_EQ(group.leave(), 1);
   CHECK(port.controls.back().kind == ControlKind::leave && port.controls.back().player == 1);
 }
 
@@ -155,9 +257,11 @@ TEST(players_sample_on_their_own_phases) {
     p.seed = static_cast<uint64_t>(i + 1);
     bots.emplace_back(p);
   }
-  PlayerGroup group(std::move(bots), participant(9), ServerChoice{});
-  FakeClientPort port;
-  group.tick(port, 0.0, 0.0);
+  Players players(std::move(bots), participant(9));
+  FakeClientPort &port = players.net.port;
+  PlayerGroup &group = players.group;
+  auto tick = [&](double t) { players.tick(t); };
+  tick(0.0);
   for (uint32_t m = 0; m < 30; ++m) {
     MatchConfig c = default_config();
     c.id = 100 + m;
@@ -166,12 +270,12 @@ TEST(players_sample_on_their_own_phases) {
     games.back()->control(ControlKind::join, participant(9), 1);
     server_says(*games.back(), port);
   }
-  group.tick(port, 0.5, 0.5);
+  tick(0.5);
   std::map<int, int> per_ms;  // samples written per millisecond tick
   for (int k = 1; k <= 200; ++k) {
     double t = 0.5 + k * 0.001;
     size_t before = port.samples.size();
-    group.tick(port, t, t);
+    tick(t);
     if (port.samples.size() > before) per_ms[k] = static_cast<int>(port.samples.size() - before);
   }
   int most = 0, total = 0;
@@ -198,13 +302,16 @@ TEST(a_bot_takes_nothing_that_does_not_fit) {
   PlayerParams p;
   p.match = g.match.id();
   p.player = 1;
-  ServerChoice one;
   std::string err;
-  CHECK(ServerChoice::parse("1", &one, &err));
-  PlayerGroup group({BotPlayer(p)}, participant(9), one);
-  FakeClientPort port;
+  FakeNet net(participant(9), [](ball_net_config *c) { c->servers = "1"; });
+  FakeClientPort &port = net.port;
+  PlayerGroup group({BotPlayer(p)}, net.client);
+  auto tick = [&](double t) {
+    net.now = t;
+    group.tick(t);
+  };
   server_says(g, port);
-  group.tick(port, g.now, g.now);
+  tick(g.now);
   CHECK(group.bots()[0].joined());
   CHECK_EQ(group.refused(), 0u);
   MatchInfoOut info = port.infos.empty() ? g.match.info() : port.infos.front();
@@ -220,22 +327,22 @@ TEST(a_bot_takes_nothing_that_does_not_fit) {
   bad = info;
   bad.server_id = 2;  // not chosen
   port.infos.push_back(bad);
-  group.tick(port, g.now + 0.1, g.now + 0.1);
+  tick(g.now + 0.1);
   CHECK_EQ(group.refused(), 3u);
   CHECK(!g.segments.empty());
   SegmentOut real = g.segments.back();
   real.server_id = 1;
   port.segments.push_back(real);
-  group.tick(port, g.now + 0.15, g.now + 0.15);
+  tick(g.now + 0.15);
   uint64_t seen = group.segments();
   SegmentOut forged = real;
   forged.seq = real.seq + kMaxSeqAhead + 1;
   port.segments.push_back(forged);
-  group.tick(port, g.now + 0.2, g.now + 0.2);
+  tick(g.now + 0.2);
   CHECK_EQ(group.refused(), 4u);
   real.seq += 1;  // the server's next segment still gets through
   port.segments.push_back(real);
-  group.tick(port, g.now + 0.3, g.now + 0.3);
+  tick(g.now + 0.3);
   CHECK_EQ(group.segments(), seen + 1);
   CHECK(segment_is_news(5, 0xFFFFFFFEu, 0));  // across the wrap
   CHECK(!segment_is_news(3, 5, 0));
@@ -269,44 +376,75 @@ TEST(a_group_routes_by_match_and_counts_refused_writes) {
   PlayerParams other;
   other.match = 8;
   bots.emplace_back(other);
-  PlayerGroup group(std::move(bots), me, ServerChoice{});
-  FakeClientPort port;
-  port.refuse = true;
-  group.tick(port, 0.0, 0.0);  // three JOINs, every one refused
-  CHECK_EQ(group.write_failures(), 3u);
-  CHECK(port.controls.empty());
-  port.refuse = false;
+  Players players(std::move(bots), me);
+  FakeClientPort &port = players.net.port;
+  PlayerGroup &group = players.group;
+  auto tick = [&](double t) { players.tick(t); };
+  tick(0.0);  // three JOINs
+  CHECK(group.error().empty());
+  CHECK_EQ(port.controls.size(), 3u);
+  port.controls.clear();
   // both slots of match 7 taken by the group's participant; match 8 is not there
   g.control(ControlKind::join, me, 0);
   g.control(ControlKind::join, me, 1);
   server_says(g, port);
-  int segments_seen = 0;
-  group.tick(port, 0.6, 0.6, [&](const SegmentOut &, double) { segments_seen++; });
+  tick(0.6);
   CHECK(group.bots()[0].joined() && group.bots()[1].joined());
   CHECK(!group.bots()[2].joined());
   CHECK(!group.all_joined());
   CHECK_EQ(port.controls.size(), 1u);  // only match 8's bot asks again
   CHECK_EQ(port.controls[0].match_id, 8u);
-  // a segment of match 7 reaches its bots and the meter; one of match 9 neither
+  // a segment of match 7 reaches its bots; one of match 9 no one
   g.run(0.2);  // the serve
   CHECK(!g.segments.empty());
   SegmentOut seg = g.segments.front(), stray = seg;
   stray.match_id = 9;
   port.segments = {seg, stray};
-  group.tick(port, 0.7, 0.7, [&](const SegmentOut &, double) { segments_seen++; });
-  CHECK_EQ(segments_seen, 1);
+  tick(0.7);
   CHECK_EQ(group.report(0).segments, 1u);
   CHECK_EQ(group.report(2).segments, 0u);
-  // samples at 30 Hz from both joined bots over 1 s, all written
-  for (int k = 1; k <= 100; ++k) group.tick(port, 0.7 + k * 0.01, 0.7 + k * 0.01);
-  CHECK(port.samples.size() >= 58 && port.samples.size() <= 62);
+  CHECK_EQ(group.segments(), 1u);
+  // samples at 30 Hz from both joined bots over 1 s; the transport refuses
+  // those of the first 0.2 s
+  port.refuse = true;
+  for (int k = 1; k <= 20; ++k) tick(0.7 + k * 0.01);
+  port.refuse = false;
+  for (int k = 21; k <= 100; ++k) tick(0.7 + k * 0.01);
+  CHECK(port.samples.size() >= 46 && port.samples.size() <= 50);
   CHECK_EQ(group.samples_written(), port.samples.size());
-  CHECK_EQ(group.leave(port), 2);  // the two joined bots say LEAVE
+  CHECK(group.write_failures() >= 10 && group.write_failures() <= 14);
+  CHECK_EQ(group.leave(), 2);  // the two joined bots say LEAVE
   BotReport r = group.report(0);
   CHECK_EQ(r.match, 7u);
   CHECK_EQ(r.slot, 0);
-  CHECK_EQ(r.write_failures, 3u);
-  CHECK_EQ(r.participant, hex(me));
+  CHECK_EQ(r.write_failures, group.write_failures());  // (match 8 has none)
+  // no simulated network: every pose the client took from the bots is written
+  CHECK_EQ(group.bots()[0].counters().taken + group.bots()[1].counters().taken, group.samples_written());
+  CHECK(group.error().empty());
+}
+
+// A JOIN the transport refuses (under DDS Security: a partition the
+// identity is not granted) is the group's error, in the client's words;
+// the match is not followed, and no bot asks again.
+TEST(a_join_the_transport_refuses_is_the_groups_error) {
+  PlayerParams p;
+  p.match = 7;
+  FakeNet net(participant(4));
+  net.port.refuse = true;
+  PlayerGroup group({BotPlayer(p)}, net.client);
+  net.now = 0.0;
+  group.tick(0.0);
+  CHECK_MSG(group.error().find("the transport refused the join of match 7") != std::string::npos, "error: %s",
+            group.error().c_str());
+  ball_net_status st;
+  CHECK_EQ(ball_net_status_of(net.client, 7, &st), BALL_ENOMATCH);  // not followed
+  net.port.refuse = false;
+  for (int k = 1; k <= 20; ++k) {
+    net.now = k * 0.1;
+    group.tick(net.now);
+  }
+  CHECK(net.port.controls.empty());
+  CHECK(!group.bots()[0].joined());
 }
 
 // A bot given a later start says nothing before it (no JOIN, no sample);
@@ -319,16 +457,18 @@ TEST(a_group_begins_each_bot_at_its_start) {
     p.player = slot;
     bots.emplace_back(p);
   }
-  PlayerGroup group(std::move(bots), participant(4), ServerChoice{});
+  Players players(std::move(bots), participant(4));
+  FakeClientPort &port = players.net.port;
+  PlayerGroup &group = players.group;
+  auto tick = [&](double t) { players.tick(t); };
   group.start_at({0.0});  // one start for two bots: ignored
   group.start_at({0.0, 1.0});
-  FakeClientPort port;
-  group.tick(port, 0.0, 0.0);
-  group.tick(port, 0.999, 0.999);
+  tick(0.0);
+  tick(0.999);
   CHECK_EQ(port.controls.size(), 2u);  // bot 0's JOIN, and again 0.5 s on (unanswered)
   for (const ControlIn &c : port.controls) CHECK_EQ(c.player, 0);
   size_t before = port.controls.size();
-  group.tick(port, 1.0, 1.0);
+  tick(1.0);
   CHECK_EQ(port.controls.size(), before + 1);
   CHECK_EQ(port.controls.back().player, 1);
 }

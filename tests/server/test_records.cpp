@@ -179,7 +179,7 @@ TEST(reports_come_back) {
   CHECK_EQ(wb.servers[0].latency_p50, 0.0121);
   CHECK_EQ(wb.untrusted, 12u);
 
-  BotReport b{2, 1, 300, 60, 240, 1, 55, 8, 1, 0, 3, 2, hex(participant(7))};
+  BotReport b{2, 1, 300, 60, 240, 1, 55, 8, 1, 0, 3, 2};
   CHECK(same(round_trip(b), b));
   LoadRow l;
   l.matches = 100;

@@ -80,9 +80,18 @@ typedef struct ball_net_config {
                                      at every change (docs/client.md, "What it costs") */
   ball_net_clock clock;           /* the caller's clock; NULL: CLOCK_MONOTONIC */
   void *clock_user;               /* passed to clock */
+  /* A simulated network for this client's racket poses, to try a game behind a bad one: each pose is
+     written link_delay + a uniform draw in [0, link_jitter] s after its ball_net_push (so poses may
+     overtake each other), by that call or the first ball_net_push or ball_net_poll after, or lost with
+     probability link_loss (its number skipped, as a network loses it); the draws from link_seed. All 0:
+     none, each pose written by its ball_net_push. */
+  double link_delay;              /* s, [0, 10] */
+  double link_jitter;             /* s, [0, 1] */
+  double link_loss;               /* [0, 0.9] */
+  uint64_t link_seed;
 } ball_net_config;
 
-/* Defaults: domain 0, loopback, any server, CLOCK_MONOTONIC. */
+/* Defaults: domain 0, loopback, any server, CLOCK_MONOTONIC, no simulated network. */
 BALL_NET_API void ball_net_config_default(ball_net_config *config);
 
 /* Opens a client: a DDS participant on the config's domain and its readers
@@ -137,6 +146,8 @@ typedef struct ball_net_match {
   double net_x;                              /* m: the net stands on the plane x = net_x */
   double court_x[2];                         /* m: the court the rules judge, baseline to baseline */
   double court_z[2];                         /* m: and sideline to sideline */
+  uint64_t model_hash;                       /* ball_model_hash of the model it is stepped with: a new one (a
+                                                new level) is a new model (ball_net_model) */
 } ball_net_match;
 
 /* The matches the domain's servers serve (those the client trusts, each
@@ -154,7 +165,10 @@ BALL_NET_API ball_status ball_net_match_info(ball_net_client *client, uint32_t m
  * MatchInfo of the match appears (ball_net_match_info then finds it); a
  * server that refuses it says nothing (docs/protocol.md, "Control
  * messages"). BALL_ERANGE for players outside [1, 4], a level outside
- * [0, 3], a scene name that is not 1 to 31 letters, digits, '_' or '-'. */
+ * [0, 3], a scene name that is not 1 to 31 letters, digits, '_' or '-';
+ * BALL_ENETWORK when DDS refuses the first CREATE's writer (under DDS
+ * Security: the identity is not granted the match's partition), in DDS's
+ * words, and nothing is kept. */
 BALL_NET_API ball_status ball_net_create(ball_net_client *client, uint32_t match, const char *scene, int players,
                                          ball_level level);
 
@@ -165,7 +179,9 @@ BALL_NET_API ball_status ball_net_create(ball_net_client *client, uint32_t match
  * event says when a slot is taken or lost. A client may hold several slots
  * of a match (two players at one console: join each slot by its number).
  * Also follows the match (ball_net_watch). BALL_ERANGE for a slot outside
- * [-1, 3]. */
+ * [-1, 3]; BALL_ENETWORK when DDS refuses the first JOIN's writer (under
+ * DDS Security: the identity is not granted the match's partition), in DDS's
+ * words, and the match is not followed (unless it was before). */
 BALL_NET_API ball_status ball_net_join(ball_net_client *client, uint32_t match, int slot);
 
 /* Gives slot `slot` of `match` up (a LEAVE; -1: every slot this client
@@ -362,10 +378,14 @@ typedef struct ball_net_status {
   uint64_t late;               /* segments that came after their t0 on this client's clock */
   uint64_t voided;             /* events a correction took back */
   uint64_t samples;            /* racket poses written */
+  uint64_t link_lost;          /* racket poses the simulated network lost (ball_net_config's link_loss) */
   uint64_t write_failures;     /* writes DDS refused (poses and controls) */
   uint64_t bytes_in;           /* payload bytes of the match's samples taken (CDR, without the RTPS, UDP and IP
                                   headers, acknowledgements, resends and discovery) */
   uint64_t bytes_out;          /* and of the poses and requests written for it */
+  uint64_t untrusted;          /* under DDS Security, samples of any match refused because their writer lacks the
+                                  certificate bound to the server id they claim (the config's servers): the
+                                  client's count, the same in every match's status */
 } ball_net_status;
 
 /* The status of a match the client follows. BALL_ENOMATCH: it does not. */

@@ -1,7 +1,8 @@
 // ball/net.h: the client library's C API, a thin shell over ClientCore
-// (client_core.h) and a DDS participant (server/dds's Domain and client
-// endpoints). Every call checks its arguments, catches every exception,
-// keeps its sentence in the client and returns a ball_status.
+// (client_core.h) and a transport (net_client.h): a DDS participant
+// (net_dds.cpp) or the offline tests' port. Every call checks its
+// arguments, catches every exception, keeps its sentence in the client and
+// returns a ball_status.
 #include "ball/net.h"
 
 #include <time.h>
@@ -10,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <utility>
@@ -18,8 +20,7 @@
 #include <string>
 
 #include "client_core.h"
-#include "client_endpoints.h"
-#include "domain.h"
+#include "net_client.h"
 
 using namespace ballsrv;
 
@@ -41,9 +42,8 @@ static_assert(kMaxPlayers == BALL_NET_MAX_PLAYERS && kNameLen == BALL_NET_NAME_L
 namespace {
 
 constexpr double kLeaveGrace = 0.2;      // s a LEAVE is given to get out before the participant goes
-constexpr double kTeardownLimit = 3.0;   // s Fast DDS is given to delete the entities (dds::kTeardownLimit)
-constexpr int kMaxMatches = dds::kClientRoom;
-constexpr int kWritersPerMatch = 1;      // a client writes one slot's samples in a match
+constexpr double kTeardownLimit = 3.0;   // s the transport is given to delete what it made (dds::kTeardownLimit)
+constexpr int kMaxMatches = static_cast<int>(kMaxClientMatches);
 
 double system_clock(clockid_t id) {
   struct timespec ts;
@@ -52,58 +52,6 @@ double system_clock(clockid_t id) {
 }
 
 double monotonic(void *) { return system_clock(CLOCK_MONOTONIC); }
-
-// The client's port: the endpoints' readers, and its writers, one pair per
-// DDS partition (under DDS Security a player writes in its match's,
-// match/<id>, made when first needed; on an open domain one pair).
-class NetPort : public ClientPort {
- public:
-  NetPort(dds::Domain &domain, std::unique_ptr<dds::ClientEndpoints> readers, int matches)
-      : domain_(domain), readers_(std::move(readers)), matches_(matches) {}
-  bool take(MatchInfoOut *i) override { return readers_->take(i); }
-  bool take(SegmentOut *s) override { return readers_->take(s); }
-  bool take(StateOut *s) override { return readers_->take(s); }
-  bool take(EventOut *e) override { return readers_->take(e); }
-  bool take(StatusOut *s) override { return readers_->take(s); }
-  bool take(MatchModelOut *m) override { return readers_->take(m); }
-  bool write(const RacketSampleIn &s) override {
-    Pair *p = pair(s.match_id);
-    return p && p->samples.write(s);
-  }
-  bool write(const ControlIn &c) override {
-    Pair *p = pair(c.match_id);
-    return p && p->controls.write(c);
-  }
-  bool hears_server() const override { return readers_->hears_server(); }
-  WireSizes sizes() const override { return sizes_; }
-  uint64_t untrusted() const override { return readers_->untrusted(); }
-  const std::string &error() const { return error_; }
-
- private:
-  struct Pair {
-    dds::Writer<RacketSampleIn> samples;
-    dds::Writer<ControlIn> controls;
-  };
-  Pair *pair(uint32_t match) {
-    std::string partition = domain_.secure() ? dds::match_partition(match) : "";
-    auto it = pairs_.find(partition);
-    if (it != pairs_.end()) return it->second.samples.valid() ? &it->second : nullptr;
-    Pair &p = pairs_[partition];  // (kept even when refused: a refusal is not asked again)
-    int instances = domain_.secure() ? kMaxPlayers : matches_ * kWritersPerMatch;
-    p.samples = domain_.writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {instances, 0, partition}, &error_);
-    if (p.samples.valid())
-      p.controls = domain_.writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {domain_.secure() ? 1 : matches_, 0, partition},
-                                             &error_);
-    if (!p.controls.valid()) p.samples = dds::Writer<RacketSampleIn>();
-    return p.samples.valid() ? &p : nullptr;
-  }
-  dds::Domain &domain_;
-  std::unique_ptr<dds::ClientEndpoints> readers_;
-  int matches_;
-  std::map<std::string, Pair> pairs_;
-  std::string error_;
-  WireSizes sizes_ = dds::wire_sizes();
-};
 
 const char *or_empty(const char *s) { return s ? s : ""; }
 
@@ -132,8 +80,8 @@ ball_vec3 v3(const ball_vec3 &v) { return v; }
 struct ball_net_client {
   ball_net_clock clock = monotonic;
   void *clock_user = nullptr;
-  std::unique_ptr<dds::Domain> domain;
-  std::unique_ptr<NetPort> port;
+  std::unique_ptr<Transport> transport;
+  ClientPort *port = nullptr;  // the transport's
   std::unique_ptr<ClientCore> core;
   bool closed = false;
   std::string message;
@@ -185,6 +133,13 @@ ball_status with_why(ball_net_client *c, ball_status st, const std::string &why)
   return st == BALL_OK ? c->ok() : c->fail(st, why);
 }
 
+// a write the transport refused: its own words appended (e.g. the
+// permissions of the identity under DDS Security)
+ball_status with_transport(const ball_net_client *c, ball_status st, std::string *why) {
+  if (st == BALL_ENETWORK && !c->transport->error().empty()) *why += ": " + c->transport->error();
+  return st;
+}
+
 const MatchView *followed(const ball_net_client *c, uint32_t match) {
   const MatchView *v = c->core->view(match);
   if (!v) const_cast<ball_net_client *>(c)->message = "the client does not follow match " + std::to_string(match);
@@ -232,6 +187,7 @@ void to_c(const MatchInfoOut &i, double sim_now, ball_net_match *out, const Part
   out->court_x[1] = i.court_x[1];
   out->court_z[0] = i.court_z[0];
   out->court_z[1] = i.court_z[1];
+  out->model_hash = i.model_hash;
 }
 
 void to_c(const ViewEvent &v, const MatchView *view, double now, ball_net_event *out) {
@@ -268,10 +224,10 @@ namespace {
 // Every member of the public structs, by name (ball_net_offsetof).
 #define BALL_NET_CONFIG_FIELDS(X)                                                                              \
   X(domain) X(participant) X(discovery_servers) X(qos_file) X(security_dir) X(identity) X(servers) X(name)     \
-  X(max_matches) X(ball_states) X(clock) X(clock_user)
+  X(max_matches) X(ball_states) X(clock) X(clock_user) X(link_delay) X(link_jitter) X(link_loss) X(link_seed)
 #define BALL_NET_MATCH_FIELDS(X)                                                                               \
   X(id) X(server) X(scene) X(level) X(state) X(players) X(slots) X(score) X(rally) X(serving_side) X(time_base) \
-  X(sim_time) X(net_x) X(court_x) X(court_z)
+  X(sim_time) X(net_x) X(court_x) X(court_z) X(model_hash)
 #define BALL_NET_SLOT_FIELDS(X) X(held) X(present) X(mine)
 #define BALL_NET_BALL_FIELDS(X) X(state) X(sim_time) X(segment) X(cause) X(cause_index) X(sound) X(flight)
 #define BALL_NET_EVENT_FIELDS(X)                                                                               \
@@ -279,7 +235,7 @@ namespace {
   X(velocity_out) X(reason) X(score) X(value) X(server)
 #define BALL_NET_STATUS_FIELDS(X)                                                                              \
   X(server) X(clock_known) X(clock_offset) X(clock_uncertainty) X(delay) X(segments) X(events) X(refused)      \
-  X(lost) X(late) X(voided) X(samples) X(write_failures) X(bytes_in) X(bytes_out)
+  X(lost) X(late) X(voided) X(samples) X(link_lost) X(write_failures) X(bytes_in) X(bytes_out) X(untrusted)
 #define BALL_NET_PREDICTION_FIELDS(X)                                                                          \
   X(states) X(cap_states) X(n_states) X(events) X(cap_events) X(n_events) X(events_missed) X(end)
 
@@ -320,6 +276,59 @@ Fields fields_of(int type) {
 }
 }  // namespace
 
+namespace ballsrv {
+
+ball_status core_settings_of(const ball_net_config &config, CoreSettings *out, std::string *why) {
+  auto refuse = [&](ball_status st, const std::string &text) {
+    *why = text;
+    return st;
+  };
+  if (config.max_matches < 0 || config.max_matches > kMaxMatches)
+    return refuse(BALL_ERANGE, "max_matches " + std::to_string(config.max_matches) + " is not in [0, " +
+                                   std::to_string(kMaxMatches) + "]");
+  if (config.ball_states != 0 && config.ball_states != 1) return refuse(BALL_ERANGE, "ball_states must be 0 or 1");
+  if (config.identity && !config.security_dir) return refuse(BALL_EINVAL, "an identity needs security_dir");
+  if (config.security_dir && !config.identity) return refuse(BALL_EINVAL, "security_dir needs an identity");
+  CoreSettings settings;
+  if (!ServerChoice::parse(or_empty(config.servers), &settings.servers, why)) return BALL_ERANGE;
+  if (!config.security_dir && !settings.servers.bound().empty())
+    return refuse(BALL_EINVAL, "servers bound to certificates (ID=IDENTITY) need security_dir");
+  settings.max_matches = static_cast<size_t>(config.max_matches ? config.max_matches : kMaxMatches);
+  settings.link = {config.link_delay, config.link_jitter, config.link_loss};
+  if (!settings.link.valid()) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "a simulated network of link_delay %g s, link_jitter %g s, link_loss %g: not in [0, %g], [0, %g], "
+                  "[0, %g]",
+                  config.link_delay, config.link_jitter, config.link_loss, LinkParams::kMaxDelay,
+                  LinkParams::kMaxJitter, LinkParams::kMaxLoss);
+    return refuse(BALL_ERANGE, text);
+  }
+  settings.link_seed = config.link_seed;
+  *out = settings;
+  return BALL_OK;
+}
+
+ball_status open_over(std::unique_ptr<Transport> transport, const ball_net_config &config, ball_net_client **client,
+                      std::string *why) {
+  *client = nullptr;
+  CoreSettings settings;
+  ball_status st = core_settings_of(config, &settings, why);
+  if (st != BALL_OK) return st;
+  auto c = std::make_unique<ball_net_client>();
+  if (config.clock) {
+    c->clock = config.clock;
+    c->clock_user = config.clock_user;
+  }
+  c->port = &transport->port();
+  c->core = std::make_unique<ClientCore>(settings, transport->id());
+  c->transport = std::move(transport);
+  *client = c.release();
+  return BALL_OK;
+}
+
+}  // namespace ballsrv
+
 extern "C" {
 
 void ball_net_config_default(ball_net_config *config) {
@@ -328,73 +337,15 @@ void ball_net_config_default(ball_net_config *config) {
   config->participant = "loopback";
 }
 
-ball_status ball_net_open(const ball_net_config *config, ball_net_client **client, char *why, size_t why_size) {
-  if (client) *client = nullptr;
-  auto say = [&](ball_status st, const std::string &text) {
-    copy_text(text, why, why_size);
-    return st;
-  };
-  if (!config || !client) return say(BALL_EINVAL, "config and client must not be NULL");
-  try {
-    if (config->domain < 0 || config->domain > kMaxDomain)
-      return say(BALL_ERANGE, "domain " + std::to_string(config->domain) + " is not in [0, " + std::to_string(kMaxDomain) + "]");
-    if (config->max_matches < 0 || config->max_matches > kMaxMatches)
-      return say(BALL_ERANGE, "max_matches " + std::to_string(config->max_matches) + " is not in [0, " +
-                                  std::to_string(kMaxMatches) + "]");
-    if (config->ball_states != 0 && config->ball_states != 1) return say(BALL_ERANGE, "ball_states must be 0 or 1");
-    if (config->identity && !config->security_dir) return say(BALL_EINVAL, "an identity needs security_dir");
-    if (config->security_dir && !config->identity) return say(BALL_EINVAL, "security_dir needs an identity");
-    CoreSettings settings;
-    std::string err;
-    if (!ServerChoice::parse(or_empty(config->servers), &settings.servers, &err)) return say(BALL_ERANGE, err);
-    if (!config->security_dir && !settings.servers.bound().empty())
-      return say(BALL_EINVAL, "servers bound to certificates (ID=IDENTITY) need security_dir");
-    int matches = config->max_matches ? config->max_matches : kMaxMatches;
-    settings.max_matches = static_cast<size_t>(matches);
-    auto c = std::make_unique<ball_net_client>();
-    if (config->clock) {
-      c->clock = config->clock;
-      c->clock_user = config->clock_user;
-    }
-    dds::Security security{or_empty(config->security_dir), or_empty(config->identity)};
-    c->domain = dds::Domain::open(config->domain, or_empty(config->qos_file),
-                                  config->participant ? config->participant : "loopback",
-                                  or_empty(config->discovery_servers), config->name ? config->name : "ball-net", &err,
-                                  security);
-    if (!c->domain) return say(BALL_ENETWORK, err);
-    dds::ClientNeeds needs;
-    needs.players = 0;  // the writers are the port's, per partition
-    needs.matches = matches;
-    needs.events = true;
-    needs.states = config->ball_states != 0;
-    needs.server_certs = settings.servers.bound();
-    auto readers = dds::ClientEndpoints::open(*c->domain, needs, &err);
-    if (!readers) {
-      c->domain->close(kTeardownLimit);
-      return say(BALL_ENETWORK, err);
-    }
-    c->port = std::make_unique<NetPort>(*c->domain, std::move(readers), matches);
-    c->core = std::make_unique<ClientCore>(settings, c->domain->id());
-    *client = c.release();
-    return say(BALL_OK, "");
-  } catch (const std::bad_alloc &) {
-    return say(BALL_ENOMEM, "out of memory");
-  } catch (const std::exception &e) {
-    return say(BALL_ENETWORK, std::string("unexpected: ") + e.what());
-  } catch (...) {
-    return say(BALL_ENETWORK, "unexpected failure");
-  }
-}
-
 ball_status ball_net_close(ball_net_client *c) {
   ball_status st = usable(c);
   if (st != BALL_OK) return st;
   return guarded(c, [&] {
     if (c->core->leave_all(*c->port) > 0) usleep(static_cast<useconds_t>(kLeaveGrace * 1e6));
     c->closed = true;
-    c->port.reset();  // handles only: the Domain owns the entities
-    bool done = c->domain->close(kTeardownLimit);
-    c->domain.reset();
+    c->port = nullptr;
+    bool done = c->transport->close(kTeardownLimit);
+    c->transport.reset();
     return done ? c->ok()
                 : c->fail(BALL_ENETWORK, "Fast DDS did not delete the client's entities within 3 s (left to it)");
   });
@@ -422,7 +373,7 @@ ball_status ball_net_matches(ball_net_client *c, ball_net_match *out, int cap, i
       double sim = v && v->clock().valid() ? v->clock().sim_now(now)
                    : l.info.state == MatchState::playing ? l.info.sim_time + (now - l.heard) * l.info.time_base
                                                          : l.info.sim_time;
-      to_c(l.info, sim, &out[k], c->domain->id());
+      to_c(l.info, sim, &out[k], c->transport->id());
     }
     return c->ok();
   });
@@ -438,7 +389,7 @@ ball_status ball_net_match_info(ball_net_client *c, uint32_t match, ball_net_mat
     if (!l) return c->fail(BALL_ENOMATCH, "no server serves match " + std::to_string(match) + " (none heard within 3 s)");
     const MatchView *v = c->core->view(match);
     double sim = v && v->clock().valid() ? v->clock().sim_now(now) : l->info.sim_time;
-    to_c(l->info, sim, out, c->domain->id());
+    to_c(l->info, sim, out, c->transport->id());
     return c->ok();
   });
 }
@@ -449,7 +400,7 @@ ball_status ball_net_create(ball_net_client *c, uint32_t match, const char *scen
   if (!scene) return c->fail(BALL_EINVAL, "scene must not be NULL");
   return guarded(c, [&] {
     std::string why;
-    return with_why(c, c->core->create(match, scene, players, number_of(level), *c->port, c->now(), &why), why);
+    return with_why(c, with_transport(c, c->core->create(match, scene, players, number_of(level), *c->port, c->now(), &why), &why), why);
   });
 }
 
@@ -458,7 +409,7 @@ ball_status ball_net_join(ball_net_client *c, uint32_t match, int slot) {
   if (st != BALL_OK) return st;
   return guarded(c, [&] {
     std::string why;
-    return with_why(c, c->core->join(match, slot, *c->port, c->now(), &why), why);
+    return with_why(c, with_transport(c, c->core->join(match, slot, *c->port, c->now(), &why), &why), why);
   });
 }
 
@@ -518,9 +469,7 @@ ball_status ball_net_push(ball_net_client *c, uint32_t match, int slot, double t
   if (st != BALL_OK) return st;
   return guarded(c, [&] {
     std::string why;
-    ball_status r = c->core->push(match, slot, time, center, normal, *c->port, &why);
-    if (r == BALL_ENETWORK && !c->port->error().empty()) why += ": " + c->port->error();
-    return with_why(c, r, why);
+    return with_why(c, with_transport(c, c->core->push(match, slot, time, center, normal, *c->port, &why), &why), why);
   });
 }
 
@@ -656,6 +605,8 @@ ball_status ball_net_status_of(const ball_net_client *cc, uint32_t match, ball_n
     out->voided = k.voided;
     const OwnCounters *own = c->core->own(match);
     out->samples = own->samples;
+    out->link_lost = own->link_lost;
+    out->untrusted = c->port->untrusted();
     out->write_failures = own->write_failures;
     out->bytes_in = own->bytes_in;
     out->bytes_out = own->bytes_out;

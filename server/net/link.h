@@ -1,7 +1,9 @@
 // What a network does to a stream a client sends: every item is delayed by
 // `delay` plus a uniform draw in [0, jitter] (so items can overtake each
-// other), some are lost; the draws come from a seed. ball-bot puts its racket
-// samples through one; the offline tests put both bots through one.
+// other), some are lost; the draws come from a seed. The client library
+// puts a client's racket poses through one when its config asks for a
+// simulated network (ball_net_config's link_*: ball-bot's --delay, --jitter,
+// --loss); the offline tests put both players of a rally through one.
 #pragma once
 
 #include <algorithm>
@@ -12,9 +14,14 @@
 namespace ballsrv {
 
 struct LinkParams {
-  double delay = 0.0;   // s added to every item's trip
-  double jitter = 0.0;  // s: up to this much later again (uniform)
-  double loss = 0.0;    // probability an item is lost
+  double delay = 0.0;   // s added to every item's trip, [0, kMaxDelay]
+  double jitter = 0.0;  // s: up to this much later again (uniform), [0, kMaxJitter]
+  double loss = 0.0;    // probability an item is lost, [0, kMaxLoss]
+  static constexpr double kMaxDelay = 10.0, kMaxJitter = 1.0, kMaxLoss = 0.9;
+  bool active() const { return delay > 0.0 || jitter > 0.0 || loss > 0.0; }
+  bool valid() const {
+    return delay >= 0.0 && delay <= kMaxDelay && jitter >= 0.0 && jitter <= kMaxJitter && loss >= 0.0 && loss <= kMaxLoss;
+  }
 };
 
 template <class T>

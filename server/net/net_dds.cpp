@@ -1,0 +1,143 @@
+// ball_net_open: a client of ball/net.h on a DDS participant (server/dds's
+// Domain and client endpoints), its writers one pair per DDS partition.
+#include <algorithm>
+#include <map>
+#include <memory>
+#include <new>
+#include <string>
+
+#include "client_endpoints.h"
+#include "domain.h"
+#include "net_client.h"
+
+using namespace ballsrv;
+
+namespace {
+
+static_assert(kMaxClientMatches == static_cast<size_t>(dds::kClientRoom),
+              "a client's readers make room for the matches its core keeps");
+constexpr int kWritersPerMatch = 1;  // a client writes one slot's samples in a match
+
+const char *or_empty(const char *s) { return s ? s : ""; }
+
+// The client's port: the endpoints' readers, and its writers, one pair per
+// DDS partition (under DDS Security a player writes in its match's,
+// match/<id>, made when first needed; on an open domain one pair).
+class NetPort : public ClientPort {
+ public:
+  NetPort(dds::Domain &domain, std::unique_ptr<dds::ClientEndpoints> readers, int matches)
+      : domain_(domain), readers_(std::move(readers)), matches_(matches) {}
+  bool take(MatchInfoOut *i) override { return readers_->take(i); }
+  bool take(SegmentOut *s) override { return readers_->take(s); }
+  bool take(StateOut *s) override { return readers_->take(s); }
+  bool take(EventOut *e) override { return readers_->take(e); }
+  bool take(StatusOut *s) override { return readers_->take(s); }
+  bool take(MatchModelOut *m) override { return readers_->take(m); }
+  bool write(const RacketSampleIn &s) override {
+    Pair *p = pair(s.match_id);
+    return p && p->samples.write(s);
+  }
+  bool write(const ControlIn &c) override {
+    Pair *p = pair(c.match_id);
+    return p && p->controls.write(c);
+  }
+  bool hears_server() const override { return readers_->hears_server(); }
+  WireSizes sizes() const override { return sizes_; }
+  uint64_t untrusted() const override { return readers_->untrusted(); }
+  const std::string &error() const { return error_; }
+
+ private:
+  struct Pair {
+    dds::Writer<RacketSampleIn> samples;
+    dds::Writer<ControlIn> controls;
+  };
+  Pair *pair(uint32_t match) {
+    std::string partition = domain_.secure() ? dds::match_partition(match) : "";
+    auto it = pairs_.find(partition);
+    if (it != pairs_.end()) return it->second.samples.valid() ? &it->second : nullptr;
+    Pair &p = pairs_[partition];  // (kept even when refused: a refusal is not asked again)
+    int instances = domain_.secure() ? kMaxPlayers : matches_ * kWritersPerMatch;
+    p.samples = domain_.writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {instances, 0, partition}, &error_);
+    if (p.samples.valid())
+      p.controls = domain_.writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, {domain_.secure() ? 1 : matches_, 0, partition},
+                                             &error_);
+    if (!p.controls.valid()) p.samples = dds::Writer<RacketSampleIn>();
+    return p.samples.valid() ? &p : nullptr;
+  }
+  dds::Domain &domain_;
+  std::unique_ptr<dds::ClientEndpoints> readers_;
+  int matches_;
+  std::map<std::string, Pair> pairs_;
+  std::string error_;
+  WireSizes sizes_ = dds::wire_sizes();
+};
+
+class DdsTransport : public Transport {
+ public:
+  DdsTransport(std::unique_ptr<dds::Domain> domain, std::unique_ptr<NetPort> port)
+      : domain_(std::move(domain)), port_(std::move(port)) {}
+  ClientPort &port() override { return *port_; }
+  ParticipantId id() const override { return domain_->id(); }
+  std::string error() const override { return port_ ? port_->error() : std::string(); }
+  bool close(double limit) override {
+    port_.reset();  // handles only: the Domain owns the entities
+    bool done = domain_->close(limit);
+    domain_.reset();
+    return done;
+  }
+
+ private:
+  std::unique_ptr<dds::Domain> domain_;
+  std::unique_ptr<NetPort> port_;
+};
+
+}  // namespace
+
+extern "C" ball_status ball_net_open(const ball_net_config *config, ball_net_client **client, char *why,
+                                     size_t why_size) {
+  if (client) *client = nullptr;
+  auto say = [&](ball_status st, const std::string &text) {
+    if (why && why_size > 0) {
+      size_t n = std::min(text.size(), why_size - 1);
+      text.copy(why, n);
+      why[n] = '\0';
+    }
+    return st;
+  };
+  if (!config || !client) return say(BALL_EINVAL, "config and client must not be NULL");
+  try {
+    if (config->domain < 0 || config->domain > kMaxDomain)
+      return say(BALL_ERANGE, "domain " + std::to_string(config->domain) + " is not in [0, " + std::to_string(kMaxDomain) + "]");
+    CoreSettings settings;
+    std::string err;
+    ball_status st = core_settings_of(*config, &settings, &err);
+    if (st != BALL_OK) return say(st, err);
+    dds::Security security{or_empty(config->security_dir), or_empty(config->identity)};
+    auto domain = dds::Domain::open(config->domain, or_empty(config->qos_file),
+                                    config->participant ? config->participant : "loopback",
+                                    or_empty(config->discovery_servers), config->name ? config->name : "ball-net", &err,
+                                    security);
+    if (!domain) return say(BALL_ENETWORK, err);
+    const int matches = static_cast<int>(settings.max_matches);
+    dds::ClientNeeds needs;
+    needs.players = 0;  // the writers are the port's, per partition
+    needs.matches = matches;
+    needs.events = true;
+    needs.states = config->ball_states != 0;
+    needs.server_certs = settings.servers.bound();
+    auto readers = dds::ClientEndpoints::open(*domain, needs, &err);
+    if (!readers) {
+      domain->close(dds::kTeardownLimit);
+      return say(BALL_ENETWORK, err);
+    }
+    auto port = std::make_unique<NetPort>(*domain, std::move(readers), matches);
+    st = open_over(std::make_unique<DdsTransport>(std::move(domain), std::move(port)), *config, client, &err);
+    return say(st, st == BALL_OK ? "" : err);
+  } catch (const std::bad_alloc &) {
+    return say(BALL_ENOMEM, "out of memory");
+  } catch (const std::exception &e) {
+    return say(BALL_ENETWORK, std::string("unexpected: ") + e.what());
+  } catch (...) {
+    return say(BALL_ENETWORK, "unexpected failure");
+  }
+}
