@@ -32,6 +32,7 @@ set(BALL_DDS_DOMAINS
   "dds_junk_keys|117|test: 3000 made-up match ids: turned away at the door, the bots still rally"
   "dds_unreadable|129|test: samples no IDL type writes on every topic: counted at the door, everyone plays on"
   "dds_load_secure|118|test: ball-load under DDS Security: one identity granted every match plays them all"
+  "dds_load_split|137|test: ball-load's bots in two processes count what one process does"
   "dds_forged_server|119|test: a stronger forged server's MatchInfo, segments and states: refused, the rally goes on"
   "dds_inbox_share|121|test: one slot's burst of 20,000 samples takes its own share of the inbox only"
   "dds_discovery_flood|122|test: 3000 made-up participant announcements: bounded memory, found again after their leases"

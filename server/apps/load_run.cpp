@@ -148,7 +148,9 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       }
       SegmentOut seg;
       while (meter.take(&seg)) {
-        if (!measuring || seg.cause != Cause::racket || !seg.sample.valid) continue;
+        const bool ours = seg.match_id >= static_cast<uint32_t>(o.first_match) &&
+                          seg.match_id < static_cast<uint32_t>(o.first_match + o.matches);  // (another process's: its)
+        if (!measuring || !ours || seg.cause != Cause::racket || !seg.sample.valid) continue;
         // when DDS received it, not this tick's time (ticks are kTick apart)
         double recv = seg.reception.received > 0.0 ? seg.reception.received : real;
         part.latency.push_back(recv - seg.sample.source_time);

@@ -1048,6 +1048,37 @@ struct DiscoveryServer {
   }
 };
 
+// ball-load's bots split over two processes measure what one process does:
+// each process counts the hits of its own matches only (its meter reads
+// every match's segments), so the same four matches give about the same
+// hits, ready, and no write refused.
+void case_load_split(const Env &env) {
+  LoadRow rows[2];
+  for (int processes = 1; processes <= 2; ++processes) {
+    std::string out = path(env, "load" + std::to_string(processes) + ".json"), err;
+    int rc = run_to_end(env, {env.bin + "/ball-load", "--domain", env.dom(), "--sweep", "4", "--warmup", "3", "--duration",
+                              "5", "--bot-processes", std::to_string(processes), "--json", out},
+                        "load" + std::to_string(processes), &err);
+    CHECK_MSG(rc == 0, "ball-load --bot-processes %d: status %d: %s", processes, rc, err.c_str());
+    json j = json::parse(file_text(out), nullptr, false);
+    if (!j.is_object() || j.value("rows", json::array()).size() != 1) {
+      CHECK_MSG(false, "no row in %s", out.c_str());
+      return;
+    }
+    LoadRow &r = rows[processes - 1];
+    r = j.at("rows").at(0).get<LoadRow>();
+    note("4 matches, %d bot process(es): ready %s, %llu hits, %.1f samples/s", processes, r.ready ? "yes" : "no",
+         static_cast<unsigned long long>(r.hits), r.samples_per_s);
+    CHECK(r.ready);
+    CHECK_EQ(r.write_failures, 0u);
+    CHECK(r.samples_per_s > 4 * 2 * 30 * 0.9 && r.samples_per_s < 4 * 2 * 30 * 1.1);  // 8 bots at 30 Hz
+  }
+  CHECK(rows[0].hits >= 10);
+  CHECK_MSG(rows[1].hits * 10 >= rows[0].hits * 7 && rows[1].hits * 10 <= rows[0].hits * 13,
+            "hits: %llu in one process, %llu in two", static_cast<unsigned long long>(rows[0].hits),
+            static_cast<unsigned long long>(rows[1].hits));
+}
+
 // Hosts without multicast: a server, two bots and a watcher with the
 // participant profile discovery_client (no multicast locator, no initial
 // peers) find each other only through a Fast DDS Discovery Server,
@@ -1209,6 +1240,7 @@ TEST(server_cli) { in_case(case_server_cli); }
 TEST(busy) { in_case(case_busy); }
 TEST(snapshots) { in_case(case_snapshots); }
 TEST(discovery) { in_case(case_discovery); }
+TEST(load_split) { in_case(case_load_split); }
 
 int main(int argc, char **argv) {
   CLI::App cli{"ball_itest: the ball server's integration tests, one case a run"};
