@@ -165,7 +165,8 @@ class Config(_Struct):  # ball_net_config
                 ("link_delay", ctypes.c_double),
                 ("link_jitter", ctypes.c_double),
                 ("link_loss", ctypes.c_double),
-                ("link_seed", ctypes.c_uint64)]
+                ("link_seed", ctypes.c_uint64),
+                ("rackets", ctypes.c_int)]
 
 
 class Slot(_Struct):  # ball_net_slot
@@ -199,6 +200,10 @@ class Ball(_Struct):  # ball_net_ball
                 ("cause_index", ctypes.c_int),
                 ("sound", ctypes.c_int),
                 ("flight", Segment)]
+
+
+class RacketPose(_Struct):  # ball_racket_pose (ball.h)
+    _fields_ = [("center", Vec3), ("normal", Vec3), ("velocity", Vec3)]
 
 
 class Event(_Struct):  # ball_net_event
@@ -271,6 +276,7 @@ _SIGNATURES = {
     "ball_net_leave": (_ST, [_P, ctypes.c_uint32, ctypes.c_int]),
     "ball_net_push": (_ST, [_P, ctypes.c_uint32, ctypes.c_int, ctypes.c_double, Vec3, Vec3]),
     "ball_net_ball_at": (_ST, [_P, ctypes.c_uint32, ctypes.c_double, ctypes.POINTER(Ball)]),
+    "ball_net_racket": (_ST, [_P, ctypes.c_uint32, ctypes.c_int, ctypes.c_double, ctypes.POINTER(RacketPose)]),
     "ball_net_poll": (_ST, [_P, ctypes.POINTER(Event), ctypes.c_int, ctypes.POINTER(ctypes.c_int)]),
     "ball_net_event_kind_name": (ctypes.c_char_p, [ctypes.c_int]),
     "ball_net_reason_name": (ctypes.c_char_p, [ctypes.c_int]),
@@ -340,7 +346,8 @@ class Client:
     """A client of ball servers (ball_net_client): a DDS participant on `domain`.
 
     Keyword arguments are ball_net_config's fields (participant, discovery_servers, qos_file,
-    security_dir, identity, servers, name, max_matches, ball_states); None keeps the default. Error when
+    security_dir, identity, servers, name, max_matches, ball_states, rackets, link_delay, link_jitter,
+    link_loss, link_seed); None keeps the default. Error when
     the library refuses (a field out of range, a domain whose ports are taken, ...).
     A context manager: leaving the block closes it. Every call on a closed client raises
     Error with status BALL_ECLOSED; close() itself may be called again.
@@ -351,11 +358,12 @@ class Client:
         _lib.ball_net_config_default(ctypes.byref(c))
         c.domain = domain
         for key, value in config.items():
+            numbers = ("max_matches", "ball_states", "rackets", "link_delay", "link_jitter", "link_loss", "link_seed")
             if key not in ("participant", "discovery_servers", "qos_file", "security_dir", "identity",
-                           "servers", "name", "max_matches", "ball_states"):
+                           "servers", "name") + numbers:
                 raise TypeError("Client() got an unexpected keyword argument %r" % key)
             if value is not None:
-                setattr(c, key, value if key in ("max_matches", "ball_states") else _text(value))
+                setattr(c, key, value if key in numbers else _text(value))
         why = ctypes.create_string_buffer(256)
         handle = _P()
         self._handle, self._closed = None, True
@@ -435,6 +443,17 @@ class Client:
         out = Ball()
         st = _lib.ball_net_ball_at(self._handle, match, time, ctypes.byref(out))
         if st == Status.BALL_EAGAIN:
+            return None
+        self._check(st)
+        return out
+
+    def racket(self, match, slot, time):
+        """The racket of `slot` at `time` (seconds, CLOCK_MONOTONIC), a RacketPose, from its holder's
+        samples (a client opened with rackets=1); None while there is no clock, model or sample of it
+        yet, or its newest sample is stale."""
+        out = RacketPose()
+        st = _lib.ball_net_racket(self._handle, match, slot, time, ctypes.byref(out))
+        if st in (Status.BALL_EAGAIN, Status.BALL_ESTALE):
             return None
         self._check(st)
         return out

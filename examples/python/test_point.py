@@ -31,7 +31,7 @@ def test_layouts_are_the_librarys():
     for struct, kind in ballnet.LAYOUTS:
         assert ctypes.sizeof(struct) == ballnet._lib.ball_net_sizeof(kind), struct.__name__
     # (the sizes of x86-64 gcc's ball/net.h, so that a change there is seen here too)
-    assert [ctypes.sizeof(s) for s, _ in ballnet.LAYOUTS] == [120, 184, 184, 152, 12]
+    assert [ctypes.sizeof(s) for s, _ in ballnet.LAYOUTS] == [128, 184, 184, 152, 12]
     for struct, kind in ballnet.LAYOUTS:
         for field, _ in struct._fields_:
             assert getattr(struct, field).offset == ballnet._lib.ball_net_offsetof(kind, field.encode()), field
@@ -190,7 +190,8 @@ def test_a_point_with_a_hit_of_its_own(server_and_bot):
     hits = 1  # balls returned a rally before the next is let go: a point comes soon after a hit
     played = mine = rally_hits = 0
     slot, racket = -1, None
-    with ballnet.Client(domain=DOMAIN) as client:
+    seen, near = 0, []  # frames the bot's racket was known; its distance to the ball at its hits
+    with ballnet.Client(domain=DOMAIN, rackets=1) as client:
         start_t = ballnet.now()
         m = None
         while m is None:
@@ -208,11 +209,18 @@ def test_a_point_with_a_hit_of_its_own(server_and_bot):
                 elif e.kind == ballnet.EventKind.RACKET and e.in_play and e.index == slot:
                     mine += 1
                     rally_hits += 1
+                elif e.kind == ballnet.EventKind.RACKET and slot >= 0:  # the bot's hit: its racket was at the ball
+                    bot = client.racket(0, e.index, e.local_time)
+                    if bot is not None:
+                        near.append(math.dist((bot.center.x, bot.center.y, bot.center.z),
+                                              (e.point.x, e.point.y, e.point.z)))
                 elif e.kind == ballnet.EventKind.POINT:
                     played += 1
                     rally_hits = 0
                     print("point to side %d (%s), score %d-%d" % (e.side, ballnet.reason_name(e.reason),
                                                                   e.score[0], e.score[1]))
+            if slot >= 0 and client.racket(0, 1 - slot, t) is not None:
+                seen += 1
             if slot >= 0 and t >= next_pose:
                 m = client.match_info(0) or m
                 to = racket_target(client, m, slot % 2, t, rally_hits < hits)
@@ -225,6 +233,11 @@ def test_a_point_with_a_hit_of_its_own(server_and_bot):
         seconds = ballnet.now() - start_t
         client.leave(0)
     print("test_point: %d point(s) played, %d hit(s) of its own, slot %d, in %.1f s" % (played, mine, slot, seconds))
+    print("test_point: the bot's racket known in %d frames; at its %d hit(s) %s m from the ball"
+          % (seen, len(near), ", ".join("%.3f" % d for d in near)))
     assert slot in (0, 1)
     assert played >= 1
     assert mine >= 1
+    assert seen > 0
+    assert near  # the bot returns every ball at the easy level: it hit at least once
+    assert all(d < 0.5 for d in near)  # within the disc's radius and the ball's, and a sample's error

@@ -34,23 +34,29 @@ std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNe
   }
   if (n.rackets) {
     // every player's samples, in every match's partition under DDS Security
-    constexpr int kInboxPerSlot = 16;  // samples a slot may have waiting between two reads
-    Sizing racket{n.matches * kMaxPlayers, 1024, d.secure() ? kAnyMatchPartition : ""};
-    racket.inbox_per_key = kInboxPerSlot;
-    p->rackets_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, racket, err);
+    p->rackets_ = racket_reader(d, n.matches, d.secure() ? kAnyMatchPartition : "", err);
     if (!p->rackets_.valid()) return nullptr;
   }
   return p;
 }
 
-bool ClientEndpoints::take(RacketSampleIn *sample) {
+Reader<RacketSampleIn> racket_reader(Domain &d, int matches, const std::string &partition, std::string *err) {
+  constexpr int kInboxPerSlot = 16;  // samples a slot may have waiting between two reads
+  Sizing racket{matches * kMaxPlayers, 1024, partition};
+  racket.inbox_per_key = kInboxPerSlot;
+  return d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, racket, err);
+}
+
+bool take_racket(Reader<RacketSampleIn> &reader, RacketSampleIn *sample) {
   SampleMeta meta;
-  if (!rackets_.valid() || !rackets_.take(sample, &meta)) return false;
+  if (!reader.valid() || !reader.take(sample, &meta)) return false;
   sample->from = meta.from;
   sample->source_time = meta.source_time;
   sample->rejected = meta.rejected;
   return true;
 }
+
+bool ClientEndpoints::take(RacketSampleIn *sample) { return take_racket(rackets_, sample); }
 
 WireSizes wire_sizes() {
   WireSizes s;

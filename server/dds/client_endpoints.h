@@ -33,6 +33,14 @@ struct ClientNeeds {
 // The size of one sample of every topic (load.h).
 WireSizes wire_sizes();
 
+// A reader of the players' racket samples of `matches` matches in
+// `partition` (under DDS Security: a match's, or match/* for a spectator);
+// invalid with err when it cannot be made.
+Reader<RacketSampleIn> racket_reader(Domain &domain, int matches, const std::string &partition, std::string *err);
+// One racket sample from such a reader, its writer (`from`), source time
+// and rejection filled in; false: none left.
+bool take_racket(Reader<RacketSampleIn> &reader, RacketSampleIn *sample);
+
 class ClientEndpoints : public ClientPort {
  public:
   // nullptr with err when an endpoint cannot be made

@@ -84,6 +84,7 @@ struct ball_net_client {
   ClientPort *port = nullptr;  // the transport's
   std::unique_ptr<ClientCore> core;
   bool closed = false;
+  bool rackets = false;  // ball_net_config.rackets
   std::string message;
   // the view the newest ball query found, by match: a game asks for one match's ball every frame
   uint32_t hot_match = 0;
@@ -224,7 +225,8 @@ namespace {
 // Every member of the public structs, by name (ball_net_offsetof).
 #define BALL_NET_CONFIG_FIELDS(X)                                                                              \
   X(domain) X(participant) X(discovery_servers) X(qos_file) X(security_dir) X(identity) X(servers) X(name)     \
-  X(max_matches) X(ball_states) X(clock) X(clock_user) X(link_delay) X(link_jitter) X(link_loss) X(link_seed)
+  X(max_matches) X(ball_states) X(clock) X(clock_user) X(link_delay) X(link_jitter) X(link_loss) X(link_seed)     \
+  X(rackets)
 #define BALL_NET_MATCH_FIELDS(X)                                                                               \
   X(id) X(server) X(scene) X(level) X(state) X(players) X(slots) X(score) X(rally) X(serving_side) X(time_base) \
   X(sim_time) X(net_x) X(court_x) X(court_z) X(model_hash)
@@ -235,7 +237,8 @@ namespace {
   X(velocity_out) X(reason) X(score) X(value) X(server)
 #define BALL_NET_STATUS_FIELDS(X)                                                                              \
   X(server) X(clock_known) X(clock_offset) X(clock_uncertainty) X(delay) X(segments) X(events) X(refused)      \
-  X(lost) X(late) X(voided) X(samples) X(link_lost) X(write_failures) X(bytes_in) X(bytes_out) X(untrusted)
+  X(lost) X(late) X(voided) X(samples) X(link_lost) X(write_failures) X(bytes_in) X(bytes_out) X(untrusted)   \
+  X(rackets) X(rackets_refused)
 #define BALL_NET_PREDICTION_FIELDS(X)                                                                          \
   X(states) X(cap_states) X(n_states) X(events) X(cap_events) X(n_events) X(events_missed) X(end)
 
@@ -287,6 +290,7 @@ ball_status core_settings_of(const ball_net_config &config, CoreSettings *out, s
     return refuse(BALL_ERANGE, "max_matches " + std::to_string(config.max_matches) + " is not in [0, " +
                                    std::to_string(kMaxMatches) + "]");
   if (config.ball_states != 0 && config.ball_states != 1) return refuse(BALL_ERANGE, "ball_states must be 0 or 1");
+  if (config.rackets != 0 && config.rackets != 1) return refuse(BALL_ERANGE, "rackets must be 0 or 1");
   if (config.identity && !config.security_dir) return refuse(BALL_EINVAL, "an identity needs security_dir");
   if (config.security_dir && !config.identity) return refuse(BALL_EINVAL, "security_dir needs an identity");
   CoreSettings settings;
@@ -305,6 +309,7 @@ ball_status core_settings_of(const ball_net_config &config, CoreSettings *out, s
     return refuse(BALL_ERANGE, text);
   }
   settings.link_seed = config.link_seed;
+  settings.rackets = config.rackets != 0;
   *out = settings;
   return BALL_OK;
 }
@@ -321,6 +326,7 @@ ball_status open_over(std::unique_ptr<Transport> transport, const ball_net_confi
     c->clock_user = config.clock_user;
   }
   c->port = &transport->port();
+  c->rackets = settings.rackets;
   c->core = std::make_unique<ClientCore>(settings, transport->id());
   c->transport = std::move(transport);
   *client = c.release();
@@ -434,7 +440,7 @@ ball_status ball_net_watch(ball_net_client *c, uint32_t match) {
   if (st != BALL_OK) return st;
   return guarded(c, [&] {
     std::string why;
-    return with_why(c, c->core->watch(match, &why), why);
+    return with_why(c, with_transport(c, c->core->watch(match, *c->port, &why), &why), why);
   });
 }
 
@@ -508,6 +514,21 @@ ball_status ball_net_ball_at(const ball_net_client *cc, uint32_t match, double t
   out->sound = s.sound;
   out->flight = s.segment;
   return c->ok();
+}
+
+ball_status ball_net_racket(const ball_net_client *cc, uint32_t match, int slot, double time, ball_racket_pose *out) {
+  return on_view(cc, match, out, [&](ball_net_client *c, const MatchView &) {
+    if (!c->rackets) return c->fail(BALL_EINVAL, "the client reads no rackets: set ball_net_config.rackets");
+    if (!std::isfinite(time)) return c->fail(BALL_ENONFINITE, "the time must be finite");
+    ball_status st = c->core->racket(match, slot, time, out);
+    if (st == BALL_OK) return c->ok();
+    const std::string which = "slot " + std::to_string(slot) + " of match " + std::to_string(match);
+    if (st == BALL_ERANGE) return c->fail(st, which + ": the match has no such slot");
+    if (st == BALL_EAGAIN || st == BALL_ENOTFOUND)
+      return c->fail(BALL_EAGAIN, which + ": no clock, model or racket sample of it yet");
+    if (st == BALL_ESTALE) return c->fail(st, which + ": its newest sample is older than the model's stale_time");
+    return c->fail(st, which + ": " + ball_strerror(st));
+  });
 }
 
 ball_status ball_net_predict(const ball_net_client *cc, uint32_t match, double time, double horizon, double dt,
@@ -607,6 +628,8 @@ ball_status ball_net_status_of(const ball_net_client *cc, uint32_t match, ball_n
     out->samples = own->samples;
     out->link_lost = own->link_lost;
     out->untrusted = c->port->untrusted();
+    out->rackets = own->rackets;
+    out->rackets_refused = own->rackets_refused;
     out->write_failures = own->write_failures;
     out->bytes_in = own->bytes_in;
     out->bytes_out = own->bytes_out;

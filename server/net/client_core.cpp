@@ -38,10 +38,16 @@ const OwnCounters *ClientCore::own(uint32_t match) const {
   return it == followed_.end() ? nullptr : &it->second.own;
 }
 
-ClientCore::Followed *ClientCore::follow(uint32_t match, std::string *why) {
+ClientCore::Followed *ClientCore::follow(uint32_t match, ClientPort &port, ball_status *st, std::string *why) {
   if (Followed *f = followed(match)) return f;
   if (followed_.size() >= settings_.max_matches) {
     *why = "the client follows " + std::to_string(followed_.size()) + " matches, its room (max_matches)";
+    *st = BALL_ENOSPACE;
+    return nullptr;
+  }
+  if (!port.follow(match, why)) {
+    *why = "the transport cannot follow " + match_name(match) + ": " + *why;
+    *st = BALL_ENETWORK;
     return nullptr;
   }
   Followed &f = followed_[match];
@@ -107,10 +113,35 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
   EventOut ev;
   while (port.take(&ev))
     if (Followed *f = of(ev.match_id, size.event)) f->view->on_event(ev, at(ev.reception), &scratch_);
+  RacketSampleIn racket;
+  while (settings_.rackets && port.take(&racket))
+    if (Followed *f = of(racket.match_id, size.sample)) take_racket(f, racket);
   events_.insert(events_.end(), scratch_.begin(), scratch_.end());
   sizes_ = size;
   send_due(port, local);
   for (auto &kv : followed_) deliver(port, &kv.second, local);
+}
+
+// A player's racket sample, kept on its slot's track if the match's
+// newest MatchInfo names its writer as the slot's holder
+// (docs/protocol.md, "The other players' rackets").
+void ClientCore::take_racket(Followed *f, const RacketSampleIn &s) {
+  const MatchView &v = *f->view;
+  MatchRackets &m = f->rackets;
+  const bool ok = v.has_info() && v.model() && m.follow(v.info(), *v.model()) && m.has(s.player) &&
+                  v.info().slots[s.player].held && m.holder(s.player) == s.from && !s.rejected;
+  const ball_racket_sample sample{s.capture_time, s.center, s.normal};
+  if (ok && m.push(s.player, sample) == BALL_OK) f->own.rackets++;
+  else f->own.rackets_refused++;
+}
+
+ball_status ClientCore::racket(uint32_t match, int slot, double local, ball_racket_pose *out) const {
+  auto it = followed_.find(match);
+  if (it == followed_.end()) return BALL_ENOMATCH;
+  const Followed &f = it->second;
+  if (!f.view->clock().valid() || !f.view->model()) return BALL_EAGAIN;
+  if (slot < 0 || slot >= kMaxPlayers || (f.view->has_info() && slot >= f.view->info().players)) return BALL_ERANGE;
+  return f.rackets.pose(slot, f.view->clock().sim_now(local), out);
 }
 
 // The poses whose simulated trip has ended by `local`, written.
@@ -175,8 +206,9 @@ void ClientCore::send_due(ClientPort &port, double local) {
   }
 }
 
-ball_status ClientCore::watch(uint32_t match, std::string *why) {
-  return follow(match, why) ? BALL_OK : BALL_ENOSPACE;
+ball_status ClientCore::watch(uint32_t match, ClientPort &port, std::string *why) {
+  ball_status st = BALL_OK;
+  return follow(match, port, &st, why) ? BALL_OK : st;
 }
 
 ball_status ClientCore::unwatch(uint32_t match, ClientPort &port, std::string *why) {
@@ -193,8 +225,9 @@ ball_status ClientCore::join(uint32_t match, int slot, ClientPort &port, double 
                                    std::to_string(kMaxPlayers - 1) + "]",
                   why);
   const bool was_followed = followed(match) != nullptr;
-  Followed *f = follow(match, why);
-  if (!f) return BALL_ENOSPACE;
+  ball_status st = BALL_OK;
+  Followed *f = follow(match, port, &st, why);
+  if (!f) return st;
   size_t k = slot < 0 ? kMaxPlayers : static_cast<size_t>(slot);
   const bool held = slot < 0 ? f->view->slot() >= 0 : f->view->holds(slot);
   if (!held) {  // the first JOIN now: a writer the transport refuses (a partition not granted) is said here

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "link.h"
+#include "match_rackets.h"
 #include "match_view.h"
 #include "port.h"
 
@@ -29,6 +30,7 @@ struct CoreSettings {
   double retry = 0.5;           // s between a JOIN or a CREATE and the next while the server has not answered
   double silence = 3.0;         // s a match goes unheard before it is not listed (a server writes it once a second)
   size_t max_matches = kMaxClientMatches;  // matches listed and followed at most (the readers' room)
+  bool rackets = false;         // keeps the players' rackets of the matches followed (racket())
   LinkParams link;              // a simulated network for the racket poses (none by default)
   uint64_t link_seed = 0;       // its draws' seed (each slot's link its own stream from it)
 };
@@ -39,13 +41,15 @@ struct Listed {
   double heard = 0.0;  // the caller's clock when it came
 };
 
-// What a followed match counts of the client's own writes.
+// What a followed match counts of the client's own traffic.
 struct OwnCounters {
   uint64_t samples = 0;         // racket poses written
   uint64_t link_lost = 0;       // racket poses the simulated network lost (CoreSettings::link)
   uint64_t write_failures = 0;  // poses and controls DDS refused
   uint64_t bytes_in = 0;        // payload bytes of the match's samples taken (ClientPort::sizes)
   uint64_t bytes_out = 0;       // and of the samples and controls written for it
+  uint64_t rackets = 0;         // the players' racket samples taken (CoreSettings::rackets)
+  uint64_t rackets_refused = 0; // and not taken: not the slot's holder's, no such slot, not newer, no model yet
 };
 
 class ClientCore {
@@ -59,7 +63,7 @@ class ClientCore {
 
   // The client's requests; false with a sentence in *why (the status in
   // *status) when refused, and nothing changes.
-  ball_status watch(uint32_t match, std::string *why);
+  ball_status watch(uint32_t match, ClientPort &port, std::string *why);
   ball_status unwatch(uint32_t match, ClientPort &port, std::string *why);
   ball_status join(uint32_t match, int slot, ClientPort &port, double local, std::string *why);
   ball_status leave(uint32_t match, int slot, ClientPort &port, std::string *why);  // slot -1: every one
@@ -71,6 +75,11 @@ class ClientCore {
   // (CoreSettings::link) when its trip ends (this call's or a later pump's).
   ball_status push(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal, ClientPort &port,
                    std::string *why);
+  // Slot `slot`'s racket at `local` of the caller's clock, from the
+  // holder's samples (docs/protocol.md, "The other players' rackets").
+  // BALL_ENOMATCH: not followed; BALL_EAGAIN: no clock or model yet;
+  // BALL_ERANGE: no such slot; else ball_racket_estimate's status.
+  ball_status racket(uint32_t match, int slot, double local, ball_racket_pose *out) const;
   // Every segment of a followed match as it is taken (a meter's: ball-load's latencies).
   void on_segment(std::function<void(const SegmentOut &)> fn) { on_segment_ = std::move(fn); }
   // A LEAVE for every slot held (a client closing); how many were written.
@@ -93,6 +102,7 @@ class ClientCore {
     std::array<bool, kMaxPlayers> pushed{};
     std::array<double, kMaxPlayers> last_push{};  // the caller's clock of each slot's newest pose
     std::array<std::unique_ptr<Link<RacketSampleIn>>, kMaxPlayers> links;  // each slot's simulated network
+    MatchRackets rackets;                      // the players' rackets (CoreSettings::rackets)
     OwnCounters own;
     bool joining() const;
   };
@@ -101,7 +111,8 @@ class ClientCore {
     double next = 0.0;  // the caller's clock of the next CREATE
   };
   Followed *followed(uint32_t match);
-  Followed *follow(uint32_t match, std::string *why);
+  Followed *follow(uint32_t match, ClientPort &port, ball_status *st, std::string *why);
+  void take_racket(Followed *f, const RacketSampleIn &s);
   bool write(ClientPort &port, const ControlIn &c, Followed *f);
   bool write(ClientPort &port, const RacketSampleIn &s, Followed *f);
   ball_status number(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal, RacketSampleIn *out,

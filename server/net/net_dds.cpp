@@ -22,17 +22,35 @@ const char *or_empty(const char *s) { return s ? s : ""; }
 
 // The client's port: the endpoints' readers, and its writers, one pair per
 // DDS partition (under DDS Security a player writes in its match's,
-// match/<id>, made when first needed; on an open domain one pair).
+// match/<id>, made when first needed; on an open domain one pair). With
+// `rackets`, the players' racket samples too: on an open domain the
+// endpoints' one reader; under DDS Security one reader in the partition of
+// each match followed, made when it is first followed.
 class NetPort : public ClientPort {
  public:
-  NetPort(dds::Domain &domain, std::unique_ptr<dds::ClientEndpoints> readers, int matches)
-      : domain_(domain), readers_(std::move(readers)), matches_(matches) {}
+  NetPort(dds::Domain &domain, std::unique_ptr<dds::ClientEndpoints> readers, int matches, bool rackets)
+      : domain_(domain), readers_(std::move(readers)), matches_(matches), rackets_(rackets) {}
   bool take(MatchInfoOut *i) override { return readers_->take(i); }
   bool take(SegmentOut *s) override { return readers_->take(s); }
   bool take(StateOut *s) override { return readers_->take(s); }
   bool take(EventOut *e) override { return readers_->take(e); }
   bool take(StatusOut *s) override { return readers_->take(s); }
   bool take(MatchModelOut *m) override { return readers_->take(m); }
+  bool take(RacketSampleIn *s) override {
+    if (!domain_.secure()) return readers_->take(s);
+    for (auto &r : racket_readers_)
+      if (dds::take_racket(r.second, s)) return true;
+    return false;
+  }
+  bool follow(uint32_t match, std::string *why) override {
+    if (!rackets_ || !domain_.secure()) return true;
+    std::string partition = dds::match_partition(match);
+    if (racket_readers_.count(partition)) return true;
+    auto r = dds::racket_reader(domain_, 1, partition, why);
+    if (!r.valid()) return false;
+    racket_readers_.emplace(partition, std::move(r));
+    return true;
+  }
   bool write(const RacketSampleIn &s) override {
     Pair *p = pair(s.match_id);
     return p && p->samples.write(s);
@@ -68,6 +86,8 @@ class NetPort : public ClientPort {
   std::unique_ptr<dds::ClientEndpoints> readers_;
   int matches_;
   std::map<std::string, Pair> pairs_;
+  bool rackets_;
+  std::map<std::string, dds::Reader<RacketSampleIn>> racket_readers_;  // by partition (DDS Security)
   std::string error_;
   WireSizes sizes_ = dds::wire_sizes();
 };
@@ -125,12 +145,13 @@ extern "C" ball_status ball_net_open(const ball_net_config *config, ball_net_cli
     needs.events = true;
     needs.states = config->ball_states != 0;
     needs.server_certs = settings.servers.bound();
+    needs.rackets = settings.rackets && !domain->secure();  // (secure: a reader per match followed, NetPort)
     auto readers = dds::ClientEndpoints::open(*domain, needs, &err);
     if (!readers) {
       domain->close(dds::kTeardownLimit);
       return say(BALL_ENETWORK, err);
     }
-    auto port = std::make_unique<NetPort>(*domain, std::move(readers), matches);
+    auto port = std::make_unique<NetPort>(*domain, std::move(readers), matches, settings.rackets);
     st = open_over(std::make_unique<DdsTransport>(std::move(domain), std::move(port)), *config, client, &err);
     return say(st, st == BALL_OK ? "" : err);
   } catch (const std::bad_alloc &) {

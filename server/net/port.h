@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 
 #include "types.h"
 
@@ -29,6 +30,10 @@ class ClientPort {
   virtual bool take(MatchModelOut *) { return false; }
   // the players' racket samples, read only (a watcher draws the rackets); `from` filled in
   virtual bool take(RacketSampleIn *) { return false; }
+  // A client follows `match` from now on: a port that reads per match (the
+  // players' rackets in a match's partition under DDS Security) begins to.
+  // false with a sentence in *why: it cannot (the follow is refused).
+  virtual bool follow(uint32_t /*match*/, std::string * /*why*/) { return true; }
   // false: the write was refused (the caller counts it)
   [[nodiscard]] virtual bool write(const RacketSampleIn &sample) = 0;
   [[nodiscard]] virtual bool write(const ControlIn &control) = 0;

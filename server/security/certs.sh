@@ -98,7 +98,7 @@ grant() {  # NAME RULES
   grant load "<allow_rule>$domains<publish><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></publish><subscribe><topics>$server_topics</topics></subscribe></allow_rule>"
   for ((m = 0; m < matches; m++)); do
     for p in a b; do
-      grant "m$m-$p" "<allow_rule>$domains<publish><topics>$player_topics</topics><partitions><partition>match/$m</partition></partitions></publish><subscribe><topics>$server_topics</topics></subscribe></allow_rule>"
+      grant "m$m-$p" "<allow_rule>$domains<publish><topics>$player_topics</topics><partitions><partition>match/$m</partition></partitions></publish><subscribe><topics>$server_topics</topics></subscribe><subscribe><topics><topic>ball/racket_samples</topic></topics><partitions><partition>match/$m</partition></partitions></subscribe></allow_rule>"
     done
   done
   echo '  </permissions>'

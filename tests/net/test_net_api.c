@@ -304,7 +304,7 @@ static void names_and_sizes(void **state) {
   assert_null(ball_net_field(BALL_NET_TYPE_COUNT, 0));
   for (k = 0; ball_net_field(BALL_NET_TYPE_CONFIG, k); k++) {
   }
-  assert_int_equal(k, 16); /* every member of ball_net_config */
+  assert_int_equal(k, 17); /* every member of ball_net_config */
   for (k = 0; k < BALL_STATUS_COUNT; k++) assert_string_not_equal(ball_strerror((ball_status)k), "unknown status");
 }
 
@@ -351,6 +351,40 @@ static void poses_of_a_slot_held(void **state) {
     assert_int_equal(ball_net_match_info(c, 0, &m), BALL_OK);
     assert_true(m.slots[0].mine && m.slots[1].mine);
     assert_int_equal(ball_net_ball_at(c, 0, now(), &b), BALL_OK);
+    /* a spectator that reads the rackets sees slot 1's where its holder put it; the player's
+       client does not read them */
+    {
+      ball_net_config sc;
+      ball_net_client *spec = NULL;
+      ball_racket_pose p;
+      ball_net_status ss;
+      ball_status st = BALL_EAGAIN;
+      ball_net_config_default(&sc);
+      sc.domain = BALL_TEST_DOMAIN;
+      sc.max_matches = 16;
+      sc.rackets = 1;
+      assert_int_equal(ball_net_open(&sc, &spec, NULL, 0), BALL_OK);
+      assert_int_equal(ball_net_watch(spec, 0), BALL_OK);
+      for (start = now(); now() - start < 15.0 && st != BALL_OK;) {
+        assert_int_equal(ball_net_poll(c, e, 32, &n), BALL_OK);
+        assert_int_equal(ball_net_poll(spec, e, 32, &n), BALL_OK);
+        ball_net_push(c, 0, 1, now(), far, back);
+        st = ball_net_racket(spec, 0, 1, now(), &p);
+        pause_seconds(0.05);
+      }
+      assert_int_equal(st, BALL_OK);
+      assert_true(p.center.x == far.x && p.center.y == far.y && p.center.z == far.z); /* one place: exact */
+      assert_true(p.normal.x == -1.0 && p.normal.y == 0.0 && p.normal.z == 0.0);
+      assert_int_equal(ball_net_racket(spec, 0, 2, now(), &p), BALL_ERANGE);
+      assert_int_equal(ball_net_racket(spec, 0, 1, NAN, &p), BALL_ENONFINITE);
+      assert_int_equal(ball_net_racket(spec, 0, 1, now(), NULL), BALL_EINVAL);
+      assert_int_equal(ball_net_racket(spec, 1, 1, now(), &p), BALL_ENOMATCH);
+      assert_int_equal(ball_net_status_of(spec, 0, &ss), BALL_OK);
+      assert_true(ss.rackets >= 1); /* (and some refused: those that came before the match's model) */
+      assert_int_equal(ball_net_racket(c, 0, 1, now(), &p), BALL_EINVAL); /* rackets not read */
+      assert_non_null(strstr(ball_net_message(c), "rackets"));
+      ball_net_free(spec);
+    }
   }
   t = now();
   bad = center;

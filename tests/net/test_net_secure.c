@@ -49,15 +49,21 @@ static int stopped(void **state) {
   return 0;
 }
 
-static ball_status open_as(const char *identity, ball_net_client **client, char *why, size_t size) {
+static ball_status open_reading(const char *identity, int rackets, ball_net_client **client, char *why,
+                                size_t size) {
   ball_net_config c;
   ball_net_config_default(&c);
+  c.rackets = rackets;
   c.domain = BALL_TEST_DOMAIN;
   c.security_dir = certs;
   c.identity = identity;
   c.servers = "1=server1";
   c.max_matches = 16;
   return ball_net_open(&c, client, why, size);
+}
+
+static ball_status open_as(const char *identity, ball_net_client **client, char *why, size_t size) {
+  return open_reading(identity, 0, client, why, size);
 }
 
 static void a_certified_player_plays_its_own_match(void **state) {
@@ -89,6 +95,29 @@ static void a_certified_player_plays_its_own_match(void **state) {
   assert_int_equal(s.samples, 1);
   assert_int_equal(s.write_failures, 0);
   assert_int_equal(s.server, 1);
+  /* its partner's client (m0-b) reads the rackets of match 0 in its partition, m0-a's among them;
+     the rackets of match 1 it is not granted: following match 1 is refused in DDS's words */
+  {
+    ball_net_client *b = NULL;
+    ball_racket_pose p;
+    ball_status st = BALL_EAGAIN;
+    assert_int_equal(open_reading("m0-b", 1, &b, why, sizeof why), BALL_OK);
+    assert_int_equal(ball_net_watch(b, 0), BALL_OK);
+    for (start = now(); now() - start < 30.0 && st != BALL_OK;) {
+      assert_int_equal(ball_net_poll(c, e, 32, &n), BALL_OK);
+      assert_int_equal(ball_net_poll(b, e, 32, &n), BALL_OK);
+      ball_net_push(c, 0, 0, now(), center, normal);
+      st = ball_net_racket(b, 0, 0, now(), &p);
+      pause_seconds(0.05);
+    }
+    assert_int_equal(st, BALL_OK);
+    assert_true(p.center.x == center.x && p.center.y == center.y && p.center.z == center.z);
+    assert_int_equal(ball_net_watch(b, 1), BALL_ENETWORK);
+    assert_non_null(strstr(ball_net_message(b), "the transport cannot follow match 1"));
+    assert_non_null(strstr(ball_net_message(b), "partition match/1"));
+    assert_int_equal(ball_net_status_of(b, 1, &s), BALL_ENOMATCH);
+    ball_net_free(b);
+  }
   /* match 1: its partition is not m0-a's; DDS itself refuses the JOIN's writer, the call says so
      in DDS's words, and the client does not follow match 1 */
   assert_int_equal(ball_net_join(c, 1, 0), BALL_ENETWORK);

@@ -439,7 +439,7 @@ TEST(a_model_taken_before_the_match_is_followed_is_kept) {
   core.pump(port, 0.0, 0.0);
   CHECK(core.view(7) == nullptr);
   std::string why;
-  CHECK_EQ(core.watch(7, &why), BALL_OK);
+  CHECK_EQ(core.watch(7, port, &why), BALL_OK);
   CHECK(core.view(7)->model() != nullptr);
   CHECK_EQ(ball_model_hash(core.view(7)->model()), g.match.info().model_hash);
 }
@@ -471,6 +471,78 @@ TEST(the_rackets_start_anew_with_a_holder_or_a_server) {
   MatchInfoOut other = info_of(g, 2);            // another server: every track anew
   CHECK(r.follow(other, g.match.model()));
   CHECK_EQ(r.pose(1, 1.0, &p), BALL_ENOTFOUND);
+}
+
+// A client that reads the rackets (CoreSettings::rackets) keeps a slot's
+// samples from its holder only (docs/protocol.md, "The other players'
+// rackets"): a stranger's, a slot the match lacks, an older one and one
+// come before the model are refused and counted; the racket between two
+// samples is where libball's track puts it, on the caller's clock; a
+// client that does not read them leaves them in the port.
+TEST(a_clients_rackets_are_their_holders_samples) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  CoreSettings settings;
+  settings.rackets = true;
+  ClientCore core(settings, me());
+  FakeClientPort port;
+  std::string why;
+  CHECK_EQ(core.watch(7, port, &why), BALL_OK);
+  auto sample = [&](const ParticipantId &from, int slot, double t, double z) {
+    RacketSampleIn s;
+    s.match_id = 7;
+    s.player = slot;
+    s.capture_time = t;
+    s.center = ball_v3(20, 1, z);
+    s.normal = ball_v3(-1, 0, 0);
+    s.from = from;
+    port.rackets.push_back(s);
+  };
+  const double local = g.now + kSkew;
+  port.infos.push_back(info_of(g));
+  sample(participant(2), 1, 0.0, 4.0);  // before the model: refused
+  core.pump(port, local, g.now);
+  CHECK_EQ(core.own(7)->rackets_refused, 1u);
+  ball_racket_pose pose;
+  CHECK_EQ(core.racket(7, 1, local, &pose), BALL_EAGAIN);  // no model yet
+  port.models.push_back(model_of(g));
+  port.infos.push_back(info_of(g));
+  core.pump(port, local, g.now);
+  const double sim = core.view(7)->clock().sim_now(local + 0.5);
+  sample(participant(2), 1, sim - 0.05, 5.0);
+  sample(participant(2), 1, sim + 0.05, 6.0);
+  sample(participant(3), 1, sim + 0.06, 9.0);  // a stranger
+  sample(participant(2), 2, sim + 0.07, 9.0);  // no slot 2 in a match of two
+  sample(participant(2), 1, sim + 0.04, 9.0);  // older than the newest
+  RacketSampleIn elsewhere;
+  elsewhere.match_id = 8;  // a match not followed: not counted
+  port.rackets.push_back(elsewhere);
+  core.pump(port, local + 0.5, g.now + 0.5);
+  CHECK_EQ(core.own(7)->rackets, 2u);
+  CHECK_EQ(core.own(7)->rackets_refused, 4u);
+  CHECK_EQ(core.racket(7, 1, local + 0.5, &pose), BALL_OK);
+  // libball's own track of the same two samples, at the same sim time: the same bits
+  ball_sim own;
+  ball_model m = g.match.model();
+  CHECK_EQ(ball_sim_init(&own, &m), BALL_OK);
+  ball_racket_sample a{sim - 0.05, ball_v3(20, 1, 5.0), ball_v3(-1, 0, 0)}, b{sim + 0.05, ball_v3(20, 1, 6.0), ball_v3(-1, 0, 0)};
+  CHECK_EQ(ball_racket_push(&own, 1, &a), BALL_OK);
+  CHECK_EQ(ball_racket_push(&own, 1, &b), BALL_OK);
+  ball_racket_pose want;
+  CHECK_EQ(ball_racket_estimate(&own, 1, sim, &want), BALL_OK);
+  CHECK(same_bits(pose.center, want.center) && same_bits(pose.normal, want.normal));
+  CHECK_NEAR(pose.center.z, 5.5, 1e-9);
+  CHECK_EQ(core.racket(7, 0, local + 0.5, &pose), BALL_ENOTFOUND);  // slot 0: no sample
+  CHECK_EQ(core.racket(7, 2, local + 0.5, &pose), BALL_ERANGE);
+  CHECK_EQ(core.racket(8, 1, local + 0.5, &pose), BALL_ENOMATCH);
+  // a client that does not read the rackets leaves them where they are
+  ClientCore plain(CoreSettings{}, me());
+  CHECK_EQ(plain.watch(7, port, &why), BALL_OK);
+  sample(participant(2), 1, sim + 0.1, 6.0);
+  plain.pump(port, local + 0.6, g.now + 0.6);
+  CHECK_EQ(port.rackets.size(), 1u);
+  CHECK_EQ(plain.own(7)->rackets + plain.own(7)->rackets_refused, 0u);
 }
 
 // CREATE goes out until a MatchInfo of the match appears; the list holds

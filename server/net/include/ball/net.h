@@ -89,6 +89,9 @@ typedef struct ball_net_config {
   double link_jitter;             /* s, [0, 1] */
   double link_loss;               /* [0, 0.9] */
   uint64_t link_seed;
+  int rackets;                    /* 1: read the players' racket samples of the matches followed, for
+                                     ball_net_racket (their samples come in too: a slot's rate times about
+                                     100 bytes a second); 0: not */
 } ball_net_config;
 
 /* Defaults: domain 0, loopback, any server, CLOCK_MONOTONIC, no simulated network. */
@@ -277,6 +280,20 @@ BALL_NET_API ball_status ball_net_sim_time(const ball_net_client *client, uint32
 BALL_NET_API ball_status ball_net_local_time(const ball_net_client *client, uint32_t match, double sim,
                                              double *time);
 
+/* The racket of slot `slot` of `match` at `time` of the caller's clock (a
+ * player's opponent, or its own as the server sees it), from the samples its
+ * holder writes (docs/protocol.md, "The other players' rackets"): between
+ * two samples interpolated, past the newest extrapolated (eq 15) for at most
+ * the model's extrapolation_time. Needs ball_net_config.rackets
+ * (BALL_EINVAL without). BALL_ENOMATCH: the client does not follow the
+ * match; BALL_EAGAIN: no clock, model or sample of the slot yet;
+ * BALL_ERANGE: a slot the match does not have; BALL_ESTALE: the newest
+ * sample is older than the model's stale_time; BALL_ENONFINITE: a NaN or
+ * infinite time. Under DDS Security the identity must be granted reading
+ * the players' topic in the match's partition (docs/security.md). */
+BALL_NET_API ball_status ball_net_racket(const ball_net_client *client, uint32_t match, int slot, double time,
+                                         ball_racket_pose *out);
+
 /* The whole model the match is stepped with, from the wire (a copy).
  * BALL_EAGAIN: not come yet. */
 BALL_NET_API ball_status ball_net_model(const ball_net_client *client, uint32_t match, ball_model *out);
@@ -386,6 +403,9 @@ typedef struct ball_net_status {
   uint64_t untrusted;          /* under DDS Security, samples of any match refused because their writer lacks the
                                   certificate bound to the server id they claim (the config's servers): the
                                   client's count, the same in every match's status */
+  uint64_t rackets;            /* the players' racket samples taken (ball_net_config.rackets) */
+  uint64_t rackets_refused;    /* and not taken: not from the slot's holder, a slot the match lacks, not newer
+                                  than the slot's newest, or come before the match's model */
 } ball_net_status;
 
 /* The status of a match the client follows. BALL_ENOMATCH: it does not. */
