@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "common.h"
+#include "options_impl.h"
 
 namespace ballsrv {
 namespace app {
@@ -455,6 +456,8 @@ int json_pointer_line(const std::string &text_in, const std::string &pointer) {
   yaml_parser_delete(&parser);
   return best;
 }
+
+template class FieldOptions<ServerConfig>;
 
 }  // namespace app
 }  // namespace ballsrv

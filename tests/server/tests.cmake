@@ -28,12 +28,12 @@ set_tests_properties(test_wire PROPERTIES LABELS server TIMEOUT 60)
 # the lag compensation study (./run lag-study; docs/server.md, "Lag compensation"), and its smoke run
 add_executable(ball_lag_study ${CMAKE_CURRENT_LIST_DIR}/lag_study.cpp)
 target_include_directories(ball_lag_study PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
-target_link_libraries(ball_lag_study PRIVATE ball_app ball_kit_headers)
+target_link_libraries(ball_lag_study PRIVATE ball_app ball_match ball_kit_headers)
 target_compile_options(ball_lag_study PRIVATE ${BALL_CXX_WARNINGS})
 # what hits at their instant cost (./run hit-cost under callgrind; docs/server.md, "Hits at their instant")
 add_executable(ball_hit_cost ${CMAKE_CURRENT_LIST_DIR}/hit_cost.cpp)
 target_include_directories(ball_hit_cost PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
-target_link_libraries(ball_hit_cost PRIVATE ball_app ball_kit_headers)
+target_link_libraries(ball_hit_cost PRIVATE ball_app ball_match ball_kit_headers)
 target_compile_options(ball_hit_cost PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME ball_lag_study_smoke COMMAND ball_lag_study --seeds 1 --seconds 5)
 set_tests_properties(ball_lag_study_smoke PROPERTIES LABELS server TIMEOUT 120)
@@ -41,7 +41,7 @@ set_tests_properties(ball_lag_study_smoke PROPERTIES LABELS server TIMEOUT 120)
 # ---- the networked cases: ball_itest drives the real programs ----------------
 add_executable(test_config ${CMAKE_CURRENT_LIST_DIR}/test_config.cpp)
 target_include_directories(test_config PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
-target_link_libraries(test_config PRIVATE ball_app)
+target_link_libraries(test_config PRIVATE ball_server_app)
 target_compile_definitions(test_config PRIVATE BALL_EXAMPLE_CONFIG="${PROJECT_SOURCE_DIR}/server/config/example.json")
 target_compile_options(test_config PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_config COMMAND test_config)
@@ -137,3 +137,11 @@ set_tests_properties(demo_secure PROPERTIES FIXTURES_REQUIRED demo_secure_certs 
   PASS_REGULAR_EXPRESSION "summary: match 0: [1-9][0-9]* hits.*ball-demo: done"
   FAIL_REGULAR_EXPRESSION "FAILED"
   ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
+
+# the clients link nothing of the server's match, host or loop
+find_program(BALL_NM NAMES nm REQUIRED)
+add_test(NAME clients_link_no_server
+  COMMAND ${CMAKE_COMMAND} -DNM=${BALL_NM}
+    "-DFILES=$<TARGET_FILE:ball-bot>;$<TARGET_FILE:ball-watch>;$<TARGET_FILE:ball-load>;$<TARGET_FILE:ball-demo>;$<TARGET_FILE:ball_net>"
+    -DSERVER=$<TARGET_FILE:ball-server> -P ${CMAKE_CURRENT_LIST_DIR}/no_server_in_clients.cmake)
+set_tests_properties(clients_link_no_server PROPERTIES LABELS server)
