@@ -21,9 +21,6 @@
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>
 
-#include <openssl/evp.h>
-#include <openssl/pem.h>
-#include <openssl/x509.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -649,40 +646,12 @@ Domain::~Domain() {
 
 ParticipantId Domain::id() const { return prefix_of(impl_->participant->guid()); }
 
-// PKI-DH's adjusted participant key (DDS Security 1.1, 9.3.3): bit 0 of
-// the prefix is 1, bits 1..47 are bits 0..46 of the subject name's SHA-256.
-bool prefix_fits(const ParticipantId &p, const SubjectKey &key) {
-  for (int i = 0; i < 6; ++i) {
-    uint8_t b = static_cast<uint8_t>((p[i] << 1) | (i < 5 ? p[i + 1] >> 7 : 0));
-    if (b != key[i]) return false;
-  }
-  return (p[0] & 0x80) != 0;
-}
-
 bool Domain::subject_key(const std::string &identity, SubjectKey *out, std::string *err) const {
   if (!secure_) {
     *err = "the certificate of " + identity + " binds a server only under DDS Security (--secure DIR)";
     return false;
   }
-  std::string file = security_dir_ + "/" + identity + ".pem";
-  FILE *f = std::fopen(file.c_str(), "r");
-  if (!f) {
-    *err = "DDS Security: " + file + ": " + std::strerror(errno);
-    return false;
-  }
-  X509 *cert = PEM_read_X509(f, nullptr, nullptr, nullptr);
-  std::fclose(f);
-  unsigned char md[EVP_MAX_MD_SIZE];
-  unsigned int length = 0;
-  bool ok = cert && X509_NAME_digest(X509_get_subject_name(cert), EVP_sha256(), md, &length) && length >= 6;
-  X509_free(cert);
-  if (!ok) {
-    *err = "DDS Security: " + file + ": not a PEM certificate";
-    return false;
-  }
-  md[5] &= 0xFE;
-  std::copy(md, md + 6, out->begin());
-  return true;
+  return subject_key_of(security_dir_ + "/" + identity + ".pem", out, err);
 }
 
 bool Domain::writes_in(const std::array<uint8_t, 16> &writer, const std::string &partition) const {

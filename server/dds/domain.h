@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "certificate.h"
 #include "types.h"
 
 namespace eprosima {
@@ -109,14 +110,6 @@ struct Security {
   std::string identity;  // NAME: NAME.pem and NAME.key in dir
 };
 
-// Under DDS Security's PKI-DH the first 47 bits of a participant's GUID
-// prefix are those of the SHA-256 of its certificate's subject name, and
-// authentication refuses a participant whose prefix does not fit the
-// certificate it proves to hold: so the prefix of a sample's writer on a
-// secure domain says whose certificate wrote it (docs/security.md, "A
-// server's certificate"). A SubjectKey is those 47 bits (the last one 0).
-using SubjectKey = std::array<uint8_t, 6>;
-bool prefix_fits(const ParticipantId &prefix, const SubjectKey &key);
 
 // What DDS says about a sample besides its data.
 struct SampleMeta {

@@ -17,6 +17,14 @@ foreach(name test_match test_ahead test_hit_instant test_lag test_bot test_clien
   set_tests_properties(${name} PROPERTIES LABELS server TIMEOUT 120)
 endforeach()
 
+# a certificate's subject key and the prefixes that fit it (OpenSSL, no DDS)
+add_executable(test_certificate ${CMAKE_CURRENT_LIST_DIR}/test_certificate.cpp)
+target_include_directories(test_certificate PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
+target_link_libraries(test_certificate PRIVATE ball_certificate)
+target_compile_options(test_certificate PRIVATE ${BALL_CXX_WARNINGS})
+add_test(NAME test_certificate COMMAND test_certificate WORKING_DIRECTORY ${CMAKE_CURRENT_BINARY_DIR})
+set_tests_properties(test_certificate PROPERTIES LABELS server TIMEOUT 60)
+
 # the wire's bytes of a MatchModel (server/dds's serialized and deserialized), offline: no participant
 add_executable(test_wire ${CMAKE_CURRENT_LIST_DIR}/test_wire.cpp)
 target_include_directories(test_wire PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
