@@ -90,8 +90,8 @@ typedef struct ball_net_config {
   double link_loss;               /* [0, 0.9] */
   uint64_t link_seed;
   int rackets;                    /* 1: read the players' racket samples of the matches followed, for
-                                     ball_net_racket (their samples come in too: a slot's rate times about
-                                     100 bytes a second); 0: not */
+                                     ball_net_racket (their samples come in too: a slot's rate times 76
+                                     bytes of payload a second); 0: not */
 } ball_net_config;
 
 /* Defaults: domain 0, loopback, any server, CLOCK_MONOTONIC, no simulated network. */
