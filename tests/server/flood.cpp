@@ -36,13 +36,14 @@ const SampleResult kKinds[] = {SampleResult::unknown_match, SampleResult::bad_sl
 int main(int argc, char **argv) {
   CLI::App cli{"ball_flood: well-formed parked rackets on match 0, then malformed samples of every kind"};
   long per_kind = 0, burst = 0, key_flood = 0;
-  double duration = 12.0, interval = 0.0008;
+  double duration = 12.0, interval = 0.0008, rate = 10.0;
   std::string out_json;
   DdsOptions dds_opt;
   cli.add_option("--per-kind", per_kind, "malformed samples of each kind (0: only the parked rackets)");
   cli.add_option("--duration", duration, "s to run");
   cli.add_option("--interval", interval, "s between malformed samples");
   cli.add_option("--burst", burst, "then this many out_of_range samples at once");
+  cli.add_option("--rate", rate, "A's parked samples per second and slot")->check(CLI::Range(2.0, 120.0));
   cli.add_option("--key-flood", key_flood, "B writes this many samples every 10 ms under A's keys once the match plays");
   cli.add_option("--out", out_json, "JSON file of what was sent");
   add_dds_options(cli, &dds_opt);
@@ -128,7 +129,7 @@ int main(int argc, char **argv) {
         valid++;
       }
       // no catching up: a burst would repeat one capture time (a duplicate)
-      next_valid = now + 0.1;
+      next_valid = now + 1.0 / rate;
     }
     // the match plays and has taken the parked rackets for a while (the
     // duplicate kind repeats an accepted sample)

@@ -412,8 +412,10 @@ void case_key_flood(const Env &env) {
   Process w = c.watcher(rec, {"--match", "0"});
   // A plays for 10 s; its slots vanish a player timeout after it stops (not counted)
   double ended = realtime_now() + 10.0;
-  Process f = Process::start({env.bin + "/ball_flood", "--domain", env.dom(), "--key-flood", "4000", "--duration",
-                              "10", "--out", flood_out},
+  // (A at a player's usual 30 samples a second: at 10, DDS losing 10 in a row of a slot's under the
+  // flood, 1 s without one, paused the match in about one run of six)
+  Process f = Process::start({env.bin + "/ball_flood", "--domain", env.dom(), "--key-flood", "4000", "--rate", "30",
+                              "--duration", "10", "--out", flood_out},
                              rec + ".flood.out", rec + ".flood.err");
   int frc = f.wait(30.0);
   CHECK_MSG(frc == 0, "ball_flood exit status %d", frc);
@@ -437,7 +439,7 @@ void case_key_flood(const Env &env) {
        pauses, static_cast<unsigned long long>(r.status.samples_ok));
   CHECK(flooded >= 200000);  // (776,000 here; a thousand times the player's own, on a slower machine too)
   CHECK_EQ(pauses, 0u);
-  // A's own samples (2 x 10 a second) share the way with the flood and DDS loses some with it:
+  // A's own samples (2 x 30 a second) share the way with the flood and DDS loses some with it:
   // a quarter at least are accepted (82 % here, 54 % under ASan)
   uint64_t valid = sent.value("valid", uint64_t{0});
   CHECK_MSG(valid >= 100u && r.status.samples_ok * 4 >= valid, "the player's samples: %llu sent, %llu accepted",
