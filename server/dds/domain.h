@@ -133,17 +133,6 @@ struct StatusNote {
 template <class T>
 uint64_t serialized_size();
 
-// One sample of T as a writer puts it on the wire: its CDR encoding with
-// the 4-byte encapsulation header (for the tests' hostile participants,
-// which change bytes of it; RawWriter).
-template <class T>
-std::vector<uint8_t> serialized(const T &sample);
-
-// A sample's bytes as a reader takes them (serialized's inverse, through
-// the same guarded type support); false for bytes that do not read as T.
-template <class T>
-bool deserialized(const std::vector<uint8_t> &bytes, T *out);
-
 class Domain;
 
 template <class T>
@@ -159,23 +148,6 @@ class Writer {
   bool dispose(const T &key_sample);
   int matched() const;  // readers matched now
   bool valid() const { return w_ != nullptr; }
-
- private:
-  friend class Domain;
-  eprosima::fastdds::dds::DataWriter *w_ = nullptr;
-};
-
-// Writes payloads as they are, their 4-byte encapsulation included, under
-// the type name of an IDL type: what no IDL type writes (an encapsulation
-// Fast CDR does not know, a boolean byte of 2, a sample cut short). For the
-// tests' hostile participants (Domain::raw_writer).
-class RawWriter {
- public:
-  RawWriter() = default;
-  [[nodiscard]] bool write(const std::vector<uint8_t> &payload);  // at most kRawMax bytes
-  int matched() const;  // readers matched now
-  bool valid() const { return w_ != nullptr; }
-  static constexpr size_t kRawMax = 4096;
 
  private:
   friend class Domain;
@@ -267,16 +239,11 @@ class Domain {
   template <class T>
   Reader<T> reader(const char *topic, const char *profile, Sizing sizing, std::string *err);
 
-  // A RawWriter on `topic` under the type name of T's IDL type, with the
-  // data_writer profile `profile`. The participant must not have T's own
-  // type (a Domain of its own): DDS keeps one type per name.
-  template <class T>
-  RawWriter raw_writer(const char *topic, const char *profile, std::string *err);
-
   // The liveliness lease a data_reader profile requests (s; 0: none).
   double reader_lease(const char *profile) const;
 
  private:
+  friend struct RawAccess;  // the tests' raw writers (testing/raw.h)
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int domain_id_ = 0;

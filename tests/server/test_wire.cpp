@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "check.hpp"
-#include "domain.h"
+#include "testing/raw.h"
 #include "trust.h"
 
 using namespace ballsrv;

@@ -28,7 +28,7 @@ set_tests_properties(test_certificate PROPERTIES LABELS server TIMEOUT 60)
 # the wire's bytes of a MatchModel (server/dds's serialized and deserialized), offline: no participant
 add_executable(test_wire ${CMAKE_CURRENT_LIST_DIR}/test_wire.cpp)
 target_include_directories(test_wire PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
-target_link_libraries(test_wire PRIVATE ball_dds_client ball_static)
+target_link_libraries(test_wire PRIVATE ball_dds_testing ball_static)
 target_compile_options(test_wire PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_wire COMMAND test_wire)
 set_tests_properties(test_wire PROPERTIES LABELS server TIMEOUT 60)
@@ -82,7 +82,7 @@ add_test(NAME docs_server_dds_domains_current
 set_tests_properties(docs_server_dds_domains_current PROPERTIES LABELS server)
 
 add_executable(ball_unreadable ${CMAKE_CURRENT_LIST_DIR}/unreadable.cpp)
-target_link_libraries(ball_unreadable PRIVATE ball_app ball_dds)
+target_link_libraries(ball_unreadable PRIVATE ball_app ball_dds_testing)
 target_compile_options(ball_unreadable PRIVATE ${BALL_CXX_WARNINGS})
 set_target_properties(ball_unreadable PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/server)
 add_executable(ball_flood ${CMAKE_CURRENT_LIST_DIR}/flood.cpp)
@@ -151,5 +151,11 @@ find_program(BALL_NM NAMES nm REQUIRED)
 add_test(NAME clients_link_no_server
   COMMAND ${CMAKE_COMMAND} -DNM=${BALL_NM}
     "-DFILES=$<TARGET_FILE:ball-bot>;$<TARGET_FILE:ball-watch>;$<TARGET_FILE:ball-load>;$<TARGET_FILE:ball-demo>;$<TARGET_FILE:ball_net>"
-    -DSERVER=$<TARGET_FILE:ball-server> -P ${CMAKE_CURRENT_LIST_DIR}/no_server_in_clients.cmake)
+    -DSERVER=$<TARGET_FILE:ball-server> -P ${CMAKE_CURRENT_LIST_DIR}/links_none_of.cmake)
 set_tests_properties(clients_link_no_server PROPERTIES LABELS server)
+# and no program links the tests' raw writers (server/dds/testing)
+add_test(NAME programs_link_no_test_writers
+  COMMAND ${CMAKE_COMMAND} -DNM=${BALL_NM} "-DPATTERN=ballsrv::dds::(RawWriter|RawAccess)"
+    "-DFILES=$<TARGET_FILE:ball-server>;$<TARGET_FILE:ball-bot>;$<TARGET_FILE:ball-watch>;$<TARGET_FILE:ball-load>;$<TARGET_FILE:ball-demo>;$<TARGET_FILE:ball_net>"
+    -DSERVER=$<TARGET_FILE:ball_unreadable> -P ${CMAKE_CURRENT_LIST_DIR}/links_none_of.cmake)
+set_tests_properties(programs_link_no_test_writers PROPERTIES LABELS server)

@@ -19,7 +19,7 @@
 
 #include "ball/vec3.h"
 #include "common.h"
-#include "domain.h"
+#include "testing/raw.h"
 #include "open_domain.h"
 
 using namespace ballsrv;
@@ -117,17 +117,17 @@ int main(int argc, char **argv) {
   t.server_id = t2.server_id = 999;
   t2.standby = true;
   bool ok =
-      add("racket", raw->raw_writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, &err),
+      add("racket", dds::raw_writer<RacketSampleIn>(*raw, dds::kRacketTopic, dds::kRacketProfile, &err),
           dds::serialized(s), dds::serialized(s)) &&
-      add("control", raw->raw_writer<ControlIn>(dds::kControlTopic, dds::kControlProfile, &err),
+      add("control", dds::raw_writer<ControlIn>(*raw, dds::kControlTopic, dds::kControlProfile, &err),
           dds::serialized(c), dds::serialized(c)) &&
-      add("info", raw->raw_writer<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, &err),
+      add("info", dds::raw_writer<MatchInfoOut>(*raw, dds::kInfoTopic, dds::kInfoProfile, &err),
           dds::serialized(i), dds::serialized(i2)) &&
-      add("segment", raw->raw_writer<SegmentOut>(dds::kSegmentTopic, dds::kSegmentProfile, &err),
+      add("segment", dds::raw_writer<SegmentOut>(*raw, dds::kSegmentTopic, dds::kSegmentProfile, &err),
           dds::serialized(g), dds::serialized(g2)) &&
-      add("event", raw->raw_writer<EventOut>(dds::kEventTopic, dds::kEventProfile, &err),
+      add("event", dds::raw_writer<EventOut>(*raw, dds::kEventTopic, dds::kEventProfile, &err),
           dds::serialized(e), dds::serialized(e2)) &&
-      add("status", raw->raw_writer<StatusOut>(dds::kStatusTopic, dds::kStatusProfile, &err),
+      add("status", dds::raw_writer<StatusOut>(*raw, dds::kStatusTopic, dds::kStatusProfile, &err),
           dds::serialized(t), dds::serialized(t2));
   if (!ok) return fail(kProgram, err);
   // the racket topic's readable one: plain CDR with the parameter-list flag, of a made-up match
