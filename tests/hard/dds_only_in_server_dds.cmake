@@ -3,7 +3,7 @@
 # (fastdds/, fastrtps/, fastcdr/) or a header fastddsgen generates from
 # idl/*.idl (<stem>.h, <stem>PubSubTypes.h, <stem>TypeObject.h, ...), and
 # no target links the generated code (ball_idl) or Fast DDS's libraries
-# but server/dds's own libraries (ball_dds, ball_dds_client) and ball_idl
+# but server/dds's own libraries (ball_dds, ball_dds_client, ball_dds_testing) and ball_idl
 # itself, which is that generated code. Fails
 # on an empty file list, and unless server/dds itself is seen including
 # Fast DDS (else the patterns would match nothing anywhere).
@@ -31,7 +31,7 @@ foreach(f ${files})
     # code or Fast DDS: only ball_dds's and ball_idl's
     ball_link_calls(${f} calls)
     foreach(call ${calls})
-      if(call MATCHES "^target_link_libraries\\( ?([^ )]+)" AND NOT CMAKE_MATCH_1 MATCHES "^(ball_dds|ball_dds_client|ball_idl)$"
+      if(call MATCHES "^target_link_libraries\\( ?([^ )]+)" AND NOT CMAKE_MATCH_1 MATCHES "^(ball_dds|ball_dds_client|ball_dds_testing|ball_idl)$"
          AND call MATCHES " (ball_idl|fastrtps|fastcdr|fastdds[^ )]*)[ )]")
         list(APPEND bad "${f}: ${call}")
       endif()
