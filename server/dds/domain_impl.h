@@ -57,7 +57,7 @@ namespace ballsrv {
 namespace dds {
 
 inline ParticipantId prefix_of(const eprosima::fastrtps::rtps::GUID_t &guid) {
-  ParticipantId id;
+  ParticipantId id{};
   std::copy(std::begin(guid.guidPrefix.value), std::end(guid.guidPrefix.value), id.begin());
   return id;
 }
@@ -65,7 +65,7 @@ inline ParticipantId prefix_of(const eprosima::fastrtps::rtps::GUID_t &guid) {
 inline double seconds(const eprosima::fastrtps::rtps::Time_t &t) { return static_cast<double>(t.to_ns()) * 1e-9; }
 
 inline std::array<uint8_t, 16> guid_bytes(const eprosima::fastrtps::rtps::GUID_t &g) {
-  std::array<uint8_t, 16> b;
+  std::array<uint8_t, 16> b{};
   std::copy(std::begin(g.guidPrefix.value), std::end(g.guidPrefix.value), b.begin());
   std::copy(std::begin(g.entityId.value), std::end(g.entityId.value), b.begin() + 12);
   return b;
