@@ -71,6 +71,47 @@ void add_usage(const Snapshot &a, const Snapshot &b, double seconds, LoadRow *ro
   }
 }
 
+// What the meter holds, taken: its MatchInfos (for the clock of each
+// match), the timings of the racket segments of this process's matches (a
+// meter reads every match's; another process's are that one's to count),
+// and the server's statuses; figures only while `measuring`. `real`: the
+// realtime clock now, for a segment without DDS's reception stamp.
+void take_meter(CountingPort &meter, const LoadOptions &o, bool measuring, double real, bool *have_first,
+                LoadPart *part) {
+  MatchInfoOut info;
+  while (meter.take(&info)) {
+  }
+  SegmentOut seg;
+  while (meter.take(&seg)) {
+    const bool ours = seg.match_id >= static_cast<uint32_t>(o.first_match) &&
+                      seg.match_id < static_cast<uint32_t>(o.first_match + o.matches);
+    if (!measuring || !ours || seg.cause != Cause::racket || !seg.sample.valid) continue;
+    // when DDS received it, not this tick's time (ticks are kTick apart)
+    double recv = seg.reception.received > 0.0 ? seg.reception.received : real;
+    part->latency.push_back(recv - seg.sample.source_time);
+    const MatchInfoOut *i = meter.info(seg.match_id);
+    // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one;
+    // a correction's t0 lies back by its late sample's trip: lag compensation's, not a hit's way out)
+    if (i && i->time_base > 0.0 && i->server_time > 0.0 && !seg.correction) {
+      double hit = server_time_of(*i, seg.segment.t0);
+      part->hit_to_wire.push_back(recv - hit);
+      if (seg.reception.written > 0.0 && seg.reception.received > 0.0) {  // its two parts, where DDS said both
+        part->hit_to_write.push_back(seg.reception.written - hit);
+        part->delivery.push_back(seg.reception.received - seg.reception.written);
+      }
+    }
+  }
+  StatusOut so;
+  while (meter.take(&so)) {
+    if (!measuring) continue;
+    if (!*have_first) part->first = so;
+    *have_first = true;
+    part->last = so;
+    part->frame_p50.push_back(so.frame_p50);
+    part->frame_p99.push_back(so.frame_p99);
+  }
+}
+
 // Plays every slot of its matches over the warm-up and the window; hands
 // the part to `done` while the participants still live (a teardown may be
 // the one that sticks: dds::run_bounded), and calls at_window at the
@@ -143,38 +184,7 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
         refused = true;
         break;
       }
-      MatchInfoOut info;
-      while (meter.take(&info)) {
-      }
-      SegmentOut seg;
-      while (meter.take(&seg)) {
-        const bool ours = seg.match_id >= static_cast<uint32_t>(o.first_match) &&
-                          seg.match_id < static_cast<uint32_t>(o.first_match + o.matches);  // (another process's: its)
-        if (!measuring || !ours || seg.cause != Cause::racket || !seg.sample.valid) continue;
-        // when DDS received it, not this tick's time (ticks are kTick apart)
-        double recv = seg.reception.received > 0.0 ? seg.reception.received : real;
-        part.latency.push_back(recv - seg.sample.source_time);
-        const MatchInfoOut *i = meter.info(seg.match_id);
-        // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one;
-        // a correction's t0 lies back by its late sample's trip: lag compensation's, not a hit's way out)
-        if (i && i->time_base > 0.0 && i->server_time > 0.0 && !seg.correction) {
-          double hit = server_time_of(*i, seg.segment.t0);
-          part.hit_to_wire.push_back(recv - hit);
-          if (seg.reception.written > 0.0 && seg.reception.received > 0.0) {  // its two parts, where DDS said both
-            part.hit_to_write.push_back(seg.reception.written - hit);
-            part.delivery.push_back(seg.reception.received - seg.reception.written);
-          }
-        }
-      }
-      StatusOut so;
-      while (meter.take(&so)) {
-        if (!measuring) continue;
-        if (!have_first) part.first = so;
-        have_first = true;
-        part.last = so;
-        part.frame_p50.push_back(so.frame_p50);
-        part.frame_p99.push_back(so.frame_p99);
-      }
+      take_meter(meter, o, measuring, real, &have_first, &part);
       next_tick += kTick;
       if (next_tick < now) next_tick = now + kTick;
     }
