@@ -437,10 +437,10 @@ void case_key_flood(const Env &env) {
        static_cast<unsigned long long>(r.status.drops[static_cast<int>(SampleResult::lost)] +
                                        r.status.drops[static_cast<int>(SampleResult::rejected)]),
        pauses, static_cast<unsigned long long>(r.status.samples_ok));
-  CHECK(flooded >= 200000);  // (776,000 here; a thousand times the player's own, on a slower machine too)
+  CHECK(flooded >= 200000);  // (1,700,000 here; a thousand times the player's own, on a slower machine too)
   CHECK_EQ(pauses, 0u);
-  // A's own samples (2 x 30 a second) share the way with the flood and DDS loses some with it:
-  // a quarter at least are accepted (82 % here, 54 % under ASan)
+  // A's own samples (2 x 30 a second) share the server's socket with the flood, which the kernel
+  // overflows (a third of the flood dropped there): a quarter at least are accepted (95 % here)
   uint64_t valid = sent.value("valid", uint64_t{0});
   CHECK_MSG(valid >= 100u && r.status.samples_ok * 4 >= valid, "the player's samples: %llu sent, %llu accepted",
             static_cast<unsigned long long>(valid), static_cast<unsigned long long>(r.status.samples_ok));
