@@ -32,6 +32,7 @@ libball). Standard library only (Python 3.11).
 import ctypes
 import ctypes.util
 import enum
+import json
 import os
 import time
 
@@ -147,6 +148,7 @@ class Segment(_Struct):  # ball_segment
 
 
 _Clock = ctypes.CFUNCTYPE(ctypes.c_double, ctypes.c_void_p)  # ball_net_clock
+_Tap = ctypes.CFUNCTYPE(None, ctypes.c_void_p, ctypes.c_char_p, ctypes.c_size_t)  # ball_net_tap
 
 
 class Config(_Struct):  # ball_net_config
@@ -166,7 +168,8 @@ class Config(_Struct):  # ball_net_config
                 ("link_jitter", ctypes.c_double),
                 ("link_loss", ctypes.c_double),
                 ("link_seed", ctypes.c_uint64),
-                ("rackets", ctypes.c_int)]
+                ("rackets", ctypes.c_int),
+                ("server_status", ctypes.c_int)]
 
 
 class Slot(_Struct):  # ball_net_slot
@@ -278,6 +281,7 @@ _SIGNATURES = {
     "ball_net_ball_at": (_ST, [_P, ctypes.c_uint32, ctypes.c_double, ctypes.POINTER(Ball)]),
     "ball_net_racket": (_ST, [_P, ctypes.c_uint32, ctypes.c_int, ctypes.c_double, ctypes.POINTER(RacketPose)]),
     "ball_net_poll": (_ST, [_P, ctypes.POINTER(Event), ctypes.c_int, ctypes.POINTER(ctypes.c_int)]),
+    "ball_net_set_tap": (_ST, [_P, _Tap, ctypes.c_void_p]),
     "ball_net_event_kind_name": (ctypes.c_char_p, [ctypes.c_int]),
     "ball_net_reason_name": (ctypes.c_char_p, [ctypes.c_int]),
 }
@@ -346,8 +350,8 @@ class Client:
     """A client of ball servers (ball_net_client): a DDS participant on `domain`.
 
     Keyword arguments are ball_net_config's fields (participant, discovery_servers, qos_file,
-    security_dir, identity, servers, name, max_matches, ball_states, rackets, link_delay, link_jitter,
-    link_loss, link_seed); None keeps the default. Error when
+    security_dir, identity, servers, name, max_matches, ball_states, rackets, server_status, link_delay,
+    link_jitter, link_loss, link_seed); None keeps the default. Error when
     the library refuses (a field out of range, a domain whose ports are taken, ...).
     A context manager: leaving the block closes it. Every call on a closed client raises
     Error with status BALL_ECLOSED; close() itself may be called again.
@@ -358,7 +362,8 @@ class Client:
         _lib.ball_net_config_default(ctypes.byref(c))
         c.domain = domain
         for key, value in config.items():
-            numbers = ("max_matches", "ball_states", "rackets", "link_delay", "link_jitter", "link_loss", "link_seed")
+            numbers = ("max_matches", "ball_states", "rackets", "server_status", "link_delay", "link_jitter",
+                       "link_loss", "link_seed")
             if key not in ("participant", "discovery_servers", "qos_file", "security_dir", "identity",
                            "servers", "name") + numbers:
                 raise TypeError("Client() got an unexpected keyword argument %r" % key)
@@ -458,6 +463,25 @@ class Client:
         self._check(st)
         return out
 
+    def tap(self, fn):
+        """Calls fn(line) with every sample the client takes from now on, a dict of the record's JSON
+        (ball_net_set_tap), from within poll(); None: no tap. An exception fn raises is raised by the
+        poll() that called it, once the poll is done."""
+        if fn is None:
+            self._check(_lib.ball_net_set_tap(self._handle, _Tap(), None))
+            self._tap = None
+            return
+
+        def call(_user, line, length):
+            try:
+                fn(json.loads(ctypes.string_at(line, length)))
+            except BaseException as e:  # (it cannot cross the C library)
+                self._tap_error = self._tap_error or e
+
+        tap = _Tap(call)
+        self._check(_lib.ball_net_set_tap(self._handle, tap, None))
+        self._tap, self._tap_error = tap, None  # (ctypes calls it: it must live as long as the tap)
+
     def poll(self):
         """Takes what came in, resends what was not answered; every event that is ready, a list of
         Event in order."""
@@ -465,6 +489,9 @@ class Client:
         while True:
             out = (Event * cap)()
             self._check(_lib.ball_net_poll(self._handle, out, cap, ctypes.byref(n)))
+            error, self._tap_error = getattr(self, "_tap_error", None), None
+            if error is not None:
+                raise error
             events.extend(out[:n.value])
             if n.value < cap:
                 return events

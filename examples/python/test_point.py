@@ -191,7 +191,9 @@ def test_a_point_with_a_hit_of_its_own(server_and_bot):
     played = mine = rally_hits = 0
     slot, racket = -1, None
     seen, near = 0, []  # frames the bot's racket was known; its distance to the ball at its hits
-    with ballnet.Client(domain=DOMAIN, rackets=1) as client:
+    lines, given = [], set()  # the tap's lines; the server's events poll gave, by (match, seq)
+    with ballnet.Client(domain=DOMAIN, rackets=1, server_status=1) as client:
+        client.tap(lines.append)
         start_t = ballnet.now()
         m = None
         while m is None:
@@ -204,6 +206,8 @@ def test_a_point_with_a_hit_of_its_own(server_and_bot):
         while not (played >= 1 and mine >= 1) and ballnet.now() - start_t < 60.0:
             t = ballnet.now()
             for e in client.poll():
+                if e.kind < ballnet.EventKind.SERVER:
+                    given.add((e.match, e.seq))
                 if e.kind == ballnet.EventKind.SLOT and e.value > 0:
                     slot = e.index
                 elif e.kind == ballnet.EventKind.RACKET and e.in_play and e.index == slot:
@@ -241,3 +245,12 @@ def test_a_point_with_a_hit_of_its_own(server_and_bot):
     assert seen > 0
     assert near  # the bot returns every ball at the easy level: it hit at least once
     assert all(d < 0.5 for d in near)  # within the disc's radius and the ball's, and a sample's error
+    # the tap: every kind the client read, "ready" once, and every server event poll gave came through it
+    kinds = [line["type"] for line in lines]
+    print("test_point: the tap gave %d lines: %s" % (len(lines), ", ".join(
+        "%d %s" % (kinds.count(k), k) for k in sorted(set(kinds)))))
+    assert kinds.count("ready") == 1
+    assert {"match_info", "match_model", "segment", "event", "racket_sample", "server_status"} <= set(kinds)
+    tapped = {(line["match"], line["seq"]) for line in lines if line["type"] == "event"}
+    assert given and given <= tapped
+    assert all(isinstance(line["recv"], float) for line in lines)

@@ -153,6 +153,21 @@ void from_json(const json &j, MatchInfoOut &i) {
 #undef BALL_GET_MODEL
 }
 
+#define BALL_RACKET_KEYS(X, s)                                                                          \
+  X("match", s.match_id) X("player", s.player) X("seq", s.seq) X("capture_time", s.capture_time)        \
+  X("center", s.center) X("normal", s.normal) X("source_time", s.source_time) X("permitted", s.permitted)
+
+void to_json(json &j, const RacketSampleIn &s) {
+  j = json::object();
+  BALL_RACKET_KEYS(BALL_PUT, s)
+  j["from"] = hex(s.from);
+}
+
+void from_json(const json &j, RacketSampleIn &s) {
+  BALL_RACKET_KEYS(BALL_GET, s)
+  if (!parse_hex(j.at("from").get<std::string>(), &s.from)) throw std::invalid_argument("not a writer: " + j.dump());
+}
+
 // The counters of a status (its own form and the server's report share them).
 #define BALL_STATUS_COUNTER_KEYS(X, s)                                                                  \
   X("server_id", s.server_id) X("uptime", s.uptime) X("samples_in", s.samples_in)                       \

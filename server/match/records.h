@@ -42,6 +42,9 @@ void to_json(json &j, const SlotInfo &s);
 void from_json(const json &j, SlotInfo &s);
 void to_json(json &j, const MatchInfoOut &i);
 void from_json(const json &j, MatchInfoOut &i);
+// a player's racket sample: its fields and its writer ("from", hex); the DDS layer's flags but `permitted` not
+void to_json(json &j, const RacketSampleIn &s);
+void from_json(const json &j, RacketSampleIn &s);
 // drop counters by reason name, every reason ({"unknown_match": 0, ...})
 json drops_json(const std::array<uint64_t, kDropSlots> &drops);
 void drops_from_json(const json &j, std::array<uint64_t, kDropSlots> *drops);
@@ -52,6 +55,8 @@ inline const char *record_type(const SegmentOut &) { return "segment"; }
 inline const char *record_type(const EventOut &) { return "event"; }
 inline const char *record_type(const StateOut &) { return "state"; }
 inline const char *record_type(const MatchInfoOut &) { return "match_info"; }
+inline const char *record_type(const RacketSampleIn &) { return "racket_sample"; }
+inline const char *record_type(const StatusOut &) { return "server_status"; }
 
 // A sample as a record line: its fields, "type", and "recv" (the
 // watcher's realtime clock at reception, s).

@@ -85,6 +85,9 @@ struct ball_net_client {
   std::unique_ptr<ClientCore> core;
   bool closed = false;
   bool rackets = false;  // ball_net_config.rackets
+  ball_net_tap tap = nullptr;  // ball_net_set_tap's
+  void *tap_user = nullptr;
+  bool in_tap = false;         // a tap call is under way
   std::string message;
   // the view the newest ball query found, by match: a game asks for one match's ball every frame
   uint32_t hot_match = 0;
@@ -226,7 +229,7 @@ namespace {
 #define BALL_NET_CONFIG_FIELDS(X)                                                                              \
   X(domain) X(participant) X(discovery_servers) X(qos_file) X(security_dir) X(identity) X(servers) X(name)     \
   X(max_matches) X(ball_states) X(clock) X(clock_user) X(link_delay) X(link_jitter) X(link_loss) X(link_seed)     \
-  X(rackets)
+  X(rackets) X(server_status)
 #define BALL_NET_MATCH_FIELDS(X)                                                                               \
   X(id) X(server) X(scene) X(level) X(state) X(players) X(slots) X(score) X(rally) X(serving_side) X(time_base) \
   X(sim_time) X(net_x) X(court_x) X(court_z) X(model_hash)
@@ -291,6 +294,8 @@ ball_status core_settings_of(const ball_net_config &config, CoreSettings *out, s
                                    std::to_string(kMaxMatches) + "]");
   if (config.ball_states != 0 && config.ball_states != 1) return refuse(BALL_ERANGE, "ball_states must be 0 or 1");
   if (config.rackets != 0 && config.rackets != 1) return refuse(BALL_ERANGE, "rackets must be 0 or 1");
+  if (config.server_status != 0 && config.server_status != 1)
+    return refuse(BALL_ERANGE, "server_status must be 0 or 1");
   if (config.identity && !config.security_dir) return refuse(BALL_EINVAL, "an identity needs security_dir");
   if (config.security_dir && !config.identity) return refuse(BALL_EINVAL, "security_dir needs an identity");
   CoreSettings settings;
@@ -346,6 +351,7 @@ void ball_net_config_default(ball_net_config *config) {
 ball_status ball_net_close(ball_net_client *c) {
   ball_status st = usable(c);
   if (st != BALL_OK) return st;
+  if (c->in_tap) return c->fail(BALL_EINVAL, "ball_net_close called from the client's own tap");
   return guarded(c, [&] {
     if (c->core->leave_all(*c->port) > 0) usleep(static_cast<useconds_t>(kLeaveGrace * 1e6));
     c->closed = true;
@@ -358,7 +364,7 @@ ball_status ball_net_close(ball_net_client *c) {
 }
 
 void ball_net_free(ball_net_client *c) {
-  if (!c) return;
+  if (!c || c->in_tap) return;  // (from its own tap: nothing, as documented)
   if (!c->closed) ball_net_close(c);
   delete c;
 }
@@ -568,9 +574,32 @@ ball_status ball_net_model(const ball_net_client *cc, uint32_t match, ball_model
   });
 }
 
+ball_status ball_net_set_tap(ball_net_client *c, ball_net_tap tap, void *user) {
+  ball_status st = usable(c);
+  if (st != BALL_OK) return st;
+  if (c->in_tap) return c->fail(BALL_EINVAL, "ball_net_set_tap called from the client's own tap");
+  return guarded(c, [&] {
+    c->tap = tap;
+    c->tap_user = user;
+    if (!tap) {
+      c->core->on_sample(nullptr);
+      return c->ok();
+    }
+    c->core->on_sample([c](const json &line) {
+      // (bytes that are not UTF-8 in a stranger's strings become U+FFFD: the line stays JSON)
+      const std::string text = line.dump(-1, ' ', false, json::error_handler_t::replace);
+      c->in_tap = true;
+      c->tap(c->tap_user, text.c_str(), text.size());
+      c->in_tap = false;
+    });
+    return c->ok();
+  });
+}
+
 ball_status ball_net_poll(ball_net_client *c, ball_net_event *out, int cap, int *n) {
   ball_status st = usable(c);
   if (st != BALL_OK) return st;
+  if (c->in_tap) return c->fail(BALL_EINVAL, "ball_net_poll called from the client's own tap");
   if (!n || cap < 0 || (cap > 0 && !out)) return c->fail(BALL_EINVAL, "n must not be NULL, out not NULL when cap > 0");
   return guarded(c, [&] {
     double now = c->now();

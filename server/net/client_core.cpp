@@ -88,34 +88,56 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
   auto delay = [&](Followed *f, const Reception &r) {
     if (r.received > 0.0 && r.written > 0.0) f->view->on_delay(r.received - r.written);
   };
+  // the tap's line of a sample: received at its DDS stamp, else now
+  auto tap = [&](const auto &sample, const Reception &r) {
+    if (tap_) tap_(record_line(sample, r.received > 0.0 ? r.received : real));
+  };
+  if (tap_ && !tapped_ready_ && port.hears_server()) {
+    tapped_ready_ = true;
+    tap_(json{{"type", "ready"}, {"recv", real}});
+  }
   scratch_.clear();
   // models before infos: a view takes the model its info names at once
   MatchModelOut model;
   while (port.take(&model)) {
+    if (tap_)  // (the model itself: ball_net_model)
+      tap_(json{{"type", "match_model"}, {"match", model.match_id}, {"server", model.server_id},
+                {"model_hash", model.model_hash}, {"recv", real}});
     if (models_.count(model.match_id) || models_.size() < settings_.max_matches) models_[model.match_id] = model;
     if (Followed *f = of(model.match_id, size.model)) f->view->on_model(model);
   }
   MatchInfoOut info;
   while (port.take(&info)) {
+    tap(info, info.reception);
     take_info(info, at(info.reception));
     if (Followed *f = of(info.match_id, size.info)) delay(f, info.reception);
   }
   StateOut state;
-  while (port.take(&state))
+  while (port.take(&state)) {
+    tap(state, state.reception);
     if (Followed *f = of(state.match_id, size.state)) f->view->on_state(state, at(state.reception));
+  }
   SegmentOut seg;
-  while (port.take(&seg))
+  while (port.take(&seg)) {
+    tap(seg, seg.reception);
     if (Followed *f = of(seg.match_id, size.segment)) {
       f->view->on_segment(seg, at(seg.reception), &scratch_);
       delay(f, seg.reception);
       if (on_segment_) on_segment_(seg);
     }
+  }
   EventOut ev;
-  while (port.take(&ev))
+  while (port.take(&ev)) {
+    tap(ev, ev.reception);
     if (Followed *f = of(ev.match_id, size.event)) f->view->on_event(ev, at(ev.reception), &scratch_);
+  }
+  StatusOut status;  // (read when the config asks for it: only the tap has it)
+  while (port.take(&status)) tap(status, Reception{});
   RacketSampleIn racket;
-  while (settings_.rackets && port.take(&racket))
+  while (settings_.rackets && port.take(&racket)) {
+    tap(racket, Reception{});
     if (Followed *f = of(racket.match_id, size.sample)) take_racket(f, racket);
+  }
   events_.insert(events_.end(), scratch_.begin(), scratch_.end());
   sizes_ = size;
   send_due(port, local);

@@ -19,6 +19,7 @@
 #include "match_rackets.h"
 #include "match_view.h"
 #include "port.h"
+#include "records.h"
 
 namespace ballsrv {
 
@@ -82,6 +83,11 @@ class ClientCore {
   ball_status racket(uint32_t match, int slot, double local, ball_racket_pose *out) const;
   // Every segment of a followed match as it is taken (a meter's: ball-load's latencies).
   void on_segment(std::function<void(const SegmentOut &)> fn) { on_segment_ = std::move(fn); }
+  // The tap (ball_net_set_tap): every sample pump takes, of any match and
+  // before any rule, as a record line (records.h) stamped with the realtime
+  // s of its reception; a "ready" line once the port first hears a server.
+  // Empty: none.
+  void on_sample(std::function<void(const json &)> fn) { tap_ = std::move(fn); }
   // A LEAVE for every slot held (a client closing); how many were written.
   int leave_all(ClientPort &port);
 
@@ -134,6 +140,8 @@ class ClientCore {
   uint32_t control_seq_ = 0;
   WireSizes sizes_;  // the port's, as the newest pump saw them
   std::function<void(const SegmentOut &)> on_segment_;
+  std::function<void(const json &)> tap_;
+  bool tapped_ready_ = false;  // the tap's "ready" line is out
   uint64_t refused_ = 0;
   uint64_t lost_writes_ = 0;  // controls DDS refused outside a followed match (CREATE)
 };

@@ -144,6 +144,7 @@ extern "C" ball_status ball_net_open(const ball_net_config *config, ball_net_cli
     needs.matches = matches;
     needs.events = true;
     needs.states = config->ball_states != 0;
+    needs.status = config->server_status != 0;  // (for the tap alone)
     needs.server_certs = settings.servers.bound();
     needs.rackets = settings.rackets && !domain->secure();  // (secure: a reader per match followed, NetPort)
     auto readers = dds::ClientEndpoints::open(*domain, needs, &err);

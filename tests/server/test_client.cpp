@@ -4,6 +4,7 @@
 // and a PlayerGroup playing its bots through one client of the client
 // library (ball/net.h) and counting refused writes.
 #include <cmath>
+#include <cstring>
 
 #include <deque>
 #include <map>
@@ -474,3 +475,161 @@ TEST(a_group_begins_each_bot_at_its_start) {
 }
 
 CHECK_MAIN
+
+namespace {
+
+// what a tap was given, and what it did from inside
+struct Tapped {
+  std::vector<std::string> lines;
+  ball_net_client *client = nullptr;
+  bool poll_inside = false;  // it calls ball_net_poll (refused)
+  ball_status inside = BALL_OK;
+};
+
+void keep_line(void *user, const char *line, size_t length) {
+  auto *t = static_cast<Tapped *>(user);
+  CHECK_EQ(std::strlen(line), length);
+  t->lines.emplace_back(line, length);
+  if (t->poll_inside) {
+    int n = 0;
+    t->inside = ball_net_poll(t->client, nullptr, 0, &n);
+  }
+}
+
+}  // namespace
+
+// The tap gives every sample the client takes, of any match and before the
+// trust rules (another server's, a forged one, a match not followed), in
+// the order taken, as record lines that read back bit for bit; "ready"
+// once; none once it is removed; and calls that would end the poll are
+// refused from inside it.
+TEST(the_tap_gives_every_sample_as_it_came) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  g.run(4.0);
+  FakeNet net(participant(9), [](ball_net_config *c) {
+    c->servers = "1";
+    c->rackets = 1;
+  });
+  Tapped t;
+  t.client = net.client;
+  CHECK_EQ(ball_net_set_tap(nullptr, keep_line, &t), BALL_EINVAL);
+  CHECK_EQ(ball_net_set_tap(net.client, keep_line, &t), BALL_OK);
+  CHECK_EQ(ball_net_watch(net.client, g.match.id()), BALL_OK);
+  uint64_t seed = 77;
+  auto draw = [&seed](int n) {
+    seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+    return static_cast<int>((seed >> 33) % static_cast<uint64_t>(n));
+  };
+  // a random mix of every kind, some of them not the chosen server's or not of the match followed
+  std::map<std::string, size_t> fed;
+  std::vector<json> expected;  // by kind, in the order each kind is taken
+  MatchInfoOut info = g.match.info();
+  info.server_id = 1;
+  int poll_rounds = 0;
+  for (int round = 0; round < 40; ++round) {
+    size_t before = t.lines.size();
+    std::vector<std::pair<std::string, json>> round_fed;
+    for (int k = draw(6); k >= 0; --k) {
+      MatchInfoOut i = info;
+      if (draw(3) == 0) i.server_id = 2;  // not chosen: refused, tapped all the same
+      if (draw(4) == 0) i.match_id = 1000 + static_cast<uint32_t>(draw(5));  // not followed
+      net.port.infos.push_back(i);
+      round_fed.emplace_back("match_info", json(i));
+    }
+    for (int k = draw(4); k >= 0 && !g.segments.empty(); --k) {
+      SegmentOut s = g.segments[static_cast<size_t>(draw(static_cast<int>(g.segments.size())))];
+      s.server_id = draw(3) == 0 ? 2 : 1;
+      net.port.segments.push_back(s);
+      round_fed.emplace_back("segment", json(s));
+    }
+    for (int k = draw(4); k >= 0; --k) {
+      EventOut e = g.events[static_cast<size_t>(draw(static_cast<int>(g.events.size())))];
+      e.server_id = 1;
+      net.port.events.push_back(e);
+      round_fed.emplace_back("event", json(e));
+    }
+    for (int k = draw(3); k >= 0; --k) {
+      StateOut s = g.states[static_cast<size_t>(draw(static_cast<int>(g.states.size())))];
+      net.port.states.push_back(s);
+      round_fed.emplace_back("state", json(s));
+    }
+    if (draw(2) == 0) {
+      StatusOut s;
+      s.server_id = 1 + static_cast<uint32_t>(draw(3));
+      s.samples_in = static_cast<uint64_t>(draw(1000));
+      net.port.statuses.push_back(s);
+      round_fed.emplace_back("server_status", json(s));
+    }
+    if (draw(2) == 0) {
+      RacketSampleIn r;
+      r.match_id = g.match.id();
+      r.player = draw(2);
+      r.seq = static_cast<uint32_t>(round);
+      r.from = participant(static_cast<uint8_t>(1 + draw(3)));  // the holder's, or a stranger's
+      net.port.rackets.push_back(r);
+      round_fed.emplace_back("racket_sample", json(r));
+    }
+    net.now += 0.05;
+    int n = 0;
+    ball_net_event ev[8];
+    do CHECK_EQ(ball_net_poll(net.client, ev, 8, &n), BALL_OK);
+    while (n == 8);
+    poll_rounds++;
+    // the ready line first of all, once
+    if (round == 0) {
+      CHECK(!t.lines.empty() && record_type(json::parse(t.lines[0])) == "ready");
+      before = 1;
+    }
+    CHECK_EQ(t.lines.size() - before, round_fed.size());
+    // every line read back is the sample fed, kind by kind in the order fed
+    std::map<std::string, std::vector<json>> got, want;
+    for (size_t i = before; i < t.lines.size(); ++i) {
+      json line = json::parse(t.lines[i]);
+      CHECK(line.at("recv").is_number());
+      got[record_type(line)].push_back(line);
+    }
+    for (const auto &f : round_fed) want[f.first].push_back(f.second);
+    for (const auto &kv : want) {
+      fed[kv.first] += kv.second.size();
+      CHECK_EQ(got[kv.first].size(), kv.second.size());
+      for (size_t i = 0; i < kv.second.size() && i < got[kv.first].size(); ++i) {
+        json j = got[kv.first][i];
+        j.erase("type");
+        j.erase("recv");
+        CHECK_MSG(j == kv.second[i], "%s line %zu is not the sample fed", kv.first.c_str(), i);
+      }
+    }
+  }
+  CHECK(fed["match_info"] > 40 && fed["segment"] > 40 && fed["event"] > 40 && fed["state"] > 40);
+  CHECK(fed["server_status"] > 5 && fed["racket_sample"] > 5);
+  // a model: its note line (the model itself: ball_net_model)
+  MatchModelOut m;
+  m.match_id = g.match.id();
+  m.server_id = 1;
+  ball_model_default(&m.model);
+  m.model_hash = ball_model_hash(&m.model);
+  net.port.models.push_back(m);
+  int n = 0;
+  size_t before = t.lines.size();
+  CHECK_EQ(ball_net_poll(net.client, nullptr, 0, &n), BALL_OK);
+  CHECK_EQ(t.lines.size(), before + 1);
+  json note = json::parse(t.lines.back());
+  CHECK(record_type(note) == "match_model" && note.at("model_hash").get<uint64_t>() == m.model_hash);
+  // from inside the tap: ball_net_poll refused, and the poll goes on
+  t.poll_inside = true;
+  net.port.events.push_back(g.events.front());
+  net.port.events.push_back(g.events.back());
+  CHECK_EQ(ball_net_poll(net.client, nullptr, 0, &n), BALL_OK);
+  CHECK_EQ(t.inside, BALL_EINVAL);
+  CHECK_EQ(t.lines.size(), before + 3);
+  // removed: nothing more
+  CHECK_EQ(ball_net_set_tap(net.client, nullptr, nullptr), BALL_OK);
+  net.port.events.push_back(g.events.front());
+  CHECK_EQ(ball_net_poll(net.client, nullptr, 0, &n), BALL_OK);
+  CHECK_EQ(t.lines.size(), before + 3);
+  CHECK_EQ(ball_net_close(net.client), BALL_OK);
+  CHECK_EQ(ball_net_set_tap(net.client, keep_line, &t), BALL_ECLOSED);
+  CHECK(poll_rounds == 40);
+}

@@ -24,6 +24,17 @@ bool same(const T &a, const T &b) {
   return json(a) == json(b);
 }
 
+// reading `j` as a T is an error, not a silent default
+template <class T>
+bool unreadable_as(const json &j) {
+  try {
+    j.get<T>();
+  } catch (const std::exception &) {
+    return true;
+  }
+  return false;
+}
+
 // a game with both slots joined, 6 s of play: serves, bounces, points, states
 Game played() {
   Game g;
@@ -104,17 +115,42 @@ TEST(a_record_line_names_its_type) {
   CHECK_EQ(record_type(record_line(g.events.front(), 0.0)), std::string("event"));
   CHECK_EQ(record_type(record_line(g.states.front(), 0.0)), std::string("state"));
   CHECK_EQ(record_type(record_line(g.match.info(), 0.0)), std::string("match_info"));
+  CHECK_EQ(record_type(record_line(StatusOut{}, 0.0)), std::string("server_status"));
   CHECK_EQ(record_type(json{{"kind", "x"}}), std::string());
   // an unknown enum name is an error, not a silent default
   json bad = line;
   bad["cause"] = "volley";
-  bool threw = false;
-  try {
-    bad.get<SegmentOut>();
-  } catch (const std::exception &) {
-    threw = true;
+  CHECK(unreadable_as<SegmentOut>(bad));
+}
+
+TEST(racket_samples_come_back_with_their_writer) {
+  uint64_t seed = 0x5eed;
+  for (int k = 0; k < 200; ++k) {  // random values in every field
+    auto draw = [&seed] {
+      seed = seed * 6364136223846793005ull + 1442695040888963407ull;
+      return static_cast<double>(seed >> 11) * 0x1.0p-53 * 20.0 - 10.0;
+    };
+    RacketSampleIn s;
+    s.match_id = static_cast<uint32_t>(k * 7919);
+    s.player = k % 4;
+    s.seq = static_cast<uint32_t>(k) * 2654435761u;
+    s.capture_time = draw() * 1e3;
+    s.center = ball_v3(draw(), draw(), draw());
+    s.normal = ball_v3(draw(), draw(), draw());
+    s.source_time = 1.7e9 + draw();
+    s.permitted = k % 3 != 0;
+    s.from = participant(k + 1);
+    json line = record_line(s, 5.0);
+    CHECK_EQ(record_type(line), std::string("racket_sample"));
+    RacketSampleIn back = json::parse(line.dump()).get<RacketSampleIn>();
+    CHECK(same(back, s));
+    CHECK(back.from == s.from);
+    CHECK_EQ(back.center.z, s.center.z);
+    CHECK_EQ(back.capture_time, s.capture_time);
   }
-  CHECK(threw);
+  json bad = json(RacketSampleIn{});
+  bad["from"] = "xyz";
+  CHECK(unreadable_as<RacketSampleIn>(bad));
 }
 
 TEST(reports_come_back) {

@@ -92,6 +92,8 @@ typedef struct ball_net_config {
   int rackets;                    /* 1: read the players' racket samples of the matches followed, for
                                      ball_net_racket (their samples come in too: a slot's rate times 76
                                      bytes of payload a second); 0: not */
+  int server_status;              /* 1: also read the servers' status (ball/server_status, once a second
+                                     each): for the tap alone (ball_net_set_tap); 0: not */
 } ball_net_config;
 
 /* Defaults: domain 0, loopback, any server, CLOCK_MONOTONIC, no simulated network. */
@@ -375,6 +377,27 @@ BALL_NET_API const char *ball_net_event_kind_name(ball_net_event_kind kind);
 BALL_NET_API const char *ball_net_reason_name(ball_net_reason reason);
 BALL_NET_API const char *ball_net_state_name(ball_net_state state);
 BALL_NET_API const char *ball_net_cause_name(ball_net_cause cause);
+
+/* ---- a tap: every sample as it came ---------------------------------------- */
+
+/* A recorder's or a relay's hook: `line` is one sample the client took
+ * from the domain, as one JSON object without a newline, `length` bytes,
+ * NUL-terminated, alive during the call. The lines are those of
+ * `ball-watch --record` (docs/client.md, "A tap"): "type" (match_info,
+ * match_model, segment, event, state, racket_sample with the config's
+ * rackets, server_status with its server_status, and "ready" once, when
+ * the client first hears a server), the sample's fields, and "recv", the
+ * realtime clock at its reception, s. Every sample of every match comes,
+ * before any of the trust rules: what the library takes is what
+ * ball_net_poll gives. */
+typedef void (*ball_net_tap)(void *user, const char *line, size_t length);
+
+/* Sets the client's tap (NULL: none), called with `user` from within
+ * ball_net_poll, in the caller's thread, once per sample, in the order
+ * taken. The tap may call the client's other functions but ball_net_poll,
+ * ball_net_close and ball_net_set_tap (BALL_EINVAL) and ball_net_free
+ * (which then does nothing). */
+BALL_NET_API ball_status ball_net_set_tap(ball_net_client *client, ball_net_tap tap, void *user);
 
 /* ---- status -------------------------------------------------------------- */
 
