@@ -1,27 +1,41 @@
 #include "watch_feed.h"
 
+#include <string>
+
 namespace ballsrv {
 
-void take_all(ClientPort &port, Watcher &w, RacketTracks *rackets, double real, std::vector<RacketSampleIn> *drawn) {
-  // events are not kept for late joiners: what came before "ready" is not seen
-  if (port.hears_server()) w.on_ready(real);
-  MatchModelOut model;  // (before the infos: a view takes the model its info names at once)
-  while (port.take(&model)) w.on_model(model);
-  MatchInfoOut info;
-  while (port.take(&info)) w.on_info(info, real);
-  SegmentOut seg;
-  while (port.take(&seg)) w.on_segment(seg, real);
-  EventOut e;
-  while (port.take(&e)) w.on_event(e, real);
-  StateOut s;
-  while (port.take(&s)) w.on_state(s, real);
-  StatusOut so;
-  while (port.take(&so)) w.on_status(so);
-  w.check_states();
-  drawn->clear();
-  RacketSampleIn rs;
-  while (rackets && port.take(&rs))
-    if (rackets->take(rs, w)) drawn->push_back(rs);
+void WatchFeed::line(const char *text, size_t length) {
+  json j = json::parse(text, text + length, nullptr, false);
+  if (!j.is_object()) {
+    unreadable_++;
+    return;
+  }
+  const std::string type = record_type(j);
+  const double recv = j.value("recv", 0.0);
+  try {
+    if (type == "ready") {
+      w_.on_ready(recv);
+    } else if (type == "match_info") {
+      w_.on_info(j.get<MatchInfoOut>(), recv);
+    } else if (type == "segment") {
+      w_.on_segment(j.get<SegmentOut>(), recv);
+    } else if (type == "event") {
+      w_.on_event(j.get<EventOut>(), recv);
+    } else if (type == "state") {
+      w_.on_state(j.get<StateOut>(), recv);
+    } else if (type == "server_status") {
+      w_.on_status(j.get<StatusOut>());
+    } else if (type == "match_model") {
+      models.insert(j.at("match").get<uint32_t>());
+    } else if (type == "racket_sample") {
+      RacketSampleIn s = j.get<RacketSampleIn>();
+      if (rackets_ && rackets_->take(s, w_)) drawn.push_back(s);
+    }
+  } catch (const std::exception &) {
+    unreadable_++;
+    auto m = j.find("match");
+    if (m != j.end() && m->is_number_unsigned()) w_.not_taken(m->get<uint32_t>());
+  }
 }
 
 }  // namespace ballsrv

@@ -265,6 +265,10 @@ void Watcher::on_state(const StateOut &s, double real) {
 
 void Watcher::on_status(const StatusOut &s) { servers_[s.server_id] = s; }
 
+void Watcher::not_taken(uint32_t match) {
+  if (wanted(match)) watched(match).tally.not_taken++;
+}
+
 std::vector<uint32_t> Watcher::match_ids() const {
   std::vector<uint32_t> ids;
   for (const auto &kv : matches_)

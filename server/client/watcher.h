@@ -91,6 +91,8 @@ class Watcher {
   void on_event(const EventOut &event, double real);
   void on_state(const StateOut &state, double real);
   void on_status(const StatusOut &status);
+  // A sample of `match` that did not read as its type (counted as not taken).
+  void not_taken(uint32_t match);
   // The desync check of every state received whose segment is known now.
   void check_states();
   // An own frame at local realtime `real`: every match's ball from its

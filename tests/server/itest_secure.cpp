@@ -110,8 +110,8 @@ void case_secure(const Env &env) {
   // a server id bound to a certificate means nothing on an open domain: refused at start
   rc = run_to_end(env, {env.bin + "/ball-watch", "--domain", env.dom(), "--duration", "2", "--servers", "1=server1"},
                   "bound_open", &err);
-  CHECK_MSG(rc == 1 && err.find("only under DDS Security") != std::string::npos, "--servers 1=server1 open: %d: %s",
-            rc, err.c_str());
+  CHECK_MSG(rc == 1 && err.find("bound to certificates (ID=IDENTITY) need security_dir") != std::string::npos,
+            "--servers 1=server1 open: %d: %s", rc, err.c_str());
 
   // ---- the open domain: what an eavesdropper and a forger get there ----
   {

@@ -153,6 +153,13 @@ add_test(NAME clients_link_no_server
     "-DFILES=$<TARGET_FILE:ball-bot>;$<TARGET_FILE:ball-watch>;$<TARGET_FILE:ball-load>;$<TARGET_FILE:ball-demo>;$<TARGET_FILE:ball_net>"
     -DSERVER=$<TARGET_FILE:ball-server> -P ${CMAKE_CURRENT_LIST_DIR}/links_none_of.cmake)
 set_tests_properties(clients_link_no_server PROPERTIES LABELS server)
+# the players and the watcher reach the servers through the client library (libball-net.so)
+# alone: no DDS of their own
+add_test(NAME games_link_no_dds
+  COMMAND ${CMAKE_COMMAND} -DNM=${BALL_NM} "-DPATTERN=(eprosima::|ballsrv::dds::)"
+    "-DFILES=$<TARGET_FILE:ball-bot>;$<TARGET_FILE:ball-watch>"
+    -DSERVER=$<TARGET_FILE:ball-server> -P ${CMAKE_CURRENT_LIST_DIR}/links_none_of.cmake)
+set_tests_properties(games_link_no_dds PROPERTIES LABELS server)
 # and no program links the tests' raw writers (server/dds/testing)
 add_test(NAME programs_link_no_test_writers
   COMMAND ${CMAKE_COMMAND} -DNM=${BALL_NM} "-DPATTERN=ballsrv::dds::(RawWriter|RawAccess)"

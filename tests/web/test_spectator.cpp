@@ -11,7 +11,6 @@
 #include "ball/render.h"
 #include "check.hpp"
 #include "court.h"
-#include "fake_client_port.h"
 #include "game.h"
 #include "racket_tracks.h"
 #include "records.h"
@@ -294,42 +293,61 @@ TEST(a_reader_that_fell_behind_is_told) {
   CHECK_EQ(got.size(), 3u);  // at most `max`
 }
 
-// ball-watch's turn (watch_feed.h): everything the port has reaches the
-// watcher, and only the holder's racket samples reach the tracks and the page
-TEST(a_turn_takes_everything_the_port_has) {
+// ball-watch's feed (watch_feed.h): every line of the tap reaches the
+// watcher, only the holder's racket samples reach the tracks and the page,
+// a line that does not read as its type counts as not taken of its match
+TEST(the_feed_takes_every_line_of_the_tap) {
   Game g = played(6.0);
-  FakeClientPort port;
-  port.infos.push_back(g.match.info());
-  port.segments.assign(g.segments.begin(), g.segments.end());
-  port.events.assign(g.events.begin(), g.events.end());
-  port.states.assign(g.states.begin(), g.states.end());
+  std::vector<json> lines{json{{"type", "ready"}, {"recv", 1000.0}}, record_line(g.match.info(), 1000.0)};
+  for (const auto &s : g.segments) lines.push_back(record_line(s, 1000.0));
+  for (const auto &e : g.events) lines.push_back(record_line(e, 1000.0));
+  for (const auto &s : g.states) lines.push_back(record_line(s, 1000.0));
+  StatusOut status;
+  status.server_id = 4;
+  lines.push_back(record_line(status, 1000.0));
   RacketSampleIn mine = g.parked_sample(1), stranger = mine;
   stranger.from = participant(9);
   stranger.capture_time += 0.1;
-  port.rackets = {mine, stranger};
+  lines.push_back(record_line(mine, 1000.0));
+  lines.push_back(record_line(stranger, 1000.0));
+  lines.push_back(json{{"type", "match_model"}, {"match", g.match.id()}, {"server", 1}, {"model_hash", 5}, {"recv", 1000.0}});
   Watcher w(WatcherSettings{});
   RacketTracks tracks(court_of);
-  std::vector<RacketSampleIn> drawn;
-  take_all(port, w, &tracks, 1000.0, &drawn);
-  CHECK(port.infos.empty() && port.segments.empty() && port.events.empty() && port.states.empty());
-  CHECK(port.rackets.empty());
+  WatchFeed feed(w, &tracks);
+  for (const auto &l : lines) {
+    std::string text = l.dump();
+    WatchFeed::tap(&feed, text.c_str(), text.size());
+  }
+  w.check_states();
   WatchedView v;
   CHECK(w.view(g.match.id(), &v));
   CHECK_EQ(v.segments->size(), g.segments.size());
   CHECK_EQ(v.events_taken, static_cast<uint64_t>(g.events.size()));
   WatchSummary sum = w.summary(6.0);
   CHECK_EQ(sum.matches[0].states_checked, static_cast<uint64_t>(g.states.size()));  // the desync check ran
-  CHECK(sum.matches[0].max_error <= 1e-12);
-  CHECK_EQ(drawn.size(), 1u);
-  CHECK(drawn[0].from == mine.from);
+  CHECK(sum.matches[0].max_error <= 1e-12);  // (the numbers came through text bit for bit)
+  CHECK_EQ(sum.servers.size(), 1u);
+  CHECK_EQ(feed.drawn.size(), 1u);
+  CHECK(feed.drawn[0].from == mine.from);
   CHECK_EQ(tracks.taken(), 1u);
   CHECK_EQ(tracks.dropped(), 1u);
   CHECK(w.ready());
-  // without tracks the racket samples stay in the port
-  port.rackets = {mine};
-  take_all(port, w, nullptr, 1000.1, &drawn);
-  CHECK(drawn.empty());
-  CHECK_EQ(port.rackets.size(), 1u);
+  CHECK(feed.models.count(g.match.id()) == 1);
+  CHECK_EQ(feed.unreadable(), 0u);
+  CHECK_EQ(sum.matches[0].not_taken, 0u);
+  // a segment of a cause no name fits, and a line that is not JSON
+  json bad = record_line(g.segments.back(), 1000.0);
+  bad["cause"] = "volley";
+  std::string text = bad.dump();
+  feed.line(text.c_str(), text.size());
+  feed.line("{\"type\": ", 10);
+  CHECK_EQ(feed.unreadable(), 2u);
+  CHECK_EQ(w.summary(6.0).matches[0].not_taken, 1u);
+  // without tracks the racket samples are passed over
+  WatchFeed untracked(w, nullptr);
+  text = record_line(mine, 1000.1).dump();
+  untracked.line(text.c_str(), text.size());
+  CHECK(untracked.drawn.empty());
 }
 
 int main(int argc, char **argv) { return check::run(argc, argv); }
