@@ -11,7 +11,6 @@
 #include "client_endpoints.h"
 #include "load.h"
 #include "open_client.h"
-#include "open_domain.h"
 #include "player_group.h"
 #include "process.h"
 
@@ -71,73 +70,28 @@ void add_usage(const Snapshot &a, const Snapshot &b, double seconds, LoadRow *ro
   }
 }
 
-// What the meter holds, taken: its MatchInfos (for the clock of each
-// match), the timings of the racket segments of this process's matches (a
-// meter reads every match's; another process's are that one's to count),
-// and the server's statuses; figures only while `measuring`. `real`: the
-// realtime clock now, for a segment without DDS's reception stamp.
-void take_meter(CountingPort &meter, const LoadOptions &o, bool measuring, double real, bool *have_first,
-                LoadPart *part) {
-  MatchInfoOut info;
-  while (meter.take(&info)) {
-  }
-  SegmentOut seg;
-  while (meter.take(&seg)) {
-    const bool ours = seg.match_id >= static_cast<uint32_t>(o.first_match) &&
-                      seg.match_id < static_cast<uint32_t>(o.first_match + o.matches);
-    if (!measuring || !ours || seg.cause != Cause::racket || !seg.sample.valid) continue;
-    // when DDS received it, not this tick's time (ticks are kTick apart)
-    double recv = seg.reception.received > 0.0 ? seg.reception.received : real;
-    part->latency.push_back(recv - seg.sample.source_time);
-    const MatchInfoOut *i = meter.info(seg.match_id);
-    // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one;
-    // a correction's t0 lies back by its late sample's trip: lag compensation's, not a hit's way out)
-    if (i && i->time_base > 0.0 && i->server_time > 0.0 && !seg.correction) {
-      double hit = server_time_of(*i, seg.segment.t0);
-      part->hit_to_wire.push_back(recv - hit);
-      if (seg.reception.written > 0.0 && seg.reception.received > 0.0) {  // its two parts, where DDS said both
-        part->hit_to_write.push_back(seg.reception.written - hit);
-        part->delivery.push_back(seg.reception.received - seg.reception.written);
-      }
-    }
-  }
-  StatusOut so;
-  while (meter.take(&so)) {
-    if (!measuring) continue;
-    if (!*have_first) part->first = so;
-    *have_first = true;
-    part->last = so;
-    part->frame_p50.push_back(so.frame_p50);
-    part->frame_p99.push_back(so.frame_p99);
-  }
-}
-
 // Plays every slot of its matches over the warm-up and the window; hands
-// the part to `done` while the participants still live (a teardown may be
+// the part to `done` while the participant still lives (a teardown may be
 // the one that sticks: dds::run_bounded), and calls at_window at the
 // window's start and end. The bots play through one client of the client
-// library (ball/net.h), as games do; a meter beside them, a reader of the
-// server's topics on a participant of its own, times the hits' segments by
-// DDS's reception stamps and takes the server's statuses.
+// library (ball/net.h), as games do; its tap feeds the meter (load.h), which
+// times the hits' segments by DDS's stamps and takes the server's statuses.
 bool drive(const LoadOptions &o, const std::function<void()> &at_window,
            const std::function<void(const LoadPart &)> &done, std::string *err) {
-  auto domain = open_domain(o.dds, "ball-load-meter", err);
-  if (!domain) return false;
   int room = std::max(o.first_match + o.matches, dds::kClientRoom);
-  dds::ClientNeeds reads;
-  reads.players = 0;  // it writes nothing
-  reads.matches = room;
-  reads.status = true;
-  reads.states = false;
-  auto meter_port = dds::ClientEndpoints::open(*domain, reads, err);
-  if (!meter_port) return false;
-  CountingPort meter(*meter_port);
   ball_net_client *client = open_client(o.dds, "ball-load", "", [&](ball_net_config *c) {
     set_link(o.bot, c);
     c->max_matches = room;
     c->ball_states = 1;  // the bots read the ball states the server writes (--state-rate): their cost is measured
+    c->server_status = 1;  // (the meter's)
   }, err);
   if (!client) return false;
+  LoadMeter meter(o.first_match, o.matches);
+  if (ball_net_set_tap(client, LoadMeter::tap, &meter) != BALL_OK) {
+    *err = ball_net_message(client);
+    ball_net_free(client);
+    return false;
+  }
   std::vector<BotPlayer> bots;
   for (int m = o.first_match; m < o.first_match + o.matches; ++m)
     for (int slot = 0; slot < 2; ++slot) {
@@ -147,13 +101,12 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       p.seed = o.bot.seed + static_cast<uint64_t>(m * 2 + slot);
       bots.emplace_back(p);
     }
-  LoadPart part;
+  LoadPart &part = meter.part;
   bool refused = false;
   {
     PlayerGroup group(std::move(bots), client);
     const double start = mono_now();
     group.start_at(bot_starts(o.first_match, o.matches, o.bot.seed, stagger_of(o), start));
-    bool have_first = false, measuring = false;
     double window_start = -1.0, window_end = 0.0;
     uint64_t samples_before = 0, bytes_before = 0;
     PortCounts counts_before;
@@ -161,17 +114,17 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       window_start = start + (o.window_start - realtime_now());
       window_end = window_start + o.duration;
     }
-    const WireSizes sizes = meter_port->sizes();
+    const WireSizes sizes = dds::wire_sizes();
     for (double next_tick = start; !stop_requested(); sleep_until(next_tick)) {
-      double now = mono_now(), real = realtime_now();
+      double now = mono_now();
       if (window_start < 0.0 && (group.all_joined() || now - start > o.warmup * 3)) {
         window_start = std::max(now, start + o.warmup);
         window_end = window_start + o.duration;
       } else if (window_start > 0.0 && now >= window_end) {
         break;
       }
-      if (!measuring && window_start > 0.0 && now >= window_start) {
-        measuring = true;
+      if (!meter.measuring && window_start > 0.0 && now >= window_start) {
+        meter.measuring = true;
         part.row.ready = group.all_joined();
         samples_before = group.samples_written();
         bytes_before = group.bytes_out();
@@ -184,7 +137,6 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
         refused = true;
         break;
       }
-      take_meter(meter, o, measuring, real, &have_first, &part);
       next_tick += kTick;
       if (next_tick < now) next_tick = now + kTick;
     }
@@ -196,7 +148,7 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
     row.seconds = mono_now() - window_start;
     row.samples_per_s = static_cast<double>(group.samples_written() - samples_before) / std::max(row.seconds, 1e-9);
     row.write_failures = group.write_failures();
-    // the meter took what the server wrote; the bots' writes are their client's counts
+    // the meter counted what the server wrote; the bots' writes are their client's counts
     part.counts = meter.counts() - counts_before;
     part.counts.samples_written = group.samples_written() - samples_before;
     uint64_t control_bytes = group.bytes_out() - bytes_before - part.counts.samples_written * sizes.sample;

@@ -36,14 +36,62 @@ std::vector<double> bot_starts(int first_match, int matches, uint64_t seed, doub
   return out;
 }
 
-bool CountingPort::take(MatchInfoOut *info) {
-  if (!inner_.take(info)) return false;
-  counts_.infos++;
-  infos_[info->match_id] = *info;
-  return true;
+void LoadMeter::line(const char *text, size_t length) {
+  json j = json::parse(text, text + length, nullptr, false);
+  const std::string type = j.is_object() ? record_type(j) : "";
+  try {
+    if (type == "match_info") {
+      MatchInfoOut info = j.get<MatchInfoOut>();
+      counts_.infos++;
+      infos_[info.match_id] = info;
+    } else if (type == "segment") {
+      counts_.segments++;
+      segment(j.get<SegmentOut>(), j.at("recv").get<double>(), j.value("sent", 0.0));
+    } else if (type == "state") {
+      counts_.states++;
+    } else if (type == "event") {
+      counts_.events++;
+    } else if (type == "server_status") {
+      counts_.statuses++;
+      status(j.get<StatusOut>());
+    } else if (type.empty()) {
+      unreadable_++;
+    }
+  } catch (const std::exception &) {
+    unreadable_++;
+  }
 }
 
-const MatchInfoOut *CountingPort::info(uint32_t match) const {
+// a hit's segment: newest sample written -> received, and the hit's sim
+// time as the server's real instant -> written -> received (`sent`: the
+// segment's DDS source timestamp, 0 unknown)
+void LoadMeter::segment(const SegmentOut &seg, double recv, double sent) {
+  const bool ours = seg.match_id >= static_cast<uint32_t>(first_) &&
+                    seg.match_id < static_cast<uint32_t>(first_ + count_);
+  if (!measuring || !ours || seg.cause != Cause::racket || !seg.sample.valid) return;
+  part.latency.push_back(recv - seg.sample.source_time);
+  const MatchInfoOut *i = info(seg.match_id);
+  // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one;
+  // a correction's t0 lies back by its late sample's trip: lag compensation's, not a hit's way out)
+  if (!i || i->time_base <= 0.0 || i->server_time <= 0.0 || seg.correction) return;
+  double hit = server_time_of(*i, seg.segment.t0);
+  part.hit_to_wire.push_back(recv - hit);
+  if (sent > 0.0) {  // its two parts, where DDS said both
+    part.hit_to_write.push_back(sent - hit);
+    part.delivery.push_back(recv - sent);
+  }
+}
+
+void LoadMeter::status(const StatusOut &so) {
+  if (!measuring) return;
+  if (!have_first_) part.first = so;
+  have_first_ = true;
+  part.last = so;
+  part.frame_p50.push_back(so.frame_p50);
+  part.frame_p99.push_back(so.frame_p99);
+}
+
+const MatchInfoOut *LoadMeter::info(uint32_t match) const {
   auto it = infos_.find(match);
   return it == infos_.end() ? nullptr : &it->second;
 }

@@ -1,8 +1,8 @@
 // The load benchmark's core, free of DDS (docs/server.md, "Load"): how
 // ball-load splits the matches over its bot processes, what each process
 // measures (a LoadPart, records.h) and how the parts of one run and the
-// rounds of one point become the report; the counting port that measures
-// the samples a client takes and writes, the payload bytes of those counts,
+// rounds of one point become the report; the meter of the samples the bots'
+// client takes (from its tap), the payload bytes of those counts,
 // the real instant of a sim time (hit-to-wire), and the few /proc figures
 // (CPU, resident memory, loopback bytes) the report reads.
 #pragma once
@@ -36,33 +36,33 @@ double server_time_of(const MatchInfoOut &info, double sim);
 // split over processes.
 std::vector<double> bot_starts(int first_match, int matches, uint64_t seed, double stagger, double start);
 
-// A ClientPort over another that counts what goes through it and keeps
-// each match's newest MatchInfo (for server_time_of).
-class CountingPort : public ClientPort {
+// ball-load's meter: the lines of the bots' client's tap (ball_net_set_tap,
+// docs/client.md "A tap") counted by type, the newest MatchInfo of each
+// match (for server_time_of), and, while `measuring`, the timings of the
+// racket segments of this process's matches [first, first + count) by
+// their DDS stamps (another process's matches are that one's to count)
+// and the server's statuses, into `part`.
+class LoadMeter {
  public:
-  explicit CountingPort(ClientPort &inner) : inner_(inner) {}
-  bool take(MatchInfoOut *info) override;
-  bool take(SegmentOut *segment) override { return count(inner_.take(segment), &counts_.segments); }
-  bool take(StateOut *state) override { return count(inner_.take(state), &counts_.states); }
-  bool take(EventOut *event) override { return count(inner_.take(event), &counts_.events); }
-  bool take(StatusOut *status) override { return count(inner_.take(status), &counts_.statuses); }
-  bool take(MatchModelOut *model) override { return inner_.take(model); }
-  WireSizes sizes() const override { return inner_.sizes(); }
-  bool write(const RacketSampleIn &sample) override { return count(inner_.write(sample), &counts_.samples_written); }
-  bool write(const ControlIn &control) override { return count(inner_.write(control), &counts_.controls_written); }
-  bool hears_server() const override { return inner_.hears_server(); }
+  LoadMeter(int first_match, int matches) : first_(first_match), count_(matches) {}
+  void line(const char *text, size_t length);
+  // ball_net_tap's shape, `user` a LoadMeter
+  static void tap(void *user, const char *text, size_t length) { static_cast<LoadMeter *>(user)->line(text, length); }
 
-  const PortCounts &counts() const { return counts_; }
-  const MatchInfoOut *info(uint32_t match) const;  // nullptr: none taken yet
+  bool measuring = false;
+  LoadPart part;
+  const PortCounts &counts() const { return counts_; }  // server samples taken, by type (writes: the client's)
+  const MatchInfoOut *info(uint32_t match) const;      // nullptr: none taken yet
+  uint64_t unreadable() const { return unreadable_; }
 
  private:
-  static bool count(bool ok, uint64_t *n) {
-    *n += ok;
-    return ok;
-  }
-  ClientPort &inner_;
+  void segment(const SegmentOut &seg, double recv, double sent);
+  void status(const StatusOut &so);
+  int first_, count_;
   PortCounts counts_;
   std::map<uint32_t, MatchInfoOut> infos_;
+  bool have_first_ = false;
+  uint64_t unreadable_ = 0;
 };
 
 // Payload bytes of the server's samples among `c` (taken), and of the

@@ -88,9 +88,12 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
   auto delay = [&](Followed *f, const Reception &r) {
     if (r.received > 0.0 && r.written > 0.0) f->view->on_delay(r.received - r.written);
   };
-  // the tap's line of a sample: received at its DDS stamp, else now
+  // the tap's line of a sample: received at its DDS stamp, else now; sent at its writer's
   auto tap = [&](const auto &sample, const Reception &r) {
-    if (tap_) tap_(record_line(sample, r.received > 0.0 ? r.received : real));
+    if (!tap_) return;
+    json line = record_line(sample, r.received > 0.0 ? r.received : real);
+    if (r.written > 0.0) line["sent"] = r.written;
+    tap_(line);
   };
   if (tap_ && !tapped_ready_ && port.hears_server()) {
     tapped_ready_ = true;

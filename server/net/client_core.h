@@ -85,7 +85,8 @@ class ClientCore {
   void on_segment(std::function<void(const SegmentOut &)> fn) { on_segment_ = std::move(fn); }
   // The tap (ball_net_set_tap): every sample pump takes, of any match and
   // before any rule, as a record line (records.h) stamped with the realtime
-  // s of its reception; a "ready" line once the port first hears a server.
+  // s of its reception ("recv") and, where DDS says it, of its writing
+  // ("sent"); a "ready" line once the port first hears a server.
   // Empty: none.
   void on_sample(std::function<void(const json &)> fn) { tap_ = std::move(fn); }
   // A LEAVE for every slot held (a client closing); how many were written.

@@ -34,6 +34,84 @@ TEST(a_sim_time_maps_to_the_server_instant_by_the_info_pair) {
   CHECK_NEAR(server_time_of(info, 9.75), 999.5, 1e-12);
 }
 
+namespace {
+void feed(LoadMeter &m, const json &line) {
+  std::string text = line.dump();
+  LoadMeter::tap(&m, text.c_str(), text.size());
+}
+}  // namespace
+
+// The meter over tap lines: counts by type, the hits' segments of its own
+// matches timed by hand-computed values while measuring, the server's
+// statuses of the window, and lines that do not read counted apart.
+TEST(the_meter_times_its_own_matches_hits_from_the_tap) {
+  LoadMeter m(4, 2);  // matches 4 and 5
+  MatchInfoOut info;
+  info.match_id = 4;
+  info.sim_time = 10.0;
+  info.server_time = 1000.0;
+  info.time_base = 1.0;
+  SegmentOut hit;
+  hit.match_id = 4;
+  hit.cause = Cause::racket;
+  hit.segment.t0 = 10.5;          // at server 1000.5
+  hit.sample.source_time = 1000.48;
+  hit.sample.valid = true;
+  auto segment_line = [](const SegmentOut &s, double recv, double sent) {
+    json j = record_line(s, recv);
+    if (sent > 0.0) j["sent"] = sent;
+    return j;
+  };
+  feed(m, record_line(info, 999.0));
+  feed(m, segment_line(hit, 1000.53, 1000.51));  // not measuring yet
+  CHECK(m.part.latency.empty());
+  m.measuring = true;
+  feed(m, segment_line(hit, 1000.53, 1000.51));
+  SegmentOut other = hit;
+  other.match_id = 6;  // another process's
+  feed(m, segment_line(other, 1000.53, 1000.51));
+  SegmentOut bounce = hit;
+  bounce.cause = Cause::floor;
+  feed(m, segment_line(bounce, 1000.6, 0.0));
+  SegmentOut late = hit;
+  late.correction = true;  // lag compensation's: its latency, no hit-to-wire
+  feed(m, segment_line(late, 1000.56, 0.0));
+  SegmentOut unsent = hit;  // DDS said no source timestamp: hit-to-wire only
+  feed(m, segment_line(unsent, 1000.54, 0.0));
+  CHECK_EQ(m.part.latency.size(), 3u);
+  CHECK_NEAR(m.part.latency[0], 0.05, 1e-9);
+  CHECK_NEAR(m.part.latency[1], 0.08, 1e-9);
+  CHECK_EQ(m.part.hit_to_wire.size(), 2u);
+  CHECK_NEAR(m.part.hit_to_wire[0], 0.03, 1e-9);
+  CHECK_NEAR(m.part.hit_to_wire[1], 0.04, 1e-9);
+  CHECK_EQ(m.part.hit_to_write.size(), 1u);
+  CHECK_NEAR(m.part.hit_to_write[0], 0.01, 1e-9);
+  CHECK_NEAR(m.part.delivery[0], 0.02, 1e-9);
+  StatusOut a, b;
+  a.server_id = b.server_id = 1;
+  a.frame_p50 = 0.001;
+  b.frame_p50 = 0.002;
+  b.samples_in = 40;
+  feed(m, record_line(a, 1000.0));
+  feed(m, record_line(b, 1001.0));
+  CHECK_EQ(m.part.frame_p50.size(), 2u);
+  CHECK_EQ(m.part.first.frame_p50, 0.001);
+  CHECK_EQ(m.part.last.samples_in, 40u);
+  feed(m, record_line(StateOut{}, 1001.0));
+  feed(m, record_line(EventOut{}, 1001.0));
+  feed(m, json{{"type", "ready"}, {"recv", 1.0}});
+  PortCounts c = m.counts();
+  CHECK(c.infos == 1 && c.segments == 6 && c.statuses == 2 && c.states == 1 && c.events == 1);
+  CHECK(m.info(4) && !m.info(5));
+  CHECK_EQ(m.unreadable(), 0u);
+  json bad = segment_line(hit, 1000.5, 0.0);
+  bad["cause"] = "volley";
+  feed(m, bad);
+  LoadMeter::tap(&m, "[1, 2]", 6);
+  CHECK_EQ(m.unreadable(), 2u);
+  CHECK_EQ(m.part.latency.size(), 3u);
+}
+
 TEST(payload_is_counts_times_sizes) {
   PortCounts c;
   c.infos = 2;

@@ -386,8 +386,10 @@ BALL_NET_API const char *ball_net_cause_name(ball_net_cause cause);
  * `ball-watch --record` (docs/client.md, "A tap"): "type" (match_info,
  * match_model, segment, event, state, racket_sample with the config's
  * rackets, server_status with its server_status, and "ready" once, when
- * the client first hears a server), the sample's fields, and "recv", the
- * realtime clock at its reception, s. Every sample of every match comes,
+ * the client first hears a server), the sample's fields, "recv", the
+ * realtime clock at its reception, s, and "sent", its writer's realtime
+ * clock at its writing (its DDS source timestamp; absent when not known).
+ * Every sample of every match comes,
  * before any of the trust rules: what the library takes is what
  * ball_net_poll gives. */
 typedef void (*ball_net_tap)(void *user, const char *line, size_t length);
