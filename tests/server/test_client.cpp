@@ -617,6 +617,16 @@ TEST(the_tap_gives_every_sample_as_it_came) {
   CHECK_EQ(t.lines.size(), before + 1);
   json note = json::parse(t.lines.back());
   CHECK(record_type(note) == "match_model" && note.at("model_hash").get<uint64_t>() == m.model_hash);
+  // DDS's stamps: received as recv, written as sent
+  SegmentOut stamped = g.segments.front();
+  stamped.reception = Reception{1700000000.25, 1700000000.125};
+  net.port.segments.push_back(stamped);
+  CHECK_EQ(ball_net_poll(net.client, nullptr, 0, &n), BALL_OK);
+  json line = json::parse(t.lines.back());
+  CHECK_EQ(line.at("recv").get<double>(), 1700000000.25);
+  CHECK_EQ(line.at("sent").get<double>(), 1700000000.125);
+  CHECK(json::parse(t.lines[before]).count("sent") == 0);  // (none said: none given)
+  before = t.lines.size() - 1;
   // from inside the tap: ball_net_poll refused, and the poll goes on
   t.poll_inside = true;
   net.port.events.push_back(g.events.front());
