@@ -64,15 +64,18 @@ ClientCore::Followed *ClientCore::follow(uint32_t match, ClientPort &port, ball_
   return &f;
 }
 
-void ClientCore::take_info(const MatchInfoOut &info, double local) {
+bool ClientCore::take_info(const MatchInfoOut &info, double local) {
+  bool listed = false;
   if (!settings_.servers.accepts(info.server_id) || !usable_info(info)) {
     if (!followed(info.match_id)) refused_++;
   } else if (listed_.count(info.match_id) || listed_.size() < settings_.max_matches) {
     Listed &l = listed_[info.match_id];
     l.info = info;
     l.heard = local;
+    listed = true;
   }
-  if (Followed *f = followed(info.match_id)) f->view->on_info(info, local, &scratch_);
+  if (Followed *f = followed(info.match_id)) return f->view->on_info(info, local, &scratch_);
+  return listed;
 }
 
 void ClientCore::pump(ClientPort &port, double local, double real) {
@@ -88,12 +91,17 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
   auto delay = [&](Followed *f, const Reception &r) {
     if (r.received > 0.0 && r.written > 0.0) f->view->on_delay(r.received - r.written);
   };
-  // the tap's line of a sample: received at its DDS stamp, else now; sent at its writer's
-  auto tap = [&](const auto &sample, const Reception &r) {
-    if (!tap_) return;
+  // the tap's line of a sample: received at its DDS stamp, else now; sent at its writer's; taken
+  // when the client kept it
+  auto tap = [&](const auto &sample, const Reception &r, bool taken) {
+    if (!tap_) return json();
     json line = record_line(sample, r.received > 0.0 ? r.received : real);
     if (r.written > 0.0) line["sent"] = r.written;
-    tap_(line);
+    line["trusted"] = taken;
+    return line;
+  };
+  auto put = [&](const json &line) {
+    if (tap_) tap_(line);
   };
   if (tap_ && !tapped_ready_ && port.hears_server()) {
     tapped_ready_ = true;
@@ -111,35 +119,37 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
   }
   MatchInfoOut info;
   while (port.take(&info)) {
-    tap(info, info.reception);
-    take_info(info, at(info.reception));
-    if (Followed *f = of(info.match_id, size.info)) delay(f, info.reception);
+    Followed *f = of(info.match_id, size.info);
+    const uint64_t anew = f ? f->view->counters().anew : 0;
+    json line = tap(info, info.reception, take_info(info, at(info.reception)));
+    if (f) {
+      delay(f, info.reception);
+      if (tap_ && f->view->counters().anew != anew) line["anew"] = true;
+    }
+    put(line);
   }
   StateOut state;
   while (port.take(&state)) {
-    tap(state, state.reception);
-    if (Followed *f = of(state.match_id, size.state)) f->view->on_state(state, at(state.reception));
+    Followed *f = of(state.match_id, size.state);
+    put(tap(state, state.reception, f && f->view->on_state(state, at(state.reception))));
   }
   SegmentOut seg;
   while (port.take(&seg)) {
-    tap(seg, seg.reception);
-    if (Followed *f = of(seg.match_id, size.segment)) {
-      f->view->on_segment(seg, at(seg.reception), &scratch_);
-      delay(f, seg.reception);
-      if (on_segment_) on_segment_(seg);
-    }
+    Followed *f = of(seg.match_id, size.segment);
+    put(tap(seg, seg.reception, f && f->view->on_segment(seg, at(seg.reception), &scratch_)));
+    if (f) delay(f, seg.reception);
   }
   EventOut ev;
   while (port.take(&ev)) {
-    tap(ev, ev.reception);
-    if (Followed *f = of(ev.match_id, size.event)) f->view->on_event(ev, at(ev.reception), &scratch_);
+    Followed *f = of(ev.match_id, size.event);
+    put(tap(ev, ev.reception, f && f->view->on_event(ev, at(ev.reception), &scratch_)));
   }
   StatusOut status;  // (read when the config asks for it: only the tap has it)
-  while (port.take(&status)) tap(status, Reception{});
+  while (port.take(&status)) put(tap(status, Reception{}, true));
   RacketSampleIn racket;
   while (settings_.rackets && port.take(&racket)) {
-    tap(racket, Reception{});
-    if (Followed *f = of(racket.match_id, size.sample)) take_racket(f, racket);
+    Followed *f = of(racket.match_id, size.sample);
+    put(tap(racket, Reception{}, f && take_racket(f, racket)));
   }
   events_.insert(events_.end(), scratch_.begin(), scratch_.end());
   sizes_ = size;
@@ -150,14 +160,18 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
 // A player's racket sample, kept on its slot's track if the match's
 // newest MatchInfo names its writer as the slot's holder
 // (docs/protocol.md, "The other players' rackets").
-void ClientCore::take_racket(Followed *f, const RacketSampleIn &s) {
+bool ClientCore::take_racket(Followed *f, const RacketSampleIn &s) {
   const MatchView &v = *f->view;
   MatchRackets &m = f->rackets;
   const bool ok = v.has_info() && v.model() && m.follow(v.info(), *v.model()) && m.has(s.player) &&
                   v.info().slots[s.player].held && m.holder(s.player) == s.from && !s.rejected;
   const ball_racket_sample sample{s.capture_time, s.center, s.normal};
-  if (ok && m.push(s.player, sample) == BALL_OK) f->own.rackets++;
-  else f->own.rackets_refused++;
+  if (ok && m.push(s.player, sample) == BALL_OK) {
+    f->own.rackets++;
+    return true;
+  }
+  f->own.rackets_refused++;
+  return false;
 }
 
 ball_status ClientCore::racket(uint32_t match, int slot, double local, ball_racket_pose *out) const {

@@ -81,13 +81,12 @@ class ClientCore {
   // BALL_ENOMATCH: not followed; BALL_EAGAIN: no clock or model yet;
   // BALL_ERANGE: no such slot; else ball_racket_estimate's status.
   ball_status racket(uint32_t match, int slot, double local, ball_racket_pose *out) const;
-  // Every segment of a followed match as it is taken (a meter's: ball-load's latencies).
-  void on_segment(std::function<void(const SegmentOut &)> fn) { on_segment_ = std::move(fn); }
-  // The tap (ball_net_set_tap): every sample pump takes, of any match and
-  // before any rule, as a record line (records.h) stamped with the realtime
-  // s of its reception ("recv") and, where DDS says it, of its writing
-  // ("sent"); a "ready" line once the port first hears a server.
-  // Empty: none.
+  // The tap (ball_net_set_tap): every sample pump takes, of any match,
+  // as a record line (records.h) stamped with the realtime s of its
+  // reception ("recv") and, where DDS says it, of its writing ("sent"),
+  // and the client's verdict ("taken"; "anew" on a MatchInfo that started
+  // a followed match anew); a "ready" line once the port first hears a
+  // server. Empty: none.
   void on_sample(std::function<void(const json &)> fn) { tap_ = std::move(fn); }
   // A LEAVE for every slot held (a client closing); how many were written.
   int leave_all(ClientPort &port);
@@ -119,13 +118,13 @@ class ClientCore {
   };
   Followed *followed(uint32_t match);
   Followed *follow(uint32_t match, ClientPort &port, ball_status *st, std::string *why);
-  void take_racket(Followed *f, const RacketSampleIn &s);
+  bool take_racket(Followed *f, const RacketSampleIn &s);  // false: not taken
   bool write(ClientPort &port, const ControlIn &c, Followed *f);
   bool write(ClientPort &port, const RacketSampleIn &s, Followed *f);
   ball_status number(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal, RacketSampleIn *out,
                      std::string *why);
   void deliver(ClientPort &port, Followed *f, double local);
-  void take_info(const MatchInfoOut &info, double local);
+  bool take_info(const MatchInfoOut &info, double local);  // false: neither listed nor taken by its match
   void send_due(ClientPort &port, double local);
 
   CoreSettings settings_;
@@ -140,7 +139,6 @@ class ClientCore {
   std::vector<ViewEvent> scratch_;
   uint32_t control_seq_ = 0;
   WireSizes sizes_;  // the port's, as the newest pump saw them
-  std::function<void(const SegmentOut &)> on_segment_;
   std::function<void(const json &)> tap_;
   bool tapped_ready_ = false;  // the tap's "ready" line is out
   uint64_t refused_ = 0;

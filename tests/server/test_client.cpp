@@ -9,6 +9,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "check.hpp"
 #include "fake_net_client.h"
@@ -524,7 +525,7 @@ TEST(the_tap_gives_every_sample_as_it_came) {
   };
   // a random mix of every kind, some of them not the chosen server's or not of the match followed
   std::map<std::string, size_t> fed;
-  std::vector<json> expected;  // by kind, in the order each kind is taken
+  std::vector<json> verdicts;  // every line read back
   MatchInfoOut info = g.match.info();
   info.server_id = 1;
   int poll_rounds = 0;
@@ -596,14 +597,29 @@ TEST(the_tap_gives_every_sample_as_it_came) {
       CHECK_EQ(got[kv.first].size(), kv.second.size());
       for (size_t i = 0; i < kv.second.size() && i < got[kv.first].size(); ++i) {
         json j = got[kv.first][i];
-        j.erase("type");
-        j.erase("recv");
+        verdicts.push_back(j);
+        for (const char *key : {"type", "recv", "trusted", "anew"}) j.erase(key);
         CHECK_MSG(j == kv.second[i], "%s line %zu is not the sample fed", kv.first.c_str(), i);
       }
     }
   }
   CHECK(fed["match_info"] > 40 && fed["segment"] > 40 && fed["event"] > 40 && fed["state"] > 40);
-  CHECK(fed["server_status"] > 5 && fed["racket_sample"] > 5);
+  // the client's verdict on each: never another server's, a racket sample only from its slot's
+  // holder; and some of every kind the match takes
+  std::map<std::string, size_t> trusted;
+  for (const json &j : verdicts) {
+    const std::string type = record_type(j);
+    CHECK_MSG(j.at("trusted").is_boolean(), "%s line without a verdict", type.c_str());
+    if (!j.at("trusted").get<bool>()) continue;
+    trusted[type]++;
+    if (type == "match_info" || type == "segment" || type == "event") CHECK(j.at("server").get<uint32_t>() == 1);
+    if (type == "racket_sample") {
+      RacketSampleIn r = j.get<RacketSampleIn>();
+      CHECK(r.from == participant(static_cast<uint8_t>(1 + r.player)));
+    }
+  }
+  CHECK(trusted["match_info"] > 10 && trusted["segment"] > 0 && trusted["event"] > 0 && trusted["server_status"] > 5);
+  CHECK(trusted["match_info"] < fed["match_info"] && trusted["segment"] < fed["segment"]);
   // a model: its note line (the model itself: ball_net_model)
   MatchModelOut m;
   m.match_id = g.match.id();
@@ -626,6 +642,16 @@ TEST(the_tap_gives_every_sample_as_it_came) {
   CHECK_EQ(line.at("recv").get<double>(), 1700000000.25);
   CHECK_EQ(line.at("sent").get<double>(), 1700000000.125);
   CHECK(json::parse(t.lines[before]).count("sent") == 0);  // (none said: none given)
+  before = t.lines.size() - 1;
+  // a MatchInfo 2 s behind: the match started anew, and the line says so
+  MatchInfoOut back = info;
+  back.sim_time -= 2.0;
+  back.server_time += 1.0;
+  net.port.infos.push_back(back);
+  CHECK_EQ(ball_net_poll(net.client, nullptr, 0, &n), BALL_OK);
+  json again = json::parse(t.lines.back());
+  CHECK_MSG(again.at("trusted").get<bool>() && again.value("anew", false), "%s", again.dump().c_str());
+  CHECK(json::parse(t.lines[t.lines.size() - 2]).count("anew") == 0);
   before = t.lines.size() - 1;
   // from inside the tap: ball_net_poll refused, and the poll goes on
   t.poll_inside = true;

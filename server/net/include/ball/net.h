@@ -388,10 +388,11 @@ BALL_NET_API const char *ball_net_cause_name(ball_net_cause cause);
  * rackets, server_status with its server_status, and "ready" once, when
  * the client first hears a server), the sample's fields, "recv", the
  * realtime clock at its reception, s, and "sent", its writer's realtime
- * clock at its writing (its DDS source timestamp; absent when not known).
- * Every sample of every match comes,
- * before any of the trust rules: what the library takes is what
- * ball_net_poll gives. */
+ * clock at its writing (its DDS source timestamp; absent when not known),
+ * and "trusted", the library's verdict: true when the sample passed the
+ * trust rules of a match the client follows (for a MatchInfo, of one it
+ * lists), with "anew": true on a MatchInfo that started a followed match
+ * anew. Every sample of every match comes, the refused ones too. */
 typedef void (*ball_net_tap)(void *user, const char *line, size_t length);
 
 /* Sets the client's tap (NULL: none), called with `user` from within
