@@ -56,12 +56,21 @@ ClientCore::Followed *ClientCore::follow(uint32_t match, ClientPort &port, ball_
   auto m = models_.find(match);
   if (m != models_.end()) f.view->on_model(m->second);
   auto l = listed_.find(match);
-  if (l != listed_.end()) {
-    scratch_.clear();
-    f.view->on_info(l->second.info, l->second.heard, &scratch_);
-    events_.insert(events_.end(), scratch_.begin(), scratch_.end());
+  scratch_.clear();
+  if (l != listed_.end()) f.view->on_info(l->second.info, l->second.heard, &scratch_);
+  auto u = unfollowed_.find(match);
+  if (u != unfollowed_.end()) {
+    for (const auto &k : u->second) f.view->on_segment(k.first, k.second, &scratch_);
+    unfollowed_.erase(u);
   }
+  events_.insert(events_.end(), scratch_.begin(), scratch_.end());
   return &f;
+}
+
+size_t ClientCore::kept_unfollowed() const {
+  size_t n = 0;
+  for (const auto &kv : unfollowed_) n += kv.second.size();
+  return n;
 }
 
 bool ClientCore::take_info(const MatchInfoOut &info, double local) {
@@ -138,6 +147,11 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
     Followed *f = of(seg.match_id, size.segment);
     put(tap(seg, seg.reception, f && f->view->on_segment(seg, at(seg.reception), &scratch_)));
     if (f) delay(f, seg.reception);
+    else if (unfollowed_.count(seg.match_id) || unfollowed_.size() < settings_.max_matches) {
+      auto &kept = unfollowed_[seg.match_id];
+      kept.emplace_back(seg, at(seg.reception));
+      if (kept.size() > kKeptUnfollowed) kept.pop_front();
+    }
   }
   EventOut ev;
   while (port.take(&ev)) {

@@ -91,6 +91,11 @@ class ClientCore {
   // A LEAVE for every slot held (a client closing); how many were written.
   int leave_all(ClientPort &port);
 
+  // Segments of a match not followed kept for when it is (a reader gets a match's newest segments
+  // once, when it matches the server's writer): the newest of each match, at most max_matches matches.
+  static constexpr size_t kKeptUnfollowed = 4;
+  size_t kept_unfollowed() const;  // segments kept so
+
   const MatchView *view(uint32_t match) const;  // nullptr: not followed
   const OwnCounters *own(uint32_t match) const;
   std::vector<const Listed *> matches(double local) const;  // listed now (heard within `silence`), by id
@@ -134,6 +139,8 @@ class ClientCore {
   // the newest MatchModel of every match heard (written once per model, transient local: a match
   // followed later starts from it); at most max_matches
   std::map<uint32_t, MatchModelOut> models_;
+  // the newest segments of matches not followed, with the caller's clock at their reception
+  std::map<uint32_t, std::deque<std::pair<SegmentOut, double>>> unfollowed_;
   std::map<uint32_t, Creating> creating_;
   std::deque<ViewEvent> events_;
   std::vector<ViewEvent> scratch_;

@@ -444,6 +444,61 @@ TEST(a_model_taken_before_the_match_is_followed_is_kept) {
   CHECK_EQ(ball_model_hash(core.view(7)->model()), g.match.info().model_hash);
 }
 
+// A match followed after its segments came (a game lists, then joins; a
+// reader that matched late gets a match's newest segments once, at
+// matching) starts from them: the ball at once, from the segment in
+// effect, even from segments that came before the MatchInfo; and what it
+// keeps of matches it does not follow is bounded.
+TEST(segments_taken_before_the_match_is_followed_are_kept) {
+  Game g;
+  g.join(0, participant(1));
+  g.join(1, participant(2));
+  g.run(3.0);
+  CHECK(g.segments.size() >= 3);
+  for (int segments_first = 0; segments_first < 2; ++segments_first) {
+    ClientCore core(CoreSettings{}, me());
+    FakeClientPort port;
+    for (size_t i = 0; i < g.segments.size(); ++i) {
+      SegmentOut s = g.segments[i];
+      s.server_id = 1;
+      port.segments.push_back(s);
+    }
+    if (!segments_first) core.pump(port, g.now, g.now);  // (the segments in this pump, the info in the next)
+    port.infos.push_back(info_of(g));
+    core.pump(port, g.now, g.now);
+    CHECK(core.view(7) == nullptr);
+    std::string why;
+    CHECK_EQ(core.watch(7, port, &why), BALL_OK);
+    const MatchView *v = core.view(7);
+    CHECK(v && !v->window().empty());
+    if (!v || v->window().empty()) continue;
+    CHECK_EQ(v->window().back().segment.seq, g.segments.back().seq);  // the newest, ahead or in effect
+    ViewBall b;
+    CHECK_EQ(v->ball(g.now, &b), BALL_OK);
+    CHECK(b.segment != nullptr);
+    if (!b.segment) continue;
+    ball_state want;
+    CHECK_EQ(ball_segment_eval(&g.match.model(), &b.segment->segment, b.sim_time, &want), BALL_OK);
+    CHECK_EQ(b.state.position.x, want.position.x);
+    CHECK_EQ(b.state.position.y, want.position.y);
+  }
+  // a stranger's segments of many made-up matches: kept for at most max_matches of them
+  CoreSettings few;
+  few.max_matches = 8;
+  ClientCore core(few, me());
+  FakeClientPort port;
+  for (uint32_t m = 100; m < 200; ++m) {
+    SegmentOut s = g.segments.back();
+    s.match_id = m;
+    for (int k = 0; k < 10; ++k) {
+      s.seq = static_cast<uint32_t>(k + 1);
+      port.segments.push_back(s);
+    }
+  }
+  core.pump(port, g.now, g.now);
+  CHECK_EQ(core.kept_unfollowed(), 8u * ClientCore::kKeptUnfollowed);
+}
+
 // The rackets a client draws (the watcher's and the page's one rule): a
 // slot's track starts anew with a new holder, every track with a new
 // server; a new level keeps them; a slot the match has not is refused.
