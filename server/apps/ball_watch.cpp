@@ -1,13 +1,12 @@
 // ball-watch: an observer (docs/server.md, "Watchers"), a client of the
-// client library (ball/net.h): the library's tap (docs/client.md, "A tap")
-// feeds a Watcher (watcher.h) every sample as it came, and the match's
-// model comes from ball_net_model. It prints the rally as it happens,
+// client library (ball/net.h) and nothing else: a Watcher (watcher.h) over
+// one client. It prints the rally as it happens,
 // records everything it receives to JSON Lines on request, evaluates the
 // ball from the segments at its own frame rate and checks that ball against
 // the server's ball states (the desync check). With --snapshots it also
 // draws PNG frames of each match (libball::render, headless OSMesa) every S
-// sim seconds, as ballrender does for a scene, rackets included (the
-// players' samples: racket_tracks.h). With --http it serves the spectator
+// sim seconds, as ballrender does for a scene, rackets included (placed by
+// the library from their holders' samples). With --http it serves the spectator
 // page (server/web): the loop feeds it, the HTTP server runs on threads of
 // its own. One loop.
 #include <sys/stat.h>
@@ -17,13 +16,11 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
-#include <set>
+#include <memory>
 
 #include "ball/render.h"
 #include "common.h"
 #include "open_client.h"
-#include "racket_tracks.h"
-#include "watch_feed.h"
 #include "watcher.h"
 #include "web_server.h"
 
@@ -63,7 +60,7 @@ struct Snapshots {
   }
 
   // The frame into dir: "" and its path in *file, or what went wrong.
-  std::string draw(const SnapshotDue &d, const RacketTracks &rackets, SnapshotRecord *drawn) {
+  std::string draw(const SnapshotDue &d, SnapshotRecord *drawn) {
     if (!renderer && ball_renderer_create(size[0], size[1], &renderer) != BALL_OK)
       return "cannot create an OSMesa renderer";
     auto it = courts.find(d.match);
@@ -81,10 +78,9 @@ struct Snapshots {
     f.ball = d.ball;
     f.n_rackets = std::min(it->second.n_rackets, d.info.players);
     for (int i = 0; i < f.n_rackets; ++i) {
-      ball_racket_pose pose{};
-      f.rackets[i].visible = drawn->racket_drawn[i] = rackets.pose(d.match, i, d.sim_time, &pose);
-      f.rackets[i].center = drawn->rackets[i] = pose.center;
-      f.rackets[i].normal = pose.normal;
+      f.rackets[i].visible = drawn->racket_drawn[i] = d.racket_drawn[i];
+      f.rackets[i].center = drawn->rackets[i] = d.rackets[i].center;
+      f.rackets[i].normal = d.rackets[i].normal;
     }
     f.n_trail = static_cast<int>(d.trail.size());
     f.trail = d.trail.data();
@@ -135,7 +131,7 @@ struct Page {
 };
 
 // Prints, records and draws what the watcher produced; "" or what went wrong.
-std::string drain(Watcher &w, OutputFile &rec, Snapshots &snap, const RacketTracks &rackets, bool quiet, double start) {
+std::string drain(Watcher &w, OutputFile &rec, Snapshots &snap, bool quiet, double start) {
   WatchOutput &out = w.output();
   for (const auto &l : out.log)
     if (!quiet) std::printf("[%6.2f s] match %u, t %7.3f: %s\n", mono_now() - start, l.match, l.sim_time, l.text.c_str());
@@ -144,7 +140,7 @@ std::string drain(Watcher &w, OutputFile &rec, Snapshots &snap, const RacketTrac
   out.snapshots.clear();
   for (const auto &d : due) {
     SnapshotRecord drawn;
-    std::string why = snap.draw(d, rackets, &drawn);
+    std::string why = snap.draw(d, &drawn);
     if (!why.empty()) return why;
     w.snapshot_written(d, drawn, realtime_now());
   }
@@ -154,62 +150,6 @@ std::string drain(Watcher &w, OutputFile &rec, Snapshots &snap, const RacketTrac
   out.clear();
   return err;
 }
-
-// The matches the watcher follows through the client (their models come
-// from ball_net_model), and a turn of the loop: the client polled (its tap
-// feeds the watcher), the models that came handed over, the desync check.
-class Following {
- public:
-  explicit Following(ball_net_client *c) : client_(c) {}
-
-  // "" or what went wrong
-  std::string turn(Watcher &w, WatchFeed &feed) {
-    ball_net_event events[64];
-    int n = 0;
-    do {  // (the watcher takes the events from the tap, as they came)
-      if (ball_net_poll(client_, events, 64, &n) != BALL_OK) return ball_net_message(client_);
-    } while (n == 64);
-    for (uint32_t id : w.match_ids())
-      if (followed_.insert(id).second) {
-        // (refused: the room of max_matches, or under DDS Security a partition not granted)
-        if (ball_net_watch(client_, id) != BALL_OK) {
-          std::fprintf(stderr, "%s: match %u: %s\n", kProgram, id, ball_net_message(client_));
-          continue;
-        }
-        feed.models.insert(id);
-      }
-    for (auto it = feed.models.begin(); it != feed.models.end();)
-      it = handed(w, *it) ? feed.models.erase(it) : std::next(it);
-    w.check_states();
-    return "";
-  }
-  // under DDS Security, samples refused for their writer's certificate (the client's count)
-  uint64_t untrusted() const {
-    ball_net_status st;
-    for (uint32_t id : followed_)
-      if (ball_net_status_of(client_, id, &st) == BALL_OK) return st.untrusted;
-    return 0;
-  }
-
- private:
-  // the match's model handed to the watcher; false: not come yet
-  bool handed(Watcher &w, uint32_t id) {
-    ball_net_match info;
-    MatchModelOut m;
-    if (!followed_.count(id)) return true;  // (a match not followed is not waited for)
-    if (ball_net_match_info(client_, id, &info) != BALL_OK || ball_net_model(client_, id, &m.model) != BALL_OK)
-      return false;
-    m.model_hash = ball_model_hash(&m.model);
-    if (m.model_hash != info.model_hash) return false;  // (the client's match takes it with the info that names it)
-    const ball_model *have = w.model(id);
-    m.match_id = id;
-    m.server_id = info.server;
-    if (!have || ball_model_hash(have) != m.model_hash) w.on_model(m);
-    return true;
-  }
-  ball_net_client *client_;
-  std::set<uint32_t> followed_;
-};
 
 }  // namespace
 
@@ -242,46 +182,40 @@ int main(int argc, char **argv) {
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
   ws.log = !no_log && !quiet;
-  if (!ServerChoice::parse(servers, &ws.servers, &err)) return fail(kProgram, err);
   ws.snapshot_every = snap.dir.empty() ? 0.0 : snap.every;
   if (!(err = snap.make_dir()).empty()) return fail(kProgram, err);
 
   install_stop_signals();
-  const bool draws_rackets = page.port >= 0 || !snap.dir.empty();
   ball_net_client *client = open_client(dds_opt, kProgram, servers, [&](ball_net_config *c) {
+    c->clock = [](void *) { return realtime_now(); };  // (the watcher's times are the realtime clock's)
     c->ball_states = 1;  // (the desync check)
     c->server_status = 1;
-    c->rackets = draws_rackets;
+    c->rackets = page.port >= 0 || !snap.dir.empty();  // (the rackets are drawn)
   }, &err);
   if (!client) return fail(kProgram, err);
-  RacketTracks rackets(court_model);
+  std::unique_ptr<ball_net_client, void (*)(ball_net_client *)> owned(client, ball_net_free);  // (outlives w)
   if (!(err = page.start()).empty()) return fail(kProgram, err);
   OutputFile rec;
   if (!record.empty() && !rec.open(record)) return fail(kProgram, rec.error());
-  Watcher w(ws);
-  WatchFeed feed(w, draws_rackets ? &rackets : nullptr);
-  if (ball_net_set_tap(client, WatchFeed::tap, &feed) != BALL_OK) return fail(kProgram, ball_net_message(client));
-  Following following(client);
+  Watcher w(ws, client);
   const double start = mono_now();
   w.on_start(realtime_now());
   for (double next_frame = start; !stop_requested(); sleep_until(std::min(next_frame, mono_now() + 0.002))) {
     double now = mono_now(), real = realtime_now();
     if ((duration > 0.0 && now - start >= duration) || (until_hits > 0 && w.hits() >= until_hits)) break;
-    if (!(err = following.turn(w, feed)).empty()) return fail(kProgram, err);
+    if (!(err = w.turn(real)).empty()) return fail(kProgram, err);
     if (page.web) page.web->update([&](Spectator &sp) {
-        for (const auto &r : feed.drawn) sp.on_racket(r);
+        for (const auto &r : w.output().rackets) sp.on_racket(r);
         sp.update(w, real);
       });
-    feed.drawn.clear();
     if (now >= next_frame) {  // the watcher's own ball, at its own frame rate
       w.frame(real);
       next_frame += 1.0 / ws.fps;
       if (next_frame < now) next_frame = now + 1.0 / ws.fps;
     }
-    if (!(err = drain(w, rec, snap, rackets, quiet, start)).empty()) return fail(kProgram, err);
+    if (!(err = drain(w, rec, snap, quiet, start)).empty()) return fail(kProgram, err);
   }
   WatchSummary sum = w.summary(mono_now() - start);
-  sum.untrusted = following.untrusted();
   w.output().records.push_back({{"type", "summary"}, {"summary", sum}});
   if (!quiet)
     for (const auto &line : summary_lines(sum)) std::printf("%s\n", line.c_str());
@@ -289,8 +223,7 @@ int main(int argc, char **argv) {
     std::printf("summary: the spectator page: %llu streams opened, %llu refused (too many at once)\n",
                 static_cast<unsigned long long>(page.web->pages_opened()),
                 static_cast<unsigned long long>(page.web->pages_refused()));
-  if (!(err = drain(w, rec, snap, rackets, true, start)).empty() || (rec.is_open() && !rec.close())) return fail(kProgram, err.empty() ? rec.error() : err);
+  if (!(err = drain(w, rec, snap, true, start)).empty() || (rec.is_open() && !rec.close())) return fail(kProgram, err.empty() ? rec.error() : err);
   if (!summary_json.empty() && !write_file(summary_json, json(sum).dump(1), &err)) return fail(kProgram, err);
-  ball_net_free(client);
   return 0;
 }

@@ -3,6 +3,7 @@
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
+#include <algorithm>
 
 #include "ball/vec3.h"
 
@@ -17,6 +18,8 @@ constexpr double kTrailSeconds = 1.0;  // sim s of trail and of event markers
 constexpr size_t kTrailPoints = 2048;
 constexpr size_t kMarkers = 64;
 constexpr size_t kKeepEvents = 64;     // per match, for a view
+constexpr size_t kKeepSegments = 256;  // trusted segments a match keeps (the client library's window)
+constexpr size_t kKeepGiven = 1024;    // events given a match remembers (a correction voids recent ones)
 
 std::string point_text(ball_vec3 p) {
   char buf[96];
@@ -82,11 +85,11 @@ std::string rally_line(const EventOut &e) {
   return buf;
 }
 
-Watcher::Watched &Watcher::watched(uint32_t id) {
-  Watched &w = matches_[id];
-  if (!w.view) w.view = std::make_unique<MatchView>(id, settings_.servers, ParticipantId{});  // (it holds no slot)
-  return w;
+Watcher::Watcher(const WatcherSettings &settings, ball_net_client *client) : settings_(settings), client_(client) {
+  ball_net_set_tap(client_, &Watcher::tap, this);
 }
+
+Watcher::~Watcher() { ball_net_set_tap(client_, nullptr, nullptr); }
 
 void Watcher::say(uint32_t match, double sim_time, const std::string &text) {
   if (settings_.log && !text.empty()) out_.log.push_back(LogLine{match, sim_time, text});
@@ -97,35 +100,117 @@ void Watcher::on_start(double real) {
   out_.records.push_back({{"type", "start"}, {"real", real}, {"fps", settings_.fps}});
 }
 
-void Watcher::on_ready(double real) {
-  if (ready_) return;
-  ready_ = true;
-  out_.records.push_back({{"type", "ready"}, {"recv", real}});
+std::string Watcher::turn(double real) {
+  real_ = real;
+  ball_net_event events[64];
+  int n = 0;
+  do {
+    if (ball_net_poll(client_, events, 64, &n) != BALL_OK) return ball_net_message(client_);
+    for (int i = 0; i < n; ++i) on_event(events[i]);
+  } while (n == 64);
+  for (auto &kv : matches_) {
+    Watched &w = kv.second;
+    if (w.has_info && !w.followed) {
+      w.followed = true;  // (tried once: refused, its samples stay untrusted and counted)
+      if (ball_net_watch(client_, kv.first) != BALL_OK)
+        say(kv.first, w.info.sim_time, std::string("not followed: ") + ball_net_message(client_));
+    }
+    if (w.followed) fetch_model(kv.first, w);
+  }
+  check_states();
+  return "";
 }
 
-void Watcher::on_info(const MatchInfoOut &info, double real) {
-  if (!wanted(info.match_id)) return;
+// The whole model of the match's newest info, once the client has it.
+void Watcher::fetch_model(uint32_t id, Watched &w) {
+  if (w.has_model && ball_model_hash(&w.model) == w.info.model_hash) return;
+  ball_model m;
+  if (ball_net_model(client_, id, &m) != BALL_OK || ball_model_hash(&m) != w.info.model_hash) return;
+  w.model = m;
+  w.has_model = true;
+}
+
+// One line of the tap: recorded as it came; what the library trusted is used.
+void Watcher::tap(void *user, const char *text, size_t length) {
+  auto *w = static_cast<Watcher *>(user);
+  json line = json::parse(text, text + length, nullptr, false);
+  if (!line.is_object()) {
+    w->unreadable_++;
+    return;
+  }
+  try {
+    w->on_line(line);
+  } catch (const std::exception &) {  // (numbers a type cannot hold, a NaN as null: recorded, counted, not used)
+    w->unreadable_++;
+    auto m = line.find("match");
+    if (m == line.end() || !m->is_number_unsigned() || !w->wanted(m->get<uint32_t>())) return;
+    w->watched(m->get<uint32_t>()).tally.not_taken++;
+    const std::string type = record_type(line);
+    if (type != "match_info" && type != "segment" && type != "event" && type != "state") return;
+    for (const char *key : {"trusted", "sent", "anew", "kept"}) line.erase(key);
+    line["recv"] = w->real_;
+    w->out_.records.push_back(line);
+  }
+}
+
+void Watcher::on_line(const json &line) {
+  const std::string type = record_type(line);
+  if (type == "ready") {
+    if (!ready_) out_.records.push_back({{"type", "ready"}, {"recv", real_}});
+    ready_ = true;
+    return;
+  }
+  if (type == "server_status") {
+    StatusOut s = line.get<StatusOut>();
+    servers_[s.server_id] = s;
+    return;
+  }
+  auto m = line.find("match");
+  if (m == line.end() || !m->is_number_unsigned() || !wanted(m->get<uint32_t>())) return;
+  if (type == "match_model") return;  // (the model itself: ball_net_model, once the info names it)
+  const bool trusted = line.value("trusted", false);
+  if (type == "racket_sample") {
+    if (trusted) out_.rackets.push_back(line.get<RacketSampleIn>());
+    return;
+  }
+  if (type == "match_info") {
+    on_info(line);
+  } else if (type == "segment") {
+    on_segment(line);
+  } else if (type == "state") {
+    on_state(line);
+  } else if (type == "event") {
+    out_.records.push_back(record_line(line.get<EventOut>(), real_));  // (given by the poll, each once, in order)
+    Watched &w = watched(m->get<uint32_t>());
+    if (!trusted && w.followed) w.tally.not_taken++;
+  }
+}
+
+void Watcher::on_info(const json &line) {
+  const MatchInfoOut info = line.get<MatchInfoOut>();
+  out_.records.push_back(record_line(info, real_));  // what arrived; used only if trusted
   Watched &w = watched(info.match_id);
-  out_.records.push_back(record_line(info, real));  // what arrived; used only if it fits (trust.h)
-  bool first = !w.view->has_info();
-  MatchState before = w.view->info().state;
-  std::vector<ViewEvent> given;
-  if (!w.view->on_info(info, real, &given)) {
+  if (!line.value("trusted", false)) {
     w.tally.not_taken++;
     return;
   }
-  if (w.view->counters().anew != w.anew) {
+  bool first = !w.has_info;
+  MatchState before = w.info.state;
+  if (line.value("anew", false)) {
     // the sim clock went back: a server started the match anew (its seqs
     // start over too), so nothing held of the old one applies
-    w.anew = w.view->counters().anew;
     say(info.match_id, info.sim_time, "match started anew by server " + std::to_string(info.server_id));
+    w.segments.clear();
     w.pending.clear();
     w.leads.clear();
     w.trail.clear();
     w.recent.clear();
     w.next_snapshot = -1.0;
   }
-  take(w, given);
+  w.info = info;
+  w.info_real = real_;
+  w.has_info = true;
+  if (info.segment_seq > 0) keep(w, current_segment(info));  // the segment in effect, as the client's match has it
   if (first || before != info.state)
     say(info.match_id, info.sim_time,
         std::string("match ") + name_of(info.state) + " (" + info.scene + ", level " +
@@ -133,24 +218,31 @@ void Watcher::on_info(const MatchInfoOut &info, double real) {
             " players, server " + std::to_string(info.server_id) + ")");
 }
 
-void Watcher::on_model(const MatchModelOut &model) {
-  if (!wanted(model.match_id)) return;
-  if (!watched(model.match_id).view->on_model(model)) watched(model.match_id).tally.not_taken++;
+// A trusted segment kept, by seq (a late joiner gets older ones after the
+// one in effect); false: held already.
+bool Watcher::keep(Watched &w, const SegmentOut &seg) {
+  for (const auto &s : w.segments)
+    if (s.seq == seg.seq) return false;
+  auto at = std::find_if(w.segments.begin(), w.segments.end(),
+                         [&seg](const SegmentOut &x) { return static_cast<int32_t>(seg.seq - x.seq) < 0; });
+  w.segments.insert(at, seg);
+  while (w.segments.size() > kKeepSegments) w.segments.pop_front();
+  return true;
 }
 
-void Watcher::on_segment(const SegmentOut &seg, double real) {
-  if (!wanted(seg.match_id)) return;
+void Watcher::on_segment(const json &line) {
+  const SegmentOut seg = line.get<SegmentOut>();
+  const bool kept = line.value("kept", false);  // (recorded when it came, before the match was followed)
+  if (!kept) out_.records.push_back(record_line(seg, real_));  // what arrived; used only if trusted
   Watched &w = watched(seg.match_id);
-  out_.records.push_back(record_line(seg, real));  // what arrived; used only if it fits
-  std::vector<ViewEvent> given;
-  if (!w.view->on_segment(seg, real, &given)) {
-    w.tally.not_taken++;
+  if (!line.value("trusted", false)) {
+    if (w.followed) w.tally.not_taken++;  // (before: the client kept it for when it follows)
     return;
   }
-  take(w, given);  // (the events it voids)
-  if (first_segment_after_ < 0.0) first_segment_after_ = real - start_real_;
+  if (!keep(w, seg)) return;  // (the same segment again)
+  if (first_segment_after_ < 0.0) first_segment_after_ = real_ - start_real_;
   if (seg.cause == Cause::racket && seg.sample.valid) {
-    latency_.add(real - seg.sample.source_time);
+    latency_.add(real_ - seg.sample.source_time);
     latency_server_.add(seg.server_time - seg.sample.source_time);
   }
   // contacts written ahead: a later seq that starts no later supersedes them
@@ -162,17 +254,34 @@ void Watcher::on_segment(const SegmentOut &seg, double real) {
       ++it;
     }
   }
-  const MatchView &v = *w.view;
+  double sim = 0.0;
   bool contact = seg.cause == Cause::floor || seg.cause == Cause::net || seg.cause == Cause::wall;
-  if (contact && v.clock().valid() && v.info().time_base > 0.0 && w.leads.size() < kKeepLeads)
-    w.leads[seg.seq] = {seg.segment.t0, (seg.segment.t0 - v.clock().sim_now(real)) / v.info().time_base};
+  if (contact && w.has_info && w.info.time_base > 0.0 && w.leads.size() < kKeepLeads &&
+      sim_now(seg.match_id, real_, &sim))
+    w.leads[seg.seq] = {seg.segment.t0, (seg.segment.t0 - sim) / w.info.time_base};
+}
+
+void Watcher::on_state(const json &line) {
+  const StateOut s = line.get<StateOut>();
+  out_.records.push_back(record_line(s, real_));
+  Watched &w = watched(s.match_id);
+  w.tally.states++;
+  if (!line.value("trusted", false)) {
+    if (w.followed) w.tally.not_taken++;
+    return;
+  }
+  w.pending.push_back(s);
+}
+
+bool Watcher::sim_now(uint32_t id, double real, double *sim) const {
+  return ball_net_sim_time(client_, id, real, sim) == BALL_OK;
 }
 
 // The contacts whose time has passed by kLeadSettle: they happened (a hit
 // that superseded one would have come by then); their leads are counted.
-void Watcher::settle_leads(Watched &w, double real) {
-  if (!w.view->clock().valid()) return;
-  double now = w.view->clock().sim_now(real);
+void Watcher::settle_leads(uint32_t id, Watched &w, double real) {
+  double now = 0.0;
+  if (!sim_now(id, real, &now)) return;
   for (auto it = w.leads.begin(); it != w.leads.end();) {
     if (it->second.first > now - kLeadSettle) {
       ++it;
@@ -182,6 +291,173 @@ void Watcher::settle_leads(Watched &w, double real) {
     (it->second.second > 0.0 ? bounces_ahead_ : bounces_late_)++;
     it = w.leads.erase(it);
   }
+}
+
+// An event the poll gave, each once and in order (the library's own
+// included: a correction's void, a gap, a change of server): tallied,
+// logged and kept (for the page and the snapshots' markers).
+void Watcher::on_event(const ball_net_event &e) {
+  if (!wanted(e.match)) return;
+  Watched &w = watched(e.match);
+  switch (e.kind) {
+    case BALL_NET_EVENT_VOIDED: {
+      auto it = w.given.find(static_cast<uint32_t>(e.value));
+      if (it != w.given.end()) {
+        tally(w, it->second, -1);
+        w.given.erase(it);
+      }
+      w.tally.voided++;
+      return;
+    }
+    case BALL_NET_EVENT_GAP: w.tally.events_missed += static_cast<uint64_t>(e.value); return;
+    case BALL_NET_EVENT_SERVER:
+      say(e.match, e.time, "match now served by server " + std::to_string(e.server));
+      return;
+    case BALL_NET_EVENT_SLOT: return;  // (a watcher holds none)
+    default: break;
+  }
+  if (static_cast<int>(e.kind) < 0 || e.kind >= BALL_NET_EVENT_SERVER) return;
+  EventOut ev;
+  ev.match_id = e.match;
+  ev.server_id = e.server;
+  ev.seq = e.seq;
+  ev.kind = static_cast<EventKind>(e.kind);
+  ev.index = e.index;
+  ev.side = e.side;
+  ev.in_play = e.in_play != 0;
+  ev.sound = e.sound != 0;
+  ev.time = e.time;
+  ev.point = e.point;
+  ev.velocity_in = e.velocity_in;
+  ev.velocity_out = e.velocity_out;
+  ev.reason = static_cast<Reason>(e.reason);
+  ev.score = {e.score[0], e.score[1]};
+  ev.value = e.value;
+  tally(w, ev, +1);
+  w.given[ev.seq] = ev;
+  while (w.given.size() > kKeepGiven) w.given.erase(w.given.begin());
+  ball_event marker;
+  if (settings_.snapshot_every > 0.0 && event_marker(ev, &marker)) w.recent.push_back(marker);
+  w.events.push_back(ev);
+  w.events_taken++;
+  if (w.events.size() > kKeepEvents) w.events.pop_front();
+  say(ev.match_id, ev.time, rally_line(ev));
+}
+
+std::vector<uint32_t> Watcher::match_ids() const {
+  std::vector<uint32_t> ids;
+  for (const auto &kv : matches_)
+    if (kv.second.has_info) ids.push_back(kv.first);
+  return ids;
+}
+
+bool Watcher::view(uint32_t match, WatchedView *out) const {
+  auto it = matches_.find(match);
+  if (it == matches_.end() || !it->second.has_info) return false;
+  const Watched &w = it->second;
+  out->info = &w.info;
+  out->segments = &w.segments;
+  out->model = w.has_model ? &w.model : nullptr;
+  out->events = &w.events;
+  out->events_taken = w.events_taken;
+  out->sim_at = [this, match, &w](double real) {
+    double sim = w.info.sim_time;
+    sim_now(match, real, &sim);
+    return sim;
+  };
+  out->running = w.info.state == MatchState::playing;
+  out->info_real = w.info_real;
+  return true;
+}
+
+const ball_model *Watcher::model(uint32_t match) const {
+  auto it = matches_.find(match);
+  return it == matches_.end() || !it->second.has_model ? nullptr : &it->second.model;
+}
+
+// each server state against the ball evaluated here from the trusted
+// segment it names (eq 3 and 4 with the match's flight model)
+void Watcher::check_states() {
+  for (auto &kv : matches_) {
+    Watched &w = kv.second;
+    if (!w.has_info) continue;
+    size_t keep = 0;
+    const uint32_t oldest = w.segments.empty() ? 0 : w.segments.front().seq;
+    for (size_t i = 0; i < w.pending.size(); ++i) {
+      const StateOut &st = w.pending[i];
+      const SegmentOut *k = nullptr;
+      for (const auto &s : w.segments)
+        if (s.seq == st.segment_seq) k = &s;
+      if (!k) {
+        if (!w.segments.empty() && static_cast<int32_t>(st.segment_seq - oldest) < 0)
+          w.tally.states_unmatched++;  // too old: out of the window
+        else
+          w.pending[keep++] = st;  // its segment is on the way
+        continue;
+      }
+      ball_state b;
+      if (ball_segment_eval(&w.info.model, &k->segment, st.sim_time, &b) != BALL_OK) {
+        w.tally.states_unmatched++;
+        continue;
+      }
+      w.tally.max_error = std::fmax(w.tally.max_error, ball_v3_max_diff(b.position, st.ball.position));
+      w.tally.states_checked++;
+    }
+    w.pending.resize(keep);
+    if (w.pending.size() > kMaxPending) {  // segments that never come
+      w.tally.states_unmatched += w.pending.size();
+      w.pending.clear();
+    }
+  }
+}
+
+void Watcher::frame(double real) {
+  const double every = settings_.snapshot_every;
+  for (auto &kv : matches_) {
+    Watched &w = kv.second;
+    if (!w.has_info || !w.followed) continue;
+    settle_leads(kv.first, w, real);
+    ball_net_ball vb;
+    if (ball_net_ball_at(client_, kv.first, real, &vb) != BALL_OK) continue;
+    const double t = vb.sim_time;
+    const ball_state &b = vb.state;
+    w.tally.frames++;
+    if (settings_.record_frames) out_.records.push_back(OwnFrame{real, kv.first, t, vb.segment, b.position});
+    if (every <= 0.0) continue;
+    // the last second of the ball and of its collisions, then a frame
+    // every `every` sim seconds, on multiples of it
+    if (!w.trail.empty() && t < w.trail.back().first) w.trail.clear();  // the clock went back
+    w.trail.emplace_back(t, b.position);
+    while (w.trail.size() > kTrailPoints || (!w.trail.empty() && w.trail.front().first < t - kTrailSeconds))
+      w.trail.pop_front();
+    while (!w.recent.empty() && (w.recent.front().time < t - kTrailSeconds || w.recent.size() > kMarkers))
+      w.recent.pop_front();
+    if (w.next_snapshot < 0.0) w.next_snapshot = std::ceil(t / every) * every;
+    if (t < w.next_snapshot) continue;
+    SnapshotDue due;
+    due.match = kv.first;
+    due.info = w.info;
+    due.has_model = w.has_model;
+    if (due.has_model) due.model = w.model;
+    due.sim_time = t;
+    due.ball = b.position;
+    for (const auto &p : w.trail) due.trail.push_back(p.second);
+    due.events.assign(w.recent.begin(), w.recent.end());
+    for (int i = 0; i < std::min(w.info.players, kMaxPlayers); ++i)  // (with the config's rackets)
+      due.racket_drawn[i] = ball_net_racket(client_, kv.first, i, real, &due.rackets[i]) == BALL_OK;
+    out_.snapshots.push_back(std::move(due));
+    w.next_snapshot = (std::floor(t / every) + 1.0) * every;
+  }
+}
+
+void Watcher::snapshot_written(const SnapshotDue &due, const SnapshotRecord &drawn, double real) {
+  watched(due.match).tally.snapshots++;
+  SnapshotRecord r = drawn;
+  r.real = real;
+  r.match = due.match;
+  r.sim_time = due.sim_time;
+  r.position = due.ball;
+  out_.records.push_back(r);
 }
 
 // What an event adds to the tally (sign +1), or takes off it when a
@@ -212,174 +488,6 @@ void Watcher::tally(Watched &w, const EventOut &e, int sign) {
   }
 }
 
-// What the view gave, each once and in order: the server's events tallied,
-// logged and kept (for the page and the snapshots' markers), the events a
-// correction voided taken off the tally, the seqs that never came counted.
-void Watcher::take(Watched &w, std::vector<ViewEvent> &given) {
-  for (const ViewEvent &v : given) {
-    const EventOut &e = v.event;
-    switch (v.note) {
-      case ViewNote::none: {
-        tally(w, e, +1);
-        ball_event marker;
-        if (settings_.snapshot_every > 0.0 && event_marker(e, &marker)) w.recent.push_back(marker);
-        w.events.push_back(e);
-        w.events_taken++;
-        if (w.events.size() > kKeepEvents) w.events.pop_front();
-        say(e.match_id, e.time, rally_line(e));
-        break;
-      }
-      case ViewNote::voided: tally(w, e, -1); break;
-      case ViewNote::gap: w.tally.events_missed += static_cast<uint64_t>(e.value); break;
-      case ViewNote::server:
-        say(e.match_id, e.time, "match now served by server " + std::to_string(e.server_id));
-        break;
-      case ViewNote::slot: break;  // (a watcher holds none)
-    }
-  }
-  given.clear();
-}
-
-void Watcher::on_event(const EventOut &e, double real) {
-  if (!wanted(e.match_id)) return;
-  Watched &w = watched(e.match_id);
-  out_.records.push_back(record_line(e, real));  // what arrived; given once, in order, if it fits
-  std::vector<ViewEvent> given;
-  uint64_t refused = w.view->counters().refused;
-  w.view->on_event(e, real, &given);
-  if (w.view->counters().refused != refused) w.tally.not_taken++;
-  take(w, given);
-}
-
-void Watcher::on_state(const StateOut &s, double real) {
-  if (!wanted(s.match_id)) return;
-  Watched &w = watched(s.match_id);
-  w.tally.states++;
-  out_.records.push_back(record_line(s, real));
-  if (!w.view->on_state(s, real)) {
-    w.tally.not_taken++;
-    return;
-  }
-  w.pending.push_back(s);
-}
-
-void Watcher::on_status(const StatusOut &s) { servers_[s.server_id] = s; }
-
-void Watcher::not_taken(uint32_t match) {
-  if (wanted(match)) watched(match).tally.not_taken++;
-}
-
-std::vector<uint32_t> Watcher::match_ids() const {
-  std::vector<uint32_t> ids;
-  for (const auto &kv : matches_)
-    if (kv.second.view->has_info()) ids.push_back(kv.first);
-  return ids;
-}
-
-bool Watcher::view(uint32_t match, WatchedView *out) const {
-  auto it = matches_.find(match);
-  if (it == matches_.end() || !it->second.view->has_info()) return false;
-  const Watched &w = it->second;
-  out->info = &w.view->info();
-  out->segments = &w.view->window();
-  out->model = w.view->model();
-  out->events = &w.events;
-  out->events_taken = w.events_taken;
-  out->clock = &w.view->clock();
-  out->info_real = w.view->info_local();
-  return true;
-}
-
-const ball_model *Watcher::model(uint32_t match) const {
-  auto it = matches_.find(match);
-  return it == matches_.end() ? nullptr : it->second.view->model();
-}
-
-// each server state against the ball evaluated here from the segment it
-// names (eq 3 and 4 with the match's flight model)
-void Watcher::check_states() {
-  for (auto &kv : matches_) {
-    Watched &w = kv.second;
-    const MatchView &v = *w.view;
-    if (!v.has_info()) continue;
-    const std::vector<KeptSegment> &window = v.window();
-    size_t keep = 0;
-    for (size_t i = 0; i < w.pending.size(); ++i) {
-      const StateOut &st = w.pending[i];
-      const KeptSegment *k = nullptr;
-      for (const auto &s : window)
-        if (s.segment.seq == st.segment_seq) k = &s;
-      if (!k) {
-        if (!window.empty() && static_cast<int32_t>(st.segment_seq - window.front().segment.seq) < 0)
-          w.tally.states_unmatched++;  // too old: out of the window
-        else
-          w.pending[keep++] = st;  // its segment is on the way
-        continue;
-      }
-      ball_state b;
-      if (ball_segment_eval(&v.flight_model(), &k->segment.segment, st.sim_time, &b) != BALL_OK) {
-        w.tally.states_unmatched++;
-        continue;
-      }
-      w.tally.max_error = std::fmax(w.tally.max_error, ball_v3_max_diff(b.position, st.ball.position));
-      w.tally.states_checked++;
-    }
-    w.pending.resize(keep);
-    if (w.pending.size() > kMaxPending) {  // segments that never come
-      w.tally.states_unmatched += w.pending.size();
-      w.pending.clear();
-    }
-  }
-}
-
-void Watcher::frame(double real) {
-  const double every = settings_.snapshot_every;
-  for (auto &kv : matches_) {
-    Watched &w = kv.second;
-    const MatchView &v = *w.view;
-    if (!v.has_info() || !v.clock().valid()) continue;
-    settle_leads(w, real);
-    ViewBall vb;
-    if (v.ball(real, &vb) != BALL_OK) continue;
-    const double t = vb.sim_time;
-    const ball_state &b = vb.state;
-    w.tally.frames++;
-    if (settings_.record_frames) out_.records.push_back(OwnFrame{real, kv.first, t, vb.segment->seq, b.position});
-    if (every <= 0.0) continue;
-    // the last second of the ball and of its collisions, then a frame
-    // every `every` sim seconds, on multiples of it
-    if (!w.trail.empty() && t < w.trail.back().first) w.trail.clear();  // the clock went back
-    w.trail.emplace_back(t, b.position);
-    while (w.trail.size() > kTrailPoints || (!w.trail.empty() && w.trail.front().first < t - kTrailSeconds))
-      w.trail.pop_front();
-    while (!w.recent.empty() && (w.recent.front().time < t - kTrailSeconds || w.recent.size() > kMarkers))
-      w.recent.pop_front();
-    if (w.next_snapshot < 0.0) w.next_snapshot = std::ceil(t / every) * every;
-    if (t < w.next_snapshot) continue;
-    SnapshotDue due;
-    due.match = kv.first;
-    due.info = v.info();
-    due.has_model = v.model() != nullptr;
-    if (due.has_model) due.model = *v.model();
-    due.sim_time = t;
-    due.ball = b.position;
-    for (const auto &p : w.trail) due.trail.push_back(p.second);
-    due.events.assign(w.recent.begin(), w.recent.end());
-    out_.snapshots.push_back(std::move(due));
-    w.next_snapshot = (std::floor(t / every) + 1.0) * every;
-  }
-}
-
-void Watcher::snapshot_written(const SnapshotDue &due, const SnapshotRecord &drawn, double real) {
-  watched(due.match).tally.snapshots++;
-  SnapshotRecord r = drawn;
-  r.real = real;
-  r.match = due.match;
-  r.sim_time = due.sim_time;
-  r.position = due.ball;
-  out_.records.push_back(r);
-}
-
 WatchSummary Watcher::summary(double seconds) const {
   WatchSummary s;
   s.seconds = seconds;
@@ -387,12 +495,16 @@ WatchSummary Watcher::summary(double seconds) const {
   for (const auto &kv : matches_) {
     WatchedMatchSummary m = kv.second.tally;
     m.match = kv.first;
-    const std::vector<KeptSegment> &window = kv.second.view->window();
-    m.segments = window.empty() ? 0 : window.back().segment.seq;
-    m.voided = kv.second.view->counters().voided;
+    m.segments = kv.second.segments.empty() ? 0 : kv.second.segments.back().seq;
     s.matches.push_back(m);
   }
   for (const auto &kv : servers_) s.servers.push_back(kv.second);
+  ball_net_status st;  // (the client's count, the same in every match's status)
+  for (const auto &kv : matches_)
+    if (kv.second.followed && ball_net_status_of(client_, kv.first, &st) == BALL_OK) {
+      s.untrusted = st.untrusted;
+      break;
+    }
   s.latency_p50 = latency_.quantile(0.5);
   s.latency_p99 = latency_.quantile(0.99);
   s.latency_server_p50 = latency_server_.quantile(0.5);

@@ -419,6 +419,7 @@ ball_status ball_net_create(ball_net_client *c, uint32_t match, const char *scen
 ball_status ball_net_join(ball_net_client *c, uint32_t match, int slot) {
   ball_status st = usable(c);
   if (st != BALL_OK) return st;
+  if (c->in_tap) return c->fail(BALL_EINVAL, "ball_net_join called from the client's own tap");
   return guarded(c, [&] {
     std::string why;
     return with_why(c, with_transport(c, c->core->join(match, slot, *c->port, c->now(), &why), &why), why);
@@ -444,6 +445,7 @@ ball_status ball_net_slot_of(ball_net_client *c, uint32_t match, int *slot) {
 ball_status ball_net_watch(ball_net_client *c, uint32_t match) {
   ball_status st = usable(c);
   if (st != BALL_OK) return st;
+  if (c->in_tap) return c->fail(BALL_EINVAL, "ball_net_watch called from the client's own tap");
   return guarded(c, [&] {
     std::string why;
     return with_why(c, with_transport(c, c->core->watch(match, *c->port, &why), &why), why);

@@ -60,7 +60,15 @@ ClientCore::Followed *ClientCore::follow(uint32_t match, ClientPort &port, ball_
   if (l != listed_.end()) f.view->on_info(l->second.info, l->second.heard, &scratch_);
   auto u = unfollowed_.find(match);
   if (u != unfollowed_.end()) {
-    for (const auto &k : u->second) f.view->on_segment(k.first, k.second, &scratch_);
+    for (const auto &k : u->second) {
+      const bool trusted = f.view->on_segment(k.segment, k.local, &scratch_);
+      if (!tap_) continue;
+      // (the tap had it as not trusted when it came: now the match took it, from what the client kept)
+      json line = record_line(k.segment, k.real);
+      line["trusted"] = trusted;
+      line["kept"] = true;
+      tap_(line);
+    }
     unfollowed_.erase(u);
   }
   events_.insert(events_.end(), scratch_.begin(), scratch_.end());
@@ -149,7 +157,7 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
     if (f) delay(f, seg.reception);
     else if (unfollowed_.count(seg.match_id) || unfollowed_.size() < settings_.max_matches) {
       auto &kept = unfollowed_[seg.match_id];
-      kept.emplace_back(seg, at(seg.reception));
+      kept.push_back(Kept{seg, at(seg.reception), seg.reception.received > 0.0 ? seg.reception.received : real});
       if (kept.size() > kKeptUnfollowed) kept.pop_front();
     }
   }

@@ -139,8 +139,13 @@ class ClientCore {
   // the newest MatchModel of every match heard (written once per model, transient local: a match
   // followed later starts from it); at most max_matches
   std::map<uint32_t, MatchModelOut> models_;
-  // the newest segments of matches not followed, with the caller's clock at their reception
-  std::map<uint32_t, std::deque<std::pair<SegmentOut, double>>> unfollowed_;
+  // the newest segments of matches not followed, with the caller's clock and the realtime clock
+  // at their reception
+  struct Kept {
+    SegmentOut segment;
+    double local = 0.0, real = 0.0;
+  };
+  std::map<uint32_t, std::deque<Kept>> unfollowed_;
   std::map<uint32_t, Creating> creating_;
   std::deque<ViewEvent> events_;
   std::vector<ViewEvent> scratch_;

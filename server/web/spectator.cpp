@@ -208,8 +208,8 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
     send(m.info);
   }
   // segments: the watcher's, from the newest page_segments; anew when it dropped ours (a match started anew)
-  const std::vector<KeptSegment> &segs = *v.segments;
-  std::pair<uint32_t, size_t> watched{segs.empty() ? 0 : segs.back().segment.seq, segs.size()};
+  const std::deque<SegmentOut> &segs = *v.segments;
+  std::pair<uint32_t, size_t> watched{segs.empty() ? 0 : segs.back().seq, segs.size()};
   if (watched != m.watched) mirror_segments(id, segs, &m);
   m.watched = watched;
   // events taken since the last update (those the watcher still holds)
@@ -229,12 +229,12 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
   while (m.events.size() > settings_.page_events) m.events.pop_front();
   // the clock: the watcher's estimate while the server is heard; the ball
   // held still from when it went silent until a server serves the match again
-  if (live != m.live && !live) m.frozen = v.clock->sim_now(std::min(real, v.info_real + 1.0));
+  if (live != m.live && !live) m.frozen = v.sim_at(std::min(real, v.info_real + 1.0));
   if (live != m.live || real - m.clock_real >= settings_.clock_every) {
-    double sim = live ? v.clock->sim_now(real) : m.frozen;
+    double sim = live ? v.sim_at(real) : m.frozen;
     m.clock = json{{"type", "clock"},     {"match", id},
                    {"sim_time", sim},     {"real", real},
-                   {"time_base", info.time_base}, {"running", live && v.clock->running()},
+                   {"time_base", info.time_base}, {"running", live && v.running},
                    {"live", live}}.dump();
     m.clock_real = real;
     m.live = live;
@@ -244,21 +244,21 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
 
 // The watcher's newest page_segments segments the page has not got; all of
 // them anew when the watcher dropped ours (a match started anew).
-void Spectator::mirror_segments(uint32_t id, const std::vector<KeptSegment> &segs, Mirror *m) {
+void Spectator::mirror_segments(uint32_t id, const std::deque<SegmentOut> &segs, Mirror *m) {
   auto held = [&segs](uint32_t seq) {
     for (const auto &k : segs)
-      if (k.segment.seq == seq) return true;
+      if (k.seq == seq) return true;
     return false;
   };
   // anew when the view dropped ours: a match started anew (its seqs start over)
   if (!m->segments.empty() && !segs.empty() && !held(m->segments.rbegin()->first) &&
-      static_cast<int32_t>(segs.back().segment.seq - m->segments.rbegin()->first) < 0) {
+      static_cast<int32_t>(segs.back().seq - m->segments.rbegin()->first) < 0) {
     m->segments.clear();
     send(json{{"type", "reset"}, {"match", id}}.dump());
   }
   size_t from = segs.size() > settings_.page_segments ? segs.size() - settings_.page_segments : 0;
   for (size_t i = from; i < segs.size(); ++i) {
-    const SegmentOut &s = segs[i].segment;
+    const SegmentOut &s = segs[i];
     if (m->segments.count(s.seq)) continue;
     std::string text = json{{"type", "segment"}, {"match", id}, {"segment", s}}.dump();
     m->segments[s.seq] = text;

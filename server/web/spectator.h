@@ -43,7 +43,7 @@ class Spectator {
 
   // Brings the page's view in line with what `w` took, at local realtime `real`.
   void update(const Watcher &w, double real);
-  // A racket sample its slot's holder wrote (RacketTracks took it): passed
+  // A racket sample its slot's holder wrote (the client library trusted it): passed
   // on unless it is within 1/120 s of the slot's newest passed on (a page
   // needs no more). false: not passed on (counted in racket_dropped).
   bool on_racket(const RacketSampleIn &s);
@@ -83,7 +83,7 @@ class Spectator {
   };
   void send(std::string text);
   void mirror(uint32_t id, const WatchedView &v, double real);
-  void mirror_segments(uint32_t id, const std::vector<KeptSegment> &segs, Mirror *m);
+  void mirror_segments(uint32_t id, const std::deque<SegmentOut> &segs, Mirror *m);
 
   SpectatorSettings settings_;
   std::function<ball_model(const MatchInfoOut &)> court_;

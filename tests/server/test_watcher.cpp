@@ -1,4 +1,5 @@
-// The watcher without a network (watcher.h), fed from a Match: the tally,
+// The watcher without a network (watcher.h): its client of the client
+// library fed from a Match (watch_rig.h): the tally,
 // the desync check (and states whose segment comes later or never), missed
 // events, its own ball at its estimate of the sim clock, the snapshot
 // schedule, the record lines and the summary, with numbers.
@@ -9,7 +10,7 @@
 #include "check.hpp"
 #include "game.h"
 #include "rally.h"
-#include "watcher.h"
+#include "watch_rig.h"
 
 using namespace test;
 
@@ -34,7 +35,7 @@ size_t count_type(const WatchOutput &out, const std::string &type) {
 
 TEST(tally_and_desync_from_a_match) {
   Game g = played(12.0);
-  Watcher w(WatcherSettings{});
+  WatchRig w(WatcherSettings{});
   w.on_start(1000.0);
   w.on_info(g.match.info(), 1000.0);
   // as they come: a state after the segments written up to it (one ahead of its bounce included)
@@ -69,11 +70,12 @@ TEST(tally_and_desync_from_a_match) {
   // one record line per sample, after the start line
   WatchOutput &out = w.output();
   CHECK_EQ(record_type(out.records.front()), std::string("start"));
+  CHECK_EQ(count_type(out, "ready"), 1u);
   CHECK_EQ(count_type(out, "segment"), g.segments.size());
   CHECK_EQ(count_type(out, "event"), g.events.size());
   CHECK_EQ(count_type(out, "state"), g.states.size());
   CHECK_EQ(count_type(out, "match_info"), 1u);
-  CHECK_EQ(out.records.size(), 2 + g.segments.size() + g.events.size() + g.states.size());
+  CHECK_EQ(out.records.size(), 3 + g.segments.size() + g.events.size() + g.states.size());
   // the rally log: the state once, then a line per event worth one
   CHECK_EQ(out.log.front().text.find("match playing (tennis, level easy, 2 players"), 0u);
   size_t lines = 1;
@@ -104,7 +106,7 @@ TEST(a_correction_voids_what_it_took_back) {
         RallyResult r = play(c, net, 30.0, seed);
         Game g(c);
         for (int order = 0; order < 3; ++order) {
-          Watcher w(WatcherSettings{});
+          WatchRig w(WatcherSettings{});
           w.on_start(1000.0);
           w.on_info(g.match.info(), 1000.0);
           // as written: each event with the segment in effect when it was (its
@@ -144,7 +146,7 @@ TEST(a_correction_voids_what_it_took_back) {
 TEST(a_state_waits_for_its_segment_or_is_counted_unmatched) {
   Game g = played(3.0);
   CHECK(g.segments.size() >= 3);
-  Watcher w(WatcherSettings{});
+  WatchRig w(WatcherSettings{});
   w.on_info(g.match.info(), 0.0);
   // a state on segment 2 before segment 2 arrives: it waits
   const StateOut *on2 = nullptr;
@@ -161,7 +163,7 @@ TEST(a_state_waits_for_its_segment_or_is_counted_unmatched) {
   w.check_states();
   CHECK_EQ(w.summary(0).matches[0].states_checked, 1u);
   // a state on segment 1 when the watcher only holds newer ones: too old, unmatched
-  Watcher late(WatcherSettings{});
+  WatchRig late(WatcherSettings{});
   late.on_info(g.match.info(), 0.0);
   late.on_segment(g.segments[1], 0.0);
   late.on_segment(g.segments[2], 0.0);
@@ -174,7 +176,11 @@ TEST(a_state_waits_for_its_segment_or_is_counted_unmatched) {
 }
 
 TEST(gaps_in_the_event_sequence_are_missed_events) {
-  Watcher w(WatcherSettings{});
+  Game g = played(1.0);
+  WatchRig w(WatcherSettings{});
+  MatchInfoOut info = g.match.info();
+  info.match_id = 3;
+  w.on_info(info, 0.0);
   EventOut e;
   e.match_id = 3;
   e.kind = EventKind::join;
@@ -189,7 +195,7 @@ TEST(own_ball_at_the_estimated_sim_clock) {
   Game g = played(2.0);
   WatcherSettings s;
   s.record_frames = true;
-  Watcher w(s);
+  WatchRig w(s);
   const double server = 5000.0, latency = 0.01;
   const SegmentOut &seg = g.segments.back();
   double t0 = seg.segment.t0;
@@ -208,7 +214,7 @@ TEST(own_ball_at_the_estimated_sim_clock) {
   CHECK_NEAR(f.position.y, b.position.y, 0.0);
   CHECK_EQ(w.summary(0).matches[0].frames, 1u);
   // before the segment starts there is nothing to draw
-  Watcher early(s);
+  WatchRig early(s);
   early.on_segment(seg, server);
   early.on_info(info_at(g, t0 - 1.0, server, MatchState::paused), server);
   early.frame(server + 1.0);
@@ -219,16 +225,17 @@ TEST(snapshots_fall_due_on_multiples_of_their_period) {
   Game g = played(2.0);
   WatcherSettings s;
   s.snapshot_every = 0.5;
-  Watcher w(s);
+  WatchRig w(s);
   double t0 = g.segments[0].segment.t0;  // the serve, at sim time 0
   CHECK_EQ(t0, 0.0);
-  w.on_segment(g.segments[0], 0.0);
+  w.on_info(info_at(g, 0.0, 0.5, MatchState::paused), 0.5);  // (the match followed from its first info)
+  w.on_segment(g.segments[0], 0.5);
   EventOut bounce;
   bounce.match_id = g.match.id();
   bounce.kind = EventKind::floor;
   bounce.time = 0.4;
   bounce.seq = 1;
-  w.on_event(bounce, 0.0);
+  w.on_event(bounce, 0.5);
   // the watcher's clock put at each sim time (a paused match: sim_now is sim_time)
   std::vector<double> due;
   double server = 1.0;
@@ -274,9 +281,9 @@ TEST(one_match_only_and_ready_once) {
   Game g = played(1.0);
   WatcherSettings s;
   s.match = 3;  // not g's (7)
-  Watcher w(s);
-  w.on_ready(1.0);
-  w.on_ready(2.0);
+  WatchRig w(s);
+  w.turn(1.0);  // (the client hears a server: the ready line, once)
+  w.turn(2.0);
   w.on_info(g.match.info(), 1.0);
   for (const auto &x : g.segments) w.on_segment(x, 1.0);
   for (const auto &e : g.events) w.on_event(e, 1.0);
@@ -284,6 +291,32 @@ TEST(one_match_only_and_ready_once) {
   CHECK_EQ(record_type(w.output().records[0]), std::string("ready"));
   CHECK(w.summary(0).matches.empty());
   CHECK(w.output().log.empty());
+}
+
+// Every line of the client's tap reaches the watcher: a server's status
+// (its summary's), and a sample whose numbers its type cannot hold (a
+// cause no name fits), recorded as it came, counted, not used.
+TEST(status_and_unreadable_lines) {
+  Game g = played(2.0);
+  WatchRig w(WatcherSettings{});
+  w.on_info(g.match.info(), 1.0);
+  StatusOut status;
+  status.server_id = 4;
+  status.samples_in = 17;
+  w.on_status(status, 1.1);
+  WatchSummary sum = w.summary(1.0);
+  CHECK_EQ(sum.servers.size(), 1u);
+  CHECK(!sum.servers.empty() && sum.servers[0].server_id == 4u && sum.servers[0].samples_in == 17u);
+  size_t recorded = count_type(w.output(), "segment");
+  SegmentOut odd = g.segments.back();
+  odd.seq += 1;
+  odd.cause = static_cast<Cause>(99);
+  w.on_segment(odd, 1.2);
+  CHECK_EQ(count_type(w.output(), "segment"), recorded + 1);
+  CHECK_EQ(w.output().records.back().at("cause").get<std::string>(), std::string("unknown"));
+  CHECK_EQ(w.w.unreadable(), 1u);
+  CHECK_EQ(w.summary(1.0).matches.at(0).not_taken, 1u);
+  CHECK_EQ(w.summary(1.0).matches.at(0).segments, g.match.info().segment_seq);  // (the info's): the odd one not used
 }
 
 TEST(summary_lines_say_the_numbers) {
@@ -323,10 +356,7 @@ CHECK_MAIN
 // own ball stays on the real stream.
 TEST(what_does_not_fit_is_recorded_not_used) {
   Game g = played(3.0);
-  WatcherSettings ws;
-  std::string err;
-  CHECK(ServerChoice::parse("1", &ws.servers, &err));
-  Watcher w(ws);
+  WatchRig w(WatcherSettings{}, [](ball_net_config *c) { c->servers = "1"; });
   MatchInfoOut info = info_at(g, g.match.sim().time, 1000.0, MatchState::playing);
   info.server_id = 1;
   w.on_info(info, 1000.0);

@@ -160,6 +160,12 @@ add_test(NAME games_link_no_dds
     "-DFILES=$<TARGET_FILE:ball-bot>;$<TARGET_FILE:ball-watch>"
     -DSERVER=$<TARGET_FILE:ball-server> -P ${CMAKE_CURRENT_LIST_DIR}/links_none_of.cmake)
 set_tests_properties(games_link_no_dds PROPERTIES LABELS server)
+# and take every match through the library's public calls: no client core of their own
+add_test(NAME games_use_the_public_api
+  COMMAND ${CMAKE_COMMAND} -DNM=${BALL_NM} "-DPATTERN=ballsrv::(MatchView|ClientCore)::"
+    "-DFILES=$<TARGET_FILE:ball-bot>;$<TARGET_FILE:ball-watch>;$<TARGET_FILE:ball-load>"
+    -DSERVER=$<TARGET_FILE:test_net_core> -P ${CMAKE_CURRENT_LIST_DIR}/links_none_of.cmake)
+set_tests_properties(games_use_the_public_api PROPERTIES LABELS server)
 # and no program links the tests' raw writers (server/dds/testing)
 add_test(NAME programs_link_no_test_writers
   COMMAND ${CMAKE_COMMAND} -DNM=${BALL_NM} "-DPATTERN=ballsrv::dds::(RawWriter|RawAccess)"

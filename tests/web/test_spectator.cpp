@@ -1,5 +1,5 @@
-// The spectator page's core without a network or a browser (spectator.h,
-// racket_tracks.h), fed through a Watcher from a Match: the page is given
+// The spectator page's core without a network or a browser (spectator.h),
+// fed through a Watcher and its client from a Match (watch_rig.h): the page is given
 // every match as the watcher took it (court, info, segments to the bit,
 // events, clock), a match started anew resets it, a silent server freezes
 // its clock, racket samples only from their slot's holder, and the message
@@ -12,11 +12,9 @@
 #include "check.hpp"
 #include "court.h"
 #include "game.h"
-#include "racket_tracks.h"
 #include "records.h"
 #include "spectator.h"
-#include "watch_feed.h"
-#include "watcher.h"
+#include "watch_rig.h"
 #include "match_model.h"
 
 using namespace test;
@@ -32,23 +30,26 @@ ball_model court_of(const MatchInfoOut &info) {
   return match_model_of(scene, info, &m, &c, &err) ? m : scene.model;
 }
 
-// a watcher fed everything of game g, received at `real`
-void feed(Watcher &w, const Game &g, double real) {
+// a watcher fed everything of game g, received at `real`: its info (the
+// match then followed), then its segments and events
+void feed(WatchRig &r, const Game &g, double real) {
   MatchInfoOut i = g.match.info();
   i.server_time = real;
-  w.on_info(i, real);
-  for (const auto &s : g.segments) w.on_segment(s, real);
-  for (const auto &e : g.events) w.on_event(e, real);
+  r.on_info(i, real);
+  for (const auto &s : g.segments) r.net.port.segments.push_back(s);
+  for (const auto &e : g.events) r.net.port.events.push_back(e);
+  r.turn(real);
 }
 
 // a game played for `seconds`, a watcher fed all of it at real 1000 s, and the page's core updated then
 struct Page {
   Game g;
-  Watcher w{WatcherSettings{}};
+  WatchRig r{WatcherSettings{}, [](ball_net_config *c) { c->rackets = 1; }};
+  Watcher &w = r.w;
   SpectatorSettings ss;
   Spectator sp;
   Page(double seconds, const SpectatorSettings &settings) : g(played(seconds)), ss(settings), sp(settings, court_of) {
-    feed(w, g, 1000.0);
+    feed(r, g, 1000.0);
     sp.update(w, 1000.0);
   }
 };
@@ -122,7 +123,7 @@ TEST(the_page_is_given_what_the_watcher_took) {
   CHECK_EQ(of_type(snap, "clock").size(), 1u);
   // the newest page_segments segments, each to the bit as the match wrote it
   std::vector<json> segs = of_type(snap, "segment");
-  CHECK_EQ(segs.size(), std::min({ss.page_segments, MatchView::kWindow, g.segments.size()}));  // (the view keeps its window)
+  CHECK_EQ(segs.size(), std::min(ss.page_segments, g.segments.size()));
   std::map<uint32_t, SegmentOut> written;
   for (const auto &s : g.segments) written[s.seq] = s;
   for (const auto &m : segs) {
@@ -206,7 +207,7 @@ TEST(a_silent_server_freezes_the_clock_and_a_new_one_moves_it) {
   // a server that started the match anew: its seqs start over, the page is reset
   Game again = played(1.5);
   uint64_t before = sp.newest();
-  feed(w, again, 1011.0);
+  feed(p.r, again, 1011.0);
   sp.update(w, 1011.0);
   CHECK(sp.since(before, 100000, &got));
   std::vector<json> fresh;
@@ -225,7 +226,6 @@ TEST(rackets_only_from_their_holder) {
   Game &g = page.g;
   Watcher &w = page.w;
   Spectator &sp = page.sp;
-  RacketTracks tracks(court_of);
   RacketSampleIn a = g.parked_sample(0), b = a;
   a.capture_time = 1.0;
   a.center = ball_v3(1.0, 1.0, 5.0);
@@ -235,26 +235,31 @@ TEST(rackets_only_from_their_holder) {
   RacketSampleIn stranger = b;
   stranger.from = participant(9);
   stranger.capture_time = 1.3;
-  CHECK(tracks.take(a, w));
-  CHECK(tracks.take(b, w));
-  CHECK(!tracks.take(stranger, w));  // not the slot's holder
-  RacketSampleIn older = a;          // libball's track refuses a sample older than its newest
+  RacketSampleIn older = a;  // libball's track refuses a sample older than its newest
   older.capture_time = 0.5;
-  CHECK(!tracks.take(older, w));
   RacketSampleIn bad = b;
   bad.capture_time = 1.5;
   bad.center.x = NAN;
-  CHECK(!tracks.take(bad, w));
   RacketSampleIn other = b;
   other.match_id = 99;  // a match nobody watches
-  CHECK(!tracks.take(other, w));
-  CHECK_EQ(tracks.taken(), 2u);
-  CHECK_EQ(tracks.dropped(), 4u);
-  ball_racket_pose p;
-  CHECK(tracks.pose(g.match.id(), 0, 1.1, &p));  // halfway between the two
-  CHECK_NEAR(p.center.x, 1.2, 1e-12);
-  CHECK_NEAR(p.center.y, 1.1, 1e-12);
-  CHECK(!tracks.pose(g.match.id(), 1, 1.1, &p));  // no sample of slot 1
+  MatchModelOut model;  // (the client places rackets by the match's model from the wire)
+  model.match_id = g.match.id();
+  model.server_id = g.match.info().server_id;
+  model.model = g.match.model();
+  model.model_hash = ball_model_hash(&model.model);
+  page.r.net.port.models.push_back(model);
+  page.r.turn(1000.04);
+  w.output().clear();
+  page.r.net.port.rackets = {a, b, stranger, older, bad, other};
+  page.r.turn(1000.05);
+  // the watcher passes on what the client library trusted: the holder's, in order
+  const std::vector<RacketSampleIn> &trusted = w.output().rackets;
+  CHECK_EQ(trusted.size(), 2u);
+  if (trusted.size() == 2) {
+    CHECK_EQ(trusted[0].capture_time, 1.0);
+    CHECK_EQ(trusted[1].capture_time, 1.2);
+    CHECK(trusted[1].from == a.from);
+  }
   // the page: passed on unless within 1/120 s of the slot's newest
   CHECK(sp.on_racket(a));
   RacketSampleIn close = a;
@@ -266,13 +271,13 @@ TEST(rackets_only_from_their_holder) {
   EventOut e = g.events.back();
   e.seq += 1;
   e.time = NAN;
-  w.on_event(e, 1000.1);
+  page.r.on_event(e, 1000.1);
   uint64_t before = sp.newest();
   sp.update(w, 1000.1);
   std::vector<PageMessage> got;
   CHECK(sp.since(before, 100, &got));
   for (const auto &m : got) CHECK(json::parse(m.text).at("type") != "event");
-  CHECK_EQ(sp.not_drawable(), 0u);  // (the watcher's view never took it: trust.h)
+  CHECK_EQ(sp.not_drawable(), 0u);  // (the client library never gave it: trust.h)
   std::vector<json> r = of_type(messages(sp.snapshot()), "racket");
   CHECK_EQ(r.size(), 2u);
   CHECK_EQ(r[1].at("t").get<double>(), 1.2);
@@ -291,63 +296,6 @@ TEST(a_reader_that_fell_behind_is_told) {
   CHECK_EQ(got.size(), 8u);
   CHECK(sp.since(sp.newest() - 8, 3, &got));
   CHECK_EQ(got.size(), 3u);  // at most `max`
-}
-
-// ball-watch's feed (watch_feed.h): every line of the tap reaches the
-// watcher, only the holder's racket samples reach the tracks and the page,
-// a line that does not read as its type counts as not taken of its match
-TEST(the_feed_takes_every_line_of_the_tap) {
-  Game g = played(6.0);
-  std::vector<json> lines{json{{"type", "ready"}, {"recv", 1000.0}}, record_line(g.match.info(), 1000.0)};
-  for (const auto &s : g.segments) lines.push_back(record_line(s, 1000.0));
-  for (const auto &e : g.events) lines.push_back(record_line(e, 1000.0));
-  for (const auto &s : g.states) lines.push_back(record_line(s, 1000.0));
-  StatusOut status;
-  status.server_id = 4;
-  lines.push_back(record_line(status, 1000.0));
-  RacketSampleIn mine = g.parked_sample(1), stranger = mine;
-  stranger.from = participant(9);
-  stranger.capture_time += 0.1;
-  lines.push_back(record_line(mine, 1000.0));
-  lines.push_back(record_line(stranger, 1000.0));
-  lines.push_back(json{{"type", "match_model"}, {"match", g.match.id()}, {"server", 1}, {"model_hash", 5}, {"recv", 1000.0}});
-  Watcher w(WatcherSettings{});
-  RacketTracks tracks(court_of);
-  WatchFeed feed(w, &tracks);
-  for (const auto &l : lines) {
-    std::string text = l.dump();
-    WatchFeed::tap(&feed, text.c_str(), text.size());
-  }
-  w.check_states();
-  WatchedView v;
-  CHECK(w.view(g.match.id(), &v));
-  CHECK_EQ(v.segments->size(), g.segments.size());
-  CHECK_EQ(v.events_taken, static_cast<uint64_t>(g.events.size()));
-  WatchSummary sum = w.summary(6.0);
-  CHECK_EQ(sum.matches[0].states_checked, static_cast<uint64_t>(g.states.size()));  // the desync check ran
-  CHECK(sum.matches[0].max_error <= 1e-12);  // (the numbers came through text bit for bit)
-  CHECK_EQ(sum.servers.size(), 1u);
-  CHECK_EQ(feed.drawn.size(), 1u);
-  CHECK(feed.drawn[0].from == mine.from);
-  CHECK_EQ(tracks.taken(), 1u);
-  CHECK_EQ(tracks.dropped(), 1u);
-  CHECK(w.ready());
-  CHECK(feed.models.count(g.match.id()) == 1);
-  CHECK_EQ(feed.unreadable(), 0u);
-  CHECK_EQ(sum.matches[0].not_taken, 0u);
-  // a segment of a cause no name fits, and a line that is not JSON
-  json bad = record_line(g.segments.back(), 1000.0);
-  bad["cause"] = "volley";
-  std::string text = bad.dump();
-  feed.line(text.c_str(), text.size());
-  feed.line("{\"type\": ", 10);
-  CHECK_EQ(feed.unreadable(), 2u);
-  CHECK_EQ(w.summary(6.0).matches[0].not_taken, 1u);
-  // without tracks the racket samples are passed over
-  WatchFeed untracked(w, nullptr);
-  text = record_line(mine, 1000.1).dump();
-  untracked.line(text.c_str(), text.size());
-  CHECK(untracked.drawn.empty());
 }
 
 int main(int argc, char **argv) { return check::run(argc, argv); }

@@ -44,7 +44,7 @@ endif()
 # the page's core offline: the spectator and the racket tracks, fed from a Match
 add_executable(test_spectator ${CMAKE_CURRENT_LIST_DIR}/test_spectator.cpp)
 target_include_directories(test_spectator PRIVATE ${PROJECT_SOURCE_DIR}/tests/server ${PROJECT_SOURCE_DIR}/tests/support)
-target_link_libraries(test_spectator PRIVATE ball_web ball_match)
+target_link_libraries(test_spectator PRIVATE ball_web ball_net_api ball_match)
 target_compile_options(test_spectator PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_spectator COMMAND test_spectator)
 set_tests_properties(test_spectator PROPERTIES LABELS "server;web" TIMEOUT 120)

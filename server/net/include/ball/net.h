@@ -392,14 +392,18 @@ BALL_NET_API const char *ball_net_cause_name(ball_net_cause cause);
  * and "trusted", the library's verdict: true when the sample passed the
  * trust rules of a match the client follows (for a MatchInfo, of one it
  * lists), with "anew": true on a MatchInfo that started a followed match
- * anew. Every sample of every match comes, the refused ones too. */
+ * anew. Every sample of every match comes, the refused ones too. A match
+ * the client begins to follow (ball_net_watch, ball_net_join) takes the
+ * newest segments the client kept of it: each comes again, "kept": true,
+ * with the match's verdict. */
 typedef void (*ball_net_tap)(void *user, const char *line, size_t length);
 
 /* Sets the client's tap (NULL: none), called with `user` from within
- * ball_net_poll, in the caller's thread, once per sample, in the order
+ * ball_net_poll (and ball_net_watch and ball_net_join, for the kept
+ * segments), in the caller's thread, once per sample, in the order
  * taken. The tap may call the client's other functions but ball_net_poll,
- * ball_net_close and ball_net_set_tap (BALL_EINVAL) and ball_net_free
- * (which then does nothing). */
+ * ball_net_watch, ball_net_join, ball_net_close and ball_net_set_tap
+ * (BALL_EINVAL) and ball_net_free (which then does nothing). */
 BALL_NET_API ball_status ball_net_set_tap(ball_net_client *client, ball_net_tap tap, void *user);
 
 /* ---- status -------------------------------------------------------------- */
