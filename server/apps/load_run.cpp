@@ -71,8 +71,8 @@ void add_usage(const Snapshot &a, const Snapshot &b, double seconds, LoadRow *ro
 }
 
 // Plays every slot of its matches over the warm-up and the window; hands
-// the part to `done` while the participant still lives (a teardown may be
-// the one that sticks: dds::run_bounded), and calls at_window at the
+// the part to `done` while the client still lives (its teardown is the
+// library's, bounded: ball_net_close), and calls at_window at the
 // window's start and end. The bots play through one client of the client
 // library (ball/net.h), as games do; its tap feeds the meter (load.h), which
 // times the hits' segments by DDS's stamps and takes the server's statuses.
@@ -247,10 +247,7 @@ int run_load(const LoadOptions &o) {
     return fail(kProgram, "--stagger must be below --warmup (every slot joins within the warm-up)");
   if (!o.part_json.empty()) {  // a bot process: its part, to the file
     bool written = false;
-    bool ok = drive(o, {}, [&](const LoadPart &p) {
-      written = write_file(o.part_json, json(p).dump(), &err);
-      if (written) dds::set_exit_status_if_stuck(0);
-    }, &err);
+    bool ok = drive(o, {}, [&](const LoadPart &p) { written = write_file(o.part_json, json(p).dump(), &err); }, &err);
     return ok && written ? 0 : fail(kProgram, err);
   }
   std::printf("bots at %g Hz in %d process(es), %g s measured after %g s of warm-up; lat: a hit's newest racket "
@@ -276,7 +273,6 @@ int run_load(const LoadOptions &o) {
     }
     if (last) {
       if (rounds > 1) std::printf("\n%d rounds, median and min of each figure:\n%s", rounds, load_table(points).c_str());
-      if (written) dds::set_exit_status_if_stuck(0);  // all is written (domain.h)
     }
   };
   for (int r = 0; r < rounds && !stop_requested(); ++r)
