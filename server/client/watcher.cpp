@@ -18,7 +18,7 @@ constexpr double kTrailSeconds = 1.0;  // sim s of trail and of event markers
 constexpr size_t kTrailPoints = 2048;
 constexpr size_t kMarkers = 64;
 constexpr size_t kKeepEvents = 64;     // per match, for a view
-constexpr size_t kKeepSegments = 256;  // trusted segments a match keeps (the client library's window)
+constexpr size_t kKeepSegments = 256;  // trusted segments a match keeps (the desync check, the page)
 constexpr size_t kKeepGiven = 1024;    // events given a match remembers (a correction voids recent ones)
 
 std::string point_text(ball_vec3 p) {
