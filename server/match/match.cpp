@@ -66,8 +66,8 @@ bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string
   // held the loop for 3-6 ms and every hit that fell in it
   state_accum_ = golden_phase(config.id);
   state_ = MatchState::waiting;
-  need_serve_ = true;
-  serve_at_ = sim_.time;
+  rules().serve_due = true;
+  rules().serve_at = sim_.time;
   return true;
 }
 
@@ -76,13 +76,13 @@ bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string
 void Match::emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason, double value) {
   EventOut e;
   e.match_id = config_.id;
-  e.seq = ++event_seq_;
+  e.seq = ++rules().event_seq;
   e.kind = kind;
   e.index = index;
   e.time = time;
   e.reason = reason;
   e.value = value;
-  e.score = score_;
+  e.score = rules().score;
   e.segment_seq = current_seq_;
   out->events.push_back(e);
 }
@@ -152,23 +152,6 @@ bool Match::is_ahead(const ball_event &ev) const {
          same_segment(ev.segment, a.segment);
 }
 
-PlayState Match::play_of(const Rally &r) const {
-  PlayState p;
-  p.score = score_;
-  p.serving_side = serving_side_;
-  p.rally = points_played_;
-  p.live = r.live();
-  p.striker = r.striker();
-  p.bounces = r.bounces();
-  p.bounce_side = r.bounce_side();
-  p.net = r.net();
-  p.rally_start = r.started();
-  p.serve_due = need_serve_;
-  p.serve_at = serve_at_;
-  p.event_seq = event_seq_;
-  return p;
-}
-
 Call Match::judge(Rally &r, const ball_event &ev) const {
   switch (ev.kind) {
     case BALL_EVENT_FLOOR:
@@ -184,12 +167,12 @@ PlayState Match::judged(const ball_event &ev) const {
   Rally r = rally_;
   uint32_t events = ev.sound ? 2u : 1u;  // the collision and its sound
   Call call = r.live() ? judge(r, ev) : Call{};
-  PlayState p = play_of(r);
+  PlayState &p = r.state();
   if (call.decided) {
     settle(call, ev.time, config_.serve_delay, &p);
     events++;  // the point
   }
-  p.event_seq = event_seq_ + events;
+  p.event_seq += events;
   return p;
 }
 
@@ -282,7 +265,7 @@ void Match::find_hit() {
   hit_stale_ = false;
   near_hit_ = false;
   const ball_model &m = model();
-  if (!config_.hit_instant || state_ != MatchState::playing || following_ || need_serve_ ||
+  if (!config_.hit_instant || state_ != MatchState::playing || following_ || rules().serve_due ||
       !(m.effects & BALL_EFFECT_RACKETS) || m.n_rackets == 0 || sim_.sleep > 0)
     return;
   const double dt = frame_time() * config_.time_base;
@@ -586,7 +569,7 @@ void Match::step_to_hit(MatchOutput *out) {
 }
 
 void Match::advance(double dt, bool with_state, MatchOutput *out) {
-  if (need_serve_ && sim_.time >= serve_at_) serve(out);
+  if (rules().serve_due && sim_.time >= rules().serve_at) serve(out);
   int n = 0;
   ball_status st = ball_step(&sim_, dt, step_events_.data(), static_cast<int>(step_events_.size()), &n);
   if (st != BALL_OK) {
@@ -665,7 +648,7 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
   }
   EventOut e;
   e.match_id = config_.id;
-  e.seq = ++event_seq_;
+  e.seq = ++rules().event_seq;
   e.kind = kind;
   e.index = kind == EventKind::floor || kind == EventKind::net ? 0 : index;
   e.side = side_of_point(ev.point);
@@ -676,12 +659,12 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
   e.velocity_in = ev.velocity_in;
   e.velocity_out = ev.velocity_out;
   e.segment_seq = current_seq_;
-  e.score = score_;
+  e.score = rules().score;
   out->events.push_back(e);
   if (e.sound) {
     EventOut s = e;
     s.kind = EventKind::sound;
-    s.seq = ++event_seq_;
+    s.seq = ++rules().event_seq;
     out->events.push_back(s);
   }
 
@@ -711,26 +694,20 @@ void Match::apply(const Call &call, double t, MatchOutput *out) {
     counters_.points++;
   else
     counters_.lets++;
-  PlayState p = play();
-  settle(call, t, config_.serve_delay, &p);
-  score_ = p.score;
-  points_played_ = p.rally;
-  serving_side_ = p.serving_side;
-  need_serve_ = p.serve_due;
-  serve_at_ = p.serve_at;
+  settle(call, t, config_.serve_delay, &rules());
   emit(out, EventKind::point, -1, t, call.reason);
   out->events.back().side = call.winner;
   out->info_changed = true;
 }
 
 void Match::serve(MatchOutput *out) {
-  int side = serving_side_;
+  int side = rules().serving_side;
   // singles: slot = side; doubles: the partners of a side take turns
   int slot = side;
-  if (config_.players > 2 && (points_played_ / 2) % 2 == 1 && side + 2 < config_.players) slot = side + 2;
+  if (config_.players > 2 && (rules().rally / 2) % 2 == 1 && side + 2 < config_.players) slot = side + 2;
   if (side != 0 && side != 1) side = 0;  // (a restored Play is checked: play_fits)
   if (slot < 0 || slot >= config_.players) slot = 0, side = 0;
-  Rng rng(config_.seed * 0x9e3779b97f4a7c15ull + points_played_);
+  Rng rng(config_.seed * 0x9e3779b97f4a7c15ull + rules().rally);
   ball_vec3 from = court_.ready(slot, config_.players);
   from.x += Court::toward_net(side) * 2.0;
   from.y = court_.floor + 1.0;
@@ -745,7 +722,7 @@ void Match::serve(MatchOutput *out) {
     return;
   }
   rally_.start(side, sim_.time);
-  need_serve_ = false;
+  rules().serve_due = false;
   counters_.serves++;
   emit_segment(out, Cause::serve, slot, sim_.seg, SampleRef{}, false);
   history_.back().play = play();
@@ -990,8 +967,8 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
   if (!holds_slot(c.from)) return refuse(c, Reason::refused_not_player, out);
   switch (c.kind) {
     case ControlKind::serve:
-      if (state_ != MatchState::playing || !need_serve_) return refuse(c, Reason::refused_state, out);
-      serve_at_ = sim_.time;
+      if (state_ != MatchState::playing || !rules().serve_due) return refuse(c, Reason::refused_state, out);
+      rules().serve_at = sim_.time;
       return Reason::none;
     case ControlKind::level: {
       if (c.level < BALL_LEVEL_EASY || c.level > BALL_LEVEL_ADVANCED) return refuse(c, Reason::refused_bad_value, out);
@@ -1085,15 +1062,12 @@ MatchInfoOut Match::info() const {
   return i;
 }
 
-PlayState Match::play() const { return play_of(rally_); }
+PlayState Match::play() const { return rally_.state(); }
 
 void Match::set_rules(const PlayState &p) {
-  score_ = p.score;
-  serving_side_ = p.serving_side;
-  points_played_ = p.rally;
-  rally_.restore(p.live, p.striker, p.bounces, p.bounce_side, p.net, p.rally_start);
-  need_serve_ = p.serve_due;
-  serve_at_ = p.serve_at;
+  const uint32_t seq = rules().event_seq;  // (the event numbers are the match's own: set apart)
+  rules() = p;
+  rules().event_seq = seq;
 }
 
 // ---- another server's match -------------------------------------------------
@@ -1220,7 +1194,7 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t ne
     if (seg->cause == Cause::racket) end_stroke(seg->cause_index, seg->segment.t0);
   }
   set_rules(p);
-  event_seq_ = std::max(p.event_seq, info.play.event_seq);  // a segment written ahead foresaw its own
+  rules().event_seq = std::max(p.event_seq, info.play.event_seq);  // a segment written ahead foresaw its own
   current_seq_ = std::max(seg ? seg->seq : 0u, info.segment_seq);
   // past every seq the owner wrote, ahead included: ours supersede its
   segment_seq_ = std::max(current_seq_, newest_seq);

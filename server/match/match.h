@@ -138,7 +138,7 @@ class Match {
   const Court &court() const { return court_; }
   const MatchCounters &counters() const { return counters_; }
   double frame_time() const { return 1.0 / config_.frame_rate; }
-  std::array<int, 2> score() const { return score_; }
+  std::array<int, 2> score() const { return rally_.state().score; }
 
  private:
   struct Slot {
@@ -181,7 +181,7 @@ class Match {
   bool is_ahead(const ball_event &ev) const;  // ev is the contact written ahead, to the bit
   PlayState judged(const ball_event &ev) const;  // the rules' state once ev is judged, nothing changed
   Call judge(Rally &rally, const ball_event &ev) const;  // what the rules make of a collision
-  PlayState play_of(const Rally &rally) const;
+  PlayState &rules() { return rally_.state(); }
   void set_rules(const PlayState &p);  // the rules' state as p says (not the event numbers)
   void emit(MatchOutput *out, EventKind kind, int index, double time, Reason reason = Reason::none,
             double value = 0.0);
@@ -228,12 +228,7 @@ class Match {
   Reason pause_reason_ = Reason::none;
   int pause_slot_ = -1;
   bool left_mid_match_ = false;  // a LEAVE stopped a match that had started
-  bool need_serve_ = true;   // the next serve is due at serve_at_
-  double serve_at_ = 0.0;
-  Rally rally_;
-  std::array<int, 2> score_{0, 0};
-  int serving_side_ = 0;
-  uint32_t points_played_ = 0;
+  Rally rally_;  // the rules' state (the score, the serve due, the event seqs): play() is its copy
   uint32_t segment_seq_ = 0;  // the newest segment written (one ahead included)
   uint32_t current_seq_ = 0;  // the segment in effect: the sim's
   Ahead ahead_;
@@ -264,7 +259,6 @@ class Match {
   bool correcting_ = false;     // segments written now are corrections
   Cause segment_cause_ = Cause::serve;  // what started the current segment
   int segment_cause_index_ = -1;
-  uint32_t event_seq_ = 0;
   uint64_t ended_lost_ = 0;  // the gaps of ended streams, until take_lost
   double state_accum_ = 0.0; // fraction of a ball state owed (state_rate / frame_rate per frame)
   MatchCounters counters_;

@@ -27,73 +27,64 @@ struct Call {
   Reason reason = Reason::none;
 };
 
+// The rules' state, stored here once: the rally's (who struck last, the
+// bounces since, the net) and the match's (the score, the serve due, the
+// newest event's seq), as PlayState carries it on the wire.
 class Rally {
  public:
   void start(int serving_side, double t) {
-    live_ = true;
-    striker_ = serving_side;
-    bounces_ = 0;
-    net_ = false;
-    started_ = t;
+    s_.live = true;
+    s_.striker = serving_side;
+    s_.bounces = 0;
+    s_.net = false;
+    s_.rally_start = t;
   }
-  bool live() const { return live_; }
-  int striker() const { return striker_; }
-  int bounces() const { return bounces_; }
-  int bounce_side() const { return bounce_side_; }
-  bool net() const { return net_; }
-  double started() const { return started_; }
-  // Puts the rally where another server's left it (PlayState's fields).
-  void restore(bool live, int striker, int bounces, int bounce_side, bool net, double started) {
-    live_ = live;
-    striker_ = striker;
-    bounces_ = bounces;
-    bounce_side_ = bounce_side;
-    net_ = net;
-    started_ = started;
-  }
+  bool live() const { return s_.live; }
+  int striker() const { return s_.striker; }
+  int bounces() const { return s_.bounces; }
+  int bounce_side() const { return s_.bounce_side; }
+  bool net() const { return s_.net; }
+  double started() const { return s_.rally_start; }
+  PlayState &state() { return s_; }
+  const PlayState &state() const { return s_; }
 
   Call on_racket(int side) {
-    striker_ = side;
-    bounces_ = 0;
-    net_ = false;
+    s_.striker = side;
+    s_.bounces = 0;
+    s_.net = false;
     return Call{};
   }
   Call on_net() {
-    net_ = true;
+    s_.net = true;
     return Call{};
   }
   // a bounce on `side`; inside: within the court; grounded: it rolls on from there
   Call on_floor(int side, bool inside, bool grounded) {
-    if (bounces_ == 0) {
-      if (side == striker_) return end(other(), net_ ? Reason::point_net : Reason::point_own_side);
+    if (s_.bounces == 0) {
+      if (side == s_.striker) return end(other(), s_.net ? Reason::point_net : Reason::point_own_side);
       if (!inside) return end(other(), Reason::point_out);
-      bounces_ = 1;
-      bounce_side_ = side;
-      if (grounded) return end(striker_, Reason::point_not_returned);
+      s_.bounces = 1;
+      s_.bounce_side = side;
+      if (grounded) return end(s_.striker, Reason::point_not_returned);
       return Call{};
     }
-    return end(striker_, side == bounce_side_ ? Reason::point_double_bounce : Reason::point_not_returned);
+    return end(s_.striker, side == s_.bounce_side ? Reason::point_double_bounce : Reason::point_not_returned);
   }
-  Call on_wall() { return bounces_ == 0 ? end(other(), Reason::point_out) : end(striker_, Reason::point_not_returned); }
+  Call on_wall() { return s_.bounces == 0 ? end(other(), Reason::point_out) : end(s_.striker, Reason::point_not_returned); }
   // each frame: `gone` when the ball has left the court area for good or lies still
   Call on_frame(bool gone, double t, double max_time) {
     if (gone) return on_wall();
-    if (t - started_ > max_time) return end(-1, Reason::point_let);
+    if (t - s_.rally_start > max_time) return end(-1, Reason::point_let);
     return Call{};
   }
 
  private:
-  int other() const { return 1 - striker_; }
+  int other() const { return 1 - s_.striker; }
   Call end(int winner, Reason why) {
-    live_ = false;
+    s_.live = false;
     return Call{true, winner, why};
   }
-  bool live_ = false;
-  int striker_ = 0;
-  int bounces_ = 0;
-  int bounce_side_ = 0;
-  bool net_ = false;
-  double started_ = 0.0;
+  PlayState s_;
 };
 
 }  // namespace ballsrv
