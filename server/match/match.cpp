@@ -340,9 +340,9 @@ void Match::compensate(MatchOutput *out) {
   find_hit();
 }
 
-void Match::rewind(int slot, double from, MatchOutput *out) {
+Match::LateHit Match::find_late_hit(int slot, double from, std::vector<ball_event> *events) const {
+  LateHit r;
   const double now = sim_.time;
-  if (state_ != MatchState::playing || !rally_.live() || history_.empty()) return;
   // back no further than the window, the sample before this one, the last
   // hit (with rewind_own_hit: another racket's) or the serve
   const bool own = config_.rewind_own_hit;
@@ -361,12 +361,12 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
       passed = std::min(passed, h.segment.t0);
     }
   }
-  if (!at || !(t_a < now)) return;
-  counters_.late_tested++;
+  if (!at || !(t_a < now)) return r;
+  r.outcome = LateHit::none;  // (tested: late_tested)
   const double dt = frame_time() * config_.time_base;
-  double hit = HUGE_VAL;
-  ball_sim then, before;
-  Aside early;  // tracks that start after the frame stepped
+  double &hit = r.hit;
+  ball_sim &then = r.then, before;
+  Aside &early = r.early;  // tracks that start after the frame stepped
   // A frame whose step finds the racket (after a bounce inside it, where
   // the query stops) is stepped again from its start, so only a frame that
   // may hold a static contact keeps its start (a copy of the whole sim);
@@ -376,9 +376,9 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
     // the ball where it was at t_a, the tracks as they are now (the late sample
     // in them; past its own hit, the racket's as if no hit had ended its stroke)
     then = sim_;
-    if (ball_sim_set_segment(&then, &at->segment, t_a) != BALL_OK) return;
+    if (ball_sim_set_segment(&then, &at->segment, t_a) != BALL_OK) return r;
     if (std::isfinite(passed) && unended_track(&then, slot, slots_[static_cast<size_t>(slot)], nullptr) != BALL_OK)
-      return;
+      return r;
     for (int i = 0; i < model().n_rackets; ++i) then.tracks[i].has_prev = 0;  // R_old: the track at t_a
     // most late samples meet nothing: when the ball stayed on one segment
     // since t_a (no contact took effect since, and the exact scheme steps
@@ -388,15 +388,15 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
     if (keep_all == 0 && !std::isfinite(passed) && at == &history_.back() && model().scheme == BALL_SCHEME_EXACT) {
       int may = 1;
       if (ball_racket_may_reach(&then, slot, now, &may) == BALL_OK && !may) {
-        counters_.late_ruled_out++;
-        return;
+        r.outcome = LateHit::ruled_out;
+        return r;
       }
     }
     // the racket tests slept after the last hit as they did in the match: else
     // the hitter's own next sample finds its racket still on the ball at the
     // hit's instant and hits it again
     // (ball_sim_set_segment woke them: a serve's, or one past no hit, stay awake)
-    if (slept && ball_sim_set_sleep(&then, sleep_left(slept->segment.t0, t_a)) != BALL_OK) return;
+    if (slept && ball_sim_set_sleep(&then, sleep_left(slept->segment.t0, t_a)) != BALL_OK) return r;
     // frame by frame up to now: where the racket meets it first (a frame the
     // bound rules out costs no query; the query stops before a bounce, the
     // step goes through it)
@@ -419,17 +419,17 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
       const bool keep = keep_all || !(then.next.valid && then.next.time > end);
       if (keep) before = then;
       int n = 0;
-      if (ball_step(&then, end - then.time, step_events_.data(), static_cast<int>(step_events_.size()), &n) != BALL_OK)
-        return;
+      if (ball_step(&then, end - then.time, events->data(), static_cast<int>(events->size()), &n) != BALL_OK)
+        return r;
       bool racket = false;
       for (int k = 0; k < n && !racket; ++k) {
-        if (step_events_[k].kind != BALL_EVENT_RACKET) {
+        if ((*events)[k].kind != BALL_EVENT_RACKET) {
           // past its own hit the ball flies where the match has no judged
           // segment of its own: a contact there is not gone back over
-          if (step_events_[k].time > passed) return;
+          if ((*events)[k].time > passed) return r;
           continue;
         }
-        if (step_events_[k].index != slot) return;  // another racket got there first
+        if ((*events)[k].index != slot) return r;  // another racket got there first
         racket = true;
       }
       if (racket && !keep) {
@@ -444,7 +444,22 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
     }
     if (!again) break;
   }
-  if (!std::isfinite(hit)) return;
+  if (std::isfinite(hit)) r.outcome = LateHit::found;
+  r.passed = passed;
+  r.at = at;
+  return r;
+}
+
+void Match::rewind(int slot, double from, MatchOutput *out) {
+  const double now = sim_.time;
+  if (state_ != MatchState::playing || !rally_.live() || history_.empty()) return;
+  LateHit found = find_late_hit(slot, from, &step_events_);
+  if (found.outcome != LateHit::untested) counters_.late_tested++;
+  if (found.outcome == LateHit::ruled_out) counters_.late_ruled_out++;
+  if (found.outcome != LateHit::found) return;
+  const double hit = found.hit, passed = found.passed, dt = frame_time() * config_.time_base;
+  const SegmentOut *at = found.at;
+  Aside &early = found.early;
   // the old path after the hit (and from its own hit it went back past) is not history any more
   auto gone = [&](const SegmentOut &h) { return h.segment.t0 > hit || h.segment.t0 >= passed; };
   // the rules as they were at the hit (the segment in effect then, judged)
@@ -473,7 +488,7 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
     counters_.rewinds_past_own_hit++;
   }
   // to the hit, then on to the present: what that gives is written as corrections
-  sim_ = then;
+  sim_ = found.then;
   correcting_ = true;
   if (std::isfinite(passed) && hit >= passed && !history_.empty()) {
     // the hit comes after the one it moves: the segment in effect before

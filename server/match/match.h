@@ -196,6 +196,9 @@ class Match {
   void set_level(ball_level level, std::string *err);
   void find_hit();  // next_hit_ from the tracks as they are
   void took_effect(const SegmentOut &s);  // a segment is in effect now: into the history
+  // Lag compensation (docs/server.md, "Lag compensation"): the late hit of
+  // slot `slot`'s racket since sim s `from`, if any (find_late_hit, which
+  // changes nothing), then the match taken back to it and on to the present.
   void rewind(int slot, double from, MatchOutput *out);
   void end_stroke(int slot, double t_hit);  // its racket hit at t_hit: its track from then on only
   static void keep(Slot &slot, const ball_racket_sample &s);  // into slot.kept
@@ -208,6 +211,17 @@ class Match {
     std::array<ball_racket_track, kMaxPlayers> track;  // (only the held ones are read)
     std::array<bool, kMaxPlayers> held{};
   };
+  // What find_late_hit found: a function of the sim, the history, the slot's
+  // kept samples and the match's parameters.
+  struct LateHit {
+    enum Outcome { untested, none, ruled_out, found } outcome = untested;
+    double hit = HUGE_VAL;           // sim s of the hit found
+    double passed = HUGE_VAL;        // t0 of the first of its own hits the search went back past
+    const SegmentOut *at = nullptr;  // the segment in effect where the search began (in history_)
+    ball_sim then{};                 // the ball and the tracks at the hit
+    Aside early;                     // the tracks still set aside there
+  };
+  LateHit find_late_hit(int slot, double from, std::vector<ball_event> *events) const;
   void aside(ball_sim *sim, Aside *a, double end) const;
   // sim's track k from slot.kept (and `extra`, newer, if given): the track
   // it would hold had no hit ended its stroke; libball's status
