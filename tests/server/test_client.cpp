@@ -483,7 +483,8 @@ namespace {
 struct Tapped {
   std::vector<std::string> lines;
   ball_net_client *client = nullptr;
-  bool poll_inside = false;  // it calls ball_net_poll (refused)
+  bool poll_inside = false;   // it calls ball_net_poll (refused)
+  bool watch_inside = false;  // it calls ball_net_watch (refused)
   ball_status inside = BALL_OK;
 };
 
@@ -495,6 +496,7 @@ void keep_line(void *user, const char *line, size_t length) {
     int n = 0;
     t->inside = ball_net_poll(t->client, nullptr, 0, &n);
   }
+  if (t->watch_inside) t->inside = ball_net_watch(t->client, 43);
 }
 
 }  // namespace
@@ -660,11 +662,51 @@ TEST(the_tap_gives_every_sample_as_it_came) {
   CHECK_EQ(ball_net_poll(net.client, nullptr, 0, &n), BALL_OK);
   CHECK_EQ(t.inside, BALL_EINVAL);
   CHECK_EQ(t.lines.size(), before + 3);
+  // segments of a match not followed come as they came (not trusted), and again, kept, when it is
+  // followed: from within ball_net_watch, with that match's verdict
+  t.poll_inside = false;
+  MatchInfoOut other = info;
+  other.match_id = 42;
+  other.server_id = 1;
+  net.port.infos.push_back(other);
+  for (size_t i = 0; i < g.segments.size(); ++i) {
+    SegmentOut s = g.segments[i];
+    s.match_id = 42;
+    s.server_id = 1;
+    net.port.segments.push_back(s);
+  }
+  size_t mark = t.lines.size();
+  CHECK_EQ(ball_net_poll(net.client, nullptr, 0, &n), BALL_OK);
+  size_t untrusted = 0;
+  for (size_t i = mark; i < t.lines.size(); ++i) {
+    json j = json::parse(t.lines[i]);
+    if (record_type(j) == "segment") untrusted += !j.at("trusted").get<bool>() && !j.contains("kept");
+  }
+  CHECK_EQ(untrusted, g.segments.size());
+  mark = t.lines.size();
+  CHECK_EQ(ball_net_watch(net.client, 42), BALL_OK);
+  const size_t kept = t.lines.size() - mark;
+  CHECK_EQ(kept, std::min<size_t>(g.segments.size(), 4));  // the newest 4 the client kept
+  for (size_t i = mark; i < t.lines.size(); ++i) {
+    json j = json::parse(t.lines[i]);
+    CHECK(record_type(j) == "segment" && j.value("kept", false) && j.at("trusted").is_boolean());
+    CHECK_EQ(j.at("seq").get<uint32_t>(), g.segments[g.segments.size() - kept + (i - mark)].seq);
+  }
+  // ball_net_watch from inside the tap: refused, nothing followed
+  t.watch_inside = true;
+  t.inside = BALL_OK;
+  net.port.events.push_back(g.events.front());
+  CHECK_EQ(ball_net_poll(net.client, nullptr, 0, &n), BALL_OK);
+  CHECK_EQ(t.inside, BALL_EINVAL);
+  ball_net_status st43;
+  CHECK_EQ(ball_net_status_of(net.client, 43, &st43), BALL_ENOMATCH);
+  t.watch_inside = false;
   // removed: nothing more
+  mark = t.lines.size();
   CHECK_EQ(ball_net_set_tap(net.client, nullptr, nullptr), BALL_OK);
   net.port.events.push_back(g.events.front());
   CHECK_EQ(ball_net_poll(net.client, nullptr, 0, &n), BALL_OK);
-  CHECK_EQ(t.lines.size(), before + 3);
+  CHECK_EQ(t.lines.size(), mark);
   CHECK_EQ(ball_net_close(net.client), BALL_OK);
   CHECK_EQ(ball_net_set_tap(net.client, keep_line, &t), BALL_ECLOSED);
   CHECK(poll_rounds == 40);
