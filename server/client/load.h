@@ -56,6 +56,7 @@ class LoadMeter {
   uint64_t unreadable() const { return unreadable_; }
 
  private:
+  static std::string type_of(const char *text, size_t length);
   void segment(const SegmentOut &seg, double recv, double sent);
   void status(const StatusOut &so);
   int first_, count_;
