@@ -123,10 +123,13 @@ std::string Watcher::turn(double real) {
 
 // The whole model of the match's newest info, once the client has it.
 void Watcher::fetch_model(uint32_t id, Watched &w) {
-  if (w.has_model && ball_model_hash(&w.model) == w.info.model_hash) return;
+  if (w.has_model && w.model_hash == w.info.model_hash) return;  // (every turn: no hash of the model here)
   ball_model m;
-  if (ball_net_model(client_, id, &m) != BALL_OK || ball_model_hash(&m) != w.info.model_hash) return;
+  if (ball_net_model(client_, id, &m) != BALL_OK) return;
+  const uint64_t hash = ball_model_hash(&m);
+  if (hash != w.info.model_hash) return;
   w.model = m;
+  w.model_hash = hash;
   w.has_model = true;
 }
 

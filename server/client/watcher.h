@@ -124,6 +124,7 @@ class Watcher {
     bool followed = false;                    // the client follows it
     bool has_model = false;
     ball_model model{};                       // ball_net_model's, of the info's model_hash
+    uint64_t model_hash = 0;                  // its hash
     std::deque<SegmentOut> segments;          // trusted, distinct seqs, by seq
     std::vector<StateOut> pending;            // trusted states whose segment has not arrived yet
     WatchedMatchSummary tally;
