@@ -236,7 +236,7 @@ NLOHMANN_DEFINE_TYPE_NON_INTRUSIVE(LoadRow, matches, bots, rate, state_rate, bot
                                    server_cpu_pct, server_rss_kib, bots_cpu_pct, bots_rss_kib, server_bytes,
                                    bots_bytes, lo_bytes, lo_packets)
 
-// What a client port passed (load.h's CountingPort): samples taken, by type, and written.
+// What ball-load's client passed (load.h's LoadMeter): samples taken, by type, and written.
 struct PortCounts {
   uint64_t infos = 0, segments = 0, states = 0, events = 0, statuses = 0;
   uint64_t samples_written = 0, controls_written = 0;  // writes accepted

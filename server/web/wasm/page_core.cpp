@@ -7,8 +7,8 @@
 // its clock is the client library's SimClock over the watcher's (sim time,
 // realtime) pairs, the ball is libball's ball_flight_eval of the segment in
 // effect, the rackets are libball's tracks (MatchRackets, match_rackets.h:
-// ball_racket_push, ball_racket_estimate, as RacketTracks keeps them for
-// ball-watch's own frames) and the cameras libball's presets.
+// ball_racket_push, ball_racket_estimate, as the client library keeps them
+// for every client: ball_net_racket) and the cameras libball's presets.
 //
 // A C ABI of scalars and the core's own buffers: the glue copies a
 // message's numbers and names from the browser's JSON.parse into the slots
