@@ -27,7 +27,11 @@ foreach(harness scene sim)
   file(MAKE_DIRECTORY ${found})
   string(TOUPPER ${harness} H)
   if(DEFINED RUNS_${H})
-    set(budget -runs=${RUNS_${H}} -seed=1 -reload=0) # the reload is timed: not reproducible
+    # the same inputs every run: the reload is timed, and the operands of
+    # the comparisons the fuzzer traces (-use_cmp) include pointers, which
+    # address randomisation changes run to run; as dictionary words they
+    # sent two runs of one seed down different inputs after 162
+    set(budget -runs=${RUNS_${H}} -seed=1 -reload=0 -use_cmp=0)
     message(STATUS "fuzz_${harness}: ${RUNS_${H}} inputs, seed 1, from ${corpus_${harness}}")
   else()
     set(budget -max_total_time=${SECONDS})
