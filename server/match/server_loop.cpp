@@ -10,14 +10,14 @@
 namespace ballsrv {
 
 ServerLoop::ServerLoop(Host &host, ServerPort &port, Clock &clock, const LoopSettings &settings)
-    : host_(host), port_(port), clock_(clock), settings_(settings) {}
+    : host_(host), port_(port), clock_(clock), settings_(settings), cluster_(settings) {}
 
 bool ServerLoop::find_owner(double seconds, const std::function<bool()> &stop, MatchInfoOut *other) {
   double until = clock_.mono() + seconds;
   ParticipantId from;
   while (clock_.mono() < until && !stop()) {
     while (port_.take_other_info(other, &from)) {
-      if (server_wrote(*other) && host_.find(other->match_id)) return true;
+      if (cluster_.server_wrote(*other) && host_.find(other->match_id)) return true;
     }
     clock_.sleep_until(clock_.mono() + 0.05);
   }
@@ -104,9 +104,11 @@ void ServerLoop::start() {
   drop_own_if_standby();
   if (settings_.claim > 0) {
     // a claimant's configured matches are candidates: it steps those the claim rule gives it
+    std::vector<MatchConfig> candidates;
     for (const auto &m : host_.matches())
-      if (!m->following()) candidates_.push_back(m->config());
-    for (const auto &c : candidates_) host_.remove(c.id);
+      if (!m->following()) candidates.push_back(m->config());
+    for (const auto &c : candidates) host_.remove(c.id);
+    cluster_.set_candidates(std::move(candidates));
     claim_unplaced(clock_.mono());
   }
   for (const auto &m : host_.matches()) {
@@ -121,145 +123,53 @@ void ServerLoop::start() {
 
 // ---- the other servers of the domain ------------------------------------------
 
-ServerView ServerLoop::own_view() const {
-  ServerView v;
-  v.server_id = settings_.server_id;
-  v.strength = settings_.strength;
-  v.standby = settings_.standby;
-  v.claim_room = settings_.claim > claimed_ ? settings_.claim - claimed_ : 0;
-  return v;
-}
-
-std::vector<ServerView> ServerLoop::views() const {
-  std::vector<ServerView> out{own_view()};
-  for (const auto &p : peers_) {
-    if (!p.second.alive || p.second.status.server_id == settings_.server_id) continue;
-    ServerView v;
-    v.server_id = p.second.status.server_id;
-    v.strength = p.second.status.strength;
-    v.standby = p.second.status.standby;
-    v.claim_room = p.second.status.claim_room;
-    out.push_back(v);
-  }
-  return out;
-}
-
 void ServerLoop::take_others() {
   ParticipantId from;
   StatusOut st;
-  while (port_.take_other_status(&st, &from)) {
-    if (peers_.size() >= kMaxPeers && !peers_.count(from)) continue;  // (a lost one makes room)
-    Peer &p = peers_[from];
-    p.status = st;
-    p.alive = true;
-  }
+  while (port_.take_other_status(&st, &from)) cluster_.hear_status(st, from);
   // the models before the infos: a standby follows a match with the model its info names
   MatchModelOut model;
-  while (port_.take_other_model(&model, &from)) {
-    if (other_models_.size() >= kMaxPeers && !other_models_.count(model.match_id)) continue;
-    other_models_[model.match_id] = model;
-  }
-  if (model_waits_.size() > kMaxPeers) model_waits_.clear();  // (matches no model came for: forgotten)
+  while (port_.take_other_model(&model, &from)) cluster_.hear_model(model);
   MatchInfoOut info;
   while (port_.take_other_info(&info, &from)) other_info(info, from);
   SegmentOut seg;
-  while (port_.take_other_segment(&seg, &from)) {
-    if (scheduled(seg.match_id)) {
-      // another server steps one of ours, and DDS gave us its sample: its
-      // MatchInfo will say who it is (the next one, within a second)
-      continue;
-    }
-    auto it = followed_.find(seg.match_id);
-    if (it == followed_.end() || !(it->second.owner == from)) continue;
-    if (!usable_segment(seg)) {  // a take-over may go on from it: counted like a MatchInfo no server writes
-      stats_.others_refused++;
-      continue;
-    }
-    Segments &kept = it->second.segments;
-    kept[seg.seq] = seg;
-    while (kept.size() > kFollowedSegments) kept.erase(kept.begin());
-  }
+  while (port_.take_other_segment(&seg, &from)) cluster_.hear_segment(seg, from, scheduled(seg.match_id) != nullptr);
 }
 
-// A MatchInfo no server could have written (numbers out of range, as a
-// client judges them, or its segment and Play not fitting its sim time:
-// usable_other_info) is not another server's: nobody yields to it, follows
-// it, counts it an owner or is kept from starting by it; counted.
-bool ServerLoop::server_wrote(const MatchInfoOut &info) {
-  if (usable_other_info(info)) return true;
-  stats_.others_refused++;
-  return false;
-}
-
+// Another server's MatchInfo: the Cluster decides, the loop yields and
+// follows (docs/protocol.md, "Several servers on one domain").
 void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from) {
-  if (!server_wrote(info)) return;
-  // a standby follows what it reads (after a yield too), and its take-over
-  // maps the owner's sim clock by the info's server_time: one far from this
-  // server's clock is no server's (a forged one made the catch-up endless)
-  if (settings_.standby && !(std::fabs(info.server_time - clock_.realtime()) <= kMaxClockGap)) {
-    stats_.others_refused++;
-    return;
-  }
-  // only a claimant's configured matches wait for their owners (claim_unplaced;
-  // before start() they are still the host's): a bounded map, whatever ids come
-  bool candidate = host_.find(info.match_id) != nullptr;
-  for (const auto &c : candidates_) candidate = candidate || c.id == info.match_id;
-  if (settings_.claim > 0 && candidate) owners_[info.match_id] = {from, -1.0};
-  if (scheduled(info.match_id)) {
-    // our own reader took another server's sample for a match we step: DDS
-    // ranks that server above us for every reader (the weaker of two owners yields)
-    stats_.conflicts++;
+  uint32_t id = info.match_id;
+  Cluster::Heard heard = cluster_.hear_info(info, from, host_.find(id) != nullptr, scheduled(id) != nullptr,
+                                            clock_.realtime());
+  if (heard == Cluster::Heard::refused) return;
+  if (heard == Cluster::Heard::conflict) {
     if (on_conflict_) on_conflict_(info, from);
-    yield(info.match_id, info, from);
+    yield(id, info, from);
   }
-  if (!settings_.standby) return;
-  auto it = followed_.find(info.match_id);
-  if (it == followed_.end()) {
-    std::string err;
-    auto model = other_models_.find(info.match_id);
-    const ball_model *wire = model != other_models_.end() && usable_model(model->second, info.model_hash)
-                                 ? &model->second.model
-                                 : nullptr;
-    // the MatchModel may come after the MatchInfo (another topic): it is
-    // waited for kModelWait before a scene of the info's name is looked for
-    if (!wire) {
-      auto first = model_waits_.emplace(info.match_id, clock_.mono()).first;
-      if (clock_.mono() - first->second < kModelWait) return;
-    }
-    model_waits_.erase(info.match_id);
-    if (!host_.follow(info, wire, &err)) {
-      if (stats_.follow_failures++ == 0 || stats_.follow_failures % 1000 == 0)
-        say("cannot follow match " + std::to_string(info.match_id) + " of server " + std::to_string(info.server_id) +
-            ": " + err);
-      return;
-    }
-    it = followed_.emplace(info.match_id, Followed{}).first;
+  const ball_model *wire = nullptr;
+  Cluster::Follow plan = cluster_.follow_plan(info, clock_.mono(), &wire);
+  if (plan == Cluster::Follow::none) return;
+  std::string err;
+  bool ok = true;
+  if (plan == Cluster::Follow::begin) {
+    ok = host_.follow(info, wire, &err);
   } else {
-    Match *m = host_.find(info.match_id);
-    std::string err;
-    if (m && !m->follow(info, &err)) stats_.follow_failures++;
+    Match *m = host_.find(id);
+    ok = !m || m->follow(info, &err);
   }
-  Followed &f = it->second;
-  if (f.owner != from || info.revision >= f.info.revision) f.info = info;
-  if (f.owner != from) f.segments.clear();  // a new owner: its segments from now
-  f.owner = from;
-  f.lost_at = -1.0;
+  std::string line = cluster_.followed(info, from, plan, ok, err);
+  if (!line.empty()) say(line);
 }
 
 void ServerLoop::yield(uint32_t id, const MatchInfoOut &to, const ParticipantId &from) {
   sched_.erase(std::remove_if(sched_.begin(), sched_.end(), [id](const Scheduled &s) { return s.match->id() == id; }),
                sched_.end());
-  stats_.yields++;
   Match *m = host_.find(id);
   std::string err;
-  if (settings_.standby && m && m->follow(to, &err)) {
-    Followed f;
-    f.info = to;
-    f.owner = from;
-    followed_[id] = f;
-  } else {
-    host_.remove(id);
-  }
+  bool following = settings_.standby && m && m->follow(to, &err);
+  if (!following) host_.remove(id);
+  cluster_.yielded(id, to, from, following);
   say("yielded match " + std::to_string(id) + " to server " + std::to_string(to.server_id) + " (participant " +
       hex(from) + ")" + (settings_.standby ? ", following it" : ""));
 }
@@ -273,122 +183,64 @@ bool ServerLoop::claim(const MatchConfig &config, double t0, std::string *err) {
   s.firm_at = t0 + settings_.settle;
   sched_.push_back(s);
   publish_info(sched_.back());
-  claimed_++;
-  stats_.claims++;
+  cluster_.claimed();
   return true;
 }
 
 void ServerLoop::claim_unplaced(double t0) {
-  std::vector<uint32_t> unplaced;
-  for (const auto &c : candidates_) {
-    if (scheduled(c.id) || host_.find(c.id)) continue;
-    auto o = owners_.find(c.id);
-    // placed while its owner lives, and for orphan_wait after it was lost (a standby's to take over)
-    if (o != owners_.end() && (o->second.second < 0.0 || t0 - o->second.second < settings_.orphan_wait)) continue;
-    unplaced.push_back(c.id);
-  }
-  if (unplaced.empty()) return;
-  std::map<uint32_t, uint32_t> to = assign_claims(unplaced, views());
-  for (const auto &c : candidates_) {
-    auto w = to.find(c.id);
-    if (w == to.end() || w->second != settings_.server_id) continue;
+  auto placed = [this](uint32_t id) { return scheduled(id) || host_.find(id); };
+  for (const MatchConfig &c : cluster_.claims_due(t0, placed)) {
     std::string err;
     if (claim(c, t0, &err)) say("claimed match " + std::to_string(c.id));
     else say("cannot claim match " + std::to_string(c.id) + ": " + err);
   }
 }
 
-// A CREATE for a new match: a claimant creates it when the claim rule gives
-// it the match, a server that claims nothing but steps its configured
-// matches as before; a standby alone never.
+// A CREATE for a new match: the Cluster says whose it is (a claimant
+// creates it when the claim rule gives it the match, a server that claims
+// nothing but steps its configured matches as before; a standby alone never).
 bool ServerLoop::may_create(const ControlIn &c) {
   if (c.kind != ControlKind::create || host_.find(c.match_id)) return true;
-  if (settings_.claim == 0) return !settings_.standby;
-  if (claimed_ >= settings_.claim) return false;
-  std::map<uint32_t, uint32_t> to = assign_claims({c.match_id}, views());
-  auto w = to.find(c.match_id);
-  return w != to.end() && w->second == settings_.server_id;
+  return cluster_.may_create(c.match_id);
 }
 
-// ---- take-overs --------------------------------------------------------------
-
-const SegmentOut *stepped_segment(const Segments &segments, const MatchInfoOut &info, double target) {
-  for (auto it = segments.rbegin(); it != segments.rend(); ++it) {
-    const SegmentOut &c = it->second;
-    if (c.seq < info.segment_seq) break;  // the info's own is newer
-    if (c.segment.t0 > target) continue;
-    bool superseded = false, followed = false;
-    for (auto later = it.base(); later != segments.end(); ++later) {
-      superseded = superseded || later->second.segment.t0 <= c.segment.t0;
-      followed = followed || later->second.segment.t0 > c.segment.t0;
-    }
-    if (superseded) continue;  // never in effect
-    if (c.cause == Cause::serve || c.cause == Cause::racket || c.seq == info.segment_seq || followed) return &c;
-  }
-  return nullptr;
-}
+// ---- take-overs ----------------------------------------------------------------
 
 void ServerLoop::take_over(double t0, double now) {
-  for (auto it = followed_.begin(); it != followed_.end();) {
-    Followed &f = it->second;
-    uint32_t next = 0;
-    if (f.lost_at < 0.0 || t0 < f.lost_at + settings_.takeover_grace ||
-        !successor(views(), f.info.server_id, &next) || next != settings_.server_id) {
-      ++it;
-      continue;
-    }
-    Match *m = host_.find(it->first);
-    Scheduled s = schedule(m);
-    // on the owner's sim clock, as its clients map it (protocol.md, "Time"),
-    // to the frame before this server's first: that frame lands on the mapping
-    const MatchInfoOut &info = f.info;
-    // a segment written after the info says the match played on (one
-    // written ahead of its contact may come before a pause's info)
-    bool plays = info.state == MatchState::playing;
-    uint32_t newest_seq = info.segment_seq;
-    for (const auto &kv : f.segments) {
-      plays = plays || (kv.first > info.segment_seq && kv.second.server_time > info.server_time);
-      newest_seq = std::max(newest_seq, kv.first);
-    }
-    double first_real = s.clock.realtime_at(s.clock.deadline(s.k));
-    double target = info.sim_time;
-    if (plays) target += (first_real - m->frame_time() - info.server_time) * info.time_base;
-    // never before a serve or a hit the owner wrote (those are never written ahead)
-    for (const auto &kv : f.segments)
-      if (kv.second.cause == Cause::serve || kv.second.cause == Cause::racket)
-        target = std::max(target, kv.second.segment.t0);
-    if (info.segment_seq > 0) target = std::max(target, info.segment.t0);
-    // the segment in effect at target (protocol.md: the highest seq whose t0
-    // is not after it): a Segment sample, or the one the MatchInfo carries
-    SegmentOut from_info = current_segment(info);
-    const SegmentOut *seg = stepped_segment(f.segments, info, target);
-    if (!seg) seg = info.segment_seq > 0 ? &from_info : nullptr;
-    out_.clear();
-    std::string err;
-    if (!m->restore(info, seg, newest_seq, target, &out_, &err)) {
-      stats_.follow_failures++;
-      say("cannot take match " + std::to_string(it->first) + " over: " + err);
-      host_.remove(it->first);
-      it = followed_.erase(it);
-      continue;
-    }
-    s.revision = info.revision;
-    s.last_frame_real = first_real - m->frame_time();  // the instant the sim time `target` holds for
-    s.taken_over = true;
-    s.since = now;
-    sched_.push_back(s);
-    publish(out_, sched_.back(), now);
-    publish_info(sched_.back());
-    stats_.takeovers++;
-    char line[256];
-    std::snprintf(line, sizeof line,
-                  "took match %u over from server %u at sim time %.3f (segment %u, %zu segments caught up, owner lost "
-                  "%.2f s ago)",
-                  it->first, info.server_id, m->sim().time, seg ? seg->seq : 0u,
-                  out_.segments.size(), t0 - f.lost_at);
-    say(line);
-    it = followed_.erase(it);
+  for (uint32_t id : cluster_.due_takeovers(t0)) take_over_match(id, t0, now);
+}
+
+void ServerLoop::take_over_match(uint32_t id, double t0, double now) {
+  Match *m = host_.find(id);
+  const Followed *f = cluster_.followed(id);
+  if (!m || !f) return;
+  Scheduled s = schedule(m);
+  double first_real = s.clock.realtime_at(s.clock.deadline(s.k));
+  RestorePoint p = restore_point(*f, first_real, m->frame_time());
+  double lost_ago = t0 - f->lost_at;
+  out_.clear();
+  std::string err;
+  if (!m->restore(p.info, p.has_segment ? &p.segment : nullptr, p.newest_seq, p.target, &out_, &err)) {
+    cluster_.taken_over(id, false);
+    say("cannot take match " + std::to_string(id) + " over: " + err);
+    host_.remove(id);
+    return;
   }
+  cluster_.taken_over(id, true);
+  s.revision = p.info.revision;
+  s.last_frame_real = first_real - m->frame_time();  // the instant the sim time `target` holds for
+  s.taken_over = true;
+  s.since = now;
+  sched_.push_back(s);
+  publish(out_, sched_.back(), now);
+  publish_info(sched_.back());
+  char line[256];
+  std::snprintf(line, sizeof line,
+                "took match %u over from server %u at sim time %.3f (segment %u, %zu segments caught up, owner lost "
+                "%.2f s ago)",
+                id, p.info.server_id, m->sim().time, p.has_segment ? p.segment.seq : 0u, out_.segments.size(),
+                lost_ago);
+  say(line);
 }
 
 template <class T>
@@ -477,16 +329,8 @@ void ServerLoop::take_notes(double t0) {
   for (const auto &n : notes_) {
     switch (n.kind) {
       case PortNote::server_lost: {
-        auto p = peers_.find(n.who);
-        if (p != peers_.end()) {
-          say("server " + std::to_string(p->second.status.server_id) + " (participant " + hex(n.who) +
-              ") is gone: its writers lost their liveliness");
-          peers_.erase(p);  // (forgotten: forged writers come and go without bound)
-        }
-        for (auto &f : followed_)
-          if (f.second.owner == n.who && f.second.lost_at < 0.0) f.second.lost_at = t0;
-        for (auto &o : owners_)
-          if (o.second.first == n.who && o.second.second < 0.0) o.second.second = t0;
+        std::string line = cluster_.server_lost(n.who, t0);
+        if (!line.empty()) say(line);
         break;
       }
       case PortNote::writer_lost:
@@ -578,7 +422,6 @@ void ServerLoop::take_controls(double now) {
     }
     if (!may_create(control)) {  // another server's to create (the claim rule, a standby): nothing here
       stats_.totals.controls_refused++;
-      stats_.creates_elsewhere++;
       continue;
     }
     out_.clear();
@@ -590,8 +433,7 @@ void ServerLoop::take_controls(double now) {
       sched_.push_back(schedule(host_.matches().back().get()));
       if (settings_.claim > 0) {
         sched_.back().firm_at = clock_.mono() + settings_.settle;
-        claimed_++;
-        stats_.claims++;
+        cluster_.claimed();
       }
     }
     if (!m) continue;
@@ -703,12 +545,7 @@ double ServerLoop::next_wake() const {
     often = often || s.clock.period() <= kLivelinessPeriod;
   }
   if (!often) wake = std::min(wake, next_assert_);
-  // a standby takes its followed matches' samples, notes and data at least
-  // every kFollowWake, and wakes for a take-over when its grace ends
-  if (!followed_.empty()) wake = std::min(wake, clock_.mono() + kFollowWake);
-  for (const auto &f : followed_)
-    if (f.second.lost_at >= 0.0) wake = std::min(wake, f.second.lost_at + settings_.takeover_grace);
-  return wake;
+  return std::min(wake, cluster_.next_wake(clock_.mono()));  // a standby's followed matches
 }
 
 bool ServerLoop::step() {
@@ -722,7 +559,7 @@ bool ServerLoop::wake() {
   keep_alive(t0);
   take_notes(t0);
   take_others();
-  for (auto &f : followed_) {  // the owner's sim clock, for the samples' checks
+  for (const auto &f : cluster_.following()) {  // the owner's sim clock, for the samples' checks
     const MatchInfoOut &i = f.second.info;
     Match *m = host_.find(f.first);
     if (m) m->follow_clock(i.sim_time + (i.state == MatchState::playing ? (now - i.server_time) * i.time_base : 0.0));
@@ -791,8 +628,8 @@ StatusOut ServerLoop::status_now() const {
   o.playing = 0;
   for (const auto &s : sched_) o.playing += s.match->state() == MatchState::playing;
   o.max_matches = static_cast<uint32_t>(host_.max_matches());
-  o.following = static_cast<uint32_t>(followed_.size());
-  o.claim_room = own_view().claim_room;
+  o.following = static_cast<uint32_t>(cluster_.following().size());
+  o.claim_room = cluster_.own_view().claim_room;
   o.standby = settings_.standby;
   o.strength = settings_.strength;
   return o;
@@ -809,15 +646,16 @@ ServerReport ServerLoop::report() const {
   r.deadline_missed = stats_.deadline_missed;
   r.writers_lost = stats_.writers_lost;
   r.controls_at_door = stats_.controls_at_door;
-  r.creates_elsewhere = stats_.creates_elsewhere;
-  r.others_refused = stats_.others_refused;
-  r.conflicts = stats_.conflicts;
-  r.takeovers = stats_.takeovers;
-  r.yields = stats_.yields;
-  r.claims = stats_.claims;
-  r.follow_failures = stats_.follow_failures;
+  const ClusterStats &c = cluster_.stats();
+  r.creates_elsewhere = c.creates_elsewhere;
+  r.others_refused = c.others_refused;
+  r.conflicts = c.conflicts;
+  r.takeovers = c.takeovers;
+  r.yields = c.yields;
+  r.claims = c.claims;
+  r.follow_failures = c.follow_failures;
   r.created_expired = stats_.created_expired;
-  r.following = static_cast<uint32_t>(followed_.size());
+  r.following = static_cast<uint32_t>(cluster_.following().size());
   r.latency_p50 = stats_.latency_all.quantile(0.5);
   r.latency_p99 = stats_.latency_all.quantile(0.99);
   r.latency_count = stats_.latency_all.size();

@@ -39,9 +39,9 @@
 #include <string>
 #include <vector>
 
+#include "cluster.h"
 #include "frame_clock.h"
 #include "host.h"
-#include "placement.h"
 #include "records.h"
 
 namespace ballsrv {
@@ -99,80 +99,33 @@ class ServerPort {
   virtual bool dispose_match(uint32_t match_id) = 0;
 };
 
-// s: how often a standby with nothing of its own to step wakes to take
-// its followed matches' samples and notes
-constexpr double kFollowWake = 1.0 / 60.0;
-// segments a standby keeps of each followed match, the newest by seq: the
-// one in effect and those written ahead of their contact
-constexpr size_t kFollowedSegments = 8;
 // s: a racket hit due within this of the one the loop saw before is that
 // hit found again (after a frame, or a sample that moved it a little)
 constexpr double kSameHit = 1e-3;
-// s between two assertions of the writers' liveliness: 4 per 1 s lease
-constexpr double kLivelinessPeriod = 0.25;
 // Samples one note of DDS may count as lost: DDS counts a gap in a writer's
 // sequence numbers, which one forged datagram can make 2^31 long (a gap
 // beyond this is a restart or a forgery, not that many samples).
 constexpr uint64_t kMaxLostPerNote = 1000;
-// real s a followed MatchInfo's server_time may lie from this server's
-// realtime clock (docs/protocol.md, "Several servers on one domain"): an
-// owner writes its MatchInfo at least once a second, stamped with its newest
-// frame's deadline, and the servers of a domain keep their clocks in step
-// (NTP); a take-over maps the owner's sim clock by that stamp
-constexpr double kMaxClockGap = 10.0;
-// real s a standby waits for the MatchModel a followed match's MatchInfo
-// names before it looks for a scene of the info's name (docs/protocol.md,
-// "Several servers on one domain": the two topics' samples come apart)
-constexpr double kModelWait = 2.0;
-// other servers' ServerStatus writers a loop keeps at most: the remote
-// participants the QoS profiles allow (total_participants), so that forged
-// writers cannot grow it without bound; a lost one is forgotten
-constexpr size_t kMaxPeers = 4096;
 
-// The segment a standby restores an owner's match from (docs/protocol.md,
-// "Several servers"): of the owner's segments, the newest in effect at sim
-// time `target` that the owner is known to have stepped through: a serve or
-// a racket hit (written at their instant), one the MatchInfo names, or one a
-// later segment starting after it follows (the owner wrote that one once it
-// had stepped past). A contact written ahead that the owner may not have
-// reached is not: the standby steps it again, its events included.
-// nullptr: none newer than the MatchInfo's own segment.
-const SegmentOut *stepped_segment(const Segments &segments, const MatchInfoOut &info, double target);
 
-struct LoopSettings {
-  uint32_t server_id = 1;        // in every sample written
+// The loop's settings; its place among the servers of a domain is the
+// Cluster's (cluster.h: server_id, standby, claim, strength, the graces).
+struct LoopSettings : ClusterSettings {
   double status_interval = 1.0;  // real s between status writes
   double info_interval = 1.0;    // real s between a match's periodic MatchInfo
   double max_behind = 5.0;       // frames: a match further behind its deadline skips to the present
-  // its place among the servers of a domain (docs/protocol.md, "Several servers")
-  bool standby = false;          // follows other servers' matches, takes one over when its owner dies
-  uint32_t claim = 0;            // configured or created matches it may claim; 0: it serves its configured ones
-  uint32_t strength = 20;        // its match writers' ownership strength (the QoS file's, for ServerStatus)
   double settle = 1.0;           // real s a claimed match waits before its first frame (startup_wait)
-  // real s from the first of the owner's writers lost to the take-over: the
-  // owner asserted its writers together every kLivelinessPeriod and each
-  // write asserts its writer again, so a reader lets the last of them go up
-  // to a period after the first; a sample written before a reader let its
-  // owner's writer go is dropped by that reader (exclusive ownership)
-  double takeover_grace = kLivelinessPeriod + 0.15;
-  double orphan_wait = 5.0;      // real s an owner is gone before a claimant may start its match anew
   double create_timeout = 30.0;  // real s a created match stands with nobody holding a slot before it goes
 };
 
-// The loop's counters: the status line, ServerStatus, the stats file.
+// The loop's counters: the status line, ServerStatus, the stats file (and
+// the Cluster's, cluster.h).
 struct LoopStats {
   StatusOut totals;             // the counters ServerStatus carries: samples, drops, controls, writes, frames, overruns
   uint64_t infos_out = 0, statuses_out = 0, models_out = 0;  // MatchInfo, ServerStatus and MatchModel written
   uint64_t skipped = 0;         // frames skipped after a stall
   uint64_t deadline_missed = 0, writers_lost = 0;
   uint64_t controls_at_door = 0;  // controls the control reader's door turned away (in controls_refused too)
-  uint64_t creates_elsewhere = 0;  // CREATEs left to another server (standby, claim rule; in controls_refused too)
-  uint64_t conflicts = 0;       // MatchInfo of one of our matches from another server
-  uint64_t others_refused = 0;  // MatchInfo and Segments of others no server writes (trust.h, kMaxClockGap)
-  uint64_t takeovers = 0;       // followed matches taken over
-  uint64_t yields = 0;          // matches given up to a server that outranks this one
-  uint64_t claims = 0;          // matches claimed (configured or created)
-  uint64_t follow_failures = 0; // another server's matches this one could not follow or restore
   uint64_t liveliness_failures = 0;  // liveliness assertions the port refused
   uint64_t created_expired = 0;  // created matches removed: nobody held a slot for create_timeout
   uint64_t hit_wakes = 0;        // partial frames stepped to a racket hit's instant
@@ -226,7 +179,6 @@ class ServerLoop {
   void take_notes(double t0);
   void take_others();
   void admit_hosted();
-  bool server_wrote(const MatchInfoOut &info);  // false (and counted) for a MatchInfo no server writes
   void take_samples(double now);
   void count_lost(uint64_t lost);  // seqs lost: counted in (samples_in) and dropped (docs/protocol.md)
   void take_controls(double now);
@@ -241,8 +193,7 @@ class ServerLoop {
   const LoopStats &stats() const { return stats_; }
   ServerReport report() const;
   double uptime() const;  // real s since start
-  size_t peers_known() const { return peers_.size(); }    // ServerStatus writers kept (at most kMaxPeers)
-  size_t owners_known() const { return owners_.size(); }  // owners kept of a claimant's configured matches
+  const Cluster &cluster() const { return cluster_; }  // the other servers of the domain, and what it follows
 
  private:
   struct Scheduled {
@@ -263,29 +214,17 @@ class ServerLoop {
     double due_seen_at = 0.0;      // when it first saw it (see_due)
     StateOut state{};
   };
-  // Another server's match this one follows (a standby).
-  struct Followed {
-    MatchInfoOut info;             // the owner's newest
-    Segments segments;             // its newest few (kFollowedSegments; the newest may lie ahead)
-    ParticipantId owner{};         // the owner's participant
-    double lost_at = -1.0;         // mono s its writers lost their liveliness; -1: alive
-  };
-  struct Peer {
-    StatusOut status;              // its newest ServerStatus
-    bool alive = true;
-  };
   Scheduled schedule(Match *m);
   double hit_due(const Scheduled &s) const;  // mono s to step its next racket hit: the instant less hit_lead; +Inf: none
   static void see_due(Scheduled &s, double at, double t);  // the loop saw hit due `at` at mono s t
   void run_frame(Scheduled &s, double t0, double now);  // its due frame, then the hits due by then
   Scheduled *scheduled(uint32_t id);
-  ServerView own_view() const;
-  std::vector<ServerView> views() const;  // the live servers heard of, and this one
   void other_info(const MatchInfoOut &info, const ParticipantId &from);
   void yield(uint32_t id, const MatchInfoOut &to, const ParticipantId &from);
   bool claim(const MatchConfig &config, double t0, std::string *err);
   void claim_unplaced(double t0);
   bool may_create(const ControlIn &control);
+  void take_over_match(uint32_t id, double t0, double now);
   void say(const std::string &line);
   void drop_own_if_standby();
   // a frame's state is held in s (write_state), the rest written at once
@@ -301,6 +240,7 @@ class ServerLoop {
   ServerPort &port_;
   Clock &clock_;
   LoopSettings settings_;
+  Cluster cluster_;
   FrameClock origin_{1.0, 0.0, 0.0};
   std::vector<Scheduled> sched_;
   double start_ = 0.0, next_status_ = 0.0;
@@ -312,16 +252,6 @@ class ServerLoop {
   bool admitted_once_ = false;
   std::function<void(const MatchInfoOut &, const ParticipantId &)> on_conflict_;
   std::function<void(const std::string &)> on_note_;
-  std::map<uint32_t, Followed> followed_;
-  // the newest MatchModel of other servers' matches (a standby's), at most kMaxPeers matches
-  std::map<uint32_t, MatchModelOut> other_models_;
-  // mono s a followed match's MatchInfo first came without its MatchModel
-  std::map<uint32_t, double> model_waits_;
-  std::map<ParticipantId, Peer> peers_;
-  // a claimant's configured match -> its owner heard of, mono s it was lost (-1: alive)
-  std::map<uint32_t, std::pair<ParticipantId, double>> owners_;
-  std::vector<MatchConfig> candidates_;  // a claimant's configured matches not (yet) its own
-  uint32_t claimed_ = 0;
   double next_assert_ = 0.0;  // mono s of the next liveliness assertion
   double earliest_hit_ = HUGE_VAL;  // mono s of the earliest hit_due of the scheduled matches
   std::vector<char> frame_due_;     // run_due_frames': 0 none, 1 near a hit, 2 the rest

@@ -264,9 +264,9 @@ TEST(a_standby_takes_a_match_over_when_its_owner_is_lost) {
   r.port.notes.push_back({PortNote::server_lost, owner_participant(), 1});
   // the owner stops; the standby wakes on its own
   const double grace = LoopSettings{}.takeover_grace;
-  while (r.loop->stats().takeovers == 0 && r.clock.now < lost + 2.0) r.loop->step();
+  while (r.loop->cluster().stats().takeovers == 0 && r.clock.now < lost + 2.0) r.loop->step();
   // the first wake-up at or after the grace's end (the note is taken at the first one after `lost`)
-  CHECK_EQ(r.loop->stats().takeovers, 1u);
+  CHECK_EQ(r.loop->cluster().stats().takeovers, 1u);
   CHECK(r.clock.now >= lost + grace - 1e-9 && r.clock.now <= lost + grace + kFollowWake + 1e-9);
   CHECK_EQ(r.loop->status_now().following, 0u);
   CHECK(!r.host.find(7)->following());
@@ -304,10 +304,10 @@ TEST(a_standby_without_the_scene_follows_from_the_wire_model) {
   {
     StandbyRig r(false);
     r.play(kModelWait - 0.2);  // the model may still come: nothing tried yet
-    CHECK_EQ(r.loop->stats().follow_failures, 0u);
+    CHECK_EQ(r.loop->cluster().stats().follow_failures, 0u);
     r.play(1.0);
-    note("no scene, no model: %llu follow failures", (unsigned long long)r.loop->stats().follow_failures);
-    CHECK(r.loop->stats().follow_failures > 0u);
+    note("no scene, no model: %llu follow failures", (unsigned long long)r.loop->cluster().stats().follow_failures);
+    CHECK(r.loop->cluster().stats().follow_failures > 0u);
     CHECK_EQ(r.loop->status_now().following, 0u);
   }
   {
@@ -319,13 +319,13 @@ TEST(a_standby_without_the_scene_follows_from_the_wire_model) {
     forged.model_hash = r.owner.match.info().model_hash;
     r.port.other_models.push_back({forged, participant(99)});
     r.play(kModelWait + 0.5);
-    CHECK(r.loop->stats().follow_failures > 0u);
+    CHECK(r.loop->cluster().stats().follow_failures > 0u);
     CHECK_EQ(r.loop->status_now().following, 0u);
   }
   StandbyRig r(false);
   r.give_model = true;
   r.play(2.0);
-  CHECK_EQ(r.loop->stats().follow_failures, 0u);
+  CHECK_EQ(r.loop->cluster().stats().follow_failures, 0u);
   CHECK_EQ(r.loop->status_now().following, 1u);
   uint64_t easy = r.owner.match.info().model_hash;
   CHECK_EQ(r.host.find(7)->info().model_hash, easy);
@@ -337,8 +337,8 @@ TEST(a_standby_without_the_scene_follows_from_the_wire_model) {
   CHECK_EQ(r.host.find(7)->info().model_hash, advanced);
   r.port.notes.push_back({PortNote::server_lost, owner_participant(), 1});
   double lost = r.clock.now;
-  while (r.loop->stats().takeovers == 0 && r.clock.now < lost + 2.0) r.loop->step();
-  CHECK_EQ(r.loop->stats().takeovers, 1u);
+  while (r.loop->cluster().stats().takeovers == 0 && r.clock.now < lost + 2.0) r.loop->step();
+  CHECK_EQ(r.loop->cluster().stats().takeovers, 1u);
   // the new owner writes the model it steps, once
   while (r.clock.now < lost + 3.0) r.loop->step();
   CHECK_EQ(r.port.models.size(), 1u);
@@ -398,17 +398,17 @@ TEST(a_strangers_forged_info_never_takes_a_match_over) {
       f.seg(s);
       r.port.other_segments.push_back({s, stranger});
     }
-    uint64_t refused = r.loop->stats().others_refused;
+    uint64_t refused = r.loop->cluster().stats().others_refused;
     r.loop->wake();
     r.port.notes.push_back({PortNote::server_lost, owner_participant(), 1});
     r.port.notes.push_back({PortNote::server_lost, stranger, 1});
     double lost = r.clock.now;
     int wakes = 0;
-    while (r.loop->stats().takeovers == 0 && r.clock.now < lost + 2.0 && wakes++ < 1000) r.loop->step();
+    while (r.loop->cluster().stats().takeovers == 0 && r.clock.now < lost + 2.0 && wakes++ < 1000) r.loop->step();
     const Match *m = r.host.find(7);
-    CHECK_MSG(r.loop->stats().others_refused > refused, "%s: not refused", f.what);
-    CHECK_MSG(r.loop->stats().takeovers == 1u && m && !m->following(), "%s: not taken over (%" PRIu64 " failures)",
-              f.what, r.loop->stats().follow_failures);
+    CHECK_MSG(r.loop->cluster().stats().others_refused > refused, "%s: not refused", f.what);
+    CHECK_MSG(r.loop->cluster().stats().takeovers == 1u && m && !m->following(), "%s: not taken over (%" PRIu64 " failures)",
+              f.what, r.loop->cluster().stats().follow_failures);
     if (!m || m->following()) continue;
     // on the owner's clock, from its own newest info
     double mapped = last.sim_time + (r.port.infos.front().server_time - last.server_time) * last.time_base;
@@ -504,8 +504,8 @@ TEST(what_a_loop_keeps_of_strangers_is_bounded) {
     if (n % 100 == 99) {
       clock.now += 0.01;
       loop.wake();
-      most_peers = std::max(most_peers, loop.peers_known());
-      most_owners = std::max(most_owners, loop.owners_known());
+      most_peers = std::max(most_peers, loop.cluster().peers_known());
+      most_owners = std::max(most_owners, loop.cluster().owners_known());
     }
   }
   note("20000 forged writers and match ids: at most %zu peers kept (cap %zu), %zu owners (of 8 candidates)",
@@ -521,8 +521,8 @@ TEST(what_a_loop_keeps_of_strangers_is_bounded) {
   }
   clock.now += 0.01;
   loop.wake();
-  note("then the owner of each of its 8 configured matches: %zu owners kept", loop.owners_known());
-  CHECK_EQ(loop.owners_known(), 8u);
+  note("then the owner of each of its 8 configured matches: %zu owners kept", loop.cluster().owners_known());
+  CHECK_EQ(loop.cluster().owners_known(), 8u);
 }
 
 // Of 8 configured matches, a claimant that hears another claimant takes the
@@ -556,7 +556,7 @@ TEST(a_claimant_takes_its_share_after_settling) {
   note("the rule gives server 3 %zu of 8 matches", mine.size());
   CHECK(!mine.empty() && mine.size() < 8);
   CHECK_EQ(loop.status_now().matches, static_cast<uint32_t>(mine.size()));
-  CHECK_EQ(loop.stats().claims, mine.size());
+  CHECK_EQ(loop.cluster().stats().claims, mine.size());
   CHECK_EQ(loop.status_now().claim_room, 10u - static_cast<uint32_t>(mine.size()));
   for (uint32_t id : ids) CHECK_EQ(host.find(id) != nullptr, rule[id] == 3);
   double start = clock.now;

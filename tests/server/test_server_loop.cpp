@@ -854,7 +854,7 @@ TEST(another_server_for_our_match) {
   busy.players = 0;
   r.port.others.push_back({busy, participant(9)});
   CHECK(!r.loop->find_owner(0.2, [] { return false; }, &other));
-  CHECK_EQ(r.loop->stats().others_refused, 1u);
+  CHECK_EQ(r.loop->cluster().stats().others_refused, 1u);
   r.port.others.push_back({theirs, participant(9)});
   CHECK(r.loop->find_owner(0.5, [] { return false; }, &other));
   CHECK_EQ(other.server_id, 2u);
@@ -863,8 +863,8 @@ TEST(another_server_for_our_match) {
   forged.level = 99;
   r.port.others.push_back({forged, participant(8)});
   r.loop->step();
-  CHECK_EQ(r.loop->stats().others_refused, 2u);
-  CHECK_EQ(r.loop->stats().yields, 0u);
+  CHECK_EQ(r.loop->cluster().stats().others_refused, 2u);
+  CHECK_EQ(r.loop->cluster().stats().yields, 0u);
   CHECK(r.host.find(0) != nullptr);
   // while running: reported at the status, with the participant
   r.port.others.push_back({theirs, participant(9)});
@@ -878,9 +878,9 @@ TEST(another_server_for_our_match) {
               });
   CHECK_EQ(seen, 1);
   CHECK(who == participant(9));
-  CHECK_EQ(r.loop->stats().conflicts, 1u);
+  CHECK_EQ(r.loop->cluster().stats().conflicts, 1u);
   // our reader took the other's sample: DDS ranks it above us, so we yield
-  CHECK_EQ(r.loop->stats().yields, 1u);
+  CHECK_EQ(r.loop->cluster().stats().yields, 1u);
   CHECK(r.host.find(0) == nullptr);
   CHECK_EQ(r.loop->status_now().matches, 0u);
 }

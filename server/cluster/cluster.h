@@ -1,0 +1,193 @@
+// Failover's room (docs/design.md, "Rooms by state"; docs/protocol.md,
+// "Several servers on one domain"): what one server knows of the other
+// servers of its domain and what it decides from it. A Cluster owns the
+// peers heard of (their ServerStatus), the matches a standby follows (the
+// owners' newest MatchInfo and segments), the owners of a claimant's
+// configured matches and the claims made; it is told what the network
+// brought and the time (real and monotonic s) as arguments, and returns
+// decisions: refuse, yield, follow, take over, claim, leave a CREATE to
+// another server. The server's loop carries them out on its host and
+// reports back what came of them. Free of the match, the loop, DDS and clocks.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "match_config.h"
+#include "placement.h"
+#include "types.h"
+
+namespace ballsrv {
+
+// s between two assertions of a server's writers' liveliness: 4 per 1 s lease
+// (docs/protocol.md, "Several servers on one domain")
+constexpr double kLivelinessPeriod = 0.25;
+// s: how often a standby with nothing of its own to step wakes to take
+// its followed matches' samples and notes
+constexpr double kFollowWake = 1.0 / 60.0;
+// segments a standby keeps of each followed match, the newest by seq: the
+// one in effect and those written ahead of their contact
+constexpr size_t kFollowedSegments = 8;
+// real s a followed MatchInfo's server_time may lie from this server's
+// realtime clock: an owner writes its MatchInfo at least once a second,
+// stamped with its newest frame's deadline, and the servers of a domain keep
+// their clocks in step (NTP); a take-over maps the owner's sim clock by that stamp
+constexpr double kMaxClockGap = 10.0;
+// real s a standby waits for the MatchModel a followed match's MatchInfo
+// names before it looks for a scene of the info's name (the two topics'
+// samples come apart)
+constexpr double kModelWait = 2.0;
+// other servers' ServerStatus writers a cluster keeps at most: the remote
+// participants the QoS profiles allow (total_participants), so that forged
+// writers cannot grow it without bound; a lost one is forgotten
+constexpr size_t kMaxPeers = 4096;
+
+// One server's place among the servers of its domain.
+struct ClusterSettings {
+  uint32_t server_id = 1;  // in every sample written
+  bool standby = false;    // follows other servers' matches, takes one over when its owner dies
+  uint32_t claim = 0;      // configured or created matches it may claim; 0: it serves its configured ones
+  uint32_t strength = 20;  // its match writers' ownership strength (the QoS file's, for ServerStatus)
+  // real s from the first of the owner's writers lost to the take-over: the
+  // owner asserted its writers together every kLivelinessPeriod and each
+  // write asserts its writer again, so a reader lets the last of them go up
+  // to a period after the first; a sample written before a reader let its
+  // owner's writer go is dropped by that reader (exclusive ownership)
+  double takeover_grace = kLivelinessPeriod + 0.15;
+  double orphan_wait = 5.0;  // real s an owner is gone before a claimant may start its match anew
+};
+
+// What a Cluster decided and counted.
+struct ClusterStats {
+  uint64_t others_refused = 0;     // MatchInfo and Segments of others no server writes (trust.h, kMaxClockGap)
+  uint64_t conflicts = 0;          // MatchInfo of one of our matches from another server
+  uint64_t takeovers = 0;          // followed matches taken over
+  uint64_t yields = 0;             // matches given up to a server that outranks this one
+  uint64_t claims = 0;             // matches claimed (configured or created)
+  uint64_t follow_failures = 0;    // another server's matches this one could not follow or restore
+  uint64_t creates_elsewhere = 0;  // CREATEs left to another server (standby, claim rule)
+};
+
+// Another server's match a standby follows.
+struct Followed {
+  MatchInfoOut info;      // the owner's newest
+  Segments segments;      // its newest few (kFollowedSegments; the newest may lie ahead)
+  ParticipantId owner{};  // the owner's participant
+  double lost_at = -1.0;  // mono s its writers lost their liveliness; -1: alive
+};
+
+// The segment a standby restores an owner's match from: of the owner's
+// segments, the newest in effect at sim time `target` that the owner is
+// known to have stepped through: a serve or a racket hit (written at their
+// instant), one the MatchInfo names, or one a later segment starting after
+// it follows (the owner wrote that one once it had stepped past). A contact
+// written ahead that the owner may not have reached is not: the standby
+// steps it again, its events included. nullptr: none newer than the
+// MatchInfo's own segment.
+const SegmentOut *stepped_segment(const Segments &segments, const MatchInfoOut &info, double target);
+
+// Where a take-over goes on from (Match::restore's arguments).
+struct RestorePoint {
+  MatchInfoOut info;         // the owner's newest MatchInfo
+  SegmentOut segment{};      // the segment in effect at `target` (has_segment)
+  bool has_segment = false;  // false: the match restarts from the info alone
+  uint32_t newest_seq = 0;   // the owner's newest segment seq (one written ahead included)
+  double target = 0.0;       // sim s of the frame before this server's first, on the owner's clock
+};
+
+// A take-over's restore point: on the owner's sim clock, as its clients map
+// it (docs/protocol.md, "Time"), at the frame before this server's first
+// (its deadline first_real, server s; frame_time s a frame), never before a
+// serve or a hit the owner wrote (those are never written ahead).
+RestorePoint restore_point(const Followed &f, double first_real, double frame_time);
+
+class Cluster {
+ public:
+  explicit Cluster(const ClusterSettings &settings) : settings_(settings) {}
+
+  // ---- what the network brought (the loop's "take others" phase) ----
+  void hear_status(const StatusOut &status, const ParticipantId &from);
+  void hear_model(const MatchModelOut &model);
+  // A MatchInfo no server could have written (trust.h: usable_other_info)
+  // is nobody's: counted, false.
+  bool server_wrote(const MatchInfoOut &info);
+  enum class Heard { refused, noted, conflict };
+  // Another server's MatchInfo. hosted: the host has the match (a
+  // claimant's configured one before start, or one it follows); ours: this
+  // server steps it. now: server s. conflict: this server must yield it
+  // (DDS ranks the writer above us for every reader: the weaker of two
+  // owners yields); the loop yields, then asks follow_plan.
+  Heard hear_info(const MatchInfoOut &info, const ParticipantId &from, bool hosted, bool ours, double now);
+  enum class Follow { none, begin, update };
+  // What a standby does with a MatchInfo it heard: nothing (not a
+  // standby, or the MatchModel is still waited for), begin following the
+  // match (with *model, or a scene of the info's name when *model is
+  // nullptr), or update the match it follows. t0: mono s.
+  Follow follow_plan(const MatchInfoOut &info, double t0, const ball_model **model);
+  // What came of follow_plan's begin or update: the line for the log, if any.
+  std::string followed(const MatchInfoOut &info, const ParticipantId &from, Follow plan, bool ok,
+                       const std::string &err);
+  // The loop yielded a match to `from`; following: a standby follows it now.
+  void yielded(uint32_t match_id, const MatchInfoOut &to, const ParticipantId &from, bool following);
+  // A segment of another server's match (ours: this server steps it: ignored).
+  void hear_segment(const SegmentOut &segment, const ParticipantId &from, bool ours);
+  // Another server's writers lost their liveliness at mono s t0: the line
+  // for the log when it was a peer heard of (it is forgotten).
+  std::string server_lost(const ParticipantId &who, double t0);
+
+  // ---- take-overs ----
+  // The followed matches whose owner was lost a grace ago and whose
+  // successor (placement.h) this server is, at mono s t0.
+  std::vector<uint32_t> due_takeovers(double t0) const;
+  const Followed *followed(uint32_t match_id) const;
+  // The take-over of match_id was done (true) or failed (false): it is
+  // followed no more.
+  void taken_over(uint32_t match_id, bool ok);
+
+  // ---- claims and creates ----
+  // A claimant's configured matches, candidates until the claim rule gives them to it.
+  void set_candidates(std::vector<MatchConfig> candidates) { candidates_ = std::move(candidates); }
+  // The candidates to claim now (mono s t0): not placed (placed(id): this
+  // server has it), no owner heard of or one lost orphan_wait ago, and the
+  // claim rule gives them to this server.
+  std::vector<MatchConfig> claims_due(double t0, const std::function<bool(uint32_t)> &placed) const;
+  void claimed();  // a claim (or a claimant's CREATE) went through: one unit of room used
+  // A CREATE of a match the host does not have: this server's to create
+  // (the claim rule; a standby alone never), else counted as left elsewhere.
+  bool may_create(uint32_t match_id);
+
+  // ---- what it knows ----
+  ServerView own_view() const;
+  std::vector<ServerView> views() const;  // the live servers heard of, and this one
+  const std::map<uint32_t, Followed> &following() const { return followed_; }
+  double next_wake(double t0) const;  // mono s a standby wakes by (+Inf: nothing followed)
+  const ClusterStats &stats() const { return stats_; }
+  const ClusterSettings &settings() const { return settings_; }
+  size_t peers_known() const { return peers_.size(); }    // ServerStatus writers kept (at most kMaxPeers)
+  size_t owners_known() const { return owners_.size(); }  // owners kept of a claimant's configured matches
+
+ private:
+  struct Peer {
+    StatusOut status;  // its newest ServerStatus
+    bool alive = true;
+  };
+  ClusterSettings settings_;
+  ClusterStats stats_;
+  std::map<ParticipantId, Peer> peers_;
+  std::map<uint32_t, Followed> followed_;
+  // the newest MatchModel of other servers' matches (a standby's), at most kMaxPeers matches
+  std::map<uint32_t, MatchModelOut> other_models_;
+  // mono s a followed match's MatchInfo first came without its MatchModel
+  std::map<uint32_t, double> model_waits_;
+  // a claimant's configured match -> its owner heard of, mono s it was lost (-1: alive)
+  std::map<uint32_t, std::pair<ParticipantId, double>> owners_;
+  std::vector<MatchConfig> candidates_;  // a claimant's configured matches not (yet) its own
+  uint32_t claimed_ = 0;
+};
+
+}  // namespace ballsrv
