@@ -11,13 +11,6 @@ namespace ballsrv {
 
 namespace {
 
-constexpr double kMinNormal = 1e-6;   // |normal| below: zero_normal
-constexpr double kMaxNormal = 1e6;    // above: out_of_range
-constexpr double kBoxHeight = 30.0;   // m above the floor a racket may be
-constexpr double kUnderFloor = 1.0;   // m under it: a swing's straight line through a low contact, a tracker's error
-constexpr double kOverNet = 1.0;      // m beyond the net a racket may reach
-constexpr int32_t kMaxSeqJump = 1000; // a holder's seq goes at most this far ahead of its previous (33 s at 30 Hz)
-constexpr int32_t kLateWindow = 16;   // seqs behind a stream's newest arrival a late sample may fill its gap (< 64)
 constexpr double kFarAway = 30.0;     // m beyond the court: the ball has left it
 constexpr double kAheadHorizon = 10.0; // sim s: how far ahead a static contact is looked for (docs/protocol.md)
 
@@ -38,13 +31,12 @@ bool same_segment(const ball_segment &a, const ball_segment &b) {
          a.grounded == b.grounded;
 }
 
-bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
-
 }  // namespace
 
 bool Match::init(const MatchConfig &config, const ball_scene &scene, std::string *err) {
   if (!check_match_config(config, err)) return false;
   config_ = config;
+  roster_.init(config.players);
   if (!court_from_model(scene.model, config.court_x_lo, &court_, err)) return false;
   ModelSetup setup;
   setup.players = config.players;
@@ -184,41 +176,16 @@ void Match::set_state(MatchState s, MatchOutput *out) {
 
 // ---- presence and the state machine -------------------------------------
 
-bool Match::all_present() const {
-  for (int i = 0; i < config_.players; ++i)
-    if (!slots_[i].held || !slots_[i].present) return false;
-  return true;
-}
+bool Match::held() const { return roster_.held(); }
 
-bool Match::held() const {
-  for (int i = 0; i < config_.players; ++i)
-    if (slots_[i].held) return true;
-  return false;
-}
-
-bool Match::holds_slot(const ParticipantId &who) const {
-  for (int i = 0; i < config_.players; ++i)
-    if (slots_[i].held && slots_[i].owner == who) return true;
-  return false;
-}
-
-void Match::on_participant_lost(const ParticipantId &who) {
-  for (int i = 0; i < config_.players; ++i)
-    if (slots_[i].held && slots_[i].owner == who) slots_[i].alive = false;
-}
+void Match::on_participant_lost(const ParticipantId &who) { roster_.participant_lost(who); }
 
 void Match::update_presence(double now, MatchOutput *out) {
   int missing = -1;
-  for (int i = 0; i < config_.players; ++i) {
-    Slot &s = slots_[i];
-    bool present = s.held && s.alive && now - s.last_seen <= config_.player_timeout;
-    if (present != s.present) out->info_changed = true;
-    s.present = present;
-    if (s.held && !present && missing < 0) missing = i;
-  }
+  if (roster_.update_presence(now, config_.player_timeout, &missing)) out->info_changed = true;
   switch (state_) {
     case MatchState::waiting:
-      if (all_present()) {
+      if (roster_.all_present()) {
         set_state(MatchState::playing, out);
         if (left_mid_match_) emit(out, EventKind::resume, -1, sim_.time);
         left_mid_match_ = false;
@@ -234,7 +201,7 @@ void Match::update_presence(double now, MatchOutput *out) {
       }
       break;
     case MatchState::paused:
-      if (pause_reason_ == Reason::pause_vanished && all_present()) {
+      if (pause_reason_ == Reason::pause_vanished && roster_.all_present()) {
         set_state(MatchState::playing, out);
         pause_reason_ = Reason::none;
         emit(out, EventKind::resume, pause_slot_, sim_.time);
@@ -377,7 +344,7 @@ Match::LateHit Match::find_late_hit(int slot, double from, std::vector<ball_even
     // in them; past its own hit, the racket's as if no hit had ended its stroke)
     then = sim_;
     if (ball_sim_set_segment(&then, &at->segment, t_a) != BALL_OK) return r;
-    if (std::isfinite(passed) && unended_track(&then, slot, slots_[static_cast<size_t>(slot)], nullptr) != BALL_OK)
+    if (std::isfinite(passed) && unended_track(&then, slot, roster_[slot], nullptr) != BALL_OK)
       return r;
     for (int i = 0; i < model().n_rackets; ++i) then.tracks[i].has_prev = 0;  // R_old: the track at t_a
     // most late samples meet nothing: when the ball stayed on one segment
@@ -481,7 +448,7 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
     history_.pop_back();
   }
   if (std::isfinite(passed)) {  // its last hit is the one before, until the hit found now
-    Slot &sl = slots_[static_cast<size_t>(slot)];
+    Slot &sl = roster_[slot];
     sl.hit_time = -1e300;
     for (const SegmentOut &h : history_)
       if (h.cause == Cause::racket && h.cause_index == slot) sl.hit_time = h.segment.t0;
@@ -517,7 +484,7 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
 // clock), so that eq 15 does not carry the stroke on past the hit.
 void Match::end_stroke(int k, double t_hit) {
   if (k < 0 || k >= config_.players || k >= model().n_rackets) return;
-  Slot &sl = slots_[k];
+  Slot &sl = roster_[k];
   sl.hit_time = std::max(sl.hit_time, t_hit);
   const ball_racket_track tr = sim_.tracks[k];
   ball_racket_clear(&sim_, k);
@@ -539,14 +506,6 @@ void Match::aside(ball_sim *sim, Aside *a, double end) const {
       ball_racket_clear(sim, k);
     }
   }
-}
-
-void Match::keep(Slot &slot, const ball_racket_sample &s) {
-  if (slot.kept_n == BALL_MAX_HISTORY) {
-    std::copy(slot.kept.begin() + 1, slot.kept.end(), slot.kept.begin());
-    slot.kept_n--;
-  }
-  slot.kept[static_cast<size_t>(slot.kept_n++)] = s;
 }
 
 ball_status Match::unended_track(ball_sim *sim, int k, const Slot &slot, const ball_racket_sample *extra) const {
@@ -646,7 +605,7 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
       cause = Cause::racket;
       kind = EventKind::racket;
       index = ev.index;
-      if (index >= 0 && index < kMaxPlayers) ref = slots_[index].ref;
+      if (index >= 0 && index < kMaxPlayers) ref = roster_[index].ref;
       end_stroke(index, ev.segment.t0);
       break;
     case BALL_EVENT_KIND_COUNT: return;
@@ -753,116 +712,21 @@ void Match::serve(MatchOutput *out) {
 
 // ---- samples --------------------------------------------------------------
 
-uint64_t Match::stream_gap(Slot &slot, uint32_t seq) {
-  if (!slot.has_seen) {
-    slot.has_seen = true;
-    slot.seen_seq = seq;
-    slot.missing = 0;
-    return 0;
-  }
-  // serial-number arithmetic: behind, the same, or further than a stream goes: no gap
-  int32_t ahead = static_cast<int32_t>(seq - slot.seen_seq);
-  if (ahead < 0 && ahead >= -kLateWindow) {  // late: it fills its gap, never counted lost
-    slot.missing &= ~(uint64_t{1} << (-ahead - 1));
-    return 0;
-  }
-  if (ahead <= 0 || ahead > kMaxSeqJump) return 0;
-  slot.seen_seq = seq;
-  // the window moves on by `ahead`: the gaps it leaves behind are lost, and
-  // the seqs skipped now are its new gaps (those beyond its end lost at once)
-  const uint64_t window = (uint64_t{1} << kLateWindow) - 1;
-  uint64_t skipped = static_cast<uint64_t>(ahead - 1), lost = 0;
-  if (ahead >= kLateWindow) {
-    lost = std::bitset<64>(slot.missing).count();
-    slot.missing = 0;
-  } else {
-    lost = std::bitset<64>(slot.missing >> (kLateWindow - ahead)).count();
-    slot.missing = (slot.missing << ahead) & window;
-  }
-  if (skipped >= static_cast<uint64_t>(kLateWindow)) {
-    lost += skipped - kLateWindow;
-    slot.missing = window;
-  } else {
-    slot.missing |= (uint64_t{1} << skipped) - 1;
-  }
-  return lost;
-}
+void Match::end_streams() { roster_.end_streams(); }
 
-void Match::end_stream(Slot &slot) {
-  ended_lost_ += std::bitset<64>(slot.missing).count();
-  slot.missing = 0;
-  slot.has_seen = false;
-}
-
-void Match::end_streams() {
-  for (auto &s : slots_) end_stream(s);
-}
-
-uint64_t Match::take_lost() {
-  uint64_t n = ended_lost_;
-  ended_lost_ = 0;
-  return n;
-}
+uint64_t Match::take_lost() { return roster_.take_lost(); }
 
 void Match::on_rejected(const RacketSampleIn &s, uint64_t *lost) {
   counters_.rejected++;
-  if (s.player < 0 || s.player >= config_.players) return;
-  Slot &slot = slots_[s.player];
-  if (!slot.held || slot.owner != s.from) return;
-  *lost += stream_gap(slot, s.seq);
+  *lost += roster_.rejected(s);
 }
 
 SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *lost) {
-  if (s.player < 0 || s.player >= config_.players) return SampleResult::bad_slot;
-  Slot &slot = slots_[s.player];
-  if (!slot.held) return SampleResult::not_joined;
-  if (slot.owner != s.from) return SampleResult::not_owner;
-  // the holder's stream: seqs it skipped are samples lost on the way
-  uint64_t gap = stream_gap(slot, s.seq);
-  if (lost) *lost += gap;
-  if (!std::isfinite(s.capture_time) || !ball_v3_finite(s.center) || !ball_v3_finite(s.normal))
-    return SampleResult::nonfinite;
-  double n = ball_v3_norm(s.normal);
-  if (!(n >= kMinNormal)) return SampleResult::zero_normal;
-  if (n > kMaxNormal) return SampleResult::out_of_range;
-  // the player's own half, a margin beyond its baseline and sidelines, a
-  // reach over the net, about above the floor
-  double m = config_.racket_margin;
-  bool near_side = Court::side_of_slot(s.player) == 0;
-  double x_lo = near_side ? court_.x_lo - m : court_.net_x - kOverNet;
-  double x_hi = near_side ? court_.net_x + kOverNet : court_.x_hi + m;
-  if (!in_range(s.center.x, x_lo, x_hi) || !in_range(s.center.z, court_.z_lo - m, court_.z_hi + m) ||
-      !in_range(s.center.y, court_.floor - kUnderFloor, court_.floor + kBoxHeight))
-    return SampleResult::out_of_range;
-  if (s.capture_time > clock_now() + config_.max_sample_lead) return SampleResult::out_of_range;
-  // well formed and from the holder: the player is there
-  slot.last_seen = now;
-  slot.alive = true;
-  if (slot.has_seq) {
-    // serial number arithmetic (RFC 1982): a stream wraps around instead of locking at 2^32 - 1
-    int32_t ahead = static_cast<int32_t>(s.seq - slot.last_seq);
-    if (ahead == 0) return SampleResult::duplicate;
-    // behind, or further ahead than a stream goes between two samples (a
-    // forged seq must not put the holder's own stream behind it)
-    if (ahead < 0 || ahead > kMaxSeqJump) return SampleResult::out_of_order;
-  }
-  if (s.capture_time < clock_now() - config_.max_sample_age) return SampleResult::stale;
-  if (slot.has_prev) {
-    double moved = ball_v3_norm(ball_v3_sub(s.center, slot.prev_center));
-    // not newer than its previous sample (which may be one taken while
-    // paused, not on the track: libball's order check does not see it):
-    // the racket would be in two places
-    if (s.capture_time < slot.prev_time || (s.capture_time == slot.prev_time && moved > 0.0))
-      return SampleResult::stale;
-    // a racket is a body: no faster than max_racket_speed since its previous sample, no jump
-    if (moved > config_.max_racket_speed * (s.capture_time - slot.prev_time)) return SampleResult::too_fast;
-  }
+  SampleResult checked = roster_.check(s, now, clock_now(), config_, court_, lost);
+  if (checked != SampleResult::accepted) return checked;
+  Slot &slot = roster_[s.player];
   if (state_ != MatchState::playing) {
-    slot.has_seq = true;
-    slot.last_seq = s.seq;
-    slot.has_prev = true;
-    slot.prev_time = s.capture_time;
-    slot.prev_center = s.center;
+    roster_.passed(s.player, s);
     return SampleResult::idle;
   }
   // captured in the past of the sim clock, within the window: tested where the ball was then
@@ -894,17 +758,13 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
     default: return SampleResult::out_of_range;  // ENONFINITE/ERANGE: an implied infinite velocity
   }
   double from = slot.has_prev ? slot.prev_time : -HUGE_VAL;  // a late sample tells the track from here on
-  slot.has_seq = true;
-  slot.last_seq = s.seq;
-  slot.has_prev = true;
-  slot.prev_time = s.capture_time;
-  slot.prev_center = s.center;
+  roster_.passed(s.player, s);
   slot.samples++;
   slot.ref.valid = true;
   slot.ref.seq = s.seq;
   slot.ref.source_time = s.source_time;
   slot.ref.capture_time = s.capture_time;
-  if (config_.rewind_own_hit) keep(slot, rs);
+  if (config_.rewind_own_hit) slot.keep(rs);
   hit_stale_ = true;  // the track moved: the hit it meets may too (looked for once, when asked)
   if (late) {
     double &f = late_from_[s.player];
@@ -924,32 +784,14 @@ Reason Match::refuse(const ControlIn &c, Reason why, MatchOutput *out) {
 Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
   switch (c.kind) {
     case ControlKind::join: {
-      int slot = c.player;
-      if (slot == -1) {
-        for (int i = 0; i < config_.players && slot < 0; ++i)
-          if (slots_[i].held && slots_[i].owner == c.from) slot = i;  // already ours
-        for (int i = 0; i < config_.players && slot < 0; ++i)
-          if (!slots_[i].held) slot = i;
-        for (int i = 0; i < config_.players && slot < 0; ++i)
-          if (!slots_[i].alive || now - slots_[i].last_seen > config_.player_timeout) slot = i;  // vanished
-        if (slot < 0) return refuse(c, Reason::refused_no_room, out);
-      }
+      int slot = c.player == -1 ? roster_.free_slot(c.from, now, config_.player_timeout) : c.player;
+      if (c.player == -1 && slot < 0) return refuse(c, Reason::refused_no_room, out);
       if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
-      Slot &s = slots_[slot];
-      if (s.held && s.owner == c.from) {  // a repeated join: the holder's stream starts anew
-        s.alive = true;
-        s.has_seq = false;
-        end_stream(s);
-        s.has_prev = false;
-        return Reason::none;
+      switch (roster_.join(slot, c.from, now, config_.player_timeout)) {
+        case Roster::Join::again: return Reason::none;
+        case Roster::Join::refused: return refuse(c, Reason::refused_slot_held, out);
+        case Roster::Join::taken: break;
       }
-      if (s.held && s.alive && now - s.last_seen <= config_.player_timeout)
-        return refuse(c, Reason::refused_slot_held, out);
-      end_stream(s);
-      s = Slot{};
-      s.held = true;
-      s.owner = c.from;
-      s.last_seen = now;  // joining counts as being there until the timeout runs out
       // the racket of a new holder starts without the old one's history
       ball_racket_clear(&sim_, slot);
       emit(out, EventKind::join, slot, sim_.time);
@@ -959,9 +801,7 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
     case ControlKind::leave: {
       int slot = c.player;
       if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
-      if (!slots_[slot].held || slots_[slot].owner != c.from) return refuse(c, Reason::refused_not_player, out);
-      end_stream(slots_[slot]);
-      slots_[slot] = Slot{};
+      if (!roster_.leave(slot, c.from)) return refuse(c, Reason::refused_not_player, out);
       ball_racket_clear(&sim_, slot);
       emit(out, EventKind::leave, slot, sim_.time);
       if (state_ != MatchState::waiting) {
@@ -979,7 +819,7 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       break;
   }
   // the rest is for the match's players
-  if (!holds_slot(c.from)) return refuse(c, Reason::refused_not_player, out);
+  if (!roster_.holds(c.from)) return refuse(c, Reason::refused_not_player, out);
   switch (c.kind) {
     case ControlKind::serve:
       if (state_ != MatchState::playing || !rules().serve_due) return refuse(c, Reason::refused_state, out);
@@ -1003,7 +843,7 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       emit(out, EventKind::pause, -1, sim_.time, Reason::pause_requested);
       return Reason::none;
     case ControlKind::resume:
-      if (state_ != MatchState::paused || !all_present()) return refuse(c, Reason::refused_state, out);
+      if (state_ != MatchState::paused || !roster_.all_present()) return refuse(c, Reason::refused_state, out);
       set_state(MatchState::playing, out);
       pause_reason_ = Reason::none;
       emit(out, EventKind::resume, -1, sim_.time);
@@ -1012,13 +852,7 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
       if (!in_bounds(find_field(match_fields(), "time_base")->bounds, c.time_base))
         return refuse(c, Reason::refused_bad_value, out);
       // it changes every player's clock: it takes every holder asking for the same value
-      bool all = true;
-      for (int i = 0; i < config_.players; ++i) {
-        if (slots_[i].held && slots_[i].owner == c.from) slots_[i].asked_time_base = c.time_base;
-        all = all && slots_[i].held && slots_[i].asked_time_base == c.time_base;
-      }
-      if (!all) return Reason::none;  // asked: it waits for the others
-      for (int i = 0; i < config_.players; ++i) slots_[i].asked_time_base = 0.0;
+      if (!roster_.ask_time_base(c.from, c.time_base)) return Reason::none;  // asked: it waits for the others
       config_.time_base = c.time_base;
       emit(out, EventKind::time_base, -1, sim_.time, Reason::none, c.time_base);
       out->info_changed = true;
@@ -1038,15 +872,7 @@ MatchInfoOut Match::info() const {
   i.scene = config_.scene_name;
   i.level = config_.level;
   i.players = config_.players;
-  for (int k = 0; k < config_.players; ++k) {
-    const Slot &s = slots_[k];
-    i.slots[k].held = s.held;
-    i.slots[k].present = s.present;
-    i.slots[k].owner = s.owner;
-    i.slots[k].samples = s.samples;
-    i.slots[k].last_seq = s.last_seq;
-    i.slots[k].last_capture_time = s.ref.capture_time;
-  }
+  roster_.fill(&i);
   i.play = play();
   i.pause_reason = state_ == MatchState::paused ? pause_reason_ : Reason::none;
   i.pause_slot = state_ == MatchState::paused ? pause_slot_ : -1;
@@ -1127,34 +953,9 @@ bool Match::follow(const MatchInfoOut &info, std::string *err) {
   pause_reason_ = info.pause_reason;
   pause_slot_ = info.pause_slot;
   if (in_bounds(find_field(match_fields(), "time_base")->bounds, info.time_base)) config_.time_base = info.time_base;
-  for (int k = 0; k < config_.players; ++k) {
-    const SlotInfo &in = info.slots[k];
-    Slot &sl = slots_[k];
-    if (!in.held) {
-      end_stream(sl);
-      sl = Slot{};
-      continue;
-    }
-    if (!sl.held || sl.owner != in.owner) {  // a new holder: its own history
-      double seen = sl.owner == in.owner ? sl.last_seen : -1e300;
-      end_stream(sl);
-      sl = Slot{};
-      sl.last_seen = seen;
-      ball_racket_clear(&sim_, k);
-    }
-    sl.held = true;
-    sl.owner = in.owner;
-    sl.samples = std::max(sl.samples, in.samples);
-    // the owner's newest seq moves the stream on as one of the holder's
-    // samples would (on_sample): ahead in serial-number arithmetic, by at
-    // most kMaxSeqJump, so that a forged last_seq holds the holder back no
-    // further than a forged sample could (docs/protocol.md, "Several servers")
-    int32_t ahead = static_cast<int32_t>(in.last_seq - sl.last_seq);
-    if (!sl.has_seq || (ahead > 0 && ahead <= kMaxSeqJump)) {
-      sl.has_seq = in.samples > 0;
-      sl.last_seq = in.last_seq;
-    }
-  }
+  unsigned cleared = roster_.follow(info);  // a new holder's racket starts without the old one's history
+  for (int k = 0; k < config_.players; ++k)
+    if (cleared & (1u << k)) ball_racket_clear(&sim_, k);
   return true;
 }
 

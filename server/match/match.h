@@ -18,6 +18,7 @@
 #include "court.h"
 #include "match_model.h"
 #include "match_config.h"
+#include "roster.h"
 #include "rules.h"
 #include "types.h"
 
@@ -141,30 +142,6 @@ class Match {
   std::array<int, 2> score() const { return rally_.state().score; }
 
  private:
-  struct Slot {
-    bool held = false;
-    bool alive = true;         // not reported lost by DDS
-    bool present = false;      // derived each frame
-    ParticipantId owner{};
-    double last_seen = -1e300; // real s of its newest well-formed sample
-    uint32_t samples = 0;
-    bool has_seq = false;
-    uint32_t last_seq = 0;     // the newest accepted (or idle) sample's
-    bool has_seen = false;
-    uint32_t seen_seq = 0;     // the newest of the holder's samples that arrived, whatever became of it
-    uint64_t missing = 0;      // bit i: seq seen_seq - 1 - i skipped and not (yet) arrived
-    SampleRef ref;             // the newest accepted sample
-    bool has_prev = false;     // prev_*: the newest sample that passed every check (accepted or idle)
-    double prev_time = 0.0;    // sim s: its capture time
-    ball_vec3 prev_center{0, 0, 0};  // m
-    double asked_time_base = 0.0;    // the time base its holder asked for (0: none): a change needs every holder's
-    double hit_time = -1e300;  // sim s: t0 of its racket's newest hit; a sample captured before is before_hit
-    // with rewind_own_hit: its newest accepted samples, oldest first, those
-    // from before its racket's last hit too (the track holds those after it)
-    std::array<ball_racket_sample, BALL_MAX_HISTORY> kept{};
-    int kept_n = 0;
-  };
-
   // The segment of the next static contact, written before the contact
   // (docs/protocol.md, "Segments ahead of time").
   struct Ahead {
@@ -237,7 +214,7 @@ class Match {
   ball_sim sim_{};
   uint64_t model_hash_ = 0;  // ball_model_hash of the sim's model, kept as the model changes
   Court court_;
-  std::array<Slot, kMaxPlayers> slots_{};
+  Roster roster_;  // the slots, their holders and streams
   MatchState state_ = MatchState::waiting;
   Reason pause_reason_ = Reason::none;
   int pause_slot_ = -1;

@@ -7,7 +7,7 @@ endif()
 include(${PROJECT_SOURCE_DIR}/cmake/dds_domains.cmake)
 
 foreach(name test_match test_ahead test_hit_instant test_lag test_bot test_client test_records test_server_loop test_watcher test_load test_restore test_net_core
-             test_placement test_cluster)
+             test_placement test_cluster test_roster)
   add_executable(${name} ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp)
   target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
   # (ball_net_api: the client library's calls, over the port a test feeds: fake_net_client.h)
