@@ -307,33 +307,81 @@ void Match::compensate(MatchOutput *out) {
   find_hit();
 }
 
-Match::LateHit Match::find_late_hit(int slot, double from, std::vector<ball_event> *events) const {
-  LateHit r;
+Match::LateStart Match::late_start(int slot, double from) const {
+  LateStart w;
   const double now = sim_.time;
   // back no further than the window, the sample before this one, the last
   // hit (with rewind_own_hit: another racket's) or the serve
   const bool own = config_.rewind_own_hit;
-  double t_a = std::max(from, now - config_.rewind_window);
+  w.t_a = std::max(from, now - config_.rewind_window);
   for (const SegmentOut &h : history_)
     if (h.cause == Cause::serve || (h.cause == Cause::racket && !(own && h.cause_index == slot)))
-      t_a = std::max(t_a, h.segment.t0);
-  const SegmentOut *at = nullptr, *slept = nullptr;
-  double passed = HUGE_VAL;  // t0 of the first of its own hits after t_a: the rewind goes back past it
+      w.t_a = std::max(w.t_a, h.segment.t0);
   for (const SegmentOut &h : history_) {
-    if (h.segment.t0 <= t_a) {
-      at = &h;
-      if (h.cause == Cause::racket) slept = &h;
-      if (h.cause == Cause::serve) slept = nullptr;  // (a serve's tests are awake)
+    if (h.segment.t0 <= w.t_a) {
+      w.at = &h;
+      if (h.cause == Cause::racket) w.slept = &h;
+      if (h.cause == Cause::serve) w.slept = nullptr;  // (a serve's tests are awake)
     } else if (h.cause == Cause::racket) {
-      passed = std::min(passed, h.segment.t0);
+      w.passed = std::min(w.passed, h.segment.t0);
     }
   }
-  if (!at || !(t_a < now)) return r;
-  r.outcome = LateHit::none;  // (tested: late_tested)
+  return w;
+}
+
+Match::Walk Match::walk_to_hit(ball_sim *then, int slot, const LateStart &w, bool keep_all, Aside *early,
+                               double *hit, std::vector<ball_event> *events) const {
+  const double now = sim_.time;
   const double dt = frame_time() * config_.time_base;
-  double &hit = r.hit;
-  ball_sim &then = r.then, before;
-  Aside &early = r.early;  // tracks that start after the frame stepped
+  ball_sim before;
+  *hit = HUGE_VAL;
+  early->held.fill(false);
+  while (then->time < now) {
+    double end = std::min(now, then->time + dt);
+    aside(then, early, end);
+    ball_racket_contact c{};
+    int may = 1;
+    // (a contact before the racket's first sample is not one: it was not there yet)
+    if ((ball_racket_may_reach(then, slot, end, &may) != BALL_OK || may) &&
+        ball_racket_first_contact(then, slot, end, &c) == BALL_OK && c.step_to <= end &&
+        !(then->tracks[slot].count > 0 && then->tracks[slot].samples[0].t > c.step_to)) {
+      *hit = c.step_to;
+      return Walk::hit;
+    }
+    // (the exact scheme's next contact, when known, says whether the frame holds one)
+    const bool keep = keep_all || !(then->next.valid && then->next.time > end);
+    if (keep) before = *then;
+    int n = 0;
+    if (ball_step(then, end - then->time, events->data(), static_cast<int>(events->size()), &n) != BALL_OK)
+      return Walk::stopped;
+    bool racket = false;
+    for (int k = 0; k < n && !racket; ++k) {
+      if ((*events)[k].kind != BALL_EVENT_RACKET) {
+        // past its own hit the ball flies where the match has no judged
+        // segment of its own: a contact there is not gone back over
+        if ((*events)[k].time > w.passed) return Walk::stopped;
+        continue;
+      }
+      if ((*events)[k].index != slot) return Walk::stopped;  // another racket got there first
+      racket = true;
+    }
+    if (racket && !keep) return Walk::again;
+    if (racket) {  // after a bounce inside the frame: the step's own test found it at the frame's end
+      *then = before;
+      *hit = end;
+      return Walk::hit;
+    }
+  }
+  return Walk::none;
+}
+
+Match::LateHit Match::find_late_hit(int slot, double from, std::vector<ball_event> *events) const {
+  LateHit r;
+  const double now = sim_.time;
+  const LateStart w = late_start(slot, from);
+  if (!w.at || !(w.t_a < now)) return r;
+  r.outcome = LateHit::none;  // (tested: late_tested)
+  ball_sim &then = r.then;
   // A frame whose step finds the racket (after a bounce inside it, where
   // the query stops) is stepped again from its start, so only a frame that
   // may hold a static contact keeps its start (a copy of the whole sim);
@@ -343,16 +391,16 @@ Match::LateHit Match::find_late_hit(int slot, double from, std::vector<ball_even
     // the ball where it was at t_a, the tracks as they are now (the late sample
     // in them; past its own hit, the racket's as if no hit had ended its stroke)
     then = sim_;
-    if (ball_sim_set_segment(&then, &at->segment, t_a) != BALL_OK) return r;
-    if (std::isfinite(passed) && unended_track(&then, slot, roster_[slot], nullptr) != BALL_OK)
-      return r;
+    if (ball_sim_set_segment(&then, &w.at->segment, w.t_a) != BALL_OK) return r;
+    if (std::isfinite(w.passed) && unended_track(&then, slot, roster_[slot], nullptr) != BALL_OK) return r;
     for (int i = 0; i < model().n_rackets; ++i) then.tracks[i].has_prev = 0;  // R_old: the track at t_a
     // most late samples meet nothing: when the ball stayed on one segment
     // since t_a (no contact took effect since, and the exact scheme steps
     // the same contacts on any frames) and the bound rules the racket out
     // of a step ending anywhere up to now (every frame's P_old, R_old and
     // ends lie in its boxes and spheres; asked awake), no frame can find it
-    if (keep_all == 0 && !std::isfinite(passed) && at == &history_.back() && model().scheme == BALL_SCHEME_EXACT) {
+    if (keep_all == 0 && !std::isfinite(w.passed) && w.at == &history_.back() &&
+        model().scheme == BALL_SCHEME_EXACT) {
       int may = 1;
       if (ball_racket_may_reach(&then, slot, now, &may) == BALL_OK && !may) {
         r.outcome = LateHit::ruled_out;
@@ -363,57 +411,20 @@ Match::LateHit Match::find_late_hit(int slot, double from, std::vector<ball_even
     // the hitter's own next sample finds its racket still on the ball at the
     // hit's instant and hits it again
     // (ball_sim_set_segment woke them: a serve's, or one past no hit, stay awake)
-    if (slept && ball_sim_set_sleep(&then, sleep_left(slept->segment.t0, t_a)) != BALL_OK) return r;
+    if (w.slept && ball_sim_set_sleep(&then, sleep_left(w.slept->segment.t0, w.t_a)) != BALL_OK) return r;
     // frame by frame up to now: where the racket meets it first (a frame the
     // bound rules out costs no query; the query stops before a bounce, the
     // step goes through it)
-    hit = HUGE_VAL;
-    early.held.fill(false);
-    bool again = false;
-    while (then.time < now) {
-      double end = std::min(now, then.time + dt);
-      aside(&then, &early, end);
-      ball_racket_contact c{};
-      int may = 1;
-      // (a contact before the racket's first sample is not one: it was not there yet)
-      if ((ball_racket_may_reach(&then, slot, end, &may) != BALL_OK || may) &&
-          ball_racket_first_contact(&then, slot, end, &c) == BALL_OK && c.step_to <= end &&
-          !(then.tracks[slot].count > 0 && then.tracks[slot].samples[0].t > c.step_to)) {
-        hit = c.step_to;
-        break;
-      }
-      // (the exact scheme's next contact, when known, says whether the frame holds one)
-      const bool keep = keep_all || !(then.next.valid && then.next.time > end);
-      if (keep) before = then;
-      int n = 0;
-      if (ball_step(&then, end - then.time, events->data(), static_cast<int>(events->size()), &n) != BALL_OK)
-        return r;
-      bool racket = false;
-      for (int k = 0; k < n && !racket; ++k) {
-        if ((*events)[k].kind != BALL_EVENT_RACKET) {
-          // past its own hit the ball flies where the match has no judged
-          // segment of its own: a contact there is not gone back over
-          if ((*events)[k].time > passed) return r;
-          continue;
-        }
-        if ((*events)[k].index != slot) return r;  // another racket got there first
-        racket = true;
-      }
-      if (racket && !keep) {
-        again = true;
-        break;
-      }
-      if (racket) {  // after a bounce inside the frame: the step's own test found it at the frame's end
-        then = before;
-        hit = end;
-        break;
-      }
+    Walk walked = walk_to_hit(&then, slot, w, keep_all != 0, &r.early, &r.hit, events);
+    if (walked == Walk::stopped) {
+      r.hit = HUGE_VAL;
+      return r;
     }
-    if (!again) break;
+    if (walked != Walk::again) break;
   }
-  if (std::isfinite(hit)) r.outcome = LateHit::found;
-  r.passed = passed;
-  r.at = at;
+  if (std::isfinite(r.hit)) r.outcome = LateHit::found;
+  r.passed = w.passed;
+  r.at = w.at;
   return r;
 }
 
@@ -783,43 +794,49 @@ Reason Match::refuse(const ControlIn &c, Reason why, MatchOutput *out) {
 
 Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
   switch (c.kind) {
-    case ControlKind::join: {
-      int slot = c.player == -1 ? roster_.free_slot(c.from, now, config_.player_timeout) : c.player;
-      if (c.player == -1 && slot < 0) return refuse(c, Reason::refused_no_room, out);
-      if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
-      switch (roster_.join(slot, c.from, now, config_.player_timeout)) {
-        case Roster::Join::again: return Reason::none;
-        case Roster::Join::refused: return refuse(c, Reason::refused_slot_held, out);
-        case Roster::Join::taken: break;
-      }
-      // the racket of a new holder starts without the old one's history
-      ball_racket_clear(&sim_, slot);
-      emit(out, EventKind::join, slot, sim_.time);
-      out->info_changed = true;
-      return Reason::none;
-    }
-    case ControlKind::leave: {
-      int slot = c.player;
-      if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
-      if (!roster_.leave(slot, c.from)) return refuse(c, Reason::refused_not_player, out);
-      ball_racket_clear(&sim_, slot);
-      emit(out, EventKind::leave, slot, sim_.time);
-      if (state_ != MatchState::waiting) {
-        set_state(MatchState::waiting, out);
-        left_mid_match_ = true;
-        emit(out, EventKind::pause, slot, sim_.time, Reason::pause_left);
-        counters_.pauses++;
-      }
-      out->info_changed = true;
-      return Reason::none;
-    }
-    case ControlKind::create:
-      return refuse(c, Reason::refused_bad_value, out);  // the match exists already
-    default:
-      break;
+    case ControlKind::join: return on_join(c, now, out);
+    case ControlKind::leave: return on_leave(c, out);
+    case ControlKind::create: return refuse(c, Reason::refused_bad_value, out);  // the match exists already
+    default: break;
   }
   // the rest is for the match's players
   if (!roster_.holds(c.from)) return refuse(c, Reason::refused_not_player, out);
+  return on_player_control(c, out);
+}
+
+Reason Match::on_join(const ControlIn &c, double now, MatchOutput *out) {
+  int slot = c.player == -1 ? roster_.free_slot(c.from, now, config_.player_timeout) : c.player;
+  if (c.player == -1 && slot < 0) return refuse(c, Reason::refused_no_room, out);
+  if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
+  switch (roster_.join(slot, c.from, now, config_.player_timeout)) {
+    case Roster::Join::again: return Reason::none;
+    case Roster::Join::refused: return refuse(c, Reason::refused_slot_held, out);
+    case Roster::Join::taken: break;
+  }
+  // the racket of a new holder starts without the old one's history
+  ball_racket_clear(&sim_, slot);
+  emit(out, EventKind::join, slot, sim_.time);
+  out->info_changed = true;
+  return Reason::none;
+}
+
+Reason Match::on_leave(const ControlIn &c, MatchOutput *out) {
+  int slot = c.player;
+  if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
+  if (!roster_.leave(slot, c.from)) return refuse(c, Reason::refused_not_player, out);
+  ball_racket_clear(&sim_, slot);
+  emit(out, EventKind::leave, slot, sim_.time);
+  if (state_ != MatchState::waiting) {
+    set_state(MatchState::waiting, out);
+    left_mid_match_ = true;
+    emit(out, EventKind::pause, slot, sim_.time, Reason::pause_left);
+    counters_.pauses++;
+  }
+  out->info_changed = true;
+  return Reason::none;
+}
+
+Reason Match::on_player_control(const ControlIn &c, MatchOutput *out) {
   switch (c.kind) {
     case ControlKind::serve:
       if (state_ != MatchState::playing || !rules().serve_due) return refuse(c, Reason::refused_state, out);

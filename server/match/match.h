@@ -199,6 +199,22 @@ class Match {
     Aside early;                     // the tracks still set aside there
   };
   LateHit find_late_hit(int slot, double from, std::vector<ball_event> *events) const;
+  // Where a late sample's search begins: t_a (sim s), the segment in
+  // effect there, the racket hit whose sleep still holds there (nullptr:
+  // none), the t0 of the first of its own hits after t_a (+Inf: none).
+  struct LateStart {
+    double t_a = 0.0;
+    const SegmentOut *at = nullptr, *slept = nullptr;
+    double passed = HUGE_VAL;
+  };
+  LateStart late_start(int slot, double from) const;
+  // The frames from *then to now, slot's racket looked for in each: hit
+  // (*hit its sim s, *then the ball there), none, stopped (another racket,
+  // a contact past its own hit, a step refused), or again (a frame found it
+  // without having kept its start: walk again keeping every frame's).
+  enum class Walk { none, hit, stopped, again };
+  Walk walk_to_hit(ball_sim *then, int slot, const LateStart &w, bool keep_all, Aside *early, double *hit,
+                   std::vector<ball_event> *events) const;
   void aside(ball_sim *sim, Aside *a, double end) const;
   // sim's track k from slot.kept (and `extra`, newer, if given): the track
   // it would hold had no hit ended its stroke; libball's status
@@ -208,6 +224,9 @@ class Match {
   bool holds_slot(const ParticipantId &who) const;
   void set_state(MatchState s, MatchOutput *out);
   Reason refuse(const ControlIn &c, Reason why, MatchOutput *out);
+  Reason on_join(const ControlIn &c, double now, MatchOutput *out);
+  Reason on_leave(const ControlIn &c, MatchOutput *out);
+  Reason on_player_control(const ControlIn &c, MatchOutput *out);  // SERVE, LEVEL, PAUSE, RESUME, TIME_BASE of a holder
   int side_of_point(ball_vec3 p) const { return court_.side_of(p.x); }
 
   MatchConfig config_;

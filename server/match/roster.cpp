@@ -278,13 +278,4 @@ SampleResult Roster::check(const RacketSampleIn &s, double now, double sim_now, 
   return SampleResult::accepted;
 }
 
-void Roster::passed(int k, const RacketSampleIn &s) {
-  Slot &slot = (*this)[k];
-  slot.has_seq = true;
-  slot.last_seq = s.seq;
-  slot.has_prev = true;
-  slot.prev_time = s.capture_time;
-  slot.prev_center = s.center;
-}
-
 }  // namespace ballsrv

@@ -93,7 +93,14 @@ class Roster {
   SampleResult check(const RacketSampleIn &s, double now, double sim_now, const MatchConfig &config,
                      const Court &court, uint64_t *lost);
   // It passed every check (accepted or idle): its seq and pose are the newest.
-  void passed(int k, const RacketSampleIn &s);
+  void passed(int k, const RacketSampleIn &s) {
+    Slot &slot = (*this)[k];
+    slot.has_seq = true;
+    slot.last_seq = s.seq;
+    slot.has_prev = true;
+    slot.prev_time = s.capture_time;
+    slot.prev_center = s.center;
+  }
 
  private:
   void end_stream(Slot &slot);  // its gaps to ended_lost_
