@@ -17,6 +17,7 @@
 #include "ball/scene.h"
 #include "court.h"
 #include "match_model.h"
+#include "lag.h"
 #include "match_config.h"
 #include "roster.h"
 #include "rules.h"
@@ -178,50 +179,9 @@ class Match {
   // changes nothing), then the match taken back to it and on to the present.
   void rewind(int slot, double from, MatchOutput *out);
   void end_stroke(int slot, double t_hit);  // its racket hit at t_hit: its track from then on only
-  static void keep(Slot &slot, const ball_racket_sample &s);  // into slot.kept
-  // A rewind steps the past with the tracks of now: a track whose samples
-  // all come after a frame's end would hold its racket at the first of them
-  // (libball: before its first sample a track is at it), where the racket
-  // had not been yet. Before each frame, such a track waits aside (its
-  // racket meets nothing) until the steps reach its first sample.
-  struct Aside {
-    std::array<ball_racket_track, kMaxPlayers> track;  // (only the held ones are read)
-    std::array<bool, kMaxPlayers> held{};
-  };
-  // What find_late_hit found: a function of the sim, the history, the slot's
-  // kept samples and the match's parameters.
-  struct LateHit {
-    enum Outcome { untested, none, ruled_out, found } outcome = untested;
-    double hit = HUGE_VAL;           // sim s of the hit found
-    double passed = HUGE_VAL;        // t0 of the first of its own hits the search went back past
-    const SegmentOut *at = nullptr;  // the segment in effect where the search began (in history_)
-    ball_sim then{};                 // the ball and the tracks at the hit
-    Aside early;                     // the tracks still set aside there
-  };
-  LateHit find_late_hit(int slot, double from, std::vector<ball_event> *events) const;
-  // Where a late sample's search begins: t_a (sim s), the segment in
-  // effect there, the racket hit whose sleep still holds there (nullptr:
-  // none), the t0 of the first of its own hits after t_a (+Inf: none).
-  struct LateStart {
-    double t_a = 0.0;
-    const SegmentOut *at = nullptr, *slept = nullptr;
-    double passed = HUGE_VAL;
-  };
-  LateStart late_start(int slot, double from) const;
-  // The frames from *then to now, slot's racket looked for in each: hit
-  // (*hit its sim s, *then the ball there), none, stopped (another racket,
-  // a contact past its own hit, a step refused), or again (a frame found it
-  // without having kept its start: walk again keeping every frame's).
-  enum class Walk { none, hit, stopped, again };
-  Walk walk_to_hit(ball_sim *then, int slot, const LateStart &w, bool keep_all, Aside *early, double *hit,
-                   std::vector<ball_event> *events) const;
-  void aside(ball_sim *sim, Aside *a, double end) const;
-  // sim's track k from slot.kept (and `extra`, newer, if given): the track
-  // it would hold had no hit ended its stroke; libball's status
-  ball_status unended_track(ball_sim *sim, int k, const Slot &slot, const ball_racket_sample *extra) const;
-  int sleep_left(double t_hit, double t) const;  // racket-test sleep left at sim s t after a hit at t_hit
-  bool all_present() const;
-  bool holds_slot(const ParticipantId &who) const;
+  LagParams lag_params() const {
+    return {config_.rewind_window, config_.rewind_own_hit, frame_time() * config_.time_base};
+  }
   void set_state(MatchState s, MatchOutput *out);
   Reason refuse(const ControlIn &c, Reason why, MatchOutput *out);
   Reason on_join(const ControlIn &c, double now, MatchOutput *out);

@@ -7,6 +7,8 @@
 #include <cstdio>
 
 #include "check.hpp"
+#include "game.h"
+#include "lag.h"
 #include "rally.h"
 
 using namespace ballsrv;
@@ -152,6 +154,61 @@ void keeps_the_rules(const Lag &on) {
 // hit last while its tests slept (its own next sample finds it still on the
 // ball), and a client that takes every segment as it comes has the server's
 // ball at every state.
+// The core alone (lag.h), on a ball in flight and a racket held still
+// where the ball was at 0.15 s, sampled from 0.10 s to 0.20 s, asked at
+// 0.30 s: the hit lies inside the samples' span, the ball at the start of
+// the frame it comes in; asked
+// again it gives the same to the bit; the sim it is given is not changed;
+// a racket 4 m away or a window that ends after the samples find none.
+TEST(the_late_hit_is_a_function_of_the_sim_the_history_and_the_parameters) {
+  Game game;
+  ball_model m = game.match.model();
+  ball_sim sim;
+  CHECK(ball_sim_init(&sim, &m) == BALL_OK);
+  ball_segment seg{};
+  seg.p0 = ball_v3(-3.0, 1.5, 0.0);
+  seg.v0 = ball_v3(5.0, 2.0, 0.0);
+  CHECK(ball_sim_set_segment(&sim, &seg, 0.0) == BALL_OK);
+  SegmentOut serve;
+  serve.cause = Cause::serve;
+  serve.segment = seg;
+  serve.play.live = true;
+  std::vector<SegmentOut> history{serve};
+  std::vector<ball_event> events(BALL_MAX_CONTACTS + BALL_MAX_RACKETS + 8);
+  int n = 0;
+  CHECK(ball_step(&sim, 0.3, events.data(), static_cast<int>(events.size()), &n) == BALL_OK && n == 0);
+  auto with_racket = [&](ball_vec3 offset) {
+    ball_sim s = sim;
+    ball_state at;
+    CHECK(ball_segment_eval(&m, &seg, 0.15, &at) == BALL_OK);
+    for (int k = 0; k <= 5; ++k) {
+      ball_racket_sample r;
+      r.t = 0.10 + 0.02 * k;
+      r.center = ball_v3_add(at.position, offset);
+      r.normal = ball_v3(-1.0, 0.0, 0.0);
+      CHECK(ball_racket_push(&s, 0, &r) == BALL_OK);
+    }
+    return s;
+  };
+  LagParams p{0.5, false, 1.0 / 60.0};
+  Slot slot;
+  ball_sim near = with_racket(ball_v3(0.0, 0.0, 0.0));
+  uint64_t before = ball_sim_hash(&near);
+  LateHit a = find_late_hit(near, history, 0, slot, 0.0, p, &events);
+  LateHit b = find_late_hit(near, history, 0, slot, 0.0, p, &events);
+  note("the late hit at sim s %.4f (samples 0.10 to 0.20)", a.hit);
+  CHECK(a.outcome == LateHit::found);
+  CHECK(a.hit >= 0.10 - 1e-9 && a.hit <= 0.20 + 1e-9);
+  CHECK(a.at == &history[0] && !std::isfinite(a.passed));
+  CHECK(a.hit == b.hit && ball_sim_hash(&a.then) == ball_sim_hash(&b.then));
+  CHECK(a.then.time <= a.hit && a.hit - a.then.time <= p.frame + 1e-12);  // (the ball at the frame it hits in)
+  CHECK_EQ(ball_sim_hash(&near), before);
+  ball_sim far = with_racket(ball_v3(0.0, 0.0, 4.0));
+  CHECK(find_late_hit(far, history, 0, slot, 0.0, p, &events).outcome != LateHit::found);
+  LagParams short_window{0.05, false, 1.0 / 60.0};
+  CHECK(find_late_hit(near, history, 0, slot, 0.0, short_window, &events).outcome != LateHit::found);
+}
+
 TEST(a_late_sample_inside_the_window_hits_where_the_ball_was) {
   Lag off = run(0.1, 0.0, 6, false), on = run(0.1, 0.25, 6, false);
   note("100 ms delay, mid, 6 rallies of 30 s: without compensation %llu hits %llu points; with it %llu hits %llu "
