@@ -216,7 +216,7 @@ void Match::update_presence(double now, MatchOutput *out) {
 void Match::frame(double now, MatchOutput *out) {
   update_presence(now, out);
   if (state_ != MatchState::playing) {
-    next_hit_ = HUGE_VAL;
+    hit_.drop();
     return;
   }
   // the rest of the frame that hits began
@@ -228,72 +228,19 @@ void Match::frame(double now, MatchOutput *out) {
 // ---- racket hits at their instant ----------------------------------------
 
 void Match::find_hit() {
-  next_hit_ = HUGE_VAL;
-  hit_stale_ = false;
-  near_hit_ = false;
+  hit_.none();
   const ball_model &m = model();
   if (!config_.hit_instant || state_ != MatchState::playing || following_ || rules().serve_due ||
       !(m.effects & BALL_EFFECT_RACKETS) || m.n_rackets == 0 || sim_.sleep > 0)
     return;
   const double dt = frame_time() * config_.time_base;
-  double end = sim_.time - partial_ + dt;  // the frame's end
-  counters_.hit_looks++;
-  if (!(end > sim_.time)) return;
-  if (clear_holds(end)) {
-    counters_.hit_looks_spared++;
-    return;
-  }
-  // the bound over this frame and the next first: its no spares the look
-  // after this frame's end too, while nothing it rests on changes
-  int may = 1;  // (a sim the bound refuses goes to the query, which says why)
-  if (ball_racket_may_reach(&sim_, -1, end + dt, &may) == BALL_OK && !may) {
-    keep_clear(end + dt);
-    return;
-  }
-  near_hit_ = true;
-  if (ball_racket_may_reach(&sim_, -1, end, &may) == BALL_OK && !may) return;
-  counters_.hit_queries++;
-  ball_racket_contact c;
-  if (ball_racket_first_contact_any(&sim_, end, &c) == BALL_OK && c.racket >= 0 && c.step_to < end)
-    next_hit_ = c.step_to;
-}
-
-
-// What a bound over (sim time, until] said no to stays so for a later sim
-// time before `until` while the ball is on the same segment (a step without
-// a contact moves it along it: its path since is part of the path then),
-// the tracks have no new sample (R_old and R lie on the same track), the
-// model is the same and the tests are awake (asleep, the bound says no
-// without looking, and sleep ends at a step). A new segment has a new start
-// or a new velocity (a contact at the very instant another began changes
-// the velocity).
-inline bool Match::clear_holds(double end) const {
-  if (!(end <= clear_.until) || sim_.sleep > 0 || sim_.seg.t0 != clear_.t0 || sim_.seg.v0.x != clear_.v0.x ||
-      sim_.seg.v0.y != clear_.v0.y || sim_.seg.v0.z != clear_.v0.z || model_hash_ != clear_.model_hash)
-    return false;
-  for (int i = 0, n = model().n_rackets; i < n; ++i) {
-    const ball_racket_track &t = sim_.tracks[i];
-    if (t.count != clear_.count[i] || (t.count > 0 && t.samples[t.count - 1].t != clear_.newest[i])) return false;
-  }
-  return true;
-}
-
-inline void Match::keep_clear(double until) {
-  clear_.until = sim_.sleep > 0 ? -HUGE_VAL : until;  // (asleep, the bound did not look)
-  clear_.t0 = sim_.seg.t0;
-  clear_.v0 = sim_.seg.v0;
-  clear_.model_hash = model_hash_;
-  for (int i = 0, n = model().n_rackets; i < n; ++i) {
-    const ball_racket_track &t = sim_.tracks[i];
-    clear_.count[i] = t.count;
-    clear_.newest[i] = t.count > 0 ? t.samples[t.count - 1].t : 0.0;
-  }
+  hit_.look(sim_, m.n_rackets, model_hash_, sim_.time - partial_ + dt, dt, &counters_);  // to the frame's end
 }
 
 double Match::hit_after() {
-  if (hit_stale_) find_hit();
-  if (!std::isfinite(next_hit_)) return HUGE_VAL;
-  return (next_hit_ - (sim_.time - partial_)) / config_.time_base;
+  if (hit_.stale()) find_hit();
+  if (!std::isfinite(hit_.next())) return HUGE_VAL;
+  return (hit_.next() - (sim_.time - partial_)) / config_.time_base;
 }
 
 // ---- lag compensation -------------------------------------------------------
@@ -380,14 +327,14 @@ void Match::end_stroke(int k, double t_hit) {
   ball_racket_clear(&sim_, k);
   for (int i = 0; i < tr.count; ++i)  // (each was accepted after the one before it)
     if (tr.samples[i].t >= sl.hit_time) ball_racket_push(&sim_, k, &tr.samples[i]);
-  hit_stale_ = true;
+  hit_.moved();
 }
 
 void Match::step_to_hit(MatchOutput *out) {
-  if (hit_stale_) find_hit();
-  double dt = next_hit_ - sim_.time;
+  if (hit_.stale()) find_hit();
+  double dt = hit_.next() - sim_.time;
   if (state_ != MatchState::playing || !(dt > 0.0) || !std::isfinite(dt)) {
-    next_hit_ = HUGE_VAL;
+    hit_.drop();
     return;
   }
   advance(dt, false, out);
@@ -619,7 +566,7 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
   slot.ref.source_time = s.source_time;
   slot.ref.capture_time = s.capture_time;
   if (config_.rewind_own_hit) slot.keep(rs);
-  hit_stale_ = true;  // the track moved: the hit it meets may too (looked for once, when asked)
+  hit_.moved();  // the track moved: the hit it meets may too (looked for once, when asked)
   if (late) {
     double &f = late_from_[s.player];
     f = std::isnan(f) ? from : std::min(f, from);

@@ -17,6 +17,7 @@
 #include "ball/scene.h"
 #include "court.h"
 #include "match_model.h"
+#include "hit_clock.h"
 #include "lag.h"
 #include "match_config.h"
 #include "roster.h"
@@ -80,7 +81,7 @@ class Match {
   // frame after its own (the bound over both said maybe): the loop runs the
   // frames of such matches first at a deadline, so that a hit early in the
   // next frame is found before its instant, not after other matches' frames.
-  bool near_hit() const { return near_hit_; }
+  bool near_hit() const { return hit_.near(); }
   // sim s of the current frame already stepped to hits (0 at a frame's end)
   double frame_stepped() const { return partial_; }
   // Steps the match to that instant (a partial frame, no ball state): the
@@ -172,7 +173,7 @@ class Match {
   void advance(double dt, bool with_state, MatchOutput *out);  // a frame's sim part: serve, step, rules
   double clock_now() const { return following_ ? follow_time_ : sim_.time; }  // sim s the sample checks use
   void set_level(ball_level level, std::string *err);
-  void find_hit();  // next_hit_ from the tracks as they are
+  void find_hit();  // the hit clock looks again, from the tracks as they are (when the rules allow a hit)
   void took_effect(const SegmentOut &s);  // a segment is in effect now: into the history
   // Lag compensation (docs/server.md, "Lag compensation"): the late hit of
   // slot `slot`'s racket since sim s `from`, if any (find_late_hit, which
@@ -203,22 +204,7 @@ class Match {
   uint32_t current_seq_ = 0;  // the segment in effect: the sim's
   Ahead ahead_;
   bool stepped_ahead_ = false;  // this frame stepped a contact written ahead
-  double next_hit_ = HUGE_VAL;  // sim s of the next racket hit before the frame's end
-  bool hit_stale_ = false;      // samples came since next_hit_ was found: look again when asked
-  bool near_hit_ = false;       // near_hit()
-  // A look's bound over its frame and the next said no racket can be hit
-  // before `until`: it holds while the sim stays on that segment with those
-  // tracks and model, awake (find_hit)
-  struct Clear {
-    double until = -HUGE_VAL;
-    double t0 = 0.0;                           // the segment's start and velocity
-    ball_vec3 v0{};
-    std::array<double, kMaxPlayers> newest{};  // each track's newest sample time
-    std::array<int, kMaxPlayers> count{};      // and its samples
-    uint64_t model_hash = 0;
-  } clear_;
-  bool clear_holds(double end) const;
-  void keep_clear(double until);
+  HitClock hit_;  // the next racket hit before the frame's end (find_hit)
   double partial_ = 0.0;        // sim s of the current frame already stepped to hits
   std::vector<SegmentOut> history_;  // the segments in effect over the rewind window, oldest first (play: judged)
   // per slot, the capture time of the sample before its first late one
