@@ -29,6 +29,7 @@ set(BALL_DDS_DOMAINS
   "dds_create_expires|114|test: a created match nobody joins goes, its MatchInfo disposed"
   "dds_secure|115|test: DDS Security: no plaintext on the wire, strangers and other matches' players kept out"
   "demo_secure|116|test: the demo under DDS Security rallies"
+  "demo_failover|138|test: `./run demo --failover`: the primary killed, the standby takes the match over, the rally goes on"
   "dds_junk_keys|117|test: 3000 made-up match ids: turned away at the door, the bots still rally"
   "dds_unreadable|129|test: samples no IDL type writes on every topic: counted at the door, everyone plays on"
   "dds_load_secure|118|test: ball-load under DDS Security: one identity granted every match plays them all"

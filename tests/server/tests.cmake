@@ -146,6 +146,15 @@ set_tests_properties(demo_secure PROPERTIES FIXTURES_REQUIRED demo_secure_certs 
   FAIL_REGULAR_EXPRESSION "FAILED"
   ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
 
+# the demo with a standby (./run demo --failover): the primary killed
+# halfway, the standby takes the match over and the rally goes on
+ball_dds_domain(demo_failover domain)
+add_test(NAME demo_failover COMMAND ball-demo --failover --domain ${domain} --duration 14)
+set_tests_properties(demo_failover PROPERTIES LABELS dds TIMEOUT 100
+  PASS_REGULAR_EXPRESSION "match now served by server 2.*hit by player.*the standby took 1 match over.*ball-demo: done"
+  FAIL_REGULAR_EXPRESSION "FAILED"
+  ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
+
 # the clients link nothing of the server's match, host or loop
 find_program(BALL_NM NAMES nm REQUIRED)
 add_test(NAME clients_link_no_server
