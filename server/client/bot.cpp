@@ -104,49 +104,28 @@ void BotBrain::stroke_for(ball_vec3 x, ball_vec3 v_in, ball_vec3 s_in, ball_vec3
   }
 }
 
-void BotBrain::on_segment(const ball_segment &seg, bool serve, int serving_slot, double now) {
-  ball_vec3 here, n;
-  pose(now, &here, &n);
-  has_contact_ = false;
-  bool had_plan = has_planned_ && raw_t_ > now;
-  has_planned_ = false;
-  int s = side();
-  double dir = Court::toward_net(s);
-  if (serve && Court::side_of_slot(serving_slot) == s) {
-    // our side serves: back to the ready spot, out of the serve's way
-    go_to(court_.ready(params_.slot, params_.players), now, ball_v3(dir, 0.0, 0.0));
-    return;
-  }
-  double t_from = std::fmax(now, seg.t0);
-  ball_prediction pr{};
-  pr.states = states_.data();
-  pr.cap_states = static_cast<int>(states_.size());
-  pr.events = events_.data();
-  pr.cap_events = static_cast<int>(events_.size());
-  if (ball_predict(&model_, &seg, t_from, t_from + kHorizon, kPredictDt, &pr) != BALL_OK) {
-    counters_.ignored++;
-    return;
-  }
-  // a segment that changes nothing (the bounce the plan foresaw) keeps the
-  // plan: the ball still passes the planned contact at the planned time
-  if (had_plan) {
-    ball_segment then = seg;
-    for (int i = 0; i < pr.n_events; ++i)
-      if (events_[i].time <= raw_t_) then = events_[i].segment;
-    ball_state at;
-    if (ball_segment_eval(&model_, &then, raw_t_, &at) == BALL_OK && ball_v3_dist(at.position, raw_p_) < 0.01) {
-      has_planned_ = true;
-      has_contact_ = true;
-      return;
-    }
-  }
-  // the reachable state nearest the bot's ready spot, so that it keeps its
-  // place on the court instead of being driven back stroke after stroke
+// A segment that changes nothing (the bounce the plan foresaw) keeps the
+// plan: the ball still passes the planned contact at the planned time.
+bool BotBrain::keeps_plan(const ball_segment &seg, int n_events) const {
+  ball_segment then = seg;
+  for (int i = 0; i < n_events; ++i)
+    if (events_[i].time <= raw_t_) then = events_[i].segment;
+  ball_state at;
+  return ball_segment_eval(&model_, &then, raw_t_, &at) == BALL_OK && ball_v3_dist(at.position, raw_p_) < 0.01;
+}
+
+// Of the predicted states from t_from, the reachable one nearest the bot's
+// ready spot, so that it keeps its place on the court instead of being
+// driven back stroke after stroke; none reachable: the one it misses by
+// least; -1: none on its side it could ever meet.
+int BotBrain::pick_contact(double now, double t_from, ball_vec3 here, int n_states) const {
+  const int s = side();
+  const double dir = Court::toward_net(s);
   ball_vec3 home = court_.ready(params_.slot, params_.players);
   int best = -1, best_late = -1;
   double best_home = 1e300, best_slack = -1e300;
   double depth_max = court_.side_length(s) + params_.max_behind;
-  for (int k = 0; k < pr.n_states; ++k) {
+  for (int k = 0; k < n_states; ++k) {
     double t = t_from + k * kPredictDt;
     const ball_state &b = states_[k];
     if (t < now + params_.reaction) continue;
@@ -166,32 +145,16 @@ void BotBrain::on_segment(const ball_segment &seg, bool serve, int serving_slot,
       best_slack = slack;
     }
   }
-  if (best < 0) best = best_late;
-  if (best < 0) {
-    counters_.ignored++;
-    legs_.clear();
-    rest_ = here;
-    return;
-  }
-  double t_hit = t_from + best * kPredictDt;
-  ball_vec3 x = states_[best].position;
-  has_planned_ = true;
-  raw_t_ = t_hit;
-  raw_p_ = x;
-  if (params_.miss_rate > 0.0 && rng_.chance(params_.miss_rate)) {
-    x.z += (rng_.chance(0.5) ? 1.0 : -1.0) * kMissOffset;
-    counters_.missed_on_purpose++;
-  } else if (params_.aim_error > 0.0) {
-    x.y += rng_.normal(params_.aim_error);
-    x.z += rng_.normal(params_.aim_error);
-  }
-  ball_vec3 v_racket, normal;
-  stroke_for(x, states_[best].velocity, states_[best].spin, &v_racket, &normal);
+  return best >= 0 ? best : best_late;
+}
 
-  // join the stroke line p(t) = x + v_racket (t - t_hit) as early as the
-  // racket can get there, `lead` before contact at the earliest, and above
-  // the floor (a steep stroke's line starts under it: a racket there is no
-  // body, and the server drops its samples as out of range)
+// The racket's way from `here` at `now` to the stroke through x at t_hit
+// with velocity v_racket: it joins the stroke line p(t) = x + v_racket (t -
+// t_hit) as early as it can get there, `lead` before contact at the
+// earliest, and above the floor (a steep stroke's line starts under it: a
+// racket there is no body, and the server drops its samples as out of
+// range), then follows through.
+void BotBrain::plan_stroke(double now, ball_vec3 here, double t_hit, ball_vec3 x, ball_vec3 v_racket, ball_vec3 normal) {
   double t_join = t_hit - params_.lead;
   ball_vec3 p_join = ball_v3_add(x, ball_v3_scale(v_racket, t_join - t_hit));
   while ((ball_v3_dist(here, p_join) > params_.move_speed * (t_join - now) || p_join.y < court_.floor) &&
@@ -219,6 +182,56 @@ void BotBrain::on_segment(const ball_segment &seg, bool serve, int serving_slot,
   has_contact_ = true;
   contact_t_ = t_hit;
   contact_p_ = x;
+}
+
+void BotBrain::on_segment(const ball_segment &seg, bool serve, int serving_slot, double now) {
+  ball_vec3 here, n;
+  pose(now, &here, &n);
+  has_contact_ = false;
+  bool had_plan = has_planned_ && raw_t_ > now;
+  has_planned_ = false;
+  if (serve && Court::side_of_slot(serving_slot) == side()) {
+    // our side serves: back to the ready spot, out of the serve's way
+    go_to(court_.ready(params_.slot, params_.players), now, ball_v3(Court::toward_net(side()), 0.0, 0.0));
+    return;
+  }
+  double t_from = std::fmax(now, seg.t0);
+  ball_prediction pr{};
+  pr.states = states_.data();
+  pr.cap_states = static_cast<int>(states_.size());
+  pr.events = events_.data();
+  pr.cap_events = static_cast<int>(events_.size());
+  if (ball_predict(&model_, &seg, t_from, t_from + kHorizon, kPredictDt, &pr) != BALL_OK) {
+    counters_.ignored++;
+    return;
+  }
+  if (had_plan && keeps_plan(seg, pr.n_events)) {
+    has_planned_ = true;
+    has_contact_ = true;
+    return;
+  }
+  int best = pick_contact(now, t_from, here, pr.n_states);
+  if (best < 0) {
+    counters_.ignored++;
+    legs_.clear();
+    rest_ = here;
+    return;
+  }
+  double t_hit = t_from + best * kPredictDt;
+  ball_vec3 x = states_[best].position;
+  has_planned_ = true;
+  raw_t_ = t_hit;
+  raw_p_ = x;
+  if (params_.miss_rate > 0.0 && rng_.chance(params_.miss_rate)) {
+    x.z += (rng_.chance(0.5) ? 1.0 : -1.0) * kMissOffset;
+    counters_.missed_on_purpose++;
+  } else if (params_.aim_error > 0.0) {
+    x.y += rng_.normal(params_.aim_error);
+    x.z += rng_.normal(params_.aim_error);
+  }
+  ball_vec3 v_racket, normal;
+  stroke_for(x, states_[best].velocity, states_[best].spin, &v_racket, &normal);
+  plan_stroke(now, here, t_hit, x, v_racket, normal);
 }
 
 }  // namespace ballsrv

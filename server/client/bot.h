@@ -79,6 +79,9 @@ class BotBrain {
   };
   void go_to(ball_vec3 target, double now, ball_vec3 normal);
   void stroke_for(ball_vec3 x, ball_vec3 v_in, ball_vec3 s_in, ball_vec3 *v_racket, ball_vec3 *normal);
+  bool keeps_plan(const ball_segment &seg, int n_events) const;  // the ball still passes the planned contact
+  int pick_contact(double now, double t_from, ball_vec3 here, int n_states) const;  // index into states_; -1: none
+  void plan_stroke(double now, ball_vec3 here, double t_hit, ball_vec3 x, ball_vec3 v_racket, ball_vec3 normal);
 
   ball_model model_{};
   Court court_;
