@@ -95,88 +95,106 @@ bool ClientCore::take_info(const MatchInfoOut &info, double local) {
   return listed;
 }
 
-void ClientCore::pump(ClientPort &port, double local, double real) {
-  const double shift = local - real;  // the realtime clock to the caller's
-  const WireSizes size = port.sizes();
-  auto at = [&](const Reception &r) { return r.received > 0.0 ? r.received + shift : local; };
+// One pump's clocks, byte counts and tap line (ClientCore::pump).
+struct ClientCore::Pump {
+  ClientCore &core;
+  double local, real;  // now on the caller's clock and the realtime clock
+  WireSizes size;
+  // a sample's reception on the caller's clock (its DDS stamp, else now)
+  double at(const Reception &r) const { return r.received > 0.0 ? r.received + (local - real) : local; }
   // the followed match a sample is of, its bytes counted; nullptr: not followed
-  auto of = [&](uint32_t match, uint64_t bytes) {
-    Followed *f = followed(match);
+  Followed *of(uint32_t match, uint64_t bytes) const {
+    Followed *f = core.followed(match);
     if (f) f->own.bytes_in += bytes;
     return f;
-  };
-  auto delay = [&](Followed *f, const Reception &r) {
+  }
+  static void delay(Followed *f, const Reception &r) {
     if (r.received > 0.0 && r.written > 0.0) f->view->on_delay(r.received - r.written);
-  };
-  // the tap's line of a sample: received at its DDS stamp, else now; sent at its writer's; taken
-  // when the client kept it
-  auto tap = [&](const auto &sample, const Reception &r, bool taken) {
-    if (!tap_) return json();
+  }
+  // the tap's line of a sample: received at its DDS stamp, else now; sent at
+  // its writer's; trusted when the client kept it
+  template <class T>
+  json tap(const T &sample, const Reception &r, bool taken) const {
+    if (!core.tap_) return json();
     json line = record_line(sample, r.received > 0.0 ? r.received : real);
     if (r.written > 0.0) line["sent"] = r.written;
     line["trusted"] = taken;
     return line;
-  };
-  auto put = [&](const json &line) {
-    if (tap_) tap_(line);
-  };
+  }
+  void put(const json &line) const {
+    if (core.tap_) core.tap_(line);
+  }
+};
+
+void ClientCore::pump(ClientPort &port, double local, double real) {
+  const Pump p{*this, local, real, port.sizes()};
   if (tap_ && !tapped_ready_ && port.hears_server()) {
     tapped_ready_ = true;
     tap_(json{{"type", "ready"}, {"recv", real}});
   }
   scratch_.clear();
-  // models before infos: a view takes the model its info names at once
+  pump_models(port, p);  // models before infos: a view takes the model its info names at once
+  MatchInfoOut info;
+  while (port.take(&info)) {
+    Followed *f = p.of(info.match_id, p.size.info);
+    const uint64_t anew = f ? f->view->counters().anew : 0;
+    json line = p.tap(info, info.reception, take_info(info, p.at(info.reception)));
+    if (f) {
+      Pump::delay(f, info.reception);
+      if (tap_ && f->view->counters().anew != anew) line["anew"] = true;
+    }
+    p.put(line);
+  }
+  StateOut state;
+  while (port.take(&state)) {
+    Followed *f = p.of(state.match_id, p.size.state);
+    p.put(p.tap(state, state.reception, f && f->view->on_state(state, p.at(state.reception))));
+  }
+  pump_segments(port, p);
+  EventOut ev;
+  while (port.take(&ev)) {
+    Followed *f = p.of(ev.match_id, p.size.event);
+    p.put(p.tap(ev, ev.reception, f && f->view->on_event(ev, p.at(ev.reception), &scratch_)));
+  }
+  StatusOut status;  // (read when the config asks for it: only the tap has it)
+  while (port.take(&status)) p.put(p.tap(status, Reception{}, true));
+  RacketSampleIn racket;
+  while (settings_.rackets && port.take(&racket)) {
+    Followed *f = p.of(racket.match_id, p.size.sample);
+    p.put(p.tap(racket, Reception{}, f && take_racket(f, racket)));
+  }
+  events_.insert(events_.end(), scratch_.begin(), scratch_.end());
+  sizes_ = p.size;
+  send_due(port, local);
+  for (auto &kv : followed_) deliver(port, &kv.second, local);
+}
+
+void ClientCore::pump_models(ClientPort &port, const Pump &p) {
   MatchModelOut model;
   while (port.take(&model)) {
     if (tap_)  // (the model itself: ball_net_model)
       tap_(json{{"type", "match_model"}, {"match", model.match_id}, {"server", model.server_id},
-                {"model_hash", model.model_hash}, {"recv", real}});
+                {"model_hash", model.model_hash}, {"recv", p.real}});
     if (models_.count(model.match_id) || models_.size() < settings_.max_matches) models_[model.match_id] = model;
-    if (Followed *f = of(model.match_id, size.model)) f->view->on_model(model);
+    if (Followed *f = p.of(model.match_id, p.size.model)) f->view->on_model(model);
   }
-  MatchInfoOut info;
-  while (port.take(&info)) {
-    Followed *f = of(info.match_id, size.info);
-    const uint64_t anew = f ? f->view->counters().anew : 0;
-    json line = tap(info, info.reception, take_info(info, at(info.reception)));
-    if (f) {
-      delay(f, info.reception);
-      if (tap_ && f->view->counters().anew != anew) line["anew"] = true;
-    }
-    put(line);
-  }
-  StateOut state;
-  while (port.take(&state)) {
-    Followed *f = of(state.match_id, size.state);
-    put(tap(state, state.reception, f && f->view->on_state(state, at(state.reception))));
-  }
+}
+
+// Segments: a followed match's view takes them; the newest few of a match
+// not followed are kept for a later follow (kKeptUnfollowed).
+void ClientCore::pump_segments(ClientPort &port, const Pump &p) {
   SegmentOut seg;
   while (port.take(&seg)) {
-    Followed *f = of(seg.match_id, size.segment);
-    put(tap(seg, seg.reception, f && f->view->on_segment(seg, at(seg.reception), &scratch_)));
-    if (f) delay(f, seg.reception);
-    else if (unfollowed_.count(seg.match_id) || unfollowed_.size() < settings_.max_matches) {
+    Followed *f = p.of(seg.match_id, p.size.segment);
+    p.put(p.tap(seg, seg.reception, f && f->view->on_segment(seg, p.at(seg.reception), &scratch_)));
+    if (f) {
+      Pump::delay(f, seg.reception);
+    } else if (unfollowed_.count(seg.match_id) || unfollowed_.size() < settings_.max_matches) {
       auto &kept = unfollowed_[seg.match_id];
-      kept.push_back(Kept{seg, at(seg.reception), seg.reception.received > 0.0 ? seg.reception.received : real});
+      kept.push_back(Kept{seg, p.at(seg.reception), seg.reception.received > 0.0 ? seg.reception.received : p.real});
       if (kept.size() > kKeptUnfollowed) kept.pop_front();
     }
   }
-  EventOut ev;
-  while (port.take(&ev)) {
-    Followed *f = of(ev.match_id, size.event);
-    put(tap(ev, ev.reception, f && f->view->on_event(ev, at(ev.reception), &scratch_)));
-  }
-  StatusOut status;  // (read when the config asks for it: only the tap has it)
-  while (port.take(&status)) put(tap(status, Reception{}, true));
-  RacketSampleIn racket;
-  while (settings_.rackets && port.take(&racket)) {
-    Followed *f = of(racket.match_id, size.sample);
-    put(tap(racket, Reception{}, f && take_racket(f, racket)));
-  }
-  events_.insert(events_.end(), scratch_.begin(), scratch_.end());
-  sizes_ = size;
-  send_due(port, local);
-  for (auto &kv : followed_) deliver(port, &kv.second, local);
 }
 
 // A player's racket sample, kept on its slot's track if the match's

@@ -124,6 +124,9 @@ class ClientCore {
   Followed *followed(uint32_t match);
   Followed *follow(uint32_t match, ClientPort &port, ball_status *st, std::string *why);
   bool take_racket(Followed *f, const RacketSampleIn &s);  // false: not taken
+  struct Pump;  // one pump's clocks, byte counts and tap line
+  void pump_models(ClientPort &port, const Pump &p);
+  void pump_segments(ClientPort &port, const Pump &p);
   bool write(ClientPort &port, const ControlIn &c, Followed *f);
   bool write(ClientPort &port, const RacketSampleIn &s, Followed *f);
   ball_status number(uint32_t match, int slot, double local, ball_vec3 center, ball_vec3 normal, RacketSampleIn *out,
