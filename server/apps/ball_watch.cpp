@@ -151,16 +151,63 @@ std::string drain(Watcher &w, OutputFile &rec, Snapshots &snap, bool quiet, doub
   return err;
 }
 
+// How this run ends and what it writes.
+struct Run {
+  double duration = 0.0;    // real s (0: until SIGINT/SIGTERM)
+  uint64_t until_hits = 0;  // racket hits in play (0: no limit)
+  std::string record, summary_json;
+  bool quiet = false, no_log = false;
+};
+
+// The watcher's turns, its own ball at its frame rate, the page and the
+// record until the run ends: "" or why it failed.
+std::string watch(Watcher &w, const WatcherSettings &ws, const Run &run, Page &page, Snapshots &snap,
+                  OutputFile &rec, double start) {
+  std::string err;
+  for (double next_frame = start; !stop_requested(); sleep_until(std::min(next_frame, mono_now() + 0.002))) {
+    double now = mono_now(), real = realtime_now();
+    if ((run.duration > 0.0 && now - start >= run.duration) || (run.until_hits > 0 && w.hits() >= run.until_hits))
+      break;
+    if (!(err = w.turn(real)).empty()) return err;
+    if (page.web) page.web->update([&](Spectator &sp) {
+        for (const auto &r : w.output().rackets) sp.on_racket(r);
+        sp.update(w, real);
+      });
+    if (now >= next_frame) {  // the watcher's own ball, at its own frame rate
+      w.frame(real);
+      next_frame += 1.0 / ws.fps;
+      if (next_frame < now) next_frame = now + 1.0 / ws.fps;
+    }
+    if (!(err = drain(w, rec, snap, run.quiet, start)).empty()) return err;
+  }
+  return "";
+}
+
+// The summary printed, recorded and written: "" or why it could not be.
+std::string finish(Watcher &w, const Run &run, Page &page, Snapshots &snap, OutputFile &rec, double start) {
+  WatchSummary sum = w.summary(mono_now() - start);
+  w.output().records.push_back({{"type", "summary"}, {"summary", sum}});
+  if (!run.quiet)
+    for (const auto &line : summary_lines(sum)) std::printf("%s\n", line.c_str());
+  if (!run.quiet && page.web)
+    std::printf("summary: the spectator page: %llu streams opened, %llu refused (too many at once)\n",
+                static_cast<unsigned long long>(page.web->pages_opened()),
+                static_cast<unsigned long long>(page.web->pages_refused()));
+  std::string err = drain(w, rec, snap, true, start);
+  if (!err.empty()) return err;
+  if (rec.is_open() && !rec.close()) return rec.error();
+  if (!run.summary_json.empty() && !write_file(run.summary_json, json(sum).dump(1), &err)) return err;
+  return "";
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
   CLI::App cli{"ball-watch: watch ball-server's matches: the rally log, a JSON Lines record, the ball\n"
                "evaluated from segments and checked against the server's ball states"};
   WatcherSettings ws;
-  double duration = 0.0;
-  std::string record, summary_json, err;
-  bool quiet = false, no_log = false;
-  uint64_t until_hits = 0;
+  Run run;
+  std::string err;
   Snapshots snap;
   Page page;
   DdsOptions dds_opt;
@@ -170,18 +217,18 @@ int main(int argc, char **argv) {
                                        "ID=IDENTITY: only from the holder of that certificate (--secure) "
                                        "(default: any; the record keeps everything else received)");
   cli.add_option("--fps", ws.fps, "frames per second of the watcher's own ball")->capture_default_str()->check(CLI::Range(1.0, 1000.0));
-  cli.add_option("--duration", duration, "stop after S real seconds (0: until SIGINT/SIGTERM)")->check(CLI::Range(0.0, 1e9));
-  cli.add_option("--until-hits", until_hits, "stop once this many racket hits were seen in play")->check(CLI::Range(0, 1000000));
-  cli.add_option("--record", record, "write everything received to FILE as JSON Lines (one object a line)");
+  cli.add_option("--duration", run.duration, "stop after S real seconds (0: until SIGINT/SIGTERM)")->check(CLI::Range(0.0, 1e9));
+  cli.add_option("--until-hits", run.until_hits, "stop once this many racket hits were seen in play")->check(CLI::Range(0, 1000000));
+  cli.add_option("--record", run.record, "write everything received to FILE as JSON Lines (one object a line)");
   cli.add_flag("--record-frames", ws.record_frames, "with --record: also the watcher's own ball, every frame");
-  cli.add_option("--summary-json", summary_json, "write the summary to FILE as JSON at exit");
-  cli.add_flag("--no-log", no_log, "no rally log, only the summary");
-  cli.add_flag("--quiet,-q", quiet, "print nothing but errors");
+  cli.add_option("--summary-json", run.summary_json, "write the summary to FILE as JSON at exit");
+  cli.add_flag("--no-log", run.no_log, "no rally log, only the summary");
+  cli.add_flag("--quiet,-q", run.quiet, "print nothing but errors");
   snap.add_options(cli);
   page.add_options(cli);
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
-  ws.log = !no_log && !quiet;
+  ws.log = !run.no_log && !run.quiet;
   ws.snapshot_every = snap.dir.empty() ? 0.0 : snap.every;
   if (!(err = snap.make_dir()).empty()) return fail(kProgram, err);
 
@@ -196,34 +243,11 @@ int main(int argc, char **argv) {
   std::unique_ptr<ball_net_client, void (*)(ball_net_client *)> owned(client, ball_net_free);  // (outlives w)
   if (!(err = page.start()).empty()) return fail(kProgram, err);
   OutputFile rec;
-  if (!record.empty() && !rec.open(record)) return fail(kProgram, rec.error());
+  if (!run.record.empty() && !rec.open(run.record)) return fail(kProgram, rec.error());
   Watcher w(ws, client);
   const double start = mono_now();
   w.on_start(realtime_now());
-  for (double next_frame = start; !stop_requested(); sleep_until(std::min(next_frame, mono_now() + 0.002))) {
-    double now = mono_now(), real = realtime_now();
-    if ((duration > 0.0 && now - start >= duration) || (until_hits > 0 && w.hits() >= until_hits)) break;
-    if (!(err = w.turn(real)).empty()) return fail(kProgram, err);
-    if (page.web) page.web->update([&](Spectator &sp) {
-        for (const auto &r : w.output().rackets) sp.on_racket(r);
-        sp.update(w, real);
-      });
-    if (now >= next_frame) {  // the watcher's own ball, at its own frame rate
-      w.frame(real);
-      next_frame += 1.0 / ws.fps;
-      if (next_frame < now) next_frame = now + 1.0 / ws.fps;
-    }
-    if (!(err = drain(w, rec, snap, quiet, start)).empty()) return fail(kProgram, err);
-  }
-  WatchSummary sum = w.summary(mono_now() - start);
-  w.output().records.push_back({{"type", "summary"}, {"summary", sum}});
-  if (!quiet)
-    for (const auto &line : summary_lines(sum)) std::printf("%s\n", line.c_str());
-  if (!quiet && page.web)
-    std::printf("summary: the spectator page: %llu streams opened, %llu refused (too many at once)\n",
-                static_cast<unsigned long long>(page.web->pages_opened()),
-                static_cast<unsigned long long>(page.web->pages_refused()));
-  if (!(err = drain(w, rec, snap, true, start)).empty() || (rec.is_open() && !rec.close())) return fail(kProgram, err.empty() ? rec.error() : err);
-  if (!summary_json.empty() && !write_file(summary_json, json(sum).dump(1), &err)) return fail(kProgram, err);
+  if (!(err = watch(w, ws, run, page, snap, rec, start)).empty()) return fail(kProgram, err);
+  if (!(err = finish(w, run, page, snap, rec, start)).empty()) return fail(kProgram, err);
   return 0;
 }
