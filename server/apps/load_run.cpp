@@ -161,22 +161,71 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
   return !refused;
 }
 
+// The server of a point (state_rate < 0: none, the server runs elsewhere).
+Process start_server(const LoadOptions &o, int matches, double state_rate, const std::string &dir) {
+  if (state_rate < 0.0) return Process();
+  std::vector<std::string> args = {program_dir() + "/ball-server", "--matches", std::to_string(matches),
+                                   "--frame-rate", std::to_string(o.frame_rate), "--state-rate",
+                                   std::to_string(state_rate), "--startup-wait", "0", "--quiet"};
+  DdsOptions as_server = o.dds;  // the server on our participant profile, as a server under DDS Security
+  if (!as_server.security.empty()) as_server.identity = o.server_identity;
+  for (const std::string &a : dds_arguments(as_server)) args.push_back(a);
+  if (o.server_priority > 0) args.insert(args.end(), {"--realtime-priority", std::to_string(o.server_priority)});
+  args.insert(args.end(), o.server_args.begin(), o.server_args.end());
+  return Process::start(args, dir + "/server.out", dir + "/server.err");
+}
+
+// The bots of a point in several processes (ranges of matches), sharing a
+// window that starts after the warm-up: their parts, the CPU snapshots at
+// the window's ends. false with err when a process left no part.
+bool drive_processes(const LoadOptions &o, const std::vector<MatchRange> &ranges, const std::string &dir,
+                     pid_t server, std::vector<LoadPart> *parts, Snapshot at[2], std::string *err) {
+  double window = realtime_now() + o.warmup;
+  std::vector<Process> procs;
+  std::vector<pid_t> pids;
+  for (size_t i = 0; i < ranges.size(); ++i) {
+    char start[32];
+    std::snprintf(start, sizeof start, "%.6f", window);
+    std::string file = dir + "/part" + std::to_string(i) + ".json";
+    std::vector<std::string> argv = {program_dir() + "/ball-load", "--matches", std::to_string(ranges[i].count),
+                                     "--first-match", std::to_string(ranges[i].first), "--window-start", start,
+                                     "--warmup", std::to_string(o.warmup), "--stagger", std::to_string(stagger_of(o)),
+                                     "--duration", std::to_string(o.duration),
+                                     "--rate", std::to_string(o.bot.rate), "--seed", std::to_string(o.bot.seed),
+                                     "--part-json", file};
+    for (const std::string &a : dds_arguments(o.dds)) argv.push_back(a);
+    procs.push_back(Process::start(argv, dir + "/bots" + std::to_string(i) + ".out",
+                                   dir + "/bots" + std::to_string(i) + ".err"));
+    pids.push_back(procs.back().pid());
+  }
+  double t0 = mono_now() + (window - realtime_now());
+  sleep_until(t0);
+  at[0] = snapshot(server, pids);
+  sleep_until(t0 + o.duration);
+  at[1] = snapshot(server, pids);
+  bool ok = true;
+  for (size_t i = 0; i < procs.size(); ++i) {
+    int status = procs[i].wait(o.duration + 30.0);
+    std::string file = dir + "/part" + std::to_string(i) + ".json";
+    try {
+      parts->push_back(json::parse(read_text(file)).get<LoadPart>());
+    } catch (const std::exception &e) {
+      *err = "bot process " + std::to_string(i) + " (exit status " + std::to_string(status) +
+             ") left no part: " + read_text(dir + "/bots" + std::to_string(i) + ".err");
+      ok = false;
+    }
+    unlink(file.c_str());
+    unlink((dir + "/bots" + std::to_string(i) + ".out").c_str());
+    unlink((dir + "/bots" + std::to_string(i) + ".err").c_str());
+  }
+  return ok;
+}
+
 // One point of a sweep or the only run: its row, measured.
 bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row, std::string *err) {
   std::string dir = "/tmp/ball-load-" + std::to_string(getpid());
   mkdir(dir.c_str(), 0700);
-  Process server;
-  if (state_rate >= 0.0) {
-    std::vector<std::string> args = {program_dir() + "/ball-server", "--matches", std::to_string(matches),
-                                     "--frame-rate", std::to_string(o.frame_rate), "--state-rate",
-                                     std::to_string(state_rate), "--startup-wait", "0", "--quiet"};
-    DdsOptions as_server = o.dds;  // the server on our participant profile, as a server under DDS Security
-    if (!as_server.security.empty()) as_server.identity = o.server_identity;
-    for (const std::string &a : dds_arguments(as_server)) args.push_back(a);
-    if (o.server_priority > 0) args.insert(args.end(), {"--realtime-priority", std::to_string(o.server_priority)});
-    args.insert(args.end(), o.server_args.begin(), o.server_args.end());
-    server = Process::start(args, dir + "/server.out", dir + "/server.err");
-  }
+  Process server = start_server(o, matches, state_rate, dir);
   std::vector<LoadPart> parts;
   Snapshot at[2];
   int snaps = 0;
@@ -189,45 +238,8 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
         one, [&] { at[std::min(snaps++, 1)] = snapshot(server.pid(), {getpid()}); },
         [&](const LoadPart &p) { parts.push_back(p); }, err);
   } else {
-    // the bot processes share a window that starts after the warm-up
-    double window = realtime_now() + o.warmup;
-    std::vector<Process> procs;
-    std::vector<pid_t> pids;
-    for (size_t i = 0; i < ranges.size(); ++i) {
-      char start[32];
-      std::snprintf(start, sizeof start, "%.6f", window);
-      std::string file = dir + "/part" + std::to_string(i) + ".json";
-      std::vector<std::string> argv = {program_dir() + "/ball-load", "--matches", std::to_string(ranges[i].count),
-                                       "--first-match", std::to_string(ranges[i].first), "--window-start", start,
-                                       "--warmup", std::to_string(o.warmup), "--stagger", std::to_string(stagger_of(o)),
-                                       "--duration", std::to_string(o.duration),
-                                       "--rate", std::to_string(o.bot.rate), "--seed", std::to_string(o.bot.seed),
-                                       "--part-json", file};
-      for (const std::string &a : dds_arguments(o.dds)) argv.push_back(a);
-      procs.push_back(Process::start(argv, dir + "/bots" + std::to_string(i) + ".out",
-                                     dir + "/bots" + std::to_string(i) + ".err"));
-      pids.push_back(procs.back().pid());
-    }
-    double t0 = mono_now() + (window - realtime_now());
-    sleep_until(t0);
-    at[0] = snapshot(server.pid(), pids);
-    sleep_until(t0 + o.duration);
-    at[1] = snapshot(server.pid(), pids);
+    ok = drive_processes(o, ranges, dir, server.pid(), &parts, at, err);
     snaps = 2;
-    for (size_t i = 0; i < procs.size(); ++i) {
-      int status = procs[i].wait(o.duration + 30.0);
-      std::string file = dir + "/part" + std::to_string(i) + ".json";
-      try {
-        parts.push_back(json::parse(read_text(file)).get<LoadPart>());
-      } catch (const std::exception &e) {
-        *err = "bot process " + std::to_string(i) + " (exit status " + std::to_string(status) +
-               ") left no part: " + read_text(dir + "/bots" + std::to_string(i) + ".err");
-        ok = false;
-      }
-      unlink(file.c_str());
-      unlink((dir + "/bots" + std::to_string(i) + ".out").c_str());
-      unlink((dir + "/bots" + std::to_string(i) + ".err").c_str());
-    }
   }
   if (server.pid() > 0) server.stop(5.0);
   for (const char *f : {"server.out", "server.err"}) unlink((dir + "/" + f).c_str());
