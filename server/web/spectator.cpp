@@ -178,42 +178,57 @@ void Spectator::update(const Watcher &w, double real) {
 }
 
 void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
-  const MatchInfoOut &info = *v.info;
   Mirror &m = matches_[id];
-  // the court, again when the match changed scene or model
-  std::array<double, 4> judged{info.court_x[0], info.court_z[0], info.court_x[1], info.court_z[1]};
-  if (m.court.empty() || m.scene != info.scene || m.model_hash != info.model_hash ||
-      m.court_from_wire != (v.model != nullptr) || m.judged != judged) {
-    // the court the server judges: the match's model from the wire, else a scene of its name
-    m.court = court_message(id, info, v.model ? *v.model : court_(info), settings_.aspect);
-    m.court_from_wire = v.model != nullptr;
-    m.scene = info.scene;
-    m.model_hash = info.model_hash;
-    m.judged = judged;
-    send(m.court);
-  }
+  mirror_court(id, v, &m);
   bool live = real - v.info_real < settings_.silence;
-  if (m.info.empty() || m.server != info.server_id || m.revision != info.revision || m.live != live) {
-    m.server = info.server_id;
-    m.revision = info.revision;
-    m.players = std::min(std::max(info.players, 0), kMaxPlayers);
-    for (int i = 0; i < kMaxPlayers; ++i) {
-      if (m.owners[i] != info.slots[i].owner || m.info.empty()) {  // a new holder, on its own clock
-        m.rackets[i].clear();
-        m.racket_t[i] = -INFINITY;
-      }
-      m.owners[i] = info.slots[i].owner;
-    }
-    m.info = info_message(id, info, live, v.info_real);
-    send(m.info);
-  }
+  mirror_info(id, v, live, &m);
   // segments: the watcher's, from the newest page_segments; anew when it dropped ours (a match started anew)
   const std::deque<SegmentOut> &segs = *v.segments;
   std::pair<uint32_t, size_t> watched{segs.empty() ? 0 : segs.back().seq, segs.size()};
   if (watched != m.watched) mirror_segments(id, segs, &m);
   m.watched = watched;
-  // events taken since the last update (those the watcher still holds)
-  uint64_t fresh = v.events_taken - m.events_sent;
+  mirror_events(id, v, &m);
+  mirror_clock(id, v, live, real, &m);
+}
+
+// The court, again when the match changed scene or model: the court the
+// server judges, from the match's model on the wire, else a scene of its name.
+void Spectator::mirror_court(uint32_t id, const WatchedView &v, Mirror *m) {
+  const MatchInfoOut &info = *v.info;
+  std::array<double, 4> judged{info.court_x[0], info.court_z[0], info.court_x[1], info.court_z[1]};
+  if (!m->court.empty() && m->scene == info.scene && m->model_hash == info.model_hash &&
+      m->court_from_wire == (v.model != nullptr) && m->judged == judged)
+    return;
+  m->court = court_message(id, info, v.model ? *v.model : court_(info), settings_.aspect);
+  m->court_from_wire = v.model != nullptr;
+  m->scene = info.scene;
+  m->model_hash = info.model_hash;
+  m->judged = judged;
+  send(m->court);
+}
+
+// The match's info, when its server, revision or liveness changed; a new
+// holder's racket starts anew, on its own clock.
+void Spectator::mirror_info(uint32_t id, const WatchedView &v, bool live, Mirror *m) {
+  const MatchInfoOut &info = *v.info;
+  if (!m->info.empty() && m->server == info.server_id && m->revision == info.revision && m->live == live) return;
+  m->server = info.server_id;
+  m->revision = info.revision;
+  m->players = std::min(std::max(info.players, 0), kMaxPlayers);
+  for (int i = 0; i < kMaxPlayers; ++i) {
+    if (m->owners[i] != info.slots[i].owner || m->info.empty()) {
+      m->rackets[i].clear();
+      m->racket_t[i] = -INFINITY;
+    }
+    m->owners[i] = info.slots[i].owner;
+  }
+  m->info = info_message(id, info, live, v.info_real);
+  send(m->info);
+}
+
+// The events taken since the last update (those the watcher still holds).
+void Spectator::mirror_events(uint32_t id, const WatchedView &v, Mirror *m) {
+  uint64_t fresh = v.events_taken - m->events_sent;
   size_t n = static_cast<size_t>(std::min<uint64_t>(fresh, v.events->size()));
   for (size_t i = v.events->size() - n; i < v.events->size(); ++i) {
     const EventOut &e = (*v.events)[i];
@@ -222,24 +237,26 @@ void Spectator::mirror(uint32_t id, const WatchedView &v, double real) {
       continue;
     }
     std::string text = json{{"type", "event"}, {"match", id}, {"event", e}, {"text", rally_line(e)}}.dump();
-    m.events.push_back(text);
+    m->events.push_back(text);
     send(text);
   }
-  m.events_sent = v.events_taken;
-  while (m.events.size() > settings_.page_events) m.events.pop_front();
-  // the clock: the watcher's estimate while the server is heard; the ball
-  // held still from when it went silent until a server serves the match again
-  if (live != m.live && !live) m.frozen = v.sim_at(std::min(real, v.info_real + 1.0));
-  if (live != m.live || real - m.clock_real >= settings_.clock_every) {
-    double sim = live ? v.sim_at(real) : m.frozen;
-    m.clock = json{{"type", "clock"},     {"match", id},
-                   {"sim_time", sim},     {"real", real},
-                   {"time_base", info.time_base}, {"running", live && v.running},
-                   {"live", live}}.dump();
-    m.clock_real = real;
-    m.live = live;
-    send(m.clock);
-  }
+  m->events_sent = v.events_taken;
+  while (m->events.size() > settings_.page_events) m->events.pop_front();
+}
+
+// The clock: the watcher's estimate while the server is heard; the ball
+// held still from when it went silent until a server serves the match again.
+void Spectator::mirror_clock(uint32_t id, const WatchedView &v, bool live, double real, Mirror *m) {
+  if (live != m->live && !live) m->frozen = v.sim_at(std::min(real, v.info_real + 1.0));
+  if (live == m->live && real - m->clock_real < settings_.clock_every) return;
+  double sim = live ? v.sim_at(real) : m->frozen;
+  m->clock = json{{"type", "clock"},     {"match", id},
+                  {"sim_time", sim},     {"real", real},
+                  {"time_base", v.info->time_base}, {"running", live && v.running},
+                  {"live", live}}.dump();
+  m->clock_real = real;
+  m->live = live;
+  send(m->clock);
 }
 
 // The watcher's newest page_segments segments the page has not got; all of

@@ -84,6 +84,10 @@ class Spectator {
   void send(std::string text);
   void mirror(uint32_t id, const WatchedView &v, double real);
   void mirror_segments(uint32_t id, const std::deque<SegmentOut> &segs, Mirror *m);
+  void mirror_court(uint32_t id, const WatchedView &v, Mirror *m);
+  void mirror_info(uint32_t id, const WatchedView &v, bool live, Mirror *m);
+  void mirror_events(uint32_t id, const WatchedView &v, Mirror *m);
+  void mirror_clock(uint32_t id, const WatchedView &v, bool live, double real, Mirror *m);
 
   SpectatorSettings settings_;
   std::function<ball_model(const MatchInfoOut &)> court_;
