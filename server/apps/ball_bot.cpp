@@ -22,6 +22,35 @@ using namespace ballsrv::app;
 namespace {
 const char *kProgram = "ball-bot";
 constexpr double kTick = 0.002;  // s: the loop's period (sampling, delivery, reading)
+
+// The bot's ticks until the run ends (duration real s, 0: until a stop
+// signal); its slot's changes printed unless quiet. *left: LEAVEs written
+// (none with stay). "" or the error that ended it.
+std::string play(ball_net_client *client, const PlayerParams &pp, double duration, bool quiet, bool stay,
+                 BotReport *r, int *left) {
+  std::string err;
+  PlayerGroup group({BotPlayer(pp)}, client);
+  const BotPlayer &bot = group.bots()[0];
+  bool was_joined = false;
+  const double start = mono_now();
+  for (double next_tick = start; !stop_requested(); sleep_until(next_tick)) {
+    double now = mono_now();
+    if (duration > 0.0 && now - start >= duration) break;
+    group.tick(now);
+    if (!group.error().empty()) {
+      err = group.error();
+      break;
+    }
+    if (bot.joined() != was_joined && !quiet)
+      std::printf("%s: %s match %u slot %d\n", kProgram, bot.joined() ? "holds" : "lost", pp.match, bot.slot());
+    was_joined = bot.joined();
+    next_tick += kTick;
+    if (next_tick < now) next_tick = now + kTick;
+  }
+  *left = stay ? 0 : group.leave();
+  *r = group.report(0);
+  return err;
+}
 }  // namespace
 
 int main(int argc, char **argv) {
@@ -48,28 +77,7 @@ int main(int argc, char **argv) {
   if (!client) return fail(kProgram, err);
   int left = 0;
   BotReport r;
-  {
-    PlayerGroup group({BotPlayer(pp)}, client);
-    const BotPlayer &bot = group.bots()[0];
-    bool was_joined = false;
-    const double start = mono_now();
-    for (double next_tick = start; !stop_requested(); sleep_until(next_tick)) {
-      double now = mono_now();
-      if (duration > 0.0 && now - start >= duration) break;
-      group.tick(now);
-      if (!group.error().empty()) {
-        err = group.error();
-        break;
-      }
-      if (bot.joined() != was_joined && !quiet)
-        std::printf("%s: %s match %u slot %d\n", kProgram, bot.joined() ? "holds" : "lost", pp.match, bot.slot());
-      was_joined = bot.joined();
-      next_tick += kTick;
-      if (next_tick < now) next_tick = now + kTick;
-    }
-    left = stay ? 0 : group.leave();
-    r = group.report(0);
-  }
+  err = play(client, pp, duration, quiet, stay, &r, &left);
   if (!quiet)
     std::printf("%s: match %u slot %d: %" PRIu64 " samples taken, %" PRIu64 " lost on the link, %" PRIu64
                 " written, %" PRIu64 " writes refused; %" PRIu64 " segments; %" PRIu64 " balls played (%" PRIu64

@@ -190,6 +190,34 @@ bool parse_net_dev(const std::string &text, const std::string &device, uint64_t 
 
 // ---- the report ----------------------------------------------------------------
 
+// The server's side of a row, from the part that read its status the
+// longest: frames, overruns, frame times, and the bytes it wrote a match.
+static void add_server(const LoadPart &server, const WireSizes &sizes, double seconds, LoadRow *out) {
+  LoadRow &row = *out;
+  Percentiles p50, p99;
+  for (double v : server.frame_p50) p50.add(v);
+  for (double v : server.frame_p99) p99.add(v);
+  row.server_frames = server.last.frames - server.first.frames;
+  row.server_overruns = server.last.overruns - server.first.overruns;
+  row.overrun_pct = row.server_frames ? 100.0 * static_cast<double>(row.server_overruns) /
+                                            static_cast<double>(row.server_frames)
+                                      : 0.0;
+  row.frame_p50_ms = p50.quantile(0.5) * 1e3;
+  row.frame_p99_ms_median = p99.quantile(0.5) * 1e3;
+  row.frame_p99_ms_max = p99.max() * 1e3;
+  row.playing = server.last.playing;
+  // what the server wrote: segments, events and ball states by its own
+  // counts; MatchInfos and statuses, which it does not count there, as one
+  // bot process took them (every process reads every match's)
+  double per = row.matches > 0 && seconds > 0.0 ? 1.0 / (row.matches * seconds) : 0.0;
+  double counted = server_written_per_s(server.first, server.last, sizes);
+  PortCounts heard;
+  heard.infos = server.counts.infos;
+  heard.statuses = server.counts.statuses;
+  if (counted >= 0.0 && row.matches > 0)
+    row.server_bytes = counted / row.matches + static_cast<double>(server_payload(heard, sizes)) * per;
+}
+
 LoadRow combine(const std::vector<LoadPart> &parts, const WireSizes &sizes) {
   LoadRow row;
   if (parts.empty()) return row;
@@ -227,31 +255,11 @@ LoadRow combine(const std::vector<LoadPart> &parts, const WireSizes &sizes) {
   row.hit_to_write_p99_ms = h2write.quantile(0.99) * 1e3;
   row.delivery_p50_ms = delivery.quantile(0.5) * 1e3;
   row.delivery_p99_ms = delivery.quantile(0.99) * 1e3;
-  Percentiles p50, p99;
-  for (double v : server->frame_p50) p50.add(v);
-  for (double v : server->frame_p99) p99.add(v);
-  row.server_frames = server->last.frames - server->first.frames;
-  row.server_overruns = server->last.overruns - server->first.overruns;
-  row.overrun_pct = row.server_frames ? 100.0 * static_cast<double>(row.server_overruns) /
-                                            static_cast<double>(row.server_frames)
-                                      : 0.0;
-  row.frame_p50_ms = p50.quantile(0.5) * 1e3;
-  row.frame_p99_ms_median = p99.quantile(0.5) * 1e3;
-  row.frame_p99_ms_max = p99.max() * 1e3;
-  row.playing = server->last.playing;
-  // what the server wrote: segments, events and ball states by its own
-  // counts; MatchInfos and statuses, which it does not count there, as one
-  // bot process took them (every process reads every match's)
-  double per = row.matches > 0 && seconds > 0.0 ? 1.0 / (row.matches * seconds) : 0.0;
-  double counted = server_written_per_s(server->first, server->last, sizes);
-  PortCounts heard;
-  heard.infos = server->counts.infos;
-  heard.statuses = server->counts.statuses;
-  if (counted >= 0.0 && row.matches > 0)
-    row.server_bytes = counted / row.matches + static_cast<double>(server_payload(heard, sizes)) * per;
-  row.bots_bytes = static_cast<double>(written) * per;
+  add_server(*server, sizes, seconds, &row);
+  row.bots_bytes = static_cast<double>(written) * (row.matches > 0 && seconds > 0.0 ? 1.0 / (row.matches * seconds) : 0.0);
   return row;
 }
+
 
 LoadPoint summarize(const std::vector<LoadRow> &rounds) {
   LoadPoint p;

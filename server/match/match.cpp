@@ -393,6 +393,31 @@ void Match::advance(double dt, bool with_state, MatchOutput *out) {
 
 // ---- the rules ------------------------------------------------------------
 
+// A collision's event (and its sound's, when it makes one), numbered on.
+void Match::emit_collision(const ball_event &ev, EventKind kind, int index, MatchOutput *out) {
+  EventOut e;
+  e.match_id = config_.id;
+  e.seq = ++rules().event_seq;
+  e.kind = kind;
+  e.index = kind == EventKind::floor || kind == EventKind::net ? 0 : index;
+  e.side = side_of_point(ev.point);
+  e.in_play = rally_.live();
+  e.sound = ev.sound != 0;
+  e.time = ev.time;
+  e.point = ev.point;
+  e.velocity_in = ev.velocity_in;
+  e.velocity_out = ev.velocity_out;
+  e.segment_seq = current_seq_;
+  e.score = rules().score;
+  out->events.push_back(e);
+  if (e.sound) {
+    EventOut s = e;
+    s.kind = EventKind::sound;
+    s.seq = ++rules().event_seq;
+    out->events.push_back(s);
+  }
+}
+
 void Match::handle_event(const ball_event &ev, MatchOutput *out) {
   Cause cause = Cause::floor;
   EventKind kind = EventKind::floor;
@@ -421,28 +446,7 @@ void Match::handle_event(const ball_event &ev, MatchOutput *out) {
   } else {
     emit_segment(out, cause, index, ev.segment, ref, ev.sound != 0);
   }
-  EventOut e;
-  e.match_id = config_.id;
-  e.seq = ++rules().event_seq;
-  e.kind = kind;
-  e.index = kind == EventKind::floor || kind == EventKind::net ? 0 : index;
-  e.side = side_of_point(ev.point);
-  e.in_play = rally_.live();
-  e.sound = ev.sound != 0;
-  e.time = ev.time;
-  e.point = ev.point;
-  e.velocity_in = ev.velocity_in;
-  e.velocity_out = ev.velocity_out;
-  e.segment_seq = current_seq_;
-  e.score = rules().score;
-  out->events.push_back(e);
-  if (e.sound) {
-    EventOut s = e;
-    s.kind = EventKind::sound;
-    s.seq = ++rules().event_seq;
-    out->events.push_back(s);
-  }
-
+  emit_collision(ev, kind, index, out);
   if (rally_.live()) {
     if (kind == EventKind::floor) counters_.bounces++;
     if (kind == EventKind::racket) counters_.hits++;

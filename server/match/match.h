@@ -167,6 +167,7 @@ class Match {
   // a segment starts now (sound: its collision makes the paper's sound)
   void emit_segment(MatchOutput *out, Cause cause, int index, const ball_segment &seg, SampleRef ref, bool sound);
   void handle_event(const ball_event &ev, MatchOutput *out);
+  void emit_collision(const ball_event &ev, EventKind kind, int index, MatchOutput *out);
   void apply(const Call &call, double t, MatchOutput *out);  // a point decided at sim s t
   void serve(MatchOutput *out);
   void update_presence(double now, MatchOutput *out);

@@ -6,10 +6,14 @@
 
 namespace ballsrv {
 
-const std::vector<Field<MatchConfig>> &match_fields() {
-  using F = Field<MatchConfig>;
-  using M = MatchConfig;
-  static const std::vector<F> table = {
+namespace {
+
+using F = Field<MatchConfig>;
+using M = MatchConfig;
+
+// the match, its clocks and its rackets' tracks
+std::vector<F> match_and_clock_fields() {
+  return {
       {"scene", std::monostate{}, {}, "",
        "`default` (libball's tennis court), a libball scene name (`rally_mid`), or a YAML file relative to the "
        "config file",
@@ -39,6 +43,12 @@ const std::vector<Field<MatchConfig>> &match_fields() {
        "--extrapolation-time,--extrapolation"},
       {"stale_time", &M::stale_time, closed(-1.0, 60.0), "s",
        "a racket silent this long does not collide; negative: the scene's", "--stale-time", "-1 (the scene's)"},
+  };
+}
+
+// what it takes from its players, how it finds hits, its court and serves
+std::vector<F> player_and_hit_fields() {
+  return {
       {"player_timeout", &M::player_timeout, open_closed(0.0, 60.0), "s",
        "real s without a sample before a player has vanished: the racket_samples reader's liveliness lease", nullptr,
        nullptr, false},
@@ -79,6 +89,17 @@ const std::vector<Field<MatchConfig>> &match_fields() {
       {"scene_name", &M::scene_name, whole(1, kNameLen - 1), "", "what MatchInfo calls the scene", nullptr, nullptr,
        false},
   };
+}
+
+}  // namespace
+
+const std::vector<Field<MatchConfig>> &match_fields() {
+  static const std::vector<F> table = [] {
+    std::vector<F> t = match_and_clock_fields();
+    std::vector<F> more = player_and_hit_fields();
+    t.insert(t.end(), more.begin(), more.end());
+    return t;
+  }();
   return table;
 }
 
