@@ -1,4 +1,4 @@
-// Racket hits at their instant (docs/server.md, "Hits at their instant";
+// Racket hits at their instant (docs/server-design.md, "Hits at their instant";
 // docs/design.md, "Rooms by state"): when, inside the frame being stepped,
 // a racket first meets the ball, so that the loop steps the match to that
 // instant instead of the frame's end. A HitClock is the state (the hit

@@ -1,4 +1,4 @@
-// Lag compensation's core (docs/server.md, "Lag compensation"; docs/design.md,
+// Lag compensation's core (docs/server-design.md, "Lag compensation"; docs/design.md,
 // "Rooms by state"): a late racket sample's hit, if any, as a function of
 // the sim now, the history of the segments in effect over the rewind
 // window, the slot's kept samples and the parameters. It changes nothing:

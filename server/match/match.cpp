@@ -316,7 +316,7 @@ void Match::rewind(int slot, double from, MatchOutput *out) {
 }
 
 // A hit ends its racket's stroke: the racket's track starts again from the
-// samples captured at or after the hit (docs/server.md, "Lag compensation";
+// samples captured at or after the hit (docs/server-design.md, "Lag compensation";
 // a restored match's track may hold some, a live one's ahead of the sim
 // clock), so that eq 15 does not carry the stroke on past the hit.
 void Match::end_stroke(int k, double t_hit) {

@@ -71,7 +71,7 @@ class Match {
   uint64_t take_lost();
   void end_streams();
 
-  // Racket hits at their instant (docs/server.md, "Hits at their instant"):
+  // Racket hits at their instant (docs/server-design.md, "Hits at their instant"):
   // the real s after the last frame's deadline at which the first contact
   // of a racket's track with the ball comes (ball_racket_first_contact_any),
   // when it comes before the next frame's end; +Inf: none. Found again after
@@ -88,7 +88,7 @@ class Match {
   // level's own test finds the hit then; the next frame steps the rest.
   void step_to_hit(MatchOutput *out);
 
-  // Lag compensation (docs/server.md, "Lag compensation"): accepted racket
+  // Lag compensation (docs/server-design.md, "Lag compensation"): accepted racket
   // samples captured in the past of the sim clock wait here; compensate
   // tests each against the ball where it was (at most rewind_window back,
   // never before the last hit or serve, never once the point is decided)
@@ -176,7 +176,7 @@ class Match {
   void set_level(ball_level level, std::string *err);
   void find_hit();  // the hit clock looks again, from the tracks as they are (when the rules allow a hit)
   void took_effect(const SegmentOut &s);  // a segment is in effect now: into the history
-  // Lag compensation (docs/server.md, "Lag compensation"): the late hit of
+  // Lag compensation (docs/server-design.md, "Lag compensation"): the late hit of
   // slot `slot`'s racket since sim s `from`, if any (find_late_hit, which
   // changes nothing), then the match taken back to it and on to the present.
   void rewind(int slot, double from, MatchOutput *out);

@@ -448,7 +448,7 @@ void ServerLoop::take_controls(double now) {
 void ServerLoop::run_due_frames(double t0, double now) {
   // the matches a racket may hit in the frame after this one first: a hit
   // early in that frame is found at this deadline, not after every other
-  // match's frame (docs/server.md, "Hits at their instant")
+  // match's frame (docs/server-design.md, "Hits at their instant")
   frame_due_.assign(sched_.size(), 0);
   for (size_t i = 0; i < sched_.size(); ++i)
     if (sched_[i].clock.deadline(sched_[i].k) <= t0 + 1e-6) frame_due_[i] = sched_[i].match->near_hit() ? 1 : 2;

@@ -71,12 +71,12 @@ std::vector<F> player_and_hit_fields() {
        "--hit-instant"},
       {"hit_lead", &M::hit_lead, closed(0.0, 0.02), "s",
        "real s before a racket hit's instant that the loop wakes, steps the match to the instant and writes the "
-       "hit, so that it reaches clients before its `t0` (docs/server.md, \"Hits at their instant\"); 0: at the "
+       "hit, so that it reaches clients before its `t0` (docs/server-design.md, \"Hits at their instant\"); 0: at the "
        "instant",
        "--hit-lead"},
       {"rewind_window", &M::rewind_window, closed(0.0, 2.0), "s",
        "lag compensation: how far back (sim s) a late racket sample is tested against the ball where it was, "
-       "and a hit found so rewinds the match to it (docs/server.md, \"Lag compensation\"); 0: off",
+       "and a hit found so rewinds the match to it (docs/server-design.md, \"Lag compensation\"); 0: off",
        "--rewind-window"},
       {"rewind_own_hit", &M::rewind_own_hit, {}, "",
        "lag compensation: a late racket sample captured before its own racket's last hit may take the match back "

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""What hits at their instant cost the server (docs/server.md, "Hits at their
+"""What hits at their instant cost the server (docs/server-design.md, "Hits at their
 instant"), in instructions counted by callgrind: the same on every run, where
 CPU time on a shared machine varies by more than the difference.
 

@@ -1,5 +1,5 @@
 // ball_hit_cost: what hits at their instant cost the server's matches
-// (docs/server.md, "Hits at their instant"). Two bots rally offline (a Match
+// (docs/server-design.md, "Hits at their instant"). Two bots rally offline (a Match
 // stepped as the server loop steps it, rally.h) at the three levels, the
 // match frame-locked or at the instant; ./run hit-cost runs it under
 // callgrind, which counts the instructions of the calls the loop makes into

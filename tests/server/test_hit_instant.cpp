@@ -1,4 +1,4 @@
-// Racket hits at their instant (docs/server.md, "Hits at their instant"):
+// Racket hits at their instant (docs/server-design.md, "Hits at their instant"):
 // between frames a match finds when a racket's track first meets the ball
 // (ball_racket_first_contact_any) and the server steps it to that instant,
 // so that the level's own test finds the hit then, not at the frame's end.

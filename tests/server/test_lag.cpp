@@ -1,4 +1,4 @@
-// Lag compensation (docs/server.md, "Lag compensation"; docs/protocol.md,
+// Lag compensation (docs/server-design.md, "Lag compensation"; docs/protocol.md,
 // "Corrections"): a racket sample that arrives late is tested against the
 // ball where it was at its time; a hit found so takes the match back to it
 // and on again, and what that gives is written as corrections. Offline

@@ -113,7 +113,7 @@ Outcome run(const Trial &tr) {
                                    &o.err);
       if (!o.restored) return o;
       o.catch_up_segments = out.segments.size();
-      // a hit ends its racket's stroke (docs/server.md, "Lag compensation"):
+      // a hit ends its racket's stroke (docs/server-design.md, "Lag compensation"):
       // the racket's track holds no sample from before its newest hit
       double hit_at[2] = {-1e300, -1e300};
       if (have_seg && seg.cause == Cause::racket && seg.cause_index >= 0 && seg.cause_index < 2)

@@ -300,7 +300,7 @@ TEST(a_hit_is_written_hit_lead_before_its_instant) {
 }
 
 // Why a hit's step was late (the stats file's hit_known, hit_wake_late_p99,
-// hit_found_after; docs/server.md "Hits at their instant"): every hit
+// hit_found_after; docs/server-design.md, "Hits at their instant"): every hit
 // stepped between frames is one the loop knew before it was due (its
 // instant less hit_lead), one it first saw within the lead, or one it first
 // saw after its instant (a sample that came after it). The fake clock
@@ -399,7 +399,7 @@ TEST(a_match_near_a_hit_has_its_frame_first) {
   CHECK(worst[1] <= 2.0 * per_read + 1e-9);
 }
 
-// A hit ends its racket's stroke (docs/server.md, "Lag compensation"):
+// A hit ends its racket's stroke (docs/server-design.md, "Lag compensation"):
 // with samples 50 to 100 ms late, the samples of the stroke that arrive
 // after the hit are dropped as before_hit, so that at every wake-up a
 // racket's track holds only samples captured at or after its last hit, and
@@ -445,7 +445,7 @@ TEST(a_hit_ends_its_rackets_stroke) {
   CHECK_EQ(old_on_track, 0);
 }
 
-// With rewind_own_hit (docs/server.md, "Lag compensation") the samples a
+// With rewind_own_hit (docs/server-design.md, "Lag compensation") the samples a
 // hit's stroke sends after it may move the hit, earlier or later: the same
 // rallies as above, taken as a client takes them (a segment supersedes
 // those written before it with a later t0), have no racket hitting again

@@ -33,12 +33,12 @@ target_compile_options(test_wire PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_wire COMMAND test_wire)
 set_tests_properties(test_wire PROPERTIES LABELS server TIMEOUT 60)
 
-# the lag compensation study (./run lag-study; docs/server.md, "Lag compensation"), and its smoke run
+# the lag compensation study (./run lag-study; docs/server-design.md, "Lag compensation"), and its smoke run
 add_executable(ball_lag_study ${CMAKE_CURRENT_LIST_DIR}/lag_study.cpp)
 target_include_directories(ball_lag_study PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
 target_link_libraries(ball_lag_study PRIVATE ball_app ball_match ball_kit_headers)
 target_compile_options(ball_lag_study PRIVATE ${BALL_CXX_WARNINGS})
-# what hits at their instant cost (./run hit-cost under callgrind; docs/server.md, "Hits at their instant")
+# what hits at their instant cost (./run hit-cost under callgrind; docs/server-design.md, "Hits at their instant")
 add_executable(ball_hit_cost ${CMAKE_CURRENT_LIST_DIR}/hit_cost.cpp)
 target_include_directories(ball_hit_cost PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
 target_link_libraries(ball_hit_cost PRIVATE ball_app ball_match ball_kit_headers)
