@@ -19,10 +19,12 @@
 #include <new>
 #include <string>
 
+#include "api_client.h"
 #include "client_core.h"
 #include "net_client.h"
 
 using namespace ballsrv;
+using namespace ballsrv::api;
 
 // The C enums are the wire's, value for value (types.h lists the wire's once).
 static_assert(static_cast<int>(MatchState::waiting) == BALL_NET_WAITING && static_cast<int>(MatchState::playing) == BALL_NET_PLAYING &&
@@ -44,14 +46,6 @@ namespace {
 constexpr double kLeaveGrace = 0.2;      // s a LEAVE is given to get out before the participant goes
 constexpr double kTeardownLimit = 3.0;   // s the transport is given to delete what it made (dds::kTeardownLimit)
 constexpr int kMaxMatches = static_cast<int>(kMaxClientMatches);
-
-double system_clock(clockid_t id) {
-  struct timespec ts;
-  clock_gettime(id, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-double monotonic(void *) { return system_clock(CLOCK_MONOTONIC); }
 
 const char *or_empty(const char *s) { return s ? s : ""; }
 
@@ -77,61 +71,7 @@ ball_vec3 v3(const ball_vec3 &v) { return v; }
 
 }  // namespace
 
-struct ball_net_client {
-  ball_net_clock clock = monotonic;
-  void *clock_user = nullptr;
-  std::unique_ptr<Transport> transport;
-  ClientPort *port = nullptr;  // the transport's
-  std::unique_ptr<ClientCore> core;
-  bool closed = false;
-  bool rackets = false;  // ball_net_config.rackets
-  ball_net_tap tap = nullptr;  // ball_net_set_tap's
-  void *tap_user = nullptr;
-  bool in_tap = false;         // a tap call is under way
-  std::string message;
-  // the view the newest ball query found, by match: a game asks for one match's ball every frame
-  uint32_t hot_match = 0;
-  const MatchView *hot_view = nullptr;
-
-  double now() const { return clock(clock_user); }
-  ball_status fail(ball_status st, const std::string &why) {
-    message = why;
-    return st;
-  }
-  ball_status ok() {
-    if (!message.empty()) message.clear();
-    return BALL_OK;
-  }
-};
-
 namespace {
-
-// The client ready for a call; BALL_EINVAL for NULL, BALL_ECLOSED once closed.
-ball_status usable(const ball_net_client *c) {
-  if (!c) return BALL_EINVAL;
-  if (c->closed) {
-    const_cast<ball_net_client *>(c)->message = "the client is closed";
-    return BALL_ECLOSED;
-  }
-  return BALL_OK;
-}
-
-// Runs a call's body: no exception leaves it (an allocation that fails is BALL_ENOMEM).
-template <class F>
-ball_status guarded(ball_net_client *c, F &&body) {
-  try {
-    return body();
-  } catch (const std::bad_alloc &) {
-    if (c) c->message = "out of memory";
-    return BALL_ENOMEM;
-  } catch (const std::exception &e) {
-    if (c) c->message = std::string("unexpected: ") + e.what();
-    return BALL_ENETWORK;
-  } catch (...) {
-    if (c) c->message = "unexpected failure";
-    return BALL_ENETWORK;
-  }
-}
 
 ball_status with_why(ball_net_client *c, ball_status st, const std::string &why) {
   return st == BALL_OK ? c->ok() : c->fail(st, why);
@@ -142,29 +82,6 @@ ball_status with_why(ball_net_client *c, ball_status st, const std::string &why)
 ball_status with_transport(const ball_net_client *c, ball_status st, std::string *why) {
   if (st == BALL_ENETWORK && !c->transport->error().empty()) *why += ": " + c->transport->error();
   return st;
-}
-
-const MatchView *followed(const ball_net_client *c, uint32_t match) {
-  const MatchView *v = c->core->view(match);
-  if (!v) const_cast<ball_net_client *>(c)->message = "the client does not follow match " + std::to_string(match);
-  return v;
-}
-
-// A call on a match the client follows: the client usable, the out-pointer
-// not NULL, the match followed, then body(client, view).
-template <class F>
-ball_status on_view(const ball_net_client *cc, uint32_t match, const void *out, F &&body) {
-  auto *c = const_cast<ball_net_client *>(cc);
-  ball_status st = usable(c);
-  if (st != BALL_OK) return st;
-  if (!out) return c->fail(BALL_EINVAL, "the out-pointer must not be NULL");
-  const MatchView *v = followed(c, match);
-  if (!v) return BALL_ENOMATCH;
-  return body(c, *v);
-}
-
-ball_status no_clock(ball_net_client *c, uint32_t match) {
-  return c->fail(BALL_EAGAIN, "the clock of match " + std::to_string(match) + " is not known yet");
 }
 
 void to_c(const MatchInfoOut &i, double sim_now, ball_net_match *out, const ParticipantId &me) {
@@ -484,95 +401,6 @@ ball_status ball_net_push(ball_net_client *c, uint32_t match, int slot, double t
   return guarded(c, [&] {
     std::string why;
     return with_why(c, with_transport(c, c->core->push(match, slot, time, center, normal, *c->port, &why), &why), why);
-  });
-}
-
-namespace {
-// ball_net_ball_at's refusals, out of its way (it runs every frame)
-__attribute__((cold, noinline)) ball_status ball_refused(ball_net_client *c, uint32_t match, ball_status st) {
-  if (!c) return BALL_EINVAL;
-  if (st == BALL_EAGAIN) return c->fail(st, "match " + std::to_string(match) + " has no clock or segment yet");
-  if (st == BALL_EINVAL) return c->fail(st, "out must not be NULL");
-  if (st == BALL_ENONFINITE) return c->fail(st, "the time must be finite");
-  if (st == BALL_ENOMATCH || st == BALL_ECLOSED) return st;  // (said by followed or usable)
-  return c->fail(st, std::string("the ball at that time: ") + ball_strerror(st));
-}
-}  // namespace
-
-// (the call a game makes every frame: docs/client.md, "What it costs", measures it against ball_segment_eval)
-ball_status ball_net_ball_at(const ball_net_client *cc, uint32_t match, double time, ball_net_ball *out) {
-  auto *c = const_cast<ball_net_client *>(cc);
-  if (!c || c->closed) return ball_refused(c, match, usable(c));
-  if (!out) return ball_refused(c, match, BALL_EINVAL);
-  const MatchView *v = c->hot_view && c->hot_match == match ? c->hot_view : followed(c, match);
-  if (!v) return ball_refused(c, match, BALL_ENOMATCH);
-  c->hot_match = match;
-  c->hot_view = v;
-  if (!std::isfinite(time)) return ball_refused(c, match, BALL_ENONFINITE);
-  double sim = 0.0;
-  const KeptSegment *k = v->at(time, &sim);
-  if (!k) return ball_refused(c, match, BALL_EAGAIN);
-  ball_status st = ball_flight_eval(&k->flight, sim, &out->state);
-  if (st != BALL_OK) return ball_refused(c, match, st);
-  const SegmentOut &s = k->segment;
-  out->sim_time = sim;
-  out->segment = s.seq;
-  out->cause = static_cast<ball_net_cause>(s.cause);
-  out->cause_index = s.cause_index;
-  out->sound = s.sound;
-  out->flight = s.segment;
-  return c->ok();
-}
-
-ball_status ball_net_racket(const ball_net_client *cc, uint32_t match, int slot, double time, ball_racket_pose *out) {
-  return on_view(cc, match, out, [&](ball_net_client *c, const MatchView &) {
-    if (!c->rackets) return c->fail(BALL_EINVAL, "the client reads no rackets: set ball_net_config.rackets");
-    if (!std::isfinite(time)) return c->fail(BALL_ENONFINITE, "the time must be finite");
-    ball_status st = c->core->racket(match, slot, time, out);
-    if (st == BALL_OK) return c->ok();
-    const std::string which = "slot " + std::to_string(slot) + " of match " + std::to_string(match);
-    if (st == BALL_ERANGE) return c->fail(st, which + ": the match has no such slot");
-    if (st == BALL_EAGAIN || st == BALL_ENOTFOUND)
-      return c->fail(BALL_EAGAIN, which + ": no clock, model or racket sample of it yet");
-    if (st == BALL_ESTALE) return c->fail(st, which + ": its newest sample is older than the model's stale_time");
-    return c->fail(st, which + ": " + ball_strerror(st));
-  });
-}
-
-ball_status ball_net_predict(const ball_net_client *cc, uint32_t match, double time, double horizon, double dt,
-                             ball_prediction *out) {
-  return on_view(cc, match, out, [&](ball_net_client *c, const MatchView &v) {
-    ball_status st = v.predict(time, horizon, dt, out);
-    if (st == BALL_EAGAIN)
-      return c->fail(st, "match " + std::to_string(match) + ": its whole model, clock or segment has not come yet");
-    if (st != BALL_OK) return c->fail(st, std::string("ball_predict: ") + ball_strerror(st));
-    return c->ok();
-  });
-}
-
-ball_status ball_net_sim_time(const ball_net_client *cc, uint32_t match, double time, double *sim) {
-  return on_view(cc, match, sim, [&](ball_net_client *c, const MatchView &v) {
-    if (!std::isfinite(time)) return c->fail(BALL_ENONFINITE, "the time must be finite");
-    if (!v.clock().valid()) return no_clock(c, match);
-    *sim = v.clock().sim_now(time);
-    return c->ok();
-  });
-}
-
-ball_status ball_net_local_time(const ball_net_client *cc, uint32_t match, double sim, double *time) {
-  return on_view(cc, match, time, [&](ball_net_client *c, const MatchView &v) {
-    if (!std::isfinite(sim)) return c->fail(BALL_ENONFINITE, "the sim time must be finite");
-    if (!v.clock().valid()) return no_clock(c, match);
-    *time = v.clock().local_at(sim, c->now());
-    return c->ok();
-  });
-}
-
-ball_status ball_net_model(const ball_net_client *cc, uint32_t match, ball_model *out) {
-  return on_view(cc, match, out, [&](ball_net_client *c, const MatchView &v) {
-    if (!v.model()) return c->fail(BALL_EAGAIN, "the model of match " + std::to_string(match) + " has not come yet");
-    *out = *v.model();
-    return c->ok();
   });
 }
 
