@@ -152,10 +152,6 @@ class Match {
     SegmentOut segment;  // as written
   };
 
-  // the holder's sample `seq` arrived: the seqs the stream's window left
-  // behind that never arrived (lost), or, late, it fills its own gap
-  static uint64_t stream_gap(Slot &slot, uint32_t seq);
-  void end_stream(Slot &slot);  // its gaps to ended_lost_
   void write_ahead(MatchOutput *out);
   bool is_ahead(const ball_event &ev) const;  // ev is the contact written ahead, to the bit
   PlayState judged(const ball_event &ev) const;  // the rules' state once ev is judged, nothing changed
