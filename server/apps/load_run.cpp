@@ -76,8 +76,8 @@ void add_usage(const Snapshot &a, const Snapshot &b, double seconds, LoadRow *ro
 // window's start and end. The bots play through one client of the client
 // library (ball/net.h), as games do; its tap feeds the meter (load.h), which
 // times the hits' segments by DDS's stamps and takes the server's statuses.
-bool drive(const LoadOptions &o, const std::function<void()> &at_window,
-           const std::function<void(const LoadPart &)> &done, std::string *err) {
+// The load's client, its tap feeding the meter; nullptr with err.
+ball_net_client *open_load_client(const LoadOptions &o, LoadMeter *meter, std::string *err) {
   int room = std::max(o.first_match + o.matches, dds::kClientRoom);
   ball_net_client *client = open_client(o.dds, "ball-load", "", [&](ball_net_config *c) {
     set_link(o.bot, c);
@@ -85,13 +85,16 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
     c->ball_states = 1;  // the bots read the ball states the server writes (--state-rate): their cost is measured
     c->server_status = 1;  // (the meter's)
   }, err);
-  if (!client) return false;
-  LoadMeter meter(o.first_match, o.matches);
-  if (ball_net_set_tap(client, LoadMeter::tap, &meter) != BALL_OK) {
+  if (client && ball_net_set_tap(client, LoadMeter::tap, meter) != BALL_OK) {
     *err = ball_net_message(client);
     ball_net_free(client);
-    return false;
+    return nullptr;
   }
+  return client;
+}
+
+// Two bots a match, each with a seed of its own.
+std::vector<BotPlayer> load_bots(const LoadOptions &o) {
   std::vector<BotPlayer> bots;
   for (int m = o.first_match; m < o.first_match + o.matches; ++m)
     for (int slot = 0; slot < 2; ++slot) {
@@ -101,10 +104,42 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       p.seed = o.bot.seed + static_cast<uint64_t>(m * 2 + slot);
       bots.emplace_back(p);
     }
+  return bots;
+}
+
+// What the bots and the meter had counted when the window began.
+struct Baseline {
+  uint64_t samples = 0, bytes = 0;
+  PortCounts counts;
+};
+
+// The part's row and counts over the window of `seconds`.
+void close_part(const LoadOptions &o, PlayerGroup &group, LoadMeter &meter, const Baseline &b, double seconds) {
+  const WireSizes sizes = dds::wire_sizes();
+  LoadPart &part = meter.part;
+  LoadRow &row = part.row;
+  row.matches = o.matches;
+  row.bots = o.matches * 2;
+  row.rate = o.bot.rate;
+  row.seconds = seconds;
+  row.samples_per_s = static_cast<double>(group.samples_written() - b.samples) / std::max(row.seconds, 1e-9);
+  row.write_failures = group.write_failures();
+  // the meter counted what the server wrote; the bots' writes are their client's counts
+  part.counts = meter.counts() - b.counts;
+  part.counts.samples_written = group.samples_written() - b.samples;
+  uint64_t control_bytes = group.bytes_out() - b.bytes - part.counts.samples_written * sizes.sample;
+  part.counts.controls_written = sizes.control > 0 ? control_bytes / sizes.control : 0;
+}
+
+bool drive(const LoadOptions &o, const std::function<void()> &at_window,
+           const std::function<void(const LoadPart &)> &done, std::string *err) {
+  LoadMeter meter(o.first_match, o.matches);
+  ball_net_client *client = open_load_client(o, &meter, err);
+  if (!client) return false;
   LoadPart &part = meter.part;
   bool refused = false;
   {
-    PlayerGroup group(std::move(bots), client);
+    PlayerGroup group(load_bots(o), client);
     const double start = mono_now();
     group.start_at(bot_starts(o.first_match, o.matches, o.bot.seed, stagger_of(o), start));
     double window_start = -1.0, window_end = 0.0;
@@ -114,7 +149,6 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       window_start = start + (o.window_start - realtime_now());
       window_end = window_start + o.duration;
     }
-    const WireSizes sizes = dds::wire_sizes();
     for (double next_tick = start; !stop_requested(); sleep_until(next_tick)) {
       double now = mono_now();
       if (window_start < 0.0 && (group.all_joined() || now - start > o.warmup * 3)) {
@@ -141,18 +175,7 @@ bool drive(const LoadOptions &o, const std::function<void()> &at_window,
       if (next_tick < now) next_tick = now + kTick;
     }
     if (at_window) at_window();
-    LoadRow &row = part.row;
-    row.matches = o.matches;
-    row.bots = o.matches * 2;
-    row.rate = o.bot.rate;
-    row.seconds = mono_now() - window_start;
-    row.samples_per_s = static_cast<double>(group.samples_written() - samples_before) / std::max(row.seconds, 1e-9);
-    row.write_failures = group.write_failures();
-    // the meter counted what the server wrote; the bots' writes are their client's counts
-    part.counts = meter.counts() - counts_before;
-    part.counts.samples_written = group.samples_written() - samples_before;
-    uint64_t control_bytes = group.bytes_out() - bytes_before - part.counts.samples_written * sizes.sample;
-    part.counts.controls_written = sizes.control > 0 ? control_bytes / sizes.control : 0;
+    close_part(o, group, meter, Baseline{samples_before, bytes_before, counts_before}, mono_now() - window_start);
     group.leave();
   }
   sleep_until(mono_now() + 0.3);  // the LEAVEs get out before the participant goes

@@ -170,6 +170,8 @@ class Match {
   void advance(double dt, bool with_state, MatchOutput *out);  // a frame's sim part: serve, step, rules
   double clock_now() const { return following_ ? follow_time_ : sim_.time; }  // sim s the sample checks use
   void set_level(ball_level level, std::string *err);
+  bool put_on(const SegmentOut &seg, double t, bool *hit_at_t0, std::string *err);  // restore's ball
+  void catch_up(double info_time, double target, bool hit_at_t0, MatchOutput *out);  // restore's frames
   void find_hit();  // the hit clock looks again, from the tracks as they are (when the rules allow a hit)
   void took_effect(const SegmentOut &s);  // a segment is in effect now: into the history
   // Lag compensation (docs/server-design.md, "Lag compensation"): the late hit of

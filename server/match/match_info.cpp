@@ -140,22 +140,7 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t ne
            std::to_string(static_cast<int>(kMaxCatchUp)) + " s of the owner's frames to catch up";
     return false;
   }
-  if (seg) {
-    ball_sim trial = sim_;
-    ball_status st = ball_sim_set_segment(&trial, &seg->segment, t);
-    if (st == BALL_OK && seg->cause == Cause::racket) {
-      // the racket tests sleep after a hit (section 3.1): as many frames as
-      // the owner had left at t (its frame ends since the hit's frame)
-      hit_at_t0 = t == seg->segment.t0;
-      st = ball_sim_set_sleep(&trial, sleep_left(seg->segment.t0, t, frame_time() * config_.time_base, model().sleep_frames));
-    }
-    if (st != BALL_OK) {
-      *err = "segment " + std::to_string(seg->seq) + " at sim time " + std::to_string(t) + ": " + ball_strerror(st);
-      return false;
-    }
-    sim_ = trial;
-    if (seg->cause == Cause::racket) end_stroke(seg->cause_index, seg->segment.t0);
-  }
+  if (seg && !put_on(*seg, t, &hit_at_t0, err)) return false;
   set_rules(p);
   rules().event_seq = std::max(p.event_seq, info.play.event_seq);  // a segment written ahead foresaw its own
   current_seq_ = std::max(seg ? seg->seq : 0u, info.segment_seq);
@@ -169,11 +154,38 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t ne
   // only a playing match makes segments: one newer than the info says it plays
   if (seg_newer) state_ = MatchState::playing;
   following_ = false;
-  if (state_ != MatchState::playing || !(dt > 0.0)) return true;
-  // on to the present as the owner went: first to the end of the owner's
-  // frame (its frames end at info.sim_time + k dt while it plays on), the
-  // rest of the hit's frame when that is where it starts, then frame by frame
-  double end = info.sim_time + std::ceil((sim_.time - info.sim_time) / dt - 1e-9) * dt;
+  if (state_ == MatchState::playing && dt > 0.0) catch_up(info.sim_time, target, hit_at_t0, out);
+  return true;
+}
+
+// The ball on the owner's segment at sim s t (a racket hit's tests asleep
+// as the owner's were; *hit_at_t0: t is the hit's instant); false with err
+// and the sim as it was when libball refuses it.
+bool Match::put_on(const SegmentOut &seg, double t, bool *hit_at_t0, std::string *err) {
+  ball_sim trial = sim_;
+  ball_status st = ball_sim_set_segment(&trial, &seg.segment, t);
+  if (st == BALL_OK && seg.cause == Cause::racket) {
+    // the racket tests sleep after a hit (section 3.1): as many frames as
+    // the owner had left at t (its frame ends since the hit's frame)
+    *hit_at_t0 = t == seg.segment.t0;
+    st = ball_sim_set_sleep(&trial, sleep_left(seg.segment.t0, t, frame_time() * config_.time_base, model().sleep_frames));
+  }
+  if (st != BALL_OK) {
+    *err = "segment " + std::to_string(seg.seq) + " at sim time " + std::to_string(t) + ": " + ball_strerror(st);
+    return false;
+  }
+  sim_ = trial;
+  if (seg.cause == Cause::racket) end_stroke(seg.cause_index, seg.segment.t0);
+  return true;
+}
+
+// On to the present (sim s target) as the owner went: first to the end of
+// the owner's frame (its frames end at info_time + k dt while it plays
+// on), the rest of the hit's frame when that is where it starts, then
+// frame by frame.
+void Match::catch_up(double info_time, double target, bool hit_at_t0, MatchOutput *out) {
+  const double dt = frame_time() * config_.time_base;
+  double end = info_time + std::ceil((sim_.time - info_time) / dt - 1e-9) * dt;
   if (end > sim_.time + 1e-12 && end <= target) {
     advance(end - sim_.time, false, out);
     if (hit_at_t0) ball_sim_set_sleep(&sim_, std::min(sim_.sleep + 1, model().sleep_frames));
@@ -183,7 +195,6 @@ bool Match::restore(const MatchInfoOut &info, const SegmentOut *seg, uint32_t ne
     before = sim_.time;
     advance(std::min(dt, target - sim_.time), false, out);
   }
-  return true;
 }
 
 }  // namespace ballsrv
