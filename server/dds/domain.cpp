@@ -210,21 +210,19 @@ std::string denied(const std::string &partition) {
 }
 }  // namespace
 
-std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_file,
-                                     const std::string &participant_profile, const std::string &discovery_servers,
-                                     const std::string &name, std::string *err, const Security &security) {
-  if (domain_id < 0 || domain_id > kMaxDomain) {
-    *err = "domain " + std::to_string(domain_id) + " is unusable: RTPS maps domains 0 to " +
-           std::to_string(kMaxDomain) + " onto UDP ports";
-    return nullptr;
-  }
+// The participant's QoS: its profile from the profile file (the built-in
+// profiles when none is given; each source loaded once a process), a
+// Discovery Server and DDS Security when asked for. false with err.
+static bool participant_qos(const std::string &profile_file, const std::string &participant_profile,
+                            const std::string &discovery_servers, const Security &security,
+                            fdds::DomainParticipantQos *qos, std::string *err) {
   const bool builtin = profile_file.empty();
   const std::string profiles = builtin ? std::string("the built-in QoS profiles") : "QoS profile file " + profile_file;
   if (!builtin) {
     std::ifstream f(profile_file);
     if (!f) {
       *err = profiles + ": " + std::strerror(errno);
-      return nullptr;
+      return false;
     }
   }
   auto *factory = fdds::DomainParticipantFactory::get_instance();
@@ -238,22 +236,35 @@ std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_f
                                 : factory->load_XML_profiles_file(profile_file);
       if (rc != ReturnCode_t::RETCODE_OK) {
         *err = profiles + ": not a valid Fast DDS profile file";
-        return nullptr;
+        return false;
       }
       loaded.insert(profile_file);
     }
   }
-  fdds::DomainParticipantQos qos;
-  if (factory->get_participant_qos_from_profile(participant_profile, qos) != ReturnCode_t::RETCODE_OK) {
+  if (factory->get_participant_qos_from_profile(participant_profile, *qos) != ReturnCode_t::RETCODE_OK) {
     *err = profiles + ": no participant profile \"" + participant_profile + "\"";
-    return nullptr;
+    return false;
   }
-  if (!discovery_servers.empty() && !use_discovery_servers(discovery_servers, &qos, err)) {
+  if (!discovery_servers.empty() && !use_discovery_servers(discovery_servers, qos, err)) {
     *err = "participant profile \"" + participant_profile + "\": " + *err;
+    return false;
+  }
+  if (!security.dir.empty() && !use_security(security, qos, err)) return false;
+  return true;
+}
+
+std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_file,
+                                     const std::string &participant_profile, const std::string &discovery_servers,
+                                     const std::string &name, std::string *err, const Security &security) {
+  if (domain_id < 0 || domain_id > kMaxDomain) {
+    *err = "domain " + std::to_string(domain_id) + " is unusable: RTPS maps domains 0 to " +
+           std::to_string(kMaxDomain) + " onto UDP ports";
     return nullptr;
   }
-  if (!security.dir.empty() && !use_security(security, &qos, err)) return nullptr;
+  fdds::DomainParticipantQos qos;
+  if (!participant_qos(profile_file, participant_profile, discovery_servers, security, &qos, err)) return nullptr;
   qos.name(name);
+  auto *factory = fdds::DomainParticipantFactory::get_instance();
   auto d = std::make_unique<Domain>(Key{});
   d->impl_ = std::make_unique<Impl>();
   d->domain_id_ = domain_id;
