@@ -23,7 +23,7 @@ std::vector<MatchRange> split_matches(int first, int count, int k) {
 }
 
 double server_time_of(const MatchInfoOut &info, double sim) {
-  return info.server_time + (sim - info.sim_time) / info.time_base;
+  return info.server_time + (sim - info.sim_time) / info.settings.time_base;
 }
 
 std::vector<double> bot_starts(int first_match, int matches, uint64_t seed, double stagger, double start) {
@@ -87,7 +87,7 @@ void LoadMeter::segment(const SegmentOut &seg, double recv, double sent) {
   const MatchInfoOut *i = info(seg.match_id);
   // (a MatchInfo without its clock pair maps nothing: no figure rather than a wrong one;
   // a correction's t0 lies back by its late sample's trip: lag compensation's, not a hit's way out)
-  if (!i || i->time_base <= 0.0 || i->server_time <= 0.0 || seg.correction) return;
+  if (!i || i->settings.time_base <= 0.0 || i->server_time <= 0.0 || seg.correction) return;
   double hit = server_time_of(*i, seg.segment.t0);
   part.hit_to_wire.push_back(recv - hit);
   if (sent > 0.0) {  // its two parts, where DDS said both

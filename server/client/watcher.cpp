@@ -259,9 +259,9 @@ void Watcher::on_segment(const json &line) {
   }
   double sim = 0.0;
   bool contact = seg.cause == Cause::floor || seg.cause == Cause::net || seg.cause == Cause::wall;
-  if (contact && w.has_info && w.info.time_base > 0.0 && w.leads.size() < kKeepLeads &&
+  if (contact && w.has_info && w.info.settings.time_base > 0.0 && w.leads.size() < kKeepLeads &&
       sim_now(seg.match_id, real_, &sim))
-    w.leads[seg.seq] = {seg.segment.t0, (seg.segment.t0 - sim) / w.info.time_base};
+    w.leads[seg.seq] = {seg.segment.t0, (seg.segment.t0 - sim) / w.info.settings.time_base};
 }
 
 void Watcher::on_state(const json &line) {

@@ -159,7 +159,7 @@ RestorePoint restore_point(const Followed &f, double first_real, double frame_ti
     p.newest_seq = std::max(p.newest_seq, kv.first);
   }
   p.target = info.sim_time;
-  if (plays) p.target += (first_real - frame_time - info.server_time) * info.time_base;
+  if (plays) p.target += (first_real - frame_time - info.server_time) * info.settings.time_base;
   for (const auto &kv : f.segments)
     if (kv.second.cause == Cause::serve || kv.second.cause == Cause::racket)
       p.target = std::max(p.target, kv.second.segment.t0);

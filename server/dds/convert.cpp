@@ -400,26 +400,18 @@ balldds::MatchInfo to_idl(const MatchInfoOut &in) {
   f.grounded(in.segment.grounded != 0);
   o.segment(f);
   o.frame_time(in.frame_time);
-  o.time_base(in.time_base);
   o.sim_time(in.sim_time);
   o.server_time(in.server_time);
-  o.state_rate(in.state_rate);
-  o.player_timeout(in.player_timeout);
-  o.max_sample_age(in.max_sample_age);
-  o.max_sample_lead(in.max_sample_lead);
   o.model_hash(in.model_hash);
+#define BALL_PUT_SETTING(f) o.f(in.settings.f);
+  BALL_MATCH_WIRE_SETTINGS(BALL_PUT_SETTING)
+#undef BALL_PUT_SETTING
 #define BALL_PUT(f) o.f(in.model.f);
   BALL_FLIGHT_FIELDS(BALL_PUT)
 #undef BALL_PUT
   o.net_x(in.net_x);
   o.court_x({in.court_x[0], in.court_x[1]});
   o.court_z({in.court_z[0], in.court_z[1]});
-  o.serve_delay(in.serve_delay);
-  o.max_rally_time(in.max_rally_time);
-  o.serve_v_up(in.serve_v_up);
-  o.seed(in.seed);
-  o.max_racket_speed(in.max_racket_speed);
-  o.racket_margin(in.racket_margin);
   return o;
 }
 
@@ -456,14 +448,12 @@ void from_idl(const balldds::MatchInfo &in, MatchInfoOut *o) {
   o->segment.s0 = v3(f.s0());
   o->segment.grounded = f.grounded() ? 1 : 0;
   o->frame_time = in.frame_time();
-  o->time_base = in.time_base();
   o->sim_time = in.sim_time();
   o->server_time = in.server_time();
-  o->state_rate = in.state_rate();
-  o->player_timeout = in.player_timeout();
-  o->max_sample_age = in.max_sample_age();
-  o->max_sample_lead = in.max_sample_lead();
   o->model_hash = in.model_hash();
+#define BALL_GET_SETTING(f) o->settings.f = in.f();
+  BALL_MATCH_WIRE_SETTINGS(BALL_GET_SETTING)
+#undef BALL_GET_SETTING
   ball_model_default(&o->model);
 #define BALL_GET(f) o->model.f = in.f();
   BALL_FLIGHT_FIELDS(BALL_GET)
@@ -473,12 +463,6 @@ void from_idl(const balldds::MatchInfo &in, MatchInfoOut *o) {
   o->court_x[1] = in.court_x()[1];
   o->court_z[0] = in.court_z()[0];
   o->court_z[1] = in.court_z()[1];
-  o->serve_delay = in.serve_delay();
-  o->max_rally_time = in.max_rally_time();
-  o->serve_v_up = in.serve_v_up();
-  o->seed = in.seed();
-  o->max_racket_speed = in.max_racket_speed();
-  o->racket_margin = in.racket_margin();
 }
 
 balldds::ServerStatus to_idl(const StatusOut &in) {

@@ -49,20 +49,12 @@ Match *Host::follow(const MatchInfoOut &info, const ball_model *model, std::stri
   c.players = info.players;
   c.level = static_cast<ball_level>(info.level);
   c.frame_rate = info.frame_time > 0.0 ? 1.0 / info.frame_time : 0.0;
-  c.time_base = info.time_base;
-  c.state_rate = info.state_rate;
-  c.serve_delay = info.serve_delay;
-  c.max_rally_time = info.max_rally_time;
+#define BALL_GET_SETTING(f) c.f = info.settings.f;
+  BALL_MATCH_WIRE_SETTINGS(BALL_GET_SETTING)
+#undef BALL_GET_SETTING
   c.extrapolation_time = info.model.extrapolation_time;
   c.stale_time = info.model.stale_time;
-  c.player_timeout = info.player_timeout;
-  c.max_sample_age = info.max_sample_age;
-  c.max_sample_lead = info.max_sample_lead;
-  c.serve_v_up = info.serve_v_up;
   c.court_x_lo = info.court_x[0];
-  c.seed = info.seed;
-  c.max_racket_speed = info.max_racket_speed;
-  c.racket_margin = info.racket_margin;
   if (info.level < BALL_LEVEL_CUSTOM || info.level > BALL_LEVEL_ADVANCED) {
     *err = "level " + std::to_string(info.level) + " is not a game level";
     return nullptr;

@@ -28,12 +28,10 @@ MatchInfoOut Match::info() const {
   i.segment_cause_index = segment_cause_index_;
   i.segment = sim_.seg;
   i.frame_time = frame_time();
-  i.time_base = config_.time_base;
   i.sim_time = sim_.time;
-  i.state_rate = config_.state_rate;
-  i.player_timeout = config_.player_timeout;
-  i.max_sample_age = config_.max_sample_age;
-  i.max_sample_lead = config_.max_sample_lead;
+#define BALL_PUT_SETTING(f) i.settings.f = config_.f;
+  BALL_MATCH_WIRE_SETTINGS(BALL_PUT_SETTING)
+#undef BALL_PUT_SETTING
   i.model_hash = model_hash_;
   i.model = model();
   i.net_x = court_.net_x;
@@ -41,12 +39,6 @@ MatchInfoOut Match::info() const {
   i.court_x[1] = court_.x_hi;
   i.court_z[0] = court_.z_lo;
   i.court_z[1] = court_.z_hi;
-  i.serve_delay = config_.serve_delay;
-  i.max_rally_time = config_.max_rally_time;
-  i.serve_v_up = config_.serve_v_up;
-  i.seed = config_.seed;
-  i.max_racket_speed = config_.max_racket_speed;
-  i.racket_margin = config_.racket_margin;
   return i;
 }
 
@@ -99,7 +91,7 @@ bool Match::follow(const MatchInfoOut &info, std::string *err) {
   state_ = info.state;
   pause_reason_ = info.pause_reason;
   pause_slot_ = info.pause_slot;
-  if (in_bounds(find_field(match_fields(), "time_base")->bounds, info.time_base)) config_.time_base = info.time_base;
+  if (in_bounds(find_field(match_fields(), "time_base")->bounds, info.settings.time_base)) config_.time_base = info.settings.time_base;
   unsigned cleared = roster_.follow(info);  // a new holder's racket starts without the old one's history
   for (int k = 0; k < config_.players; ++k)
     if (cleared & (1u << k)) ball_racket_clear(&sim_, k);

@@ -504,7 +504,7 @@ bool ServerLoop::wake() {
   for (const auto &f : cluster_.following()) {  // the owner's sim clock, for the samples' checks
     const MatchInfoOut &i = f.second.info;
     Match *m = host_.find(f.first);
-    if (m) m->follow_clock(i.sim_time + (i.state == MatchState::playing ? (now - i.server_time) * i.time_base : 0.0));
+    if (m) m->follow_clock(i.sim_time + (i.state == MatchState::playing ? (now - i.server_time) * i.settings.time_base : 0.0));
   }
   admit_hosted();
   take_samples(now);

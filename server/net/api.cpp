@@ -101,7 +101,7 @@ void to_c(const MatchInfoOut &i, double sim_now, ball_net_match *out, const Part
   out->score[1] = i.play.score[1];
   out->rally = i.play.rally;
   out->serving_side = i.play.serving_side;
-  out->time_base = i.time_base;
+  out->time_base = i.settings.time_base;
   out->sim_time = sim_now;
   out->net_x = i.net_x;
   out->court_x[0] = i.court_x[0];
@@ -300,7 +300,7 @@ ball_status ball_net_matches(ball_net_client *c, ball_net_match *out, int cap, i
       const Listed &l = *list[static_cast<size_t>(k)];
       const MatchView *v = c->core->view(l.info.match_id);
       double sim = v && v->clock().valid() ? v->clock().sim_now(now)
-                   : l.info.state == MatchState::playing ? l.info.sim_time + (now - l.heard) * l.info.time_base
+                   : l.info.state == MatchState::playing ? l.info.sim_time + (now - l.heard) * l.info.settings.time_base
                                                          : l.info.sim_time;
       to_c(l.info, sim, &out[k], c->transport->id());
     }

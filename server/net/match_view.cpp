@@ -68,7 +68,7 @@ bool MatchView::on_info(const MatchInfoOut &in, double local, std::vector<ViewEv
     return false;
   }
   if (has_info_ && in.sim_time + kAnew < info_.sim_time) start_anew();
-  if (!clock_.observe(in.sim_time, in.server_time, in.time_base, in.state == MatchState::playing, local)) {
+  if (!clock_.observe(in.sim_time, in.server_time, in.settings.time_base, in.state == MatchState::playing, local)) {
     counters_.refused++;
     return false;
   }
@@ -228,7 +228,7 @@ bool MatchView::on_event(const EventOut &e, double local, std::vector<ViewEvent>
 bool MatchView::on_state(const StateOut &s, double local) {
   if (s.match_id != id_) return false;
   if (!has_info_ || !servers_.accepts(s.server_id) ||
-      !clock_.observe(s.sim_time, s.server_time, info_.time_base, s.state == MatchState::playing, local)) {
+      !clock_.observe(s.sim_time, s.server_time, info_.settings.time_base, s.state == MatchState::playing, local)) {
     counters_.refused++;
     return false;
   }

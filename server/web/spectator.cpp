@@ -252,7 +252,7 @@ void Spectator::mirror_clock(uint32_t id, const WatchedView &v, bool live, doubl
   double sim = live ? v.sim_at(real) : m->frozen;
   m->clock = json{{"type", "clock"},     {"match", id},
                   {"sim_time", sim},     {"real", real},
-                  {"time_base", v.info->time_base}, {"running", live && v.running},
+                  {"time_base", v.info->settings.time_base}, {"running", live && v.running},
                   {"live", live}}.dump();
   m->clock_real = real;
   m->live = live;

@@ -103,7 +103,29 @@ const std::vector<Field<MatchConfig>> &match_fields() {
   return table;
 }
 
+const std::vector<Field<MatchConfig>> &wire_setting_fields() {
+  static const std::vector<F> table = [] {
+    std::vector<F> t;
+#define BALL_SETTING_KEY(f) #f,
+    for (const char *key : {BALL_MATCH_WIRE_SETTINGS(BALL_SETTING_KEY)})
+#undef BALL_SETTING_KEY
+      if (const F *f = find_field(match_fields(), key)) t.push_back(*f);
+    // (MatchInfo carries frame_time, not frame_rate: an upper end that is
+    // another field's value is that field's own upper end)
+    for (F &f : t)
+      if (const F *other = f.bounds.hi_field ? find_field(match_fields(), f.bounds.hi_field) : nullptr) {
+        f.bounds.hi = other->bounds.hi;
+        f.bounds.hi_open = other->bounds.hi_open;
+        f.bounds.hi_field = nullptr;
+      }
+    return t;
+  }();
+  return table;
+}
+
 bool check_match_config(const MatchConfig &c, std::string *err) { return check_fields(match_fields(), c, err); }
+
+bool check_wire_settings(const MatchConfig &c, std::string *err) { return check_fields(wire_setting_fields(), c, err); }
 
 void follow_frame_rate(MatchConfig *c) {
   if (c->state_rate > c->frame_rate) c->state_rate = c->frame_rate;

@@ -38,14 +38,34 @@ struct MatchConfig {
   uint64_t seed = 1;                  // serve placement
 };
 
+// The settings that travel in MatchInfo as they are (docs/protocol.md;
+// idl/ball.idl MatchInfo), under their key's name: MatchInfoOut::settings holds them,
+// and the IDL's MatchInfo, its conversions, the JSON records, the spectator
+// page, Match::info and a standby's follow all take this one list. A new
+// setting that travels is its member and row above, its name here and its
+// IDL field.
+#define BALL_MATCH_WIRE_SETTINGS(X)                                                                     \
+  X(time_base) X(state_rate) X(player_timeout) X(max_sample_age) X(max_sample_lead) X(serve_delay)      \
+  X(max_rally_time) X(serve_v_up) X(seed) X(max_racket_speed) X(racket_margin)
+
 // Every setting of a match, in the order of docs/server.md; `scene` and
 // `id` are keys of a match in the config file that live beside its
 // MatchConfig (their member is the reader's to fill).
 const std::vector<Field<MatchConfig>> &match_fields();
 
+// The rows of match_fields() of the settings that travel, in the order of
+// BALL_MATCH_WIRE_SETTINGS, as a reader of MatchInfo checks them: an upper
+// end that is another field's value is that field's own upper end
+// (state_rate <= frame_rate's 1000 Hz: MatchInfo carries frame_time).
+const std::vector<Field<MatchConfig>> &wire_setting_fields();
+
 // Checks a config against its field table; false with
 // "field: must be in RANGE" in err.
 bool check_match_config(const MatchConfig &config, std::string *err);
+
+// Checks the settings that travel against wire_setting_fields(); false
+// with "field: must be in RANGE" in err.
+bool check_wire_settings(const MatchConfig &config, std::string *err);
 
 // A match's state rate follows its frame rate unless it was set: called
 // when it was not, it lowers the state rate to the frame rate.

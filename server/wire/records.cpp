@@ -111,14 +111,13 @@ void from_json(const json &j, StateOut &s) { BALL_STATE_KEYS(BALL_GET, s) }
   X("match", i.match_id) X("server", i.server_id) X("server_time", i.server_time)                       \
   X("revision", i.revision) X("state", i.state) X("scene", i.scene) X("level", i.level)                 \
   X("players", i.players) X("play", i.play) X("pause_reason", i.pause_reason) X("pause_slot", i.pause_slot) \
-  X("segment_seq", i.segment_seq) X("frame_time", i.frame_time) X("time_base", i.time_base)             \
-  X("sim_time", i.sim_time) X("state_rate", i.state_rate) X("player_timeout", i.player_timeout)         \
-  X("max_sample_age", i.max_sample_age) X("max_sample_lead", i.max_sample_lead)                         \
+  X("segment_seq", i.segment_seq) X("frame_time", i.frame_time) X("sim_time", i.sim_time)               \
   X("model_hash", i.model_hash) X("net_x", i.net_x) X("court_x", i.court_x) X("court_z", i.court_z)     \
-  X("serve_delay", i.serve_delay) X("max_rally_time", i.max_rally_time) X("serve_v_up", i.serve_v_up)   \
-  X("seed", i.seed) X("segment_cause", i.segment_cause) X("segment_index", i.segment_cause_index)             \
+  X("segment_cause", i.segment_cause) X("segment_index", i.segment_cause_index)                         \
   X("segment_t0", i.segment.t0) X("segment_p0", i.segment.p0) X("segment_v0", i.segment.v0)             \
-  X("segment_s0", i.segment.s0) X("max_racket_speed", i.max_racket_speed) X("racket_margin", i.racket_margin)
+  X("segment_s0", i.segment.s0)
+// (and the settings that travel, under their keys)
+#define BALL_INFO_SETTING(X, f) X(#f, i.settings.f)
 
 void to_json(json &j, const SlotInfo &s) {
   j = json::object();
@@ -134,6 +133,9 @@ void from_json(const json &j, SlotInfo &s) {
 void to_json(json &j, const MatchInfoOut &i) {
   j = json::object();
   BALL_INFO_KEYS(BALL_PUT, i)
+#define BALL_PUT_SETTING(f) BALL_INFO_SETTING(BALL_PUT, f)
+  BALL_MATCH_WIRE_SETTINGS(BALL_PUT_SETTING)
+#undef BALL_PUT_SETTING
   j["segment_grounded"] = i.segment.grounded != 0;
   j["slots"] = i.slots;
   json &model = j["model"] = json::object();
@@ -144,6 +146,9 @@ void to_json(json &j, const MatchInfoOut &i) {
 
 void from_json(const json &j, MatchInfoOut &i) {
   BALL_INFO_KEYS(BALL_GET, i)
+#define BALL_GET_SETTING(f) BALL_INFO_SETTING(BALL_GET, f)
+  BALL_MATCH_WIRE_SETTINGS(BALL_GET_SETTING)
+#undef BALL_GET_SETTING
   i.segment.grounded = j.at("segment_grounded").get<bool>() ? 1 : 0;
   j.at("slots").get_to(i.slots);
   ball_model_default(&i.model);  // as a receiver of MatchInfo has it: only the flight fields travel

@@ -84,9 +84,10 @@ bool usable_other_info(const MatchInfoOut &i) {
 
 bool usable_info(const MatchInfoOut &i) {
   auto finite = [](double v) { return std::isfinite(v); };
+  std::string why;  // (a setting outside its range: refused like any other)
   return enum_in_range(i.state) && enum_in_range(i.pause_reason) && enum_in_range(i.segment_cause) &&
          sim_time(i.sim_time) && sim_time(i.segment.t0) && usable_play(i.play) && i.players >= 1 && i.players <= kMaxPlayers && i.level >= BALL_LEVEL_CUSTOM &&
-         i.level <= BALL_LEVEL_ADVANCED && i.time_base >= 0.05 && i.time_base <= 20.0 && i.frame_time > 0.0 &&
+         i.level <= BALL_LEVEL_ADVANCED && check_wire_settings(i.settings, &why) && i.frame_time > 0.0 &&
          i.frame_time <= 10.0 && finite(i.sim_time) && finite(i.server_time) && finite(i.model.gravity) &&
          finite(i.model.mass) && i.model.mass > 0.0 && finite(i.model.air_friction) && i.model.air_friction >= 0.0 &&
          finite(i.model.spin_damping) && i.model.spin_damping > 0.0 && finite(i.model.radius) &&

@@ -36,8 +36,9 @@ constexpr double kMaxSimTime = 1e9;
 // points a side may have: a forged score must not overflow when it scores
 constexpr int kMaxScore = 1 << 30;
 
-// A MatchInfo a client can use: slots, level, time base, frame time and the
-// flight model in their ranges (a forged level 99 once made ball-bot exit),
+// A MatchInfo a client can use: slots, level, the settings that travel
+// (check_wire_settings), frame time and the flight model in their ranges (a
+// forged level 99 once made ball-bot exit),
 // the enums among the IDL's values, the sim clock and the segment's t0 in
 // [0, kMaxSimTime], and its Play usable (usable_play).
 bool usable_info(const MatchInfoOut &info);

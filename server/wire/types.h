@@ -10,6 +10,7 @@
 #include <string>
 
 #include "ball/ball.h"
+#include "match_config.h"
 
 namespace ballsrv {
 
@@ -339,12 +340,7 @@ struct MatchInfoOut {
   int segment_cause_index = -1;    // as SegmentOut's cause_index
   ball_segment segment{};          // its flight: t0 sim s, p0 m, v0 m/s, s0 m/s, grounded
   double frame_time = 0.0;         // real s per frame
-  double time_base = 1.0;          // sim s per real s
   double sim_time = 0.0;           // sim s at server_time
-  double state_rate = 0.0;         // BallState samples per real s; 0: off
-  double player_timeout = 0.0;     // real s: a slot silent this long has vanished
-  double max_sample_age = 0.0;     // sim s: a sample older than sim_time minus this is stale
-  double max_sample_lead = 0.0;    // sim s: a capture time beyond sim_time plus this is out of range
   uint64_t model_hash = 0;         // ball_model_hash of the model the server steps
   // the model; on the wire only its BALL_FLIGHT_FIELDS travel, and a
   // receiver gets them over ball_model_default: enough for ball_segment_eval
@@ -352,13 +348,9 @@ struct MatchInfoOut {
   double net_x = 0.0;              // m: the net plane x = net_x
   double court_x[2] = {0, 0};      // m: the court's extent in x
   double court_z[2] = {0, 0};      // m: and in z
-  // the rules' settings (MatchConfig's)
-  double serve_delay = 0.0;        // sim s between a point and the next serve
-  double max_rally_time = 0.0;     // sim s: a longer rally is a let
-  double serve_v_up = 0.0;         // m/s: the serve's vertical launch speed
-  uint64_t seed = 0;               // the serves' placement
-  double max_racket_speed = 0.0;   // m/s: a faster implied racket is refused
-  double racket_margin = 0.0;      // m: how far beyond its half a racket may be
+  // the match's settings that travel (BALL_MATCH_WIRE_SETTINGS); the
+  // others are MatchConfig's defaults
+  MatchConfig settings;
   Reception reception;             // a reader's, not on the wire
 };
 

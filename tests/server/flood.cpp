@@ -102,12 +102,12 @@ int main(int argc, char **argv) {
       if (in.match_id == 0) {
         info = in;
         have_info = true;
-        clock.observe(in.sim_time, in.server_time, in.time_base, in.state == MatchState::playing, real);
+        clock.observe(in.sim_time, in.server_time, in.settings.time_base, in.state == MatchState::playing, real);
       }
     StateOut st;
     while (a_states.take(&st, nullptr))
       if (st.match_id == 0) {
-        clock.observe(st.sim_time, st.server_time, info.time_base, st.state == MatchState::playing, real);
+        clock.observe(st.sim_time, st.server_time, info.settings.time_base, st.state == MatchState::playing, real);
         playing = st.state == MatchState::playing;
       }
     if (!have_info) {

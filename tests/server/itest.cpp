@@ -250,7 +250,7 @@ void case_pause(const Env &env) {
   }
   json info = wait_for(t, 5.0, [](const json &j) { return is_type(j, "match_info"); });
   CHECK_MSG(!info.is_null(), "no match info in the record");
-  double timeout = info.is_null() ? 1.0 : info.get<MatchInfoOut>().player_timeout;
+  double timeout = info.is_null() ? 1.0 : info.get<MatchInfoOut>().settings.player_timeout;
   double killed = realtime_now();
   p.b1.signal(SIGKILL);
   p.b1.wait(2.0);

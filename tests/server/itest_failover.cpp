@@ -245,7 +245,7 @@ void case_failover(const Env &env) {
       CHECK_MSG(info2->revision > last1->revision, "match %d: revision %u after %u", m, info2->revision,
                 last1->revision);
       if (last1->state == MatchState::playing && info2->state == MatchState::playing) {
-        double mapped = last1->sim_time + (info2->server_time - last1->server_time) * last1->time_base;
+        double mapped = last1->sim_time + (info2->server_time - last1->server_time) * last1->settings.time_base;
         worst_clock = std::max(worst_clock, std::fabs(info2->sim_time - mapped));
       }
     }

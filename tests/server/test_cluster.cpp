@@ -180,7 +180,7 @@ TEST(the_restore_point_maps_the_owners_clock) {
   for (int n = 0; n < 200; ++n) {
     double first_real = kNow + std::uniform_real_distribution<double>(0.0, 2.0)(g);
     RestorePoint p = restore_point(*f, first_real, frame);
-    double mapped = f->info.sim_time + (first_real - frame - kNow) * f->info.time_base;
+    double mapped = f->info.sim_time + (first_real - frame - kNow) * f->info.settings.time_base;
     CHECK(p.target >= mapped - 1e-12);
     for (const auto &kv : f->segments) {
       if (kv.second.cause == Cause::serve || kv.second.cause == Cause::racket) CHECK(p.target >= kv.second.segment.t0);

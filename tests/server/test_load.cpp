@@ -29,7 +29,7 @@ TEST(a_sim_time_maps_to_the_server_instant_by_the_info_pair) {
   MatchInfoOut info;
   info.sim_time = 10.0;
   info.server_time = 1000.0;
-  info.time_base = 0.5;  // sim runs at half speed
+  info.settings.time_base = 0.5;  // sim runs at half speed
   CHECK_NEAR(server_time_of(info, 11.0), 1002.0, 1e-12);
   CHECK_NEAR(server_time_of(info, 9.75), 999.5, 1e-12);
 }
@@ -50,7 +50,7 @@ TEST(the_meter_times_its_own_matches_hits_from_the_tap) {
   info.match_id = 4;
   info.sim_time = 10.0;
   info.server_time = 1000.0;
-  info.time_base = 1.0;
+  info.settings.time_base = 1.0;
   SegmentOut hit;
   hit.match_id = 4;
   hit.cause = Cause::racket;

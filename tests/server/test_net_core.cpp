@@ -115,7 +115,7 @@ TEST(the_ball_is_libballs_evaluation_of_the_segment_in_effect) {
       // the server's sim time then: the info's pair, less the client's kLatency (the min filter keeps it)
       // the newest pair's mapping (never before its sim time: the clock does not go back)
       double sim = anchor.state == MatchState::playing
-                       ? anchor.sim_time + std::max(0.0, at - kSkew - kLatency - anchor.server_time) * anchor.time_base
+                       ? anchor.sim_time + std::max(0.0, at - kSkew - kLatency - anchor.server_time) * anchor.settings.time_base
                        : anchor.sim_time;
       worst_clock = std::max(worst_clock, std::fabs(b.sim_time - sim));
       const SegmentOut *want = segment_in_effect(all, b.sim_time);

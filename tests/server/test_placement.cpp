@@ -280,7 +280,7 @@ TEST(a_standby_takes_a_match_over_when_its_owner_is_lost) {
   CHECK(first.segment_seq >= last.segment_seq);
   CHECK(first.play.score == last.play.score || first.play.rally > last.play.rally);
   // on the owner's clock: sim time at the info's instant as the owner's info maps it
-  double mapped = last.sim_time + (first.server_time - (lost - 1.0 / 60.0 + kRealOffset)) * last.time_base;
+  double mapped = last.sim_time + (first.server_time - (lost - 1.0 / 60.0 + kRealOffset)) * last.settings.time_base;
   CHECK_NEAR(first.sim_time, mapped, 1.0 / 60.0 + 1e-6);
   // the players go on with the standby: its segments go on from the owner's seq
   while (r.clock.now < lost + 4.0) {
@@ -411,7 +411,7 @@ TEST(a_strangers_forged_info_never_takes_a_match_over) {
               f.what, r.loop->cluster().stats().follow_failures);
     if (!m || m->following()) continue;
     // on the owner's clock, from its own newest info
-    double mapped = last.sim_time + (r.port.infos.front().server_time - last.server_time) * last.time_base;
+    double mapped = last.sim_time + (r.port.infos.front().server_time - last.server_time) * last.settings.time_base;
     CHECK_MSG(std::fabs(r.port.infos.front().sim_time - mapped) <= 1.0 / 60.0 + 1e-6, "%s: sim time %.3f, the owner's %.3f",
               f.what, r.port.infos.front().sim_time, mapped);
     double sim0 = m->sim().time;

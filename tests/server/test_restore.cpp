@@ -431,7 +431,7 @@ TEST(a_catch_up_beyond_its_bound_is_refused) {
   CHECK(a.ok);
   const MatchInfoOut info = a.match.info();
   CHECK(info.state == MatchState::playing);
-  const double span = kMaxCatchUp * info.time_base;  // sim s
+  const double span = kMaxCatchUp * info.settings.time_base;  // sim s
   struct Case {
     double target;
     bool taken;

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "check.hpp"
+#include "records.h"
 #include "testing/raw.h"
 #include "trust.h"
 
@@ -98,7 +99,96 @@ std::string differs(const void *a, const void *b, const ball_field *f, int n, co
   return "";
 }
 
+// A real inside a field's bounds (a text or flag field is left as it is),
+// or, with `outside`, one beyond an end that is finite (false: none is).
+bool draw_setting(std::mt19937_64 &rng, const Field<MatchConfig> &f, MatchConfig *c, bool outside) {
+  const Bounds &b = f.bounds;
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  if (std::holds_alternative<uint64_t MatchConfig::*>(f.member)) {
+    uint64_t MatchConfig::*m = std::get<uint64_t MatchConfig::*>(f.member);
+    uint64_t hi = static_cast<uint64_t>(b.ihi);
+    if (outside) c->*m = hi + 1 + rng() % (UINT64_MAX - hi);
+    else c->*m = rng() % (hi + 1);
+    return true;
+  }
+  if (!std::holds_alternative<double MatchConfig::*>(f.member)) return false;
+  double MatchConfig::*m = std::get<double MatchConfig::*>(f.member);
+  const double span = b.hi - b.lo;
+  if (!outside) {
+    double v = b.lo + u(rng) * span;
+    c->*m = (b.lo_open && v == b.lo) || (b.hi_open && v == b.hi) ? b.lo + 0.5 * span : v;
+    return true;
+  }
+  switch (rng() % 4) {
+    case 0: c->*m = NAN; return true;
+    case 1: c->*m = (rng() % 2) ? HUGE_VAL : -HUGE_VAL; return true;
+    case 2: c->*m = b.lo_open ? b.lo : std::nextafter(b.lo, -HUGE_VAL) - u(rng) * span; return true;
+    default: c->*m = b.hi_open ? b.hi : std::nextafter(b.hi, HUGE_VAL) + u(rng) * span; return true;
+  }
+}
+
+// A MatchInfo a client uses (usable_info), the match's settings its defaults'.
+MatchInfoOut usable() {
+  MatchInfoOut i;
+  i.players = 2;
+  i.level = BALL_LEVEL_EASY;
+  i.frame_time = 1.0 / 60.0;
+  i.server_time = 10.0;
+  ball_model_default(&i.model);
+  return i;
+}
+
 }  // namespace
+
+// The settings that travel are one list (BALL_MATCH_WIRE_SETTINGS) whose
+// names are keys of the field table: each at random values of its range
+// comes back the same, bit for bit, from a sample's bytes and from a record.
+TEST(every_setting_that_travels_crosses_the_wire_and_the_records) {
+#define BALL_ONE(f) +1
+  const size_t listed = 0 BALL_MATCH_WIRE_SETTINGS(BALL_ONE);
+#undef BALL_ONE
+  CHECK_EQ(wire_setting_fields().size(), listed);  // every name is a key of match_fields()
+  std::mt19937_64 rng(61206);
+  int same = 0;
+  for (int k = 0; k < 500; ++k) {
+    MatchInfoOut in = usable();
+    for (const auto &f : wire_setting_fields()) CHECK(draw_setting(rng, f, &in.settings, false));
+    MatchInfoOut wire;
+    CHECK(dds::deserialized(dds::serialized(in), &wire));
+    MatchInfoOut record = nlohmann::json(in).get<MatchInfoOut>();
+    bool alike = true;
+#define BALL_SAME(f)                                                                                 \
+  alike = alike && std::memcmp(&wire.settings.f, &in.settings.f, sizeof in.settings.f) == 0 &&        \
+          std::memcmp(&record.settings.f, &in.settings.f, sizeof in.settings.f) == 0;                 \
+  CHECK_MSG(alike, "info %d: %s differs after the wire or the record", k, #f);
+    BALL_MATCH_WIRE_SETTINGS(BALL_SAME)
+#undef BALL_SAME
+    same += alike;
+  }
+  check::note("500 random MatchInfo: %d came back setting for setting (%zu settings travel)", same, listed);
+}
+
+// A MatchInfo is used only with every setting it carries in its key's range
+// (docs/protocol.md, "Clients that trust no one"): random values inside
+// are used, values beyond either finite end, NaN and infinities are not.
+TEST(a_match_info_is_used_only_with_its_settings_in_range) {
+  std::mt19937_64 rng(61207);
+  CHECK(usable_info(usable()));
+  int used = 0, refused = 0;
+  for (int k = 0; k < 300; ++k) {
+    for (const auto &f : wire_setting_fields()) {
+      MatchInfoOut in = usable();
+      CHECK(draw_setting(rng, f, &in.settings, false));
+      CHECK_MSG(usable_info(in), "%s = %s inside its range, refused", f.key, value_text(f, in.settings).c_str());
+      used += usable_info(in);
+      MatchInfoOut out = usable();
+      CHECK(draw_setting(rng, f, &out.settings, true));
+      CHECK_MSG(!usable_info(out), "%s = %s outside its range, used", f.key, value_text(f, out.settings).c_str());
+      refused += !usable_info(out);
+    }
+  }
+  check::note("%d in range used, %d out of range refused", used, refused);
+}
 
 TEST(every_field_of_the_model_crosses_the_wire) {
   std::mt19937_64 rng(20261206);

@@ -129,23 +129,16 @@ const Number<InfoIn> kInfoNumbers[] = {
     VEC(InfoIn, "info.segment_s0", o.info.segment.s0),
     NUM(InfoIn, "info.segment_grounded", o.info.segment.grounded = flag(v) ? 1 : 0),
     NUM(InfoIn, "info.frame_time", o.info.frame_time = v),
-    NUM(InfoIn, "info.time_base", o.info.time_base = v),
     NUM(InfoIn, "info.sim_time", o.info.sim_time = v),
-    NUM(InfoIn, "info.state_rate", o.info.state_rate = v),
-    NUM(InfoIn, "info.player_timeout", o.info.player_timeout = v),
-    NUM(InfoIn, "info.max_sample_age", o.info.max_sample_age = v),
-    NUM(InfoIn, "info.max_sample_lead", o.info.max_sample_lead = v),
     NUM(InfoIn, "info.net_x", o.info.net_x = v),
     NUM(InfoIn, "info.court_x.0", o.info.court_x[0] = v),
     NUM(InfoIn, "info.court_x.1", o.info.court_x[1] = v),
     NUM(InfoIn, "info.court_z.0", o.info.court_z[0] = v),
     NUM(InfoIn, "info.court_z.1", o.info.court_z[1] = v),
-    NUM(InfoIn, "info.serve_delay", o.info.serve_delay = v),
-    NUM(InfoIn, "info.max_rally_time", o.info.max_rally_time = v),
-    NUM(InfoIn, "info.serve_v_up", o.info.serve_v_up = v),
-    NUM(InfoIn, "info.max_racket_speed", o.info.max_racket_speed = v),
-    NUM(InfoIn, "info.racket_margin", o.info.racket_margin = v),
     SLOT(0), SLOT(1), SLOT(2), SLOT(3),
+#define BALL_SETTING_NUMBER(f) NUM(InfoIn, "info." #f, o.info.settings.f = static_cast<decltype(o.info.settings.f)>(v)),
+    BALL_MATCH_WIRE_SETTINGS(BALL_SETTING_NUMBER)
+#undef BALL_SETTING_NUMBER
 #define BALL_FLIGHT_NUMBER(f) NUM(InfoIn, "info.model." #f, o.info.model.f = v),
     BALL_FLIGHT_FIELDS(BALL_FLIGHT_NUMBER)
 #undef BALL_FLIGHT_NUMBER
