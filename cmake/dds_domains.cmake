@@ -1,7 +1,7 @@
 # The DDS domain ids of the demo, the load benchmark and every networked
 # test, stated here only: ball-demo's and ball-load's default --domain are
 # compiled from this list, the tests take theirs from it
-# (tests/server/tests.cmake), and the table of docs/server.md ("DDS
+# (tests/server/tests.cmake), and the table of docs/server-reference.md ("DDS
 # domains") is made from it and held to it by a test. Each user has an id
 # of its own, so that runs at the same time never meet.
 #   "user|id|what"
@@ -65,7 +65,7 @@ function(ball_dds_domain user out)
   message(FATAL_ERROR "cmake/dds_domains.cmake: no DDS domain for ${user}")
 endfunction()
 
-# ball_dds_domain_table(FILE): the table of docs/server.md, written to FILE;
+# ball_dds_domain_table(FILE): the table of docs/server-reference.md, written to FILE;
 # a fatal error if two users share an id.
 function(ball_dds_domain_table file)
   set(text "| id | used by |\n|---|---|\n")

@@ -1,7 +1,7 @@
 # A generated table of a page, between its markers: docs/scenes.md lists the
 # model keys as ballsim --keys prints them from libball's field table (the
 # default); -DPROGRAM=... -DARGS=... -DMARK=... -DBY=... name another
-# program's table, -DTABLE=FILE a table written by the build (docs/server.md:
+# program's table, -DTABLE=FILE a table written by the build (docs/server-reference.md:
 # ball-server --keys, the DDS domain ids). Checks that the page is current;
 # with -DUPDATE=ON writes the block instead (./run docs).
 if(NOT DEFINED MARK)

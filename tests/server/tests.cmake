@@ -55,11 +55,11 @@ target_compile_options(test_config PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_config COMMAND test_config)
 set_tests_properties(test_config PROPERTIES LABELS server TIMEOUT 60)
 
-# docs/server.md's key tables are the field tables (ball-server --keys)
+# docs/server-reference.md's key tables are the field tables (ball-server --keys)
 foreach(table server match)
   add_test(NAME docs_server_${table}_keys_current
     COMMAND ${CMAKE_COMMAND} -DPROGRAM=$<TARGET_FILE:ball-server> "-DARGS=--keys;${table}" "-DMARK=${table} keys"
-      "-DBY=ball-server --keys ${table}" -DDOC=${PROJECT_SOURCE_DIR}/docs/server.md
+      "-DBY=ball-server --keys ${table}" -DDOC=${PROJECT_SOURCE_DIR}/docs/server-reference.md
       -P ${PROJECT_SOURCE_DIR}/tests/cli/keys_doc.cmake)
   set_tests_properties(docs_server_${table}_keys_current PROPERTIES LABELS server)
 endforeach()
@@ -74,10 +74,10 @@ target_compile_options(test_teardown PRIVATE ${BALL_CXX_WARNINGS})
 add_test(NAME test_teardown COMMAND test_teardown)
 set_tests_properties(test_teardown PROPERTIES LABELS dds TIMEOUT 60)
 
-# docs/server.md's table of DDS domains is cmake/dds_domains.cmake's list
+# docs/server-reference.md's table of DDS domains is cmake/dds_domains.cmake's list
 add_test(NAME docs_server_dds_domains_current
   COMMAND ${CMAKE_COMMAND} -DTABLE=${PROJECT_BINARY_DIR}/dds_domains.md "-DMARK=dds domains"
-    -DBY=cmake/dds_domains.cmake -DDOC=${PROJECT_SOURCE_DIR}/docs/server.md
+    -DBY=cmake/dds_domains.cmake -DDOC=${PROJECT_SOURCE_DIR}/docs/server-reference.md
     -P ${PROJECT_SOURCE_DIR}/tests/cli/keys_doc.cmake)
 set_tests_properties(docs_server_dds_domains_current PROPERTIES LABELS server)
 
