@@ -1,4 +1,4 @@
-// ball-bot: an autonomous player (docs/server.md, "Bots"), a game on the
+// ball-bot: an autonomous player (docs/bots-and-watchers.md, "Bots"), a game on the
 // client library (ball/net.h). One BotPlayer (player.h) in a PlayerGroup
 // over one client: the library joins its slot and maps its clock to the
 // match's sim clock; the bot plans every ball from the segment in effect
@@ -54,7 +54,7 @@ std::string play(ball_net_client *client, const PlayerParams &pp, double duratio
 }  // namespace
 
 int main(int argc, char **argv) {
-  CLI::App cli{"ball-bot: an autonomous player for ball-server (docs/server.md, \"Bots\")"};
+  CLI::App cli{"ball-bot: an autonomous player for ball-server (docs/bots-and-watchers.md, \"Bots\")"};
   PlayerParams pp;
   double duration = 0.0;
   std::string stats_json;

@@ -65,7 +65,7 @@ int server_summary(Process &server, const std::string &dir, const std::string &n
 // What the demo plays (its command line).
 struct Demo {
   double duration = 20.0;
-  int domain = BALL_DEMO_DOMAIN;  // docs/server.md, "DDS domains"
+  int domain = BALL_DEMO_DOMAIN;  // docs/server-reference.md, "DDS domains"
   std::string level = "mid", scene = "default", secure, game;
   int http = -1;
   bool failover = false;

@@ -1,4 +1,4 @@
-// ball-load: the load generator and benchmark (docs/server.md, "Load").
+// ball-load: the load generator and benchmark (docs/server-reference.md, "Load").
 // Plays both slots of many matches (PlayerGroups of BotPlayers, one DDS
 // participant a process, in one process or --bot-processes) against a
 // ball-server and measures what a player sees: racket hits, the
@@ -16,7 +16,7 @@ using namespace ballsrv::app;
 int main(int argc, char **argv) {
   CLI::App cli{"ball-load: many bots against ball-server; with --sweep, the load benchmark"};
   LoadOptions o;
-  o.dds.domain = BALL_BENCH_DOMAIN;  // docs/server.md, "DDS domains"
+  o.dds.domain = BALL_BENCH_DOMAIN;  // docs/server-reference.md, "DDS domains"
   FieldOptions<PlayerParams> bot_opt;
   cli.add_option("--matches", o.matches, "matches to play (both slots of each)")->capture_default_str()
       ->check(CLI::Range(1, 100000));

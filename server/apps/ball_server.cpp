@@ -79,7 +79,7 @@ int serve(ServerConfig &config, const ServerScenes &scenes, const Run &run) {
   err = settle(loop, config);
   if (!err.empty()) return fail(kProgram, err);
   // the loop's thread alone, after DDS started its own: a server that cannot keep up must not
-  // starve the host's other programs (docs/server.md, "Load")
+  // starve the host's other programs (docs/server-reference.md, "Load")
   if (config.realtime_priority > 0 && !set_realtime_priority(config.realtime_priority, &err)) return fail(kProgram, err);
   loop.start();
   if (!run.quiet)

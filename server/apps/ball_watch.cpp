@@ -1,4 +1,4 @@
-// ball-watch: an observer (docs/server.md, "Watchers"), a client of the
+// ball-watch: an observer (docs/bots-and-watchers.md, "Watchers"), a client of the
 // client library (ball/net.h) and nothing else: a Watcher (watcher.h) over
 // one client. It prints the rally as it happens,
 // records everything it receives to JSON Lines on request, evaluates the
@@ -31,7 +31,7 @@ namespace {
 
 const char *kProgram = "ball-watch";
 
-// Draws the snapshots a Watcher says are due (docs/server.md, "Snapshot frames").
+// Draws the snapshots a Watcher says are due (docs/bots-and-watchers.md, "Snapshot frames").
 struct Snapshots {
   std::string dir, camera = "side";
   std::vector<int> size{640, 480};  // pixels
@@ -110,7 +110,7 @@ struct Page {
 
   void add_options(CLI::App &cli) {
     cli.add_option("--http", port, "serve the spectator page on PORT (0: a free port; the URL is printed); "
-                                   "docs/server.md, \"The spectator page\"")->check(CLI::Range(0, 65535));
+                                   "docs/bots-and-watchers.md, \"The spectator page\"")->check(CLI::Range(0, 65535));
     cli.add_option("--http-address", address, "with --http: the address to listen on")->capture_default_str();
   }
   // Serving, when asked for: "" or what went wrong.

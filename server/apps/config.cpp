@@ -176,7 +176,7 @@ const std::vector<Field<ServerConfig>> &server_fields() {
                                          " when CREATE is allowed, + " + std::to_string(kFollowRoom) + " for a standby";
   static const std::vector<F> table = {
       {"server_id", &C::server_id, whole(0, UINT32_MAX), "", "in every sample the server writes", "--server-id"},
-      {"domain", &C::domain, whole(0, kMaxDomain), "", "DDS domain id (docs/server.md, \"DDS domains\")"},
+      {"domain", &C::domain, whole(0, kMaxDomain), "", "DDS domain id (docs/server-reference.md, \"DDS domains\")"},
       {"profile", std::monostate{}, {}, "", "the QoS profile file, relative to the config file", nullptr,
        "found as above"},
       {"participant_profile", &C::participant, {}, "", "`loopback`, `lan`, `discovery_client`"},
@@ -207,7 +207,7 @@ const std::vector<Field<ServerConfig>> &server_fields() {
        "configured matches", "--claim"},
       {"realtime_priority", &C::realtime_priority, whole(0, 99), "",
        "SCHED_FIFO priority of the server's loop thread (root or CAP_SYS_NICE); 0: the normal scheduler "
-       "(docs/server.md, \"Load\")", "--realtime-priority"},
+       "(docs/server-reference.md, \"Load\")", "--realtime-priority"},
       {"status_interval", &C::status_interval, open_closed(0.0, 3600.0), "s", "between status lines",
        "--status-interval"},
       {"startup_wait", &C::startup_wait, closed(0.0, 60.0), "s",
@@ -284,7 +284,7 @@ std::string keys_table(const std::string &which) {
 
 void ServerOptions::add(CLI::App &app) {
   app.add_option("--config", config_file, "JSON config file (docs/server.md, \"Configuration\")");
-  app.add_option("--keys", keys, "print the key table (server or match) of docs/server.md and exit")
+  app.add_option("--keys", keys, "print the key table (server or match) of docs/server-reference.md and exit")
       ->check(CLI::IsMember({"server", "match"}));
   app.add_option("--matches", matches_, "host N matches, ids 0..N-1, replacing the config's list")
       ->check(CLI::Range(1, 100000));

@@ -55,7 +55,7 @@ struct ServerConfig {
   std::vector<MatchEntry> matches;
 };
 
-// The server's own settings, in the order of docs/server.md.
+// The server's own settings, in the order of docs/server-reference.md.
 const std::vector<Field<ServerConfig>> &server_fields();
 
 // Reads a JSON config over *config (defaults first). Relative scene paths
@@ -80,7 +80,7 @@ class ServerOptions {
   bool apply(ServerConfig *config, std::string *err) const;
 
   std::string config_file;  // --config
-  std::string keys;         // --keys server|match: print that table of docs/server.md and exit
+  std::string keys;         // --keys server|match: print that table of docs/server-reference.md and exit
 
  private:
   FieldOptions<ServerConfig> server_;
@@ -110,7 +110,7 @@ std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes
 // strength of its writers (the QoS file's, for its role).
 LoopSettings loop_settings(const ServerConfig &config, uint32_t strength);
 
-// The markdown table docs/server.md shows for "server" or "match" keys ("" for another name).
+// The markdown table docs/server-reference.md shows for "server" or "match" keys ("" for another name).
 std::string keys_table(const std::string &which);
 
 }  // namespace app

@@ -1,4 +1,4 @@
-// ball-load's shell over DDS and processes (docs/server.md, "Load"): plays
+// ball-load's shell over DDS and processes (docs/server-reference.md, "Load"): plays
 // both slots of a range of matches from one process, or starts bot
 // processes that do, and with a sweep starts a ball-server for each point;
 // measures the server's and the bots' CPU and memory and the loopback

@@ -8,7 +8,7 @@
 // velocity through the contact point at the contact time, `lead` seconds
 // before to `follow` after. A straight stroke of that length is what the
 // server's eq 15 extrapolation carries over the samples' network delay
-// (docs/server.md, "Bots").
+// (docs/bots-and-watchers.md, "Bots").
 #pragma once
 
 #include <array>

@@ -1,4 +1,4 @@
-// The load benchmark's core, free of DDS (docs/server.md, "Load"): how
+// The load benchmark's core, free of DDS (docs/server-reference.md, "Load"): how
 // ball-load splits the matches over its bot processes, what each process
 // measures (a LoadPart, records.h) and how the parts of one run and the
 // rounds of one point become the report; the meter of the samples the bots'

@@ -1,4 +1,4 @@
-// A watcher's mind, free of DDS and of drawing (docs/server.md,
+// A watcher's mind, free of DDS and of drawing (docs/bots-and-watchers.md,
 // "Watchers"): a client of the client library (ball/net.h) and nothing
 // else. Each turn polls the client; its tap (docs/client.md, "A tap")
 // brings every sample as it came, with the library's verdict on it, and

@@ -82,7 +82,7 @@ class Door {
 // 2.9 looks a new sample up through the reader's whole history, and
 // removes a taken one likewise, so a history that holds a frame's samples
 // costs O(samples^2) a frame; with an inbox it holds one or two
-// (docs/server.md, "Load"). Samples that find the inbox full are still
+// (docs/server-reference.md, "Load"). Samples that find the inbox full are still
 // handed out after it, marked `rejected`, up to a quarter of its size more
 // (so that the loop counts each where it belongs, its stream included);
 // beyond that they are a `rejected` note only.

@@ -536,7 +536,7 @@ SampleResult Match::on_sample(const RacketSampleIn &s, double now, uint64_t *los
   const bool late = config_.rewind_window > 0.0 && s.capture_time < sim_.time &&
                     s.capture_time >= sim_.time - config_.rewind_window && rally_.live() && !following_;
   // of the stroke its racket's last hit ended: it cannot change the hit,
-  // unless the match may go back past its own racket's hit (docs/server.md,
+  // unless the match may go back past its own racket's hit (docs/server-design.md,
   // "Lag compensation")
   const bool past_hit = s.capture_time < slot.hit_time;
   if (past_hit && !(late && config_.rewind_own_hit)) return SampleResult::before_hit;

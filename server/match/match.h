@@ -1,6 +1,6 @@
 // A match: one libball sim, its player slots and its rules, free of DDS.
 // Frames, samples and control messages go in; segments, events, ball states
-// and match info come out (docs/server.md, "Match rules").
+// and match info come out (docs/server-design.md, "Match rules").
 //
 // Time: the sim clock (sim s) advances by frame_time * time_base per frame
 // while the match plays and stands still otherwise. `now` arguments are the

@@ -1,4 +1,4 @@
-// The point rules, tennis-like and free of geometry (docs/server.md, "Match
+// The point rules, tennis-like and free of geometry (docs/server-design.md, "Match
 // rules"). A rally starts with a serve, which counts as a stroke of the
 // serving side; after every stroke the ball must first come down inside the
 // other side's court, and once it has bounced there the other side must

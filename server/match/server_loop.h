@@ -1,6 +1,6 @@
-// The server's loop, free of DDS (docs/server.md, "The status line", "Frame
-// clock"). One loop on one thread owns every match of a Host; at each
-// wake-up it runs its phases in order:
+// The server's loop, free of DDS (docs/server-reference.md, "The status line";
+// docs/server-design.md, "Frame clock"). One loop on one thread owns every
+// match of a Host; at each wake-up it runs its phases in order:
 //
 //   take notes     what the DDS threads noticed: writers lost, deadlines
 //                  missed, samples DDS rejected or lost (counted as drops)

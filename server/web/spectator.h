@@ -1,4 +1,4 @@
-// The spectator page's core (docs/server.md, "The spectator page"), free of
+// The spectator page's core (docs/bots-and-watchers.md, "The spectator page"), free of
 // DDS and of HTTP: it mirrors what a Watcher took (every match's court,
 // MatchInfo, segments, events and sim clock) and the players' racket samples
 // into the page's messages, JSON texts numbered in order. A page opened now

@@ -1,4 +1,4 @@
-// The spectator page's HTTP server (docs/server.md, "The spectator page"):
+// The spectator page's HTTP server (docs/bots-and-watchers.md, "The spectator page"):
 // cpp-httplib on threads of its own, serving the page's files, three.js
 // from Debian's libjs-three, and the Spectator's messages as a stream of
 // server-sent events (/stream). The owner changes the Spectator through

@@ -1,7 +1,7 @@
 // A settings struct described field by field: the one place where a
 // setting's JSON key, member, range, unit and meaning are stated. The check
 // of a struct (check_fields), the JSON reader and the command-line options
-// (server/apps/config.cpp) and the tables of docs/server.md (doc_table,
+// (server/apps/config.cpp) and the tables of docs/server-reference.md (doc_table,
 // printed by `ball-server --keys` and held to the page by a test) are all
 // made from these tables, so they cannot disagree.
 #pragma once
@@ -61,7 +61,7 @@ struct Field {
   Member<S> member;                    // monostate: a key the reader handles itself (objects, lists, files)
   Bounds bounds;
   const char *unit;                    // "Hz", "s", "m/s", "m", or "" (a count, a ratio, a name)
-  const char *doc;                     // what it means (docs/server.md, --help)
+  const char *doc;                     // what it means (docs/server-reference.md, --help)
   const char *option = nullptr;        // its command-line option(s), CLI11 style; nullptr: none
   const char *default_text = nullptr;  // the default in words; nullptr: the struct's value
   bool in_file = true;                 // false: set by the program, not a key; only checked
@@ -189,7 +189,7 @@ std::string value_text(const Field<S> &f, const S &s) {
       f.member);
 }
 
-// The markdown table of docs/server.md for the keys of a table, with the
+// The markdown table of docs/server-reference.md for the keys of a table, with the
 // defaults of `defaults`: | key | default | range | meaning |.
 template <class S>
 std::string doc_table(const std::vector<Field<S>> &table, const S &defaults) {

@@ -1,7 +1,7 @@
 // The server loop's clocks, free of any system clock: what the loop asks of
 // time (Clock: the programs use the system's, server/apps/common.h; the
 // tests a fake one), the absolute frame clock and the percentiles of the
-// status line (docs/server.md, "Frame clock").
+// status line (docs/server-design.md, "Frame clock").
 #pragma once
 
 #include <algorithm>

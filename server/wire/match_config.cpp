@@ -66,8 +66,8 @@ std::vector<F> player_and_hit_fields() {
        "1 m, or more than 1 m under the floor, is refused (`out_of_range`)",
        "--racket-margin"},
       {"hit_instant", &M::hit_instant, {}, "",
-       "step the match to a racket hit's instant between frames, found from the rackets' tracks (docs/server.md, "
-       "\"Hits at their instant\"); false: hits are found at frame ends only",
+       "step the match to a racket hit's instant between frames, found from the rackets' tracks "
+       "(docs/server-design.md, \"Hits at their instant\"); false: hits are found at frame ends only",
        "--hit-instant"},
       {"hit_lead", &M::hit_lead, closed(0.0, 0.02), "s",
        "real s before a racket hit's instant that the loop wakes, steps the match to the instant and writes the "
@@ -80,8 +80,9 @@ std::vector<F> player_and_hit_fields() {
        "--rewind-window"},
       {"rewind_own_hit", &M::rewind_own_hit, {}, "",
        "lag compensation: a late racket sample captured before its own racket's last hit may take the match back "
-       "past that hit, to move it (never past another racket's hit, the serve or a decided point; docs/server.md, "
-       "\"Lag compensation\"); false: a hit ends its racket's stroke and such samples are dropped (`before_hit`)",
+       "past that hit, to move it (never past another racket's hit, the serve or a decided point; "
+       "docs/server-design.md, \"Lag compensation\"); false: a hit ends its racket's stroke and such samples are "
+       "dropped (`before_hit`)",
        "--rewind-own-hit"},
       {"court_x_lo", &M::court_x_lo, closed(-BALL_MAX_COORD, BALL_MAX_COORD), "m",
        "where the court starts; it spans x in [court_x_lo, 2 net_x - court_x_lo], z over the net", "--court-x-lo"},

@@ -1,6 +1,6 @@
 // A match's settings, with defaults like ball_model_default, and their
 // field table (fields.h): JSON key, member, range, unit and meaning of each,
-// stated here only (docs/server.md, "Configuration", is printed from it).
+// stated here only (docs/server-reference.md, "Configuration keys", is printed from it).
 #pragma once
 
 #include <cstdint>
@@ -48,7 +48,7 @@ struct MatchConfig {
   X(time_base) X(state_rate) X(player_timeout) X(max_sample_age) X(max_sample_lead) X(serve_delay)      \
   X(max_rally_time) X(serve_v_up) X(seed) X(max_racket_speed) X(racket_margin)
 
-// Every setting of a match, in the order of docs/server.md; `scene` and
+// Every setting of a match, in the order of docs/server-reference.md; `scene` and
 // `id` are keys of a match in the config file that live beside its
 // MatchConfig (their member is the reader's to fill).
 const std::vector<Field<MatchConfig>> &match_fields();

@@ -324,7 +324,7 @@ long rss_kb(pid_t pid) {
   return at == std::string::npos ? 0 : std::strtol(status.c_str() + at + 6, nullptr, 10);
 }
 
-// A flood of made-up participant announcements (docs/server.md, "Discovery,
+// A flood of made-up participant announcements (docs/server-reference.md, "Discovery,
 // bounded"), replayed from a captured one under 3000 fresh GUID prefixes in
 // 3 s, at a server whose profile keeps at most 64 remote participants: its
 // memory grows by a bounded amount, the rally in play goes on, and once the

@@ -1,4 +1,4 @@
-// ball_lag_study: what lag compensation is worth (docs/server.md, "Lag
+// ball_lag_study: what lag compensation is worth (docs/server-design.md, "Lag
 // compensation"). Two bots rally offline (a Match stepped as the server
 // loop steps it, rally.h) at 15 Hz behind a one-way delay; a swing is a
 // ball that reached a bot's side: it hit it, or the point went for not

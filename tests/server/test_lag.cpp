@@ -232,7 +232,7 @@ TEST(a_late_sample_inside_the_window_hits_where_the_ball_was) {
 }
 
 // With rewind_own_hit, a late sample captured before its own racket's last
-// hit may take the match back past that hit and move it (docs/server.md,
+// hit may take the match back past that hit and move it (docs/server-design.md,
 // "Lag compensation"): rallies at the three levels behind 50, 100 and
 // 150 ms, bots that swing late and ahead, the same rules (no correction
 // before another racket's last hit or the serve, none by a racket asleep

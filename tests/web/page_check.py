@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The spectator page in a real browser (docs/server.md, "The spectator
+"""The spectator page in a real browser (docs/bots-and-watchers.md, "The spectator
 page"): a ball-server, two ball-bots and a ball-watch --http on loopback, on
 the test's own DDS domain, and Debian's Chromium, headless, driven over the
 DevTools protocol (cdp.py). Every process is started here in a group of its

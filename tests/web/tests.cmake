@@ -1,4 +1,4 @@
-# The spectator page of ball-watch --http (docs/server.md, "The spectator
+# The spectator page of ball-watch --http (docs/bots-and-watchers.md, "The spectator
 # page") in a real browser: Debian's chromium, headless, driven over the
 # DevTools protocol by Debian's python3 with python3-websocket (./run setup).
 if(NOT TARGET ball-watch)

@@ -1,4 +1,4 @@
-# docs/server.md, Lag compensation: hit rates behind a one-way delay
+# docs/server-design.md, Lag compensation: hit rates behind a one-way delay
 # (./run lag-study, from ball_lag_study's lag.dat).
 # gnuplot -e "data='D'; out='O'; plots='P'" P/lag.gp
 load plots.'/style.gp'

@@ -1,4 +1,4 @@
-# docs/server.md, Load: the server's load benchmark (./run bench-server), from
+# docs/server-reference.md, Load: the server's load benchmark (./run bench-server), from
 # ball-load's load.dat (medians of the interleaved rounds, figures per match).
 # gnuplot -e "data='D'; out='O'; plots='P'" P/load.gp
 load plots.'/style.gp'

@@ -1,4 +1,4 @@
-// The spectator page (docs/server.md, "The spectator page"): the messages
+// The spectator page (docs/bots-and-watchers.md, "The spectator page"): the messages
 // of ball-watch --http arrive as server-sent events on /stream and go into
 // the page's core, libball and the client library's view of each match
 // compiled to WebAssembly (ballwasm.js, server/web/wasm/page_core.cpp). At
@@ -474,7 +474,7 @@
     requestAnimationFrame(frame);
   }
 
-  // ---- for the tests (docs/server.md, "The spectator page") ------------------
+  // ---- for the tests (docs/bots-and-watchers.md, "The spectator page") ------------------
   window.spectator = {
     errors: errors,
     frames: () => frames,

@@ -1,4 +1,4 @@
-// The spectator page's core in the browser (docs/server.md, "The spectator
+// The spectator page's core in the browser (docs/bots-and-watchers.md, "The spectator
 // page"): compiled to WebAssembly with libball and the client library's
 // core (cmake/BallWasm.cmake), called by server/web/page/ballwasm.js. No
 // rule of the protocol is written again here: each match the page follows

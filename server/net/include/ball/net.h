@@ -164,7 +164,7 @@ BALL_NET_API ball_status ball_net_matches(ball_net_client *client, ball_net_matc
 BALL_NET_API ball_status ball_net_match_info(ball_net_client *client, uint32_t match, ball_net_match *out);
 
 /* Asks the domain's servers for a new match `match` (an id CREATEs may name:
- * docs/server.md, "Configuration", create_first and create_ids) of the
+ * docs/server-reference.md, "Server keys", create_first and create_ids) of the
  * server's catalogue scene `scene` with `players` slots at `level` (0: the
  * scene's own). The library sends the CREATE again every 0.5 s until a
  * MatchInfo of the match appears (ball_net_match_info then finds it); a
