@@ -68,6 +68,9 @@ struct Text {
       NUM(T, path ".net", p.net = flag(v)), NUM(T, path ".rally_start", p.rally_start = v),                    \
       NUM(T, path ".serve_due", p.serve_due = flag(v)), NUM(T, path ".serve_at", p.serve_at = v),              \
       NUM(T, path ".event_seq", p.event_seq = u32(v))
+#define FLIGHT(T, prefix, s)                                                                                  \
+  NUM(T, prefix "t0", s.t0 = v), VEC(T, prefix "p0", s.p0), VEC(T, prefix "v0", s.v0), VEC(T, prefix "s0", s.s0), \
+      NUM(T, prefix "grounded", s.grounded = flag(v) ? 1 : 0)
 #define SLOT(i)                                                                                               \
   NUM(InfoIn, "info.slots." #i ".held", o.info.slots[i].held = flag(v)),                                      \
       NUM(InfoIn, "info.slots." #i ".present", o.info.slots[i].present = flag(v)),                            \
@@ -90,11 +93,7 @@ inline const Number<InfoIn> kInfoNumbers[] = {
     NUM(InfoIn, "info.pause_slot", o.info.pause_slot = i32(v)),
     NUM(InfoIn, "info.segment_seq", o.info.segment_seq = u32(v)),
     NUM(InfoIn, "info.segment_index", o.info.segment_cause_index = i32(v)),
-    NUM(InfoIn, "info.segment_t0", o.info.segment.t0 = v),
-    VEC(InfoIn, "info.segment_p0", o.info.segment.p0),
-    VEC(InfoIn, "info.segment_v0", o.info.segment.v0),
-    VEC(InfoIn, "info.segment_s0", o.info.segment.s0),
-    NUM(InfoIn, "info.segment_grounded", o.info.segment.grounded = flag(v) ? 1 : 0),
+    FLIGHT(InfoIn, "info.segment_", o.info.segment),
     NUM(InfoIn, "info.frame_time", o.info.frame_time = v),
     NUM(InfoIn, "info.sim_time", o.info.sim_time = v),
     NUM(InfoIn, "info.net_x", o.info.net_x = v),
@@ -126,11 +125,7 @@ inline const Number<SegmentIn> kSegmentNumbers[] = {
     NUM(SegmentIn, "segment.server", o.segment.server_id = u32(v)),
     NUM(SegmentIn, "segment.seq", o.segment.seq = u32(v)),
     NUM(SegmentIn, "segment.index", o.segment.cause_index = i32(v)),
-    NUM(SegmentIn, "segment.t0", o.segment.segment.t0 = v),
-    VEC(SegmentIn, "segment.p0", o.segment.segment.p0),
-    VEC(SegmentIn, "segment.v0", o.segment.segment.v0),
-    VEC(SegmentIn, "segment.s0", o.segment.segment.s0),
-    NUM(SegmentIn, "segment.grounded", o.segment.segment.grounded = flag(v) ? 1 : 0),
+    FLIGHT(SegmentIn, "segment.", o.segment.segment),
     NUM(SegmentIn, "segment.sound", o.segment.sound = flag(v)),
     NUM(SegmentIn, "segment.correction", o.segment.correction = flag(v)),
     NUM(SegmentIn, "segment.server_time", o.segment.server_time = v),
@@ -184,6 +179,7 @@ constexpr int count(const T (&)[N]) {
 #undef TEXT
 #undef VEC
 #undef PLAY
+#undef FLIGHT
 #undef SLOT
 #undef OWNER
 
