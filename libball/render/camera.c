@@ -250,7 +250,7 @@ ball_status ball_camera_find(const ball_scene *scene, const char *name, double a
   return BALL_ENOTFOUND;
 }
 
-static ball_vec3 unit(ball_vec3 v, int *ok) {
+static ball_vec3 unit_or_flag(ball_vec3 v, int *ok) {
   double n = sqrt(ball_v3_dot(v, v));
   if (!(n > 1e-12) || !isfinite(n)) {
     *ok = 0;
@@ -261,8 +261,8 @@ static ball_vec3 unit(ball_vec3 v, int *ok) {
 
 int view_matrix(const ball_camera *cam, double m[16]) {
   int ok = 1;
-  ball_vec3 f = unit(ball_v3(cam->target.x - cam->eye.x, cam->target.y - cam->eye.y, cam->target.z - cam->eye.z), &ok);
-  ball_vec3 s = unit(ball_v3_cross(f, unit(cam->up, &ok)), &ok);
+  ball_vec3 f = unit_or_flag(ball_v3(cam->target.x - cam->eye.x, cam->target.y - cam->eye.y, cam->target.z - cam->eye.z), &ok);
+  ball_vec3 s = unit_or_flag(ball_v3_cross(f, unit_or_flag(cam->up, &ok)), &ok);
   ball_vec3 u = ball_v3_cross(s, f);
   if (!ok) return 0;
   /* rows s, u, -f; translation -R eye (column-major) */
