@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "ball/vec3.h"
+#include "history.h"
 #include "itest_kit.h"
 
 using check::note;
@@ -124,6 +125,21 @@ void stop_server(Process &p, const char *name) {
   CHECK_MSG(rc == 0, "%s: exit status %d", name, rc);
 }
 
+// What every client must see (tests/support/history.h) over a watcher's
+// whole record: scores, rallies, revisions and clocks that never go back,
+// no seq with two contents, the ball continuous across a change of owner.
+void check_history(const std::vector<json> &lines) {
+  History h;
+  std::string err;
+  for (const json &j : lines)
+    if (!h.take(j, &err)) break;
+  CHECK_MSG(err.empty(), "%s", err.c_str());
+  CHECK_MSG(h.violations().empty(), "%s", h.report().c_str());
+  CHECK(h.counts().checks > 0);
+  note("history: %ld lines, %ld checks, %ld changes of owner (%ld checked for continuity), %zu broken",
+       h.counts().lines, h.counts().checks, h.counts().owner_changes, h.counts().continuity, h.violations().size());
+}
+
 // One match's stream as a client saw it: one server per segment seq, the
 // seqs and the events' seqs one by one without a gap or a repeat, a serve
 // only after a point, scores that never go back, and every floor or wall
@@ -214,6 +230,7 @@ void case_failover(const Env &env) {
   stop_server(p.standby, "the standby");
   // what every client saw, match by match
   std::map<uint32_t, Seen> seen = by_match(t.lines);
+  check_history(t.lines);
   int bounces = 0, handovers = 0, hits_after = 0;
   double worst_clock = 0.0;
   for (int m = 0; m < n; ++m) {
@@ -295,6 +312,7 @@ void case_standby_killed(const Env &env) {
   p.w.stop();
   t.poll();
   std::map<uint32_t, Seen> seen = by_match(t.lines);
+  check_history(t.lines);
   int hits_after = 0, from_standby = 0, pauses = 0;
   for (const auto &j : t.lines) {
     if (!j.contains("server")) continue;
@@ -340,6 +358,7 @@ void case_primary_back(const Env &env) {
     hits_after += is_hit(j);
   }
   std::map<uint32_t, Seen> seen = by_match(t.lines);
+  check_history(t.lines);
   for (int m = 0; m < n; ++m) check_stream(static_cast<uint32_t>(m), seen[static_cast<uint32_t>(m)]);
   note("old primary back as a standby: %d samples from it, %d hits from the new owner since", from_old, hits_after);
   CHECK_EQ(from_old, 0);
@@ -376,6 +395,7 @@ void case_claim(const Env &env) {
   w.stop();
   t.poll();
   std::map<uint32_t, Seen> seen = by_match(t.lines);
+  check_history(t.lines);
   std::map<uint32_t, int> share;
   for (auto &kv : seen) {
     std::set<uint32_t> servers;
@@ -463,6 +483,7 @@ void case_standby_no_scene(const Env &env) {
   CHECK_MSG(err.find("No such file") == std::string::npos, "the standby looked for a file: %s", err.c_str());
   CHECK_MSG(hits_after >= 3, "%d hits from the standby after the kill", hits_after);
   std::map<uint32_t, Seen> seen = by_match(t.lines);
+  check_history(t.lines);
   check_stream(0, seen[0]);
 }
 

@@ -6,8 +6,18 @@ if(NOT TARGET ball_match)
 endif()
 include(${PROJECT_SOURCE_DIR}/cmake/dds_domains.cmake)
 
+# what every client must see across kills, stalls and partitions: the
+# history checker over a watcher's record (tests/support/history.h)
+add_library(ball_history STATIC ${PROJECT_SOURCE_DIR}/tests/support/history.cpp)
+target_include_directories(ball_history PUBLIC ${PROJECT_SOURCE_DIR}/tests/support)
+target_link_libraries(ball_history PUBLIC ball_wire ball_static)
+target_compile_options(ball_history PRIVATE ${BALL_CXX_WARNINGS})
+add_executable(ball_history_check ${CMAKE_CURRENT_LIST_DIR}/history_check.cpp)
+target_link_libraries(ball_history_check PRIVATE ball_history)
+target_compile_options(ball_history_check PRIVATE ${BALL_CXX_WARNINGS})
+
 foreach(name test_match test_ahead test_hit_instant test_lag test_bot test_client test_records test_server_loop test_watcher test_load test_restore test_net_core
-             test_placement test_cluster test_roster)
+             test_placement test_cluster test_roster test_history)
   add_executable(${name} ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp)
   target_include_directories(${name} PRIVATE ${CMAKE_CURRENT_LIST_DIR} ${PROJECT_SOURCE_DIR}/tests/support)
   # (ball_net_api: the client library's calls, over the port a test feeds: fake_net_client.h)
@@ -16,6 +26,7 @@ foreach(name test_match test_ahead test_hit_instant test_lag test_bot test_clien
   add_test(NAME ${name} COMMAND ${name})
   set_tests_properties(${name} PROPERTIES LABELS server TIMEOUT 120)
 endforeach()
+target_link_libraries(test_history PRIVATE ball_history)
 
 # a certificate's subject key and the prefixes that fit it (OpenSSL, no DDS)
 add_executable(test_certificate ${CMAKE_CURRENT_LIST_DIR}/test_certificate.cpp)
@@ -102,7 +113,7 @@ set_target_properties(ball_intrude PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${PROJECT
 
 add_executable(ball_itest ${CMAKE_CURRENT_LIST_DIR}/itest.cpp ${CMAKE_CURRENT_LIST_DIR}/itest_failover.cpp
   ${CMAKE_CURRENT_LIST_DIR}/itest_secure.cpp)
-target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static ball_render)
+target_link_libraries(ball_itest PRIVATE ball_app ball_scene ball_static ball_render ball_history)
 target_include_directories(ball_itest PRIVATE ${PROJECT_SOURCE_DIR}/tests/render ${PROJECT_SOURCE_DIR}/tests/support)
 target_compile_options(ball_itest PRIVATE ${BALL_CXX_WARNINGS})
 add_dependencies(ball_itest ball-server ball-bot ball-watch ball-load ball_flood ball_create ball_intrude ball_unreadable

@@ -1,0 +1,215 @@
+// The history checker (tests/support/history.h) on records made here: a
+// random match whose owner changes (server 1, then 2, seqs going on), the
+// ball continuous by libball's closed form, scores and rallies that only go
+// up, segments and events delivered twice alike. Such a history breaks
+// nothing; each of the invariants broken once, at a random place, is found
+// under its own name and no other.
+#include <cmath>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "ball/vec3.h"
+#include "check.hpp"
+#include "history.h"
+
+using namespace ballsrv;
+
+namespace {
+
+// A random history of one match as a watcher records it, in order.
+std::vector<json> random_history(std::mt19937_64 &rng, size_t *owner_change) {
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  ball_model model;
+  ball_model_default(&model);
+  std::vector<json> lines;
+  MatchInfoOut info;
+  info.match_id = 3;
+  info.server_id = 1;
+  info.players = 2;
+  info.frame_time = 1.0 / 60.0;
+  info.model = model;
+  SegmentOut seg;
+  seg.match_id = 3;
+  seg.server_id = 1;
+  seg.seq = 1;
+  seg.cause = Cause::serve;
+  seg.segment.t0 = 1.0;
+  seg.segment.p0 = ball_v3(1.0, 1.0, 0.5);
+  seg.segment.v0 = ball_v3(10.0 + 10.0 * u(rng), 3.0 * u(rng), u(rng) - 0.5);
+  uint32_t event_seq = 0;
+  const int n = 20 + static_cast<int>(rng() % 20);
+  const int change = 3 + static_cast<int>(rng() % static_cast<unsigned>(n - 6));
+  double sim = 1.0;
+  for (int k = 0; k < n; ++k) {
+    if (k == change) {
+      seg.server_id = info.server_id = 2;  // a take-over: the seqs, revisions and clock go on
+      *owner_change = lines.size();
+    }
+    lines.push_back(record_line(seg, sim));
+    if (k > 0 && rng() % 4 == 0) lines.push_back(record_line(seg, sim));  // delivered twice
+    EventOut e;
+    e.match_id = 3;
+    e.server_id = seg.server_id;
+    e.seq = ++event_seq;
+    e.kind = rng() % 5 == 0 ? EventKind::point : EventKind::floor;
+    e.time = seg.segment.t0;
+    e.segment_seq = seg.seq;
+    if (e.kind == EventKind::point) {
+      info.play.score[rng() % 2]++;
+      info.play.rally++;
+    }
+    e.score = info.play.score;
+    lines.push_back(record_line(e, sim));
+    for (int f = 0; f < 3; ++f) {
+      StateOut st;
+      st.match_id = 3;
+      st.server_id = seg.server_id;
+      st.sim_time = sim += 0.1 * u(rng);
+      lines.push_back(record_line(st, sim));
+    }
+    info.revision++;
+    info.sim_time = sim;
+    info.segment_seq = seg.seq;
+    lines.push_back(record_line(info, sim));
+    // the next contact: where this flight puts the ball a little later
+    const double t1 = std::max(sim, seg.segment.t0) + 0.05 + 0.5 * u(rng);
+    ball_state at{};
+    CHECK(ball_segment_eval(&model, &seg.segment, t1, &at) == BALL_OK);
+    seg.seq++;
+    seg.cause = rng() % 3 == 0 ? Cause::racket : Cause::floor;
+    if (seg.seq == static_cast<uint32_t>(change) + 1) seg.cause = Cause::floor;  // checked across the change
+    seg.segment.t0 = t1;
+    seg.segment.p0 = at.position;
+    seg.segment.v0 = ball_v3(at.velocity.x, std::fabs(at.velocity.y) + 1.0, at.velocity.z);
+    sim = t1;
+  }
+  return lines;
+}
+
+// The kinds of line of a history, and the index of each.
+std::vector<size_t> lines_of(const std::vector<json> &lines, const char *type, size_t from = 0) {
+  std::vector<size_t> out;
+  for (size_t i = from; i < lines.size(); ++i)
+    if (record_type(lines[i]) == type) out.push_back(i);
+  return out;
+}
+
+History checked(const std::vector<json> &lines) {
+  History h;
+  std::string err;
+  for (const json &j : lines) CHECK_MSG(h.take(j, &err), "%s", err.c_str());
+  return h;
+}
+
+// One invariant broken in a copy of a history, at a random place after the first lines.
+std::vector<json> broken(std::mt19937_64 &rng, std::vector<json> lines, size_t change, Broken what) {
+  auto pick = [&](const char *type) {
+    std::vector<size_t> at = lines_of(lines, type, 4);
+    return at[rng() % at.size()];
+  };
+  switch (what) {
+    case Broken::score: {
+      size_t i = pick("match_info");
+      json &p = lines[i]["play"]["score"];
+      p[rng() % 2] = -1;
+      break;
+    }
+    case Broken::rally: {  // a MatchInfo after the newest whose rally is one lower than the highest
+      json last = lines[lines_of(lines, "match_info").back()];
+      const uint32_t rally = last["play"]["rally"].get<uint32_t>();
+      const uint32_t revision = last["revision"].get<uint32_t>();
+      last["revision"] = revision + 1;
+      last["play"]["rally"] = rally + 1;
+      lines.push_back(last);
+      last["revision"] = revision + 2;
+      last["play"]["rally"] = rally;
+      lines.push_back(last);
+      break;
+    }
+    case Broken::revision: {  // the newest revision again, with another sim time
+      json last = lines[lines_of(lines, "match_info").back()];
+      last["sim_time"] = last["sim_time"].get<double>() + 0.5;
+      lines.push_back(last);
+      break;
+    }
+    case Broken::clock: {
+      size_t i = pick("state");
+      lines[i]["sim_time"] = lines[i]["sim_time"].get<double>() - 1.0;
+      break;
+    }
+    case Broken::segment_seq: {
+      size_t i = pick("segment");
+      json again = lines[i];
+      again["p0"][1] = again["p0"][1].get<double>() + 0.25;
+      lines.push_back(again);
+      break;
+    }
+    case Broken::event_seq: {
+      size_t i = pick("event");
+      json again = lines[i];
+      again["time"] = again["time"].get<double>() + 0.125;
+      lines.push_back(again);
+      break;
+    }
+    case Broken::continuity: {  // the new owner's first segment (each delivery of it) 2 mm off
+      const json seq = lines[change]["seq"];
+      for (size_t i : lines_of(lines, "segment"))
+        if (lines[i]["seq"] == seq) lines[i]["p0"][2] = lines[i]["p0"][2].get<double>() + 2e-3;
+      break;
+    }
+  }
+  return lines;
+}
+
+}  // namespace
+
+TEST(a_history_of_a_take_over_breaks_nothing) {
+  std::mt19937_64 rng(20261206);
+  long checks = 0, continuity = 0;
+  for (int k = 0; k < 200; ++k) {
+    size_t change = 0;
+    History h = checked(random_history(rng, &change));
+    CHECK_MSG(h.violations().empty(), "history %d: %s", k, h.report().c_str());
+    CHECK_EQ(h.counts().owner_changes, 1L);
+    CHECK_EQ(h.counts().continuity, 1L);
+    checks += h.counts().checks;
+    continuity += h.counts().continuity;
+  }
+  check::note("200 histories: %ld checks, %ld owner changes checked for continuity, nothing broken", checks,
+              continuity);
+}
+
+TEST(each_invariant_broken_once_is_found_by_its_name) {
+  std::mt19937_64 rng(61206);
+  const Broken kinds[] = {Broken::score,       Broken::rally,     Broken::revision,  Broken::clock,
+                          Broken::segment_seq, Broken::event_seq, Broken::continuity};
+  int found = 0;
+  for (int k = 0; k < 100; ++k) {
+    size_t change = 0;
+    std::vector<json> good = random_history(rng, &change);
+    for (Broken what : kinds) {
+      History h = checked(broken(rng, good, change, what));
+      bool named = !h.violations().empty();
+      for (const Violation &v : h.violations()) named = named && v.what == what && v.match == 3;
+      CHECK_MSG(named, "history %d, %s broken: %s", k, broken_name(what),
+                h.violations().empty() ? "nothing found" : h.report().c_str());
+      found += named;
+    }
+  }
+  check::note("%d of 700 broken histories named by what was broken", found);
+}
+
+TEST(a_line_that_does_not_read_is_no_pass) {
+  History h;
+  std::string err;
+  json bad = json::object();
+  bad["type"] = "segment";
+  bad["match"] = "three";
+  CHECK(!h.take(bad, &err));
+  CHECK(err.find("line 1: not a segment") != std::string::npos);
+  CHECK(!h.take_file("/nonexistent/watch.jsonl", &err));
+  CHECK(err.find("cannot be read") != std::string::npos);
+}
+
+CHECK_MAIN
