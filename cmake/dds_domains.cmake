@@ -25,6 +25,8 @@ set(BALL_DDS_DOMAINS
   "dds_primary_back|111|test: the old primary restarted takes nothing back"
   "dds_claim|112|test: two claimants started together split the matches"
   "dds_standby_no_scene|130|test: a standby without the primary's scene file takes its court over from the wire"
+  "dds_hosts_failover|139|test: a primary killed on one network namespace, its standby on another takes over, the watcher on a third sees nothing broken"
+  "dds_hosts_standby_cut|140|test: the standby's network namespace cut off for 5 s and healed: the clients see nothing change"
   "dds_key_flood|113|test: a stranger floods a player's own keys: the player never vanishes"
   "dds_create_expires|114|test: a created match nobody joins goes, its MatchInfo disposed"
   "dds_secure|115|test: DDS Security: no plaintext on the wire, strangers and other matches' players kept out"

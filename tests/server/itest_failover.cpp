@@ -6,11 +6,13 @@
 // records what every client sees, and the servers' own reports say which
 // server stepped which match from when.
 #include <map>
+#include <memory>
 #include <set>
 #include <sstream>
 
 #include "ball/vec3.h"
 #include "history.h"
+#include "itest_hosts.h"
 #include "itest_kit.h"
 
 using check::note;
@@ -549,9 +551,117 @@ void case_net_failover(const Env &env) {
   CHECK(points_after >= 1);
 }
 
+// A primary on host a, a standby on host b, bots and a watcher on host c
+// (network namespaces: itest_hosts.h), participant profile lan (multicast
+// over the hosts' bridge): the primary killed with SIGKILL mid-rally, the
+// standby on another host takes every match over, and what the watcher saw
+// breaks nothing (the history checker), every change of owner continuous.
+// The hosts of the networked failover cases (itest_hosts.h): a primary of
+// n matches on host a, a standby on host b, bots and a watcher on host c, on
+// participant profile lan (multicast over the hosts' bridge), started in that
+// order; `rallying`: every match had 2 hits within 40 s.
+struct HostsRig {
+  Hosts hosts{{"a", "b", "c"}};
+  Process primary, standby, w, load;
+  std::unique_ptr<Tail> t;
+  bool rallying = false;
+};
+
+bool hosts_rig(const Env &env, int n, HostsRig *r) {
+  CHECK_MSG(r->hosts.ok(), "the hosts' namespaces: %s", r->hosts.error().c_str());
+  if (!r->hosts.ok()) return false;
+  auto start = [&](const char *host, const std::string &who, const std::string &exe, std::vector<std::string> args) {
+    args.insert(args.begin(), {env.bin + "/" + exe, "--domain", env.dom(), "--participant-profile", "lan"});
+    return Process::start(r->hosts.on(host, args), path(env, who + ".out"), path(env, who + ".err"));
+  };
+  const std::vector<std::string> server = {"--duration", "120", "--state-rate", "10"};
+  auto with = [&](std::vector<std::string> a) {
+    a.insert(a.end(), server.begin(), server.end());
+    return a;
+  };
+  r->primary = start("a", "primary", "ball-server",
+                     with({"--server-id", "1", "--matches", std::to_string(n), "--startup-wait", "0", "--stats-json",
+                           path(env, "primary.json")}));
+  r->standby = start("b", "standby", "ball-server",
+                     with({"--server-id", "2", "--standby", "--startup-wait", "0.5", "--stats-json",
+                           path(env, "standby.json")}));
+  usleep(1000000);
+  r->w = start("c", "watch", "ball-watch", {"--no-log", "--duration", "120", "--record", path(env, "watch.jsonl")});
+  r->load = start("c", "load", "ball-load",
+                  {"--matches", std::to_string(n), "--rate", "20", "--warmup", "1", "--duration", "100"});
+  r->t = std::make_unique<Tail>(path(env, "watch.jsonl"));
+  r->rallying = rallies(*r->t, n, 2, 40.0);
+  CHECK_MSG(r->rallying, "not every match had 2 hits across the hosts within 40 s");
+  return r->rallying;
+}
+
+// The clients on host c stopped, what the watcher saw checked (history.h):
+// the history's counts.
+HistoryCounts hosts_end(HostsRig &r) {
+  r.load.stop();
+  r.w.stop();
+  r.t->poll();
+  check_history(r.t->lines);
+  History h;
+  std::string err;
+  for (const json &j : r.t->lines) h.take(j, &err);
+  return h.counts();
+}
+
+// The primary killed with SIGKILL mid-rally: the standby on another host
+// takes every match over, and what the watcher saw breaks nothing, every
+// change of owner continuous.
+void case_hosts_failover(const Env &env) {
+  const int n = 2;
+  HostsRig r;
+  if (!hosts_rig(env, n, &r)) return;
+  r.primary.signal(SIGKILL);
+  r.primary.wait(2.0);
+  usleep(6 * 1000000);
+  HistoryCounts counts = hosts_end(r);
+  stop_server(r.standby, "the standby");
+  note("across three hosts: %ld changes of owner, %ld checked for continuity", counts.owner_changes,
+       counts.continuity);
+  CHECK_EQ(counts.owner_changes, static_cast<long>(n));  // (a new owner's serve or hit places the ball: not checked)
+  CHECK_EQ(report(env, "standby").takeovers, static_cast<uint64_t>(n));
+}
+
+// The standby's host cut off from the others for 5 s, then healed: what the
+// clients see does not change (the history checker, and the primary's own
+// stream throughout), whatever the standby did while it was alone.
+void case_hosts_standby_cut(const Env &env) {
+  const int n = 2;
+  HostsRig r;
+  if (!hosts_rig(env, n, &r)) return;
+  CHECK(r.hosts.cut("b"));
+  usleep(5 * 1000000);
+  CHECK(r.hosts.heal("b"));
+  const double healed = realtime_now();
+  usleep(6 * 1000000);
+  HistoryCounts counts = hosts_end(r);
+  int from_standby = 0, hits_after = 0;
+  for (const json &j : r.t->lines) {
+    if (!j.contains("server")) continue;
+    from_standby += j.at("server").get<uint32_t>() == 2;
+    hits_after += recv(j) > healed && is_hit(j);
+  }
+  stop_server(r.standby, "the standby");
+  stop_server(r.primary, "the primary");
+  ServerReport p = report(env, "primary");
+  note("the standby cut off for 5 s: %d samples from it reached the watcher, %d hits after the heal, the primary "
+       "yielded %llu",
+       from_standby, hits_after, static_cast<unsigned long long>(p.yields));
+  CHECK_EQ(counts.owner_changes, 0L);
+  CHECK_EQ(from_standby, 0);
+  CHECK_EQ(p.yields, 0u);
+  CHECK_MSG(hits_after >= 3, "%d hits in the 6 s after the heal", hits_after);
+}
+
 }  // namespace
 
 TEST(failover) { itest::in_case(case_failover); }
+TEST(hosts_failover) { itest::in_case(case_hosts_failover); }
+TEST(hosts_standby_cut) { itest::in_case(case_hosts_standby_cut); }
 TEST(net_failover) { itest::in_case(case_net_failover); }
 TEST(standby_no_scene) { itest::in_case(case_standby_no_scene); }
 TEST(standby_killed) { itest::in_case(case_standby_killed); }
