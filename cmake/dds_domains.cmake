@@ -46,6 +46,7 @@ set(BALL_DDS_DOMAINS
   "web_page|125|test: the spectator page in headless Chromium follows a rally, a server killed and a new one"
   "dds_discovery|120|test: server, bots and watcher found through a Discovery Server only"
   "test_teardown|141|test: one participant deleted within the teardown limit"
+  "test_ownership|142|test: two writers of one match at once: readers take the stronger's, a strength raised while it runs included"
   "dds_net_failover|135|test: a game on the client library plays through a failover: its events go on, none twice, none skipped"
   "test_net_secure|136|test: the client library under DDS Security plays its own match, no other"
   "test_net_api|131|test: the client library's C API refuses bad input, with a server and without"

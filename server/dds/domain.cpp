@@ -463,6 +463,16 @@ bool Writer<T>::assert_liveliness() {
 }
 
 template <class T>
+bool Writer<T>::set_strength(uint32_t strength) {
+  if (!w_) return false;
+  fdds::DataWriterQos qos = w_->get_qos();
+  if (qos.ownership().kind != fdds::EXCLUSIVE_OWNERSHIP_QOS) return true;
+  if (qos.ownership_strength().value == strength) return true;
+  qos.ownership_strength().value = strength;
+  return w_->set_qos(qos) == ReturnCode_t::RETCODE_OK;
+}
+
+template <class T>
 int Writer<T>::matched() const {
   fdds::PublicationMatchedStatus s;
   if (!w_ || w_->get_publication_matched_status(s) != ReturnCode_t::RETCODE_OK) return 0;

@@ -146,6 +146,9 @@ class Writer {
   // Disposes the instance of the sample's key (its readers see it gone, a
   // late joiner is not handed it); false: refused.
   bool dispose(const T &key_sample);
+  // Sets the ownership strength of a writer with exclusive ownership (a
+  // mutable policy: its readers rank it anew); false: refused.
+  bool set_strength(uint32_t strength);
   int matched() const;  // readers matched now
   bool valid() const { return w_ != nullptr; }
 

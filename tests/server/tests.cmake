@@ -75,15 +75,19 @@ foreach(table server match)
   set_tests_properties(docs_server_${table}_keys_current PROPERTIES LABELS server)
 endforeach()
 
-# the teardown guard (server/dds/domain.h): one participant on a domain of its own
-ball_dds_domain(test_teardown teardown_domain)
-add_executable(test_teardown ${CMAKE_CURRENT_LIST_DIR}/test_teardown.cpp)
-target_include_directories(test_teardown PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
-target_link_libraries(test_teardown PRIVATE ball_app ball_dds)
-target_compile_definitions(test_teardown PRIVATE BALL_TEST_DOMAIN=${teardown_domain})
-target_compile_options(test_teardown PRIVATE ${BALL_CXX_WARNINGS})
-add_test(NAME test_teardown COMMAND test_teardown)
-set_tests_properties(test_teardown PROPERTIES LABELS dds TIMEOUT 60)
+# the DDS adapter's own participants, each program on a domain of its own:
+# exclusive ownership as the QoS file sets it up (two writers of one match
+# at once) and the teardown guard (server/dds/domain.h)
+foreach(name test_ownership test_teardown)
+  ball_dds_domain(${name} domain)
+  add_executable(${name} ${CMAKE_CURRENT_LIST_DIR}/${name}.cpp)
+  target_include_directories(${name} PRIVATE ${PROJECT_SOURCE_DIR}/tests/support)
+  target_link_libraries(${name} PRIVATE ball_app ball_dds)
+  target_compile_definitions(${name} PRIVATE BALL_TEST_DOMAIN=${domain})
+  target_compile_options(${name} PRIVATE ${BALL_CXX_WARNINGS})
+  add_test(NAME ${name} COMMAND ${name})
+  set_tests_properties(${name} PROPERTIES LABELS dds TIMEOUT 60)
+endforeach()
 
 # docs/server-reference.md's table of DDS domains is cmake/dds_domains.cmake's list
 add_test(NAME docs_server_dds_domains_current
