@@ -173,15 +173,29 @@ RestorePoint restore_point(const Followed &f, double first_real, double frame_ti
   return p;
 }
 
-std::vector<uint32_t> Cluster::due_takeovers(double t0) const {
+std::vector<uint32_t> Cluster::due_takeovers(double t0, const std::function<bool(uint32_t)> &hears_players) {
   std::vector<uint32_t> due;
   std::vector<ServerView> servers;
-  for (const auto &kv : followed_) {
-    const Followed &f = kv.second;
+  for (auto &kv : followed_) {
+    Followed &f = kv.second;
     if (f.lost_at < 0.0 || t0 < f.lost_at + settings_.takeover_grace) continue;
     if (servers.empty()) servers = views();
     uint32_t next = 0;
-    if (successor(servers, f.info.server_id, &next) && next == settings_.server_id) due.push_back(kv.first);
+    if (!successor(servers, f.info.server_id, &next) || next != settings_.server_id) continue;
+    // an owner cut off from this server but not from its players plays
+    // on: a take-over here would be a second match nobody plays in
+    if (!hears_players(kv.first)) {
+      if (!f.waits_for_players) stats_.takeovers_waiting++;
+      f.waits_for_players = true;
+      f.players_back_at = -1.0;
+      continue;
+    }
+    if (f.waits_for_players) {  // heard again: the owner may come back with them
+      if (f.players_back_at < 0.0) f.players_back_at = t0;
+      if (t0 < f.players_back_at + kPlayersSettle) continue;
+    }
+    f.waits_for_players = false;
+    due.push_back(kv.first);
   }
   return due;
 }

@@ -42,6 +42,10 @@ constexpr double kMaxClockGap = 10.0;
 // names before it looks for a scene of the info's name (the two topics'
 // samples come apart)
 constexpr double kModelWait = 2.0;
+// s a take-over held back for want of players waits once they are heard
+// again: a healed cut brings the owner back too, a little after its
+// players' samples (its liveliness, its MatchInfo at least once a second)
+constexpr double kPlayersSettle = 2.0;
 // other servers' ServerStatus writers a cluster keeps at most: the remote
 // participants the QoS profiles allow (total_participants), so that forged
 // writers cannot grow it without bound; a lost one is forgotten
@@ -67,6 +71,7 @@ struct ClusterStats {
   uint64_t others_refused = 0;     // MatchInfo and Segments of others no server writes (trust.h, kMaxClockGap)
   uint64_t conflicts = 0;          // MatchInfo of one of our matches from another server
   uint64_t takeovers = 0;          // followed matches taken over
+  uint64_t takeovers_waiting = 0;  // take-overs held back: none of the match's players heard here
   uint64_t yields = 0;             // matches given up to a server that outranks this one
   uint64_t claims = 0;             // matches claimed (configured or created)
   uint64_t follow_failures = 0;    // another server's matches this one could not follow or restore
@@ -79,6 +84,8 @@ struct Followed {
   Segments segments;      // its newest few (kFollowedSegments; the newest may lie ahead)
   ParticipantId owner{};  // the owner's participant
   double lost_at = -1.0;  // mono s its writers lost their liveliness; -1: alive
+  bool waits_for_players = false;  // due, but none of its players heard here (counted once)
+  double players_back_at = -1.0;   // mono s its players were heard again after a wait; -1: not yet
 };
 
 // The segment a standby restores an owner's match from: of the owner's
@@ -141,9 +148,10 @@ class Cluster {
   std::string server_lost(const ParticipantId &who, double t0);
 
   // ---- take-overs ----
-  // The followed matches whose owner was lost a grace ago and whose
-  // successor (placement.h) this server is, at mono s t0.
-  std::vector<uint32_t> due_takeovers(double t0) const;
+  // The followed matches whose owner was lost a grace ago, whose successor
+  // (placement.h) this server is, and whose players it hears
+  // (hears_players(id): the side with the players decides), at mono s t0.
+  std::vector<uint32_t> due_takeovers(double t0, const std::function<bool(uint32_t)> &hears_players);
   const Followed *followed(uint32_t match_id) const;
   // The take-over of match_id was done (true) or failed (false): it is
   // followed no more.

@@ -104,6 +104,7 @@ ServerReport ServerLoop::report() const {
   r.others_refused = c.others_refused;
   r.conflicts = c.conflicts;
   r.takeovers = c.takeovers;
+  r.takeovers_waiting = c.takeovers_waiting;
   r.yields = c.yields;
   r.claims = c.claims;
   r.follow_failures = c.follow_failures;

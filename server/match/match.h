@@ -114,6 +114,8 @@ class Match {
   bool follow(const MatchInfoOut &info, std::string *err);
   void follow_clock(double sim_now) { follow_time_ = sim_now; }
   bool following() const { return following_; }
+  // Whether this server hears the match's players at real s `now` (Roster::hears_players, the player timeout).
+  bool hears_players(double now) const { return roster_.hears_players(now, config_.player_timeout); }
   bool held() const;  // a participant holds one of its slots
 
   // Goes on from the owner's newest segment (nullptr: none yet) and

@@ -105,6 +105,16 @@ bool Roster::update_presence(double now, double timeout, int *missing) {
   return changed;
 }
 
+bool Roster::hears_players(double now, double timeout) const {
+  bool held = false;
+  for (int i = 0; i < players_; ++i) {
+    const Slot &s = (*this)[i];
+    held = held || s.held;
+    if (s.held && now - s.last_seen <= timeout) return true;
+  }
+  return !held;
+}
+
 // ---- JOIN and LEAVE ---------------------------------------------------------------
 
 int Roster::free_slot(const ParticipantId &who, double now, double timeout) const {

@@ -51,6 +51,9 @@ class Roster {
   bool held() const;                            // a participant holds one of the slots
   bool holds(const ParticipantId &who) const;   // `who` holds one of them
   bool all_present() const;                     // every slot held and its holder there
+  // No slot held, or a holder's sample within `timeout` real s of `now`:
+  // the players are on this server's side (a standby's take-over rule).
+  bool hears_players(double now, double timeout) const;
   void participant_lost(const ParticipantId &who);  // DDS saw it go: absent at the next presence
   // Presence at real s now (a holder is there when alive and seen within
   // timeout s): true when a slot's presence changed; *missing: the first

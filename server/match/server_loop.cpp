@@ -207,7 +207,11 @@ bool ServerLoop::may_create(const ControlIn &c) {
 // ---- take-overs ----------------------------------------------------------------
 
 void ServerLoop::take_over(double t0, double now) {
-  for (uint32_t id : cluster_.due_takeovers(t0)) take_over_match(id, t0, now);
+  auto hears = [this, now](uint32_t id) {
+    const Match *m = host_.find(id);
+    return m && m->hears_players(now);
+  };
+  for (uint32_t id : cluster_.due_takeovers(t0, hears)) take_over_match(id, t0, now);
 }
 
 void ServerLoop::take_over_match(uint32_t id, double t0, double now) {

@@ -626,9 +626,10 @@ void case_hosts_failover(const Env &env) {
   CHECK_EQ(report(env, "standby").takeovers, static_cast<uint64_t>(n));
 }
 
-// The standby's host cut off from the others for 5 s, then healed: what the
-// clients see does not change (the history checker, and the primary's own
-// stream throughout), whatever the standby did while it was alone.
+// The standby's host cut off from the others for 5 s, then healed: it hears
+// none of the players, so it takes nothing over (the side with the players
+// decides), and what the clients see does not change (the history checker,
+// and the primary's own stream throughout).
 void case_hosts_standby_cut(const Env &env) {
   const int n = 2;
   HostsRig r;
@@ -648,9 +649,13 @@ void case_hosts_standby_cut(const Env &env) {
   stop_server(r.standby, "the standby");
   stop_server(r.primary, "the primary");
   ServerReport p = report(env, "primary");
-  note("the standby cut off for 5 s: %d samples from it reached the watcher, %d hits after the heal, the primary "
-       "yielded %llu",
+  ServerReport s = report(env, "standby");
+  note("the standby cut off for 5 s: %llu take-overs, %llu held back (no player heard); %d samples from it reached "
+       "the watcher, %d hits after the heal, the primary yielded %llu",
+       static_cast<unsigned long long>(s.takeovers), static_cast<unsigned long long>(s.takeovers_waiting),
        from_standby, hits_after, static_cast<unsigned long long>(p.yields));
+  CHECK_EQ(s.takeovers, 0u);
+  CHECK_EQ(s.takeovers_waiting, static_cast<uint64_t>(n));
   CHECK_EQ(counts.owner_changes, 0L);
   CHECK_EQ(from_standby, 0);
   CHECK_EQ(p.yields, 0u);

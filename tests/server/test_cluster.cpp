@@ -67,6 +67,9 @@ Cluster following_standby(const Owner &o, ClusterSettings s = standby_settings()
 
 }  // namespace
 
+// every match's players heard (a standby's take-over rule)
+const auto kHeard = [](uint32_t) { return true; };
+
 // A standby follows what a live owner writes, takes nothing over while the
 // owner lives, and takes the match over a grace after the owner's writers
 // are lost (and not before); then it follows it no more.
@@ -77,19 +80,50 @@ TEST(a_standby_takes_over_a_grace_after_the_owner_is_lost) {
   const Followed *f = c.followed(7);
   CHECK(f && f->owner == kOwner && f->info.revision == 9u);
   CHECK_EQ(f->segments.size(), std::min(o.game.segments.size(), kFollowedSegments));
-  CHECK(c.due_takeovers(100.0).empty());
+  CHECK(c.due_takeovers(100.0, kHeard).empty());
   CHECK_EQ(c.next_wake(100.0), 100.0 + kFollowWake);
   CHECK(c.server_lost(kOwner, 100.0).find("server 1") != std::string::npos);
   CHECK_EQ(c.peers_known(), 0u);  // forgotten
   const double grace = c.settings().takeover_grace;
   CHECK_EQ(c.next_wake(100.0), 100.0 + kFollowWake);
   CHECK_EQ(c.next_wake(100.0 + grace), 100.0 + grace);
-  CHECK(c.due_takeovers(100.0 + grace - 1e-9).empty());
-  std::vector<uint32_t> due = c.due_takeovers(100.0 + grace);
+  CHECK(c.due_takeovers(100.0 + grace - 1e-9, kHeard).empty());
+  std::vector<uint32_t> due = c.due_takeovers(100.0 + grace, kHeard);
   CHECK(due.size() == 1u && due[0] == 7u);
   c.taken_over(7, true);
   CHECK_EQ(c.stats().takeovers, 1u);
-  CHECK(c.following().empty() && c.due_takeovers(200.0).empty());
+  CHECK(c.following().empty() && c.due_takeovers(200.0, kHeard).empty());
+}
+
+// The side with the players decides: a standby that hears none of a lost
+// owner's players takes nothing over (the owner may play on with them,
+// cut off from this server alone), counts it once, and takes the match
+// over once one is heard.
+TEST(a_standby_takes_over_only_a_match_whose_players_it_hears) {
+  Owner o;
+  Cluster c = following_standby(o);
+  c.server_lost(kOwner, 100.0);
+  const double due = 100.0 + c.settings().takeover_grace;
+  bool heard = false;
+  auto hears = [&heard](uint32_t id) { return heard && id == 7u; };
+  for (int k = 0; k < 5; ++k) CHECK(c.due_takeovers(due + k, hears).empty());
+  CHECK_EQ(c.stats().takeovers_waiting, 1u);
+  CHECK_EQ(c.following().size(), 1u);  // still followed
+  heard = true;  // heard again: the owner may be back with them (a healed cut): it settles first
+  CHECK(c.due_takeovers(due + 5.0, hears).empty());
+  CHECK(c.due_takeovers(due + 5.0 + kPlayersSettle - 1e-9, hears).empty());
+  std::vector<uint32_t> now_due = c.due_takeovers(due + 5.0 + kPlayersSettle, hears);
+  CHECK(now_due.size() == 1u && now_due[0] == 7u);
+  CHECK_EQ(c.stats().takeovers_waiting, 1u);
+  // and an owner back within the settling takes the take-over off
+  Cluster d = following_standby(o);
+  d.server_lost(kOwner, 100.0);
+  heard = false;
+  CHECK(d.due_takeovers(due, hears).empty());
+  heard = true;
+  CHECK(d.due_takeovers(due + 1.0, hears).empty());
+  d.followed(o.info(), kOwner, Cluster::Follow::update, true, "");  // its MatchInfo: alive
+  CHECK(d.due_takeovers(due + 1.0 + kPlayersSettle, hears).empty());
 }
 
 // Of two standbys, only the successor (the stronger) takes a lost owner's
@@ -102,10 +136,10 @@ TEST(only_the_successor_takes_over) {
   strong.hear_status(status_of(2, 10, true), participant(22));
   weak.server_lost(kOwner, 10.0);
   strong.server_lost(kOwner, 10.0);
-  CHECK(weak.due_takeovers(20.0).empty());
-  CHECK_EQ(strong.due_takeovers(20.0).size(), 1u);
+  CHECK(weak.due_takeovers(20.0, kHeard).empty());
+  CHECK_EQ(strong.due_takeovers(20.0, kHeard).size(), 1u);
   weak.server_lost(participant(33), 20.0);  // then the stronger goes too
-  CHECK_EQ(weak.due_takeovers(20.0).size(), 1u);
+  CHECK_EQ(weak.due_takeovers(20.0, kHeard).size(), 1u);
 }
 
 // What a standby refuses to take as another server's: a MatchInfo far from

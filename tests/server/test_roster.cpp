@@ -99,6 +99,18 @@ TEST(join_finds_the_slot_the_protocol_names) {
   CHECK(!r.all_present() && missing == -1);  // slot 1 free: not all there, none missing
 }
 
+// A standby hears a match's players when no slot is held or a holder was
+// heard within the timeout (joining counts as heard, as for presence).
+TEST(the_players_are_heard_within_the_timeout) {
+  Roster none = two_slots();
+  CHECK(none.leave(0, kA));
+  CHECK(!none.held() && none.hears_players(100.0, 1.0));  // nobody to hear: nothing to decide
+  Roster r = two_slots();  // a holds slot 0 since 0 s
+  CHECK(r.hears_players(1.0, 1.0) && !r.hears_players(1.0 + 1e-9, 1.0));
+  CHECK(r.join(1, kB, 5.0, 1.0) == Roster::Join::taken);
+  CHECK(r.hears_players(5.5, 1.0) && !r.hears_players(6.5, 1.0));  // b heard at 5 s, a long gone
+}
+
 // A sample's checks, one failing at a time: the first failing check names
 // the drop; one that passes them all is `accepted`, and its seq is then
 // the newest (a repeat is a duplicate).
