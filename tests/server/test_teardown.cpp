@@ -19,11 +19,6 @@
 
 using namespace ballsrv;
 
-// Under AddressSanitizer: the Debian build of Fast DDS 2.9 deletes its
-// statistics readers and writers through a base class of another size
-// (ball_itest sets the same option for the programs it starts).
-extern "C" const char *__asan_default_options() { return "new_delete_type_mismatch=0"; }
-
 namespace {
 
 double now() {

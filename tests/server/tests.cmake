@@ -86,7 +86,10 @@ foreach(name test_ownership test_teardown)
   target_compile_definitions(${name} PRIVATE BALL_TEST_DOMAIN=${domain})
   target_compile_options(${name} PRIVATE ${BALL_CXX_WARNINGS})
   add_test(NAME ${name} COMMAND ${name})
-  set_tests_properties(${name} PROPERTIES LABELS dds TIMEOUT 60)
+  # (under ./run asan: the Debian build of Fast DDS 2.9 deletes its readers
+  # and writers through a base class of another size, as for demo_secure)
+  set_tests_properties(${name} PROPERTIES LABELS dds TIMEOUT 60
+    ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
 endforeach()
 
 # docs/server-reference.md's table of DDS domains is cmake/dds_domains.cmake's list
