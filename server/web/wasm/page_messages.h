@@ -71,6 +71,10 @@ struct Text {
 #define FLIGHT(T, prefix, s)                                                                                  \
   NUM(T, prefix "t0", s.t0 = v), VEC(T, prefix "p0", s.p0), VEC(T, prefix "v0", s.v0), VEC(T, prefix "s0", s.s0), \
       NUM(T, prefix "grounded", s.grounded = flag(v) ? 1 : 0)
+// who wrote a sample, and when: its match, server and server time
+#define FROM(T, path, s)                                                                                      \
+  NUM(T, path ".match", s.match_id = u32(v)), NUM(T, path ".server", s.server_id = u32(v)),                   \
+      NUM(T, path ".server_time", s.server_time = v)
 #define SLOT(i)                                                                                               \
   NUM(InfoIn, "info.slots." #i ".held", o.info.slots[i].held = flag(v)),                                      \
       NUM(InfoIn, "info.slots." #i ".present", o.info.slots[i].present = flag(v)),                            \
@@ -83,9 +87,7 @@ struct Text {
 inline const Number<InfoIn> kInfoNumbers[] = {
     NUM(InfoIn, "match", o.match = u32(v)),
     NUM(InfoIn, "real", o.real = v),
-    NUM(InfoIn, "info.match", o.info.match_id = u32(v)),
-    NUM(InfoIn, "info.server", o.info.server_id = u32(v)),
-    NUM(InfoIn, "info.server_time", o.info.server_time = v),
+    FROM(InfoIn, "info", o.info),
     NUM(InfoIn, "info.revision", o.info.revision = u32(v)),
     NUM(InfoIn, "info.level", o.info.level = i32(v)),
     NUM(InfoIn, "info.players", o.info.players = i32(v)),
@@ -121,14 +123,12 @@ inline const Text<InfoIn> kInfoTexts[] = {
 // The segment message: a Segment as records.cpp writes it.
 inline const Number<SegmentIn> kSegmentNumbers[] = {
     NUM(SegmentIn, "match", o.match = u32(v)),
-    NUM(SegmentIn, "segment.match", o.segment.match_id = u32(v)),
-    NUM(SegmentIn, "segment.server", o.segment.server_id = u32(v)),
+    FROM(SegmentIn, "segment", o.segment),
     NUM(SegmentIn, "segment.seq", o.segment.seq = u32(v)),
     NUM(SegmentIn, "segment.index", o.segment.cause_index = i32(v)),
     FLIGHT(SegmentIn, "segment.", o.segment.segment),
     NUM(SegmentIn, "segment.sound", o.segment.sound = flag(v)),
     NUM(SegmentIn, "segment.correction", o.segment.correction = flag(v)),
-    NUM(SegmentIn, "segment.server_time", o.segment.server_time = v),
     PLAY(SegmentIn, "segment.play", o.segment.play),
 };
 inline const Text<SegmentIn> kSegmentTexts[] = {
@@ -138,15 +138,13 @@ inline const Text<SegmentIn> kSegmentTexts[] = {
 // The event message: an Event as records.cpp writes it.
 inline const Number<EventIn> kEventNumbers[] = {
     NUM(EventIn, "match", o.match = u32(v)),
-    NUM(EventIn, "event.match", o.event.match_id = u32(v)),
-    NUM(EventIn, "event.server", o.event.server_id = u32(v)),
+    FROM(EventIn, "event", o.event),
     NUM(EventIn, "event.seq", o.event.seq = u32(v)),
     NUM(EventIn, "event.index", o.event.index = i32(v)),
     NUM(EventIn, "event.side", o.event.side = i32(v)),
     NUM(EventIn, "event.in_play", o.event.in_play = flag(v)),
     NUM(EventIn, "event.sound", o.event.sound = flag(v)),
     NUM(EventIn, "event.time", o.event.time = v),
-    NUM(EventIn, "event.server_time", o.event.server_time = v),
     VEC(EventIn, "event.point", o.event.point),
     VEC(EventIn, "event.velocity_in", o.event.velocity_in),
     VEC(EventIn, "event.velocity_out", o.event.velocity_out),
@@ -180,6 +178,7 @@ constexpr int count(const T (&)[N]) {
 #undef VEC
 #undef PLAY
 #undef FLIGHT
+#undef FROM
 #undef SLOT
 #undef OWNER
 
