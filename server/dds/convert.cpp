@@ -254,6 +254,7 @@ balldds::Segment to_idl(const SegmentOut &in) {
   balldds::Segment o;
   o.match_id(in.match_id);
   o.server_id(in.server_id);
+  o.term(in.term);
   o.seq(in.seq);
   o.cause(static_cast<balldds::Cause>(in.cause));
   o.cause_index(static_cast<int16_t>(in.cause_index));
@@ -276,6 +277,7 @@ balldds::Segment to_idl(const SegmentOut &in) {
 void from_idl(const balldds::Segment &in, SegmentOut *o) {
   o->match_id = in.match_id();
   o->server_id = in.server_id();
+  o->term = in.term();
   o->seq = in.seq();
   o->cause = wire_enum<Cause>(in.cause());  // (usable_segment refuses one outside the IDL's)
   o->cause_index = in.cause_index();
@@ -299,6 +301,7 @@ balldds::Event to_idl(const EventOut &in) {
   balldds::Event o;
   o.match_id(in.match_id);
   o.server_id(in.server_id);
+  o.term(in.term);
   o.seq(in.seq);
   o.kind(static_cast<balldds::EventKind>(in.kind));
   o.index(static_cast<int16_t>(in.index));
@@ -320,6 +323,7 @@ balldds::Event to_idl(const EventOut &in) {
 void from_idl(const balldds::Event &in, EventOut *o) {
   o->match_id = in.match_id();
   o->server_id = in.server_id();
+  o->term = in.term();
   o->seq = in.seq();
   o->kind = static_cast<EventKind>(in.kind());
   o->index = in.index();
@@ -341,6 +345,7 @@ balldds::BallState to_idl(const StateOut &in) {
   balldds::BallState o;
   o.match_id(in.match_id);
   o.server_id(in.server_id);
+  o.term(in.term);
   o.frame(in.frame);
   o.sim_time(in.sim_time);
   o.server_time(in.server_time);
@@ -356,6 +361,7 @@ balldds::BallState to_idl(const StateOut &in) {
 void from_idl(const balldds::BallState &in, StateOut *o) {
   o->match_id = in.match_id();
   o->server_id = in.server_id();
+  o->term = in.term();
   o->frame = in.frame();
   o->sim_time = in.sim_time();
   o->server_time = in.server_time();
@@ -371,6 +377,7 @@ balldds::MatchInfo to_idl(const MatchInfoOut &in) {
   balldds::MatchInfo o;
   o.match_id(in.match_id);
   o.server_id(in.server_id);
+  o.term(in.term);
   o.revision(in.revision);
   o.state(static_cast<balldds::MatchState>(in.state));
   put_name(in.scene, &o.scene());
@@ -418,6 +425,7 @@ balldds::MatchInfo to_idl(const MatchInfoOut &in) {
 void from_idl(const balldds::MatchInfo &in, MatchInfoOut *o) {
   o->match_id = in.match_id();
   o->server_id = in.server_id();
+  o->term = in.term();
   o->revision = in.revision();
   o->state = wire_enum<MatchState>(in.state());  // (usable_info refuses one outside the IDL's)
   if (!get_name(in.scene(), &o->scene)) o->scene.clear();

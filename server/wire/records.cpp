@@ -47,7 +47,7 @@ std::string record_type(const json &line) {
 // ---- the samples -------------------------------------------------------------
 
 #define BALL_SEGMENT_KEYS(X, s)                                                                        \
-  X("match", s.match_id) X("server", s.server_id) X("seq", s.seq) X("cause", s.cause)                  \
+  X("match", s.match_id) X("server", s.server_id) X("term", s.term) X("seq", s.seq) X("cause", s.cause)                  \
   X("index", s.cause_index) X("t0", s.segment.t0) X("p0", s.segment.p0) X("v0", s.segment.v0)          \
   X("s0", s.segment.s0) X("sound", s.sound) X("correction", s.correction) X("server_time", s.server_time) X("model_hash", s.model_hash)                  \
   X("sample_seq", s.sample.seq) X("sample_source_time", s.sample.source_time)                          \
@@ -79,7 +79,7 @@ void from_json(const json &j, SegmentOut &s) {
 }
 
 #define BALL_EVENT_KEYS(X, e)                                                                           \
-  X("match", e.match_id) X("server", e.server_id) X("seq", e.seq) X("kind", e.kind) X("index", e.index) \
+  X("match", e.match_id) X("server", e.server_id) X("term", e.term) X("seq", e.seq) X("kind", e.kind) X("index", e.index) \
   X("side", e.side) X("in_play", e.in_play) X("sound", e.sound) X("time", e.time)                       \
   X("server_time", e.server_time) X("point", e.point) X("velocity_in", e.velocity_in)                   \
   X("velocity_out", e.velocity_out) X("segment_seq", e.segment_seq) X("reason", e.reason)               \
@@ -92,7 +92,7 @@ void to_json(json &j, const EventOut &e) {
 void from_json(const json &j, EventOut &e) { BALL_EVENT_KEYS(BALL_GET, e) }
 
 #define BALL_STATE_KEYS(X, s)                                                                           \
-  X("match", s.match_id) X("server", s.server_id) X("frame", s.frame) X("sim_time", s.sim_time)         \
+  X("match", s.match_id) X("server", s.server_id) X("term", s.term) X("frame", s.frame) X("sim_time", s.sim_time)         \
   X("server_time", s.server_time) X("state", s.state) X("segment_seq", s.segment_seq)                   \
   X("position", s.ball.position) X("velocity", s.ball.velocity) X("spin", s.ball.spin)                  \
   X("sim_hash", s.sim_hash)
@@ -108,7 +108,7 @@ void from_json(const json &j, StateOut &s) { BALL_STATE_KEYS(BALL_GET, s) }
   X("last_capture_time", s.last_capture_time)
 
 #define BALL_INFO_KEYS(X, i)                                                                            \
-  X("match", i.match_id) X("server", i.server_id) X("server_time", i.server_time)                       \
+  X("match", i.match_id) X("server", i.server_id) X("term", i.term) X("server_time", i.server_time)                       \
   X("revision", i.revision) X("state", i.state) X("scene", i.scene) X("level", i.level)                 \
   X("players", i.players) X("play", i.play) X("pause_reason", i.pause_reason) X("pause_slot", i.pause_slot) \
   X("segment_seq", i.segment_seq) X("frame_time", i.frame_time) X("sim_time", i.sim_time)               \

@@ -257,6 +257,7 @@ struct Reception {
 struct SegmentOut {
   uint32_t match_id = 0;      // the match
   uint32_t server_id = 0;     // the server that wrote it
+  uint32_t term = 0;              // the owner's term of the match (docs/protocol.md, "Terms")
   double server_time = 0.0;   // server s: when it was published
   uint32_t seq = 0;           // 1, 2, ... per match
   Cause cause = Cause::serve; // what started it
@@ -274,6 +275,7 @@ struct SegmentOut {
 struct EventOut {
   uint32_t match_id = 0;           // the match
   uint32_t server_id = 0;          // the server that wrote it
+  uint32_t term = 0;              // the owner's term of the match (docs/protocol.md, "Terms")
   double server_time = 0.0;        // server s: when it was published
   uint32_t seq = 0;                // 1, 2, ... per match: a gap means events were lost
   EventKind kind = EventKind::floor;
@@ -296,6 +298,7 @@ struct EventOut {
 struct StateOut {
   uint32_t match_id = 0;      // the match
   uint32_t server_id = 0;     // the server that wrote it
+  uint32_t term = 0;              // the owner's term of the match (docs/protocol.md, "Terms")
   double server_time = 0.0;   // server s: the frame's deadline
   uint64_t frame = 0;         // sim steps taken
   double sim_time = 0.0;      // sim s
@@ -325,6 +328,7 @@ struct SlotInfo {
 struct MatchInfoOut {
   uint32_t match_id = 0;           // the match
   uint32_t server_id = 0;          // the server that wrote it
+  uint32_t term = 0;              // the owner's term of the match (docs/protocol.md, "Terms")
   double server_time = 0.0;        // server s: the instant sim_time holds for (the newest frame's deadline)
   uint32_t revision = 0;           // increments with every MatchInfo the server writes for the match
   MatchState state = MatchState::waiting;

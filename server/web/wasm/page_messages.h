@@ -74,7 +74,7 @@ struct Text {
 // who wrote a sample, and when: its match, server and server time
 #define FROM(T, path, s)                                                                                      \
   NUM(T, path ".match", s.match_id = u32(v)), NUM(T, path ".server", s.server_id = u32(v)),                   \
-      NUM(T, path ".server_time", s.server_time = v)
+      NUM(T, path ".term", s.term = u32(v)), NUM(T, path ".server_time", s.server_time = v)
 #define SLOT(i)                                                                                               \
   NUM(InfoIn, "info.slots." #i ".held", o.info.slots[i].held = flag(v)),                                      \
       NUM(InfoIn, "info.slots." #i ".present", o.info.slots[i].present = flag(v)),                            \
