@@ -32,7 +32,7 @@ bool Cluster::server_wrote(const MatchInfoOut &info) {
 }
 
 Cluster::Heard Cluster::hear_info(const MatchInfoOut &info, const ParticipantId &from, bool hosted, bool ours,
-                                  double now) {
+                                  uint32_t our_term, double now) {
   if (!server_wrote(info)) return Heard::refused;
   // a standby follows what it reads (after a yield too), and its take-over
   // maps the owner's sim clock by the info's server_time: one far from this
@@ -46,9 +46,26 @@ Cluster::Heard Cluster::hear_info(const MatchInfoOut &info, const ParticipantId 
   bool candidate = hosted;
   for (const auto &c : candidates_) candidate = candidate || c.id == info.match_id;
   if (settings_.claim > 0 && candidate) owners_[info.match_id] = {from, -1.0};
+  if (terms_.size() < kMaxPeers || terms_.count(info.match_id))
+    terms_[info.match_id] = std::max(terms_[info.match_id], info.term);
   if (!ours) return Heard::noted;
+  if (info.term < our_term || (info.term == our_term && info.server_id > settings_.server_id)) {
+    stats_.stale_terms++;
+    return Heard::stale;
+  }
   stats_.conflicts++;
   return Heard::conflict;
+}
+
+uint32_t Cluster::heard_term(uint32_t match_id) const {
+  auto it = terms_.find(match_id);
+  return it == terms_.end() ? 0 : it->second;
+}
+
+uint32_t Cluster::stronger_than(const ParticipantId &from, uint32_t own) const {
+  auto it = peers_.find(from);
+  if (it == peers_.end()) return own + kTermStrength;
+  return std::max(own, it->second.status.strength + 1);
 }
 
 Cluster::Follow Cluster::follow_plan(const MatchInfoOut &info, double t0, const ball_model **model) {

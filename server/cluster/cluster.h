@@ -46,6 +46,10 @@ constexpr double kModelWait = 2.0;
 // again: a healed cut brings the owner back too, a little after its
 // players' samples (its liveliness, its MatchInfo at least once a second)
 constexpr double kPlayersSettle = 2.0;
+// a server's match writers are as strong as its role plus this much per
+// term of the newest match it steps (docs/protocol.md, "Terms"): above
+// every role's strength, so that a newer term always outranks
+constexpr uint32_t kTermStrength = 100;
 // other servers' ServerStatus writers a cluster keeps at most: the remote
 // participants the QoS profiles allow (total_participants), so that forged
 // writers cannot grow it without bound; a lost one is forgotten
@@ -72,6 +76,7 @@ struct ClusterStats {
   uint64_t conflicts = 0;          // MatchInfo of one of our matches from another server
   uint64_t takeovers = 0;          // followed matches taken over
   uint64_t takeovers_waiting = 0;  // take-overs held back: none of the match's players heard here
+  uint64_t stale_terms = 0;        // another server's MatchInfo of one of our matches at an older term
   uint64_t yields = 0;             // matches given up to a server that outranks this one
   uint64_t claims = 0;             // matches claimed (configured or created)
   uint64_t follow_failures = 0;    // another server's matches this one could not follow or restore
@@ -123,13 +128,24 @@ class Cluster {
   // A MatchInfo no server could have written (trust.h: usable_other_info)
   // is nobody's: counted, false.
   bool server_wrote(const MatchInfoOut &info);
-  enum class Heard { refused, noted, conflict };
+  enum class Heard { refused, noted, conflict, stale };
   // Another server's MatchInfo. hosted: the host has the match (a
   // claimant's configured one before start, or one it follows); ours: this
   // server steps it. now: server s. conflict: this server must yield it
   // (DDS ranks the writer above us for every reader: the weaker of two
   // owners yields); the loop yields, then asks follow_plan.
-  Heard hear_info(const MatchInfoOut &info, const ParticipantId &from, bool hosted, bool ours, double now);
+  // our_term: the term this server steps it at (ours). conflict: a higher
+  // term, or the same from a lower server id; stale: an older one (the
+  // loop raises its writers above the sender's: stronger_than).
+  Heard hear_info(const MatchInfoOut &info, const ParticipantId &from, bool hosted, bool ours, uint32_t our_term,
+                  double now);
+  // The highest term of a match heard from other servers (0: none).
+  uint32_t heard_term(uint32_t match_id) const;
+  // A strength above the writer of participant `from` (its ServerStatus;
+  // unknown: `own` + kTermStrength).
+  uint32_t stronger_than(const ParticipantId &from, uint32_t own) const;
+  // This server's writers' strength now (ServerStatus, the successor rule).
+  void set_strength(uint32_t strength) { settings_.strength = strength; }
   enum class Follow { none, begin, update };
   // What a standby does with a MatchInfo it heard: nothing (not a
   // standby, or the MatchModel is still waited for), begin following the
@@ -195,6 +211,7 @@ class Cluster {
   // a claimant's configured match -> its owner heard of, mono s it was lost (-1: alive)
   std::map<uint32_t, std::pair<ParticipantId, double>> owners_;
   std::vector<MatchConfig> candidates_;  // a claimant's configured matches not (yet) its own
+  std::map<uint32_t, uint32_t> terms_;   // the highest term heard of each match, at most kMaxPeers matches
   uint32_t claimed_ = 0;
 };
 

@@ -133,6 +133,11 @@ bool ServerEndpoints::assert_liveliness() {
   return ok;
 }
 
+bool ServerEndpoints::set_strength(uint32_t strength) {
+  return segments_.set_strength(strength) && events_.set_strength(strength) && states_.set_strength(strength) &&
+         infos_.set_strength(strength) && models_.set_strength(strength);
+}
+
 bool ServerEndpoints::dispose_match(uint32_t match_id) {
   MatchInfoOut key;
   key.match_id = match_id;

@@ -38,6 +38,7 @@ class ServerEndpoints : public ServerPort {
   bool write(const MatchModelOut &m) override { return models_.write(m); }
   bool assert_liveliness() override;
   bool dispose_match(uint32_t match_id) override;
+  bool set_strength(uint32_t strength) override;
 
  private:
   explicit ServerEndpoints(Domain &domain) : domain_(domain) {}

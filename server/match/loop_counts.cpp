@@ -84,7 +84,7 @@ StatusOut ServerLoop::status_now() const {
   o.following = static_cast<uint32_t>(cluster_.following().size());
   o.claim_room = cluster_.own_view().claim_room;
   o.standby = settings_.standby;
-  o.strength = settings_.strength;
+  o.strength = cluster_.settings().strength;
   return o;
 }
 

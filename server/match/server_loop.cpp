@@ -10,7 +10,8 @@
 namespace ballsrv {
 
 ServerLoop::ServerLoop(Host &host, ServerPort &port, Clock &clock, const LoopSettings &settings)
-    : host_(host), port_(port), clock_(clock), settings_(settings), cluster_(settings) {}
+    : host_(host), port_(port), clock_(clock), settings_(settings), cluster_(settings),
+      base_strength_(settings.strength) {}
 
 bool ServerLoop::find_owner(double seconds, const std::function<bool()> &stop, MatchInfoOut *other) {
   double until = clock_.mono() + seconds;
@@ -86,7 +87,20 @@ ServerLoop::Scheduled ServerLoop::schedule(Match *m) {
   // golden ratio of their ids), not all in one wake-up: 1000 at once took
   // 10-20 ms, and every frame of that wake-up overran, 1 in 60
   s.next_info = now + settings_.info_interval * std::fmod(static_cast<double>(m->id()) * 0.6180339887498949, 1.0);
+  // one more than any term of it heard (docs/protocol.md, "Terms"); its
+  // writers outrank every older term's
+  s.term = cluster_.heard_term(m->id()) + 1;
+  raise_strength(base_strength_ + kTermStrength * s.term);
   return s;
+}
+
+void ServerLoop::raise_strength(uint32_t at_least) {
+  if (at_least <= cluster_.settings().strength) return;
+  if (!port_.set_strength(at_least)) {
+    say("cannot raise the match writers' strength to " + std::to_string(at_least));
+    return;
+  }
+  cluster_.set_strength(at_least);
 }
 
 ServerLoop::Scheduled *ServerLoop::scheduled(uint32_t id) {
@@ -140,9 +154,14 @@ void ServerLoop::take_others() {
 // follows (docs/protocol.md, "Several servers on one domain").
 void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from) {
   uint32_t id = info.match_id;
-  Cluster::Heard heard = cluster_.hear_info(info, from, host_.find(id) != nullptr, scheduled(id) != nullptr,
-                                            clock_.realtime());
+  const Scheduled *ours = scheduled(id);
+  Cluster::Heard heard = cluster_.hear_info(info, from, host_.find(id) != nullptr, ours != nullptr,
+                                            ours ? ours->term : 0, clock_.realtime());
   if (heard == Cluster::Heard::refused) return;
+  if (heard == Cluster::Heard::stale) {  // an older term's owner as strong as ours: outrank it
+    raise_strength(cluster_.stronger_than(from, cluster_.settings().strength));
+    return;
+  }
   if (heard == Cluster::Heard::conflict) {
     if (on_conflict_) on_conflict_(info, from);
     yield(id, info, from);
@@ -232,6 +251,8 @@ void ServerLoop::take_over_match(uint32_t id, double t0, double now) {
   }
   cluster_.taken_over(id, true);
   s.revision = p.info.revision;
+  s.term = std::max(s.term, p.info.term + 1);
+  raise_strength(base_strength_ + kTermStrength * s.term);
   s.last_frame_real = first_real - m->frame_time();  // the instant the sim time `target` holds for
   s.taken_over = true;
   s.since = now;
@@ -256,6 +277,7 @@ void ServerLoop::write(const T &sample, uint64_t *written) {
 void ServerLoop::publish(const MatchOutput &out, Scheduled &s, double now) {
   for (SegmentOut seg : out.segments) {
     seg.server_id = settings_.server_id;
+    seg.term = s.term;
     seg.server_time = now;
     write(seg, &stats_.totals.segments_out);
     if (seg.cause == Cause::racket && seg.sample.valid && seg.sample.source_time > 0.0) {
@@ -266,6 +288,7 @@ void ServerLoop::publish(const MatchOutput &out, Scheduled &s, double now) {
   }
   for (EventOut e : out.events) {
     e.server_id = settings_.server_id;
+    e.term = s.term;
     e.server_time = now;
     write(e, &stats_.totals.events_out);
   }
@@ -273,6 +296,7 @@ void ServerLoop::publish(const MatchOutput &out, Scheduled &s, double now) {
     write_state(s);       // (an older one first: one state per frame, in order)
     s.state = out.state;
     s.state.server_id = settings_.server_id;
+    s.state.term = s.term;
     s.state.server_time = s.last_frame_real;
     s.state_due = true;
   }
@@ -306,6 +330,7 @@ void ServerLoop::publish_info(Scheduled &s) {
   s.info_waits = false;
   MatchInfoOut info = s.match->info();
   info.server_id = settings_.server_id;
+  info.term = s.term;
   info.server_time = s.last_frame_real;  // sim_time holds from the newest frame's deadline
   info.revision = ++s.revision;
   write(info, &stats_.infos_out);

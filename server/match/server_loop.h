@@ -97,6 +97,12 @@ class ServerPort {
   // A match this server no longer has: its MatchInfo and MatchModel
   // instances disposed (a late joiner is not handed them). false: refused.
   virtual bool dispose_match(uint32_t match_id) = 0;
+  // Sets the ownership strength of the match writers (docs/protocol.md,
+  // "Terms"); false: refused.
+  virtual bool set_strength(uint32_t strength) {
+    (void)strength;
+    return true;
+  }
 };
 
 // s: a racket hit due within this of the one the loop saw before is that
@@ -203,6 +209,7 @@ class ServerLoop {
     double last_frame_real = 0.0;  // server s of the newest frame's deadline
     double next_info = 0.0;        // mono s of the next periodic MatchInfo
     uint32_t revision = 0;
+    uint32_t term = 1;             // the term it is stepped at (docs/protocol.md, "Terms")
     uint64_t model_written = 0;    // the model hash of the newest MatchModel written (0: none yet)
     double firm_at = 0.0;          // mono s: no frame before (a claim settling)
     double since = 0.0;            // server s: when this server began to step it
@@ -221,6 +228,7 @@ class ServerLoop {
   Scheduled *scheduled(uint32_t id);
   void other_info(const MatchInfoOut &info, const ParticipantId &from);
   void yield(uint32_t id, const MatchInfoOut &to, const ParticipantId &from);
+  void raise_strength(uint32_t at_least);  // the match writers' strength, never lowered
   bool claim(const MatchConfig &config, double t0, std::string *err);
   void claim_unplaced(double t0);
   bool may_create(const ControlIn &control);
@@ -241,6 +249,7 @@ class ServerLoop {
   Clock &clock_;
   LoopSettings settings_;
   Cluster cluster_;
+  uint32_t base_strength_ = 0;  // its role's (the QoS file's primary or standby profile)
   FrameClock origin_{1.0, 0.0, 0.0};
   std::vector<Scheduled> sched_;
   double start_ = 0.0, next_status_ = 0.0;

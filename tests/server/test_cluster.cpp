@@ -54,7 +54,7 @@ Cluster following_standby(const Owner &o, ClusterSettings s = standby_settings()
   Cluster c(s);
   c.hear_status(status_of(1, 20, false), kOwner);
   MatchInfoOut i = o.info();
-  CHECK(c.hear_info(i, kOwner, false, false, kNow) == Cluster::Heard::noted);
+  CHECK(c.hear_info(i, kOwner, false, false, 0, kNow) == Cluster::Heard::noted);
   const ball_model *model = nullptr;
   Cluster::Follow plan = c.follow_plan(i, 0.0, &model);
   CHECK(plan == Cluster::Follow::none);  // the MatchModel may still come
@@ -150,10 +150,10 @@ TEST(a_standby_refuses_what_no_server_writes) {
   Cluster c(standby_settings());
   MatchInfoOut far = o.info();
   far.server_time = kNow + kMaxClockGap + 1.0;
-  CHECK(c.hear_info(far, kOwner, false, false, kNow) == Cluster::Heard::refused);
+  CHECK(c.hear_info(far, kOwner, false, false, 0, kNow) == Cluster::Heard::refused);
   MatchInfoOut nan = o.info();
   nan.sim_time = NAN;
-  CHECK(c.hear_info(nan, kOwner, false, false, kNow) == Cluster::Heard::refused);
+  CHECK(c.hear_info(nan, kOwner, false, false, 0, kNow) == Cluster::Heard::refused);
   CHECK_EQ(c.stats().others_refused, 2u);
   Cluster f = following_standby(o);
   size_t kept = f.followed(7)->segments.size();
@@ -165,13 +165,39 @@ TEST(a_standby_refuses_what_no_server_writes) {
   CHECK_EQ(f.followed(7)->segments.size(), kept);
 }
 
+// Of two servers stepping one match, the newer term owns it
+// (docs/protocol.md, "Terms"): another's higher term, or the same term from
+// a lower id, is a conflict (this one yields); an older term is stale, and
+// this server raises its writers above the sender's. The highest term heard
+// of each match is kept for the next start or take-over.
+TEST(terms_decide_two_owners) {
+  Owner o;
+  Cluster c(standby_settings(2, 10));  // server 2
+  c.hear_status(status_of(1, 120, false), kOwner);
+  MatchInfoOut i = o.info();  // server 1's
+  CHECK_EQ(c.heard_term(7), 0u);
+  i.term = 1;
+  CHECK(c.hear_info(i, kOwner, true, true, 2, kNow) == Cluster::Heard::stale);
+  CHECK_EQ(c.stats().stale_terms, 1u);
+  CHECK_EQ(c.stronger_than(kOwner, 210), 210u);  // already above server 1's 120
+  CHECK_EQ(c.stronger_than(kOwner, 100), 121u);
+  CHECK_EQ(c.stronger_than(participant(99), 100), 100u + kTermStrength);  // unknown: a term's worth more
+  i.term = 3;
+  CHECK(c.hear_info(i, kOwner, true, true, 2, kNow) == Cluster::Heard::conflict);
+  i.term = 2;  // the same term: the lower id keeps it
+  CHECK(c.hear_info(i, kOwner, true, true, 2, kNow) == Cluster::Heard::conflict);
+  i.server_id = 5;
+  CHECK(c.hear_info(i, kOwner, true, true, 2, kNow) == Cluster::Heard::stale);
+  CHECK_EQ(c.heard_term(7), 3u);
+}
+
 // A MatchInfo of a match this server steps is a conflict: it yields, and
 // a standby follows the match from then on.
 TEST(a_conflict_yields_and_a_standby_follows) {
   Owner o;
   Cluster c(standby_settings());
   MatchInfoOut i = o.info();
-  CHECK(c.hear_info(i, kOwner, true, true, kNow) == Cluster::Heard::conflict);
+  CHECK(c.hear_info(i, kOwner, true, true, 0, kNow) == Cluster::Heard::conflict);
   CHECK_EQ(c.stats().conflicts, 1u);
   c.yielded(7, i, kOwner, true);
   CHECK_EQ(c.stats().yields, 1u);
@@ -277,7 +303,7 @@ TEST(claimants_split_the_matches_each_claims_once) {
   Cluster c(s);
   MatchConfig m = default_config();
   c.set_candidates({m});
-  CHECK(c.hear_info(o.info(), kOwner, false, false, kNow) == Cluster::Heard::noted);
+  CHECK(c.hear_info(o.info(), kOwner, false, false, 0, kNow) == Cluster::Heard::noted);
   CHECK_EQ(c.owners_known(), 1u);
   auto none = [](uint32_t) { return false; };
   CHECK(c.claims_due(0.0, none).empty());

@@ -866,7 +866,13 @@ TEST(another_server_for_our_match) {
   CHECK_EQ(r.loop->cluster().stats().others_refused, 2u);
   CHECK_EQ(r.loop->cluster().stats().yields, 0u);
   CHECK(r.host.find(0) != nullptr);
-  // while running: reported at the status, with the participant
+  // an older term's owner (ours is 1): stale, nothing yielded
+  r.port.others.push_back({theirs, participant(9)});
+  r.loop->step();
+  CHECK_EQ(r.loop->cluster().stats().stale_terms, 1u);
+  CHECK(r.host.find(0) != nullptr);
+  // while running, a newer term's: reported at the status, with the participant
+  theirs.term = 2;
   r.port.others.push_back({theirs, participant(9)});
   int seen = 0;
   ParticipantId who{};
@@ -879,7 +885,7 @@ TEST(another_server_for_our_match) {
   CHECK_EQ(seen, 1);
   CHECK(who == participant(9));
   CHECK_EQ(r.loop->cluster().stats().conflicts, 1u);
-  // our reader took the other's sample: DDS ranks it above us, so we yield
+  // a newer term owns the match (docs/protocol.md, "Terms"): we yield
   CHECK_EQ(r.loop->cluster().stats().yields, 1u);
   CHECK(r.host.find(0) == nullptr);
   CHECK_EQ(r.loop->status_now().matches, 0u);
