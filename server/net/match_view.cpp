@@ -13,6 +13,14 @@ constexpr size_t kGivenKept = 64;  // voidable events kept, at most
 
 bool seq_before(uint32_t a, uint32_t b) { return static_cast<int32_t>(a - b) < 0; }
 
+bool same_owner(const SegmentOut &a, const SegmentOut &b) { return a.term == b.term && a.server_id == b.server_id; }
+
+// whether segment a comes after b: by owner, then by seq (docs/protocol.md, "Terms")
+bool later(const SegmentOut &a, const SegmentOut &b) {
+  if (!same_owner(a, b)) return owner_before(b.term, b.server_id, a.term, a.server_id);
+  return seq_before(b.seq, a.seq);
+}
+
 bool voidable(const EventOut &e) {
   return e.kind == EventKind::racket || e.kind == EventKind::floor || e.kind == EventKind::net ||
          e.kind == EventKind::wall || e.kind == EventKind::sound || e.kind == EventKind::point;
@@ -53,7 +61,6 @@ ViewEvent MatchView::note(ViewNote n, double time) const {
 // nothing held of the old one applies, its seqs start over.
 void MatchView::start_anew() {
   window_.clear();
-  newest_ = 0;
   any_event_ = false;
   last_event_ = 0;
   given_.clear();
@@ -62,12 +69,36 @@ void MatchView::start_anew() {
   counters_.anew++;
 }
 
+bool MatchView::owner_fits(uint32_t term, uint32_t server, double local) const {
+  if (!has_owner_ || local - owner_local_ > kForgetOwner) return true;
+  return !owner_before(term, server, term_, owner_) && term - term_ <= kMaxTermAhead;
+}
+
+// An older owner than the one held is taken only once that one is
+// forgotten: its match is served anew, nothing held of it applies.
+bool MatchView::take_owner(uint32_t term, uint32_t server, double local) {
+  bool older = has_owner_ && owner_before(term, server, term_, owner_);
+  if (older) start_anew();
+  if (!has_owner_ || older || owner_before(term_, owner_, term, server)) {
+    term_ = term;
+    owner_ = server;
+    has_owner_ = true;
+  }
+  owner_local_ = local;
+  return older;
+}
+
 bool MatchView::on_info(const MatchInfoOut &in, double local, std::vector<ViewEvent> *out) {
   if (in.match_id != id_ || !servers_.accepts(in.server_id) || !usable_info(in)) {
     counters_.refused++;
     return false;
   }
-  if (has_info_ && in.sim_time + kAnew < info_.sim_time) start_anew();
+  if (!owner_fits(in.term, in.server_id, local)) {
+    counters_.old_owner++;
+    return false;
+  }
+  bool anew = take_owner(in.term, in.server_id, local);
+  if (!anew && has_info_ && in.sim_time + kAnew < info_.sim_time) start_anew();
   if (!clock_.observe(in.sim_time, in.server_time, in.settings.time_base, in.state == MatchState::playing, local)) {
     counters_.refused++;
     return false;
@@ -107,7 +138,7 @@ bool MatchView::on_info(const MatchInfoOut &in, double local, std::vector<ViewEv
     for (auto &k : window_) prepare(&k);
   }
   // the segment in effect, for a client that has not got it (one that joined after a failover)
-  if (in.segment_seq > 0 && segment_fits(in.segment_seq, newest_, in.segment_seq)) {
+  if (in.segment_seq > 0) {
     bool held = false;
     for (const auto &k : window_) held = held || k.segment.seq == in.segment_seq;
     if (!held) keep(current_segment(in));
@@ -137,27 +168,33 @@ void MatchView::prepare(KeptSegment *k) const {
 
 bool MatchView::keep(const SegmentOut &s) {
   for (auto &k : window_)
-    if (k.segment.seq == s.seq) return false;  // (the same segment again)
+    if (k.segment.seq == s.seq && same_owner(k.segment, s)) return false;  // (the same segment again)
   KeptSegment k;
   k.segment = s;
   prepare(&k);
-  auto at = std::find_if(window_.begin(), window_.end(),
-                         [&](const KeptSegment &w) { return seq_before(s.seq, w.segment.seq); });
+  auto at = std::find_if(window_.begin(), window_.end(), [&](const KeptSegment &w) { return later(w.segment, s); });
   window_.insert(at, k);
   if (window_.size() > kWindow) window_.erase(window_.begin());
-  if (newest_ == 0 || seq_before(newest_, s.seq)) newest_ = s.seq;
   return true;
 }
 
 bool MatchView::on_segment(const SegmentOut &s, double local, std::vector<ViewEvent> *out) {
   if (s.match_id != id_) return false;
+  // a new owner's seqs are checked against its own stream (a claim begins anew)
+  const SegmentOut *last = window_.empty() ? nullptr : &window_.back().segment;
+  uint32_t base = last && same_owner(*last, s) ? last->seq : 0;
   if (!servers_.accepts(s.server_id) || !finite_segment(s.segment) ||
       static_cast<unsigned>(s.cause) >= static_cast<unsigned>(kEnumCount<Cause>) ||
-      !segment_fits(s.seq, newest_, info_.segment_seq)) {
+      !segment_fits(s.seq, base, info_.segment_seq)) {
     counters_.refused++;
     return false;
   }
-  bool news = newest_ == 0 || seq_before(newest_, s.seq);
+  if (!owner_fits(s.term, s.server_id, local)) {
+    counters_.old_owner++;
+    return false;
+  }
+  take_owner(s.term, s.server_id, local);
+  bool news = window_.empty() || later(s, window_.back().segment);
   if (!keep(s)) return true;  // held already
   counters_.segments++;
   if (news && clock_.valid() && s.segment.t0 < clock_.sim_now(local)) counters_.late++;
@@ -189,12 +226,16 @@ bool MatchView::voided_before(const EventOut &e) const {
 }
 
 bool MatchView::on_event(const EventOut &e, double local, std::vector<ViewEvent> *out) {
-  (void)local;
   if (e.match_id != id_) return false;
   if (!servers_.accepts(e.server_id) || !usable_event(e)) {
     counters_.refused++;
     return false;
   }
+  if (!owner_fits(e.term, e.server_id, local)) {
+    counters_.old_owner++;
+    return false;
+  }
+  take_owner(e.term, e.server_id, local);
   int32_t ahead = static_cast<int32_t>(e.seq - last_event_);
   if (any_event_ && ahead <= 0) return false;  // given already (a new owner goes on from its own restore)
   if (any_event_ && static_cast<uint32_t>(ahead) > kMaxSeqAhead) {
@@ -227,6 +268,11 @@ bool MatchView::on_event(const EventOut &e, double local, std::vector<ViewEvent>
 
 bool MatchView::on_state(const StateOut &s, double local) {
   if (s.match_id != id_) return false;
+  if (has_info_ && servers_.accepts(s.server_id) && !owner_fits(s.term, s.server_id, local)) {
+    counters_.old_owner++;
+    return false;
+  }
+  if (has_info_ && servers_.accepts(s.server_id)) take_owner(s.term, s.server_id, local);
   if (!has_info_ || !servers_.accepts(s.server_id) ||
       !clock_.observe(s.sim_time, s.server_time, info_.settings.time_base, s.state == MatchState::playing, local)) {
     counters_.refused++;

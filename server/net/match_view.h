@@ -50,6 +50,7 @@ struct ViewCounters {
   uint64_t late = 0;      // segments taken after their t0 on the caller's clock
   uint64_t voided = 0;    // events a correction took back (given or not)
   uint64_t anew = 0;      // times the match was started anew
+  uint64_t old_owner = 0; // samples of an older owner than the one taken (docs/protocol.md, "Terms")
 };
 
 // The ball as a view answers it.
@@ -65,6 +66,11 @@ class MatchView {
   static constexpr double kAnew = 1.0;           // sim s: a MatchInfo this far behind the newest is a match started anew
   static constexpr double kVoidableFor = 5.0;    // sim s an event given stays where a correction may void it
   static constexpr size_t kCorrections = 16;     // the newest corrections, which may void events still to come
+  // s of the caller's clock: an owner of whom nothing came this long is
+  // forgotten, and any owner's samples are taken again (a match served
+  // anew after its servers were gone; an owner writes a MatchInfo at
+  // least once a second and its writers live for a 1 s lease)
+  static constexpr double kForgetOwner = 5.0;
 
   // `servers`: whose samples it takes; `me`: this client's participant (its slot)
   MatchView(uint32_t id, const ServerChoice &servers, const ParticipantId &me);
@@ -80,6 +86,8 @@ class MatchView {
   void on_delay(double seconds);
 
   uint32_t id() const { return id_; }
+  // the owner taken: its term and server (0, 0: none yet)
+  uint32_t term() const { return has_owner_ ? term_ : 0; }
   bool has_info() const { return has_info_; }
   const MatchInfoOut &info() const { return info_; }  // the newest usable
   double info_local() const { return info_local_; }   // the caller's clock at its reception
@@ -90,12 +98,12 @@ class MatchView {
   const ball_model &flight_model() const { return has_model_ ? model_.model : info_.model; }
   bool holds(int slot) const { return slot >= 0 && slot < kMaxPlayers && (mine_ >> slot & 1u); }  // this client's
   int slot() const;  // the lowest slot this client holds, -1: none
-  const std::vector<KeptSegment> &window() const { return window_; }  // by seq, oldest first
+  const std::vector<KeptSegment> &window() const { return window_; }  // by (owner, seq), oldest first
   const ViewCounters &counters() const { return counters_; }
   double delay() const;  // s: the median of the recent delays (0: none)
 
-  // The segment in effect at sim time t: of those kept, the highest seq
-  // whose t0 is not after t; nullptr: none.
+  // The segment in effect at sim time t: of those kept, the latest by
+  // (owner, seq) whose t0 is not after t; nullptr: none.
   const KeptSegment *in_effect(double sim) const {
     for (auto it = window_.rbegin(); it != window_.rend(); ++it)
       if (it->segment.segment.t0 <= sim) return &*it;
@@ -119,6 +127,11 @@ class MatchView {
 
  private:
   void start_anew();
+  // docs/protocol.md, "Terms": whether a sample of (term, server) may be
+  // taken at `local`; taking one makes its owner the held one (true: an
+  // older one, the match started anew)
+  bool owner_fits(uint32_t term, uint32_t server, double local) const;
+  bool take_owner(uint32_t term, uint32_t server, double local);
   bool keep(const SegmentOut &s);  // false: held already
   void prepare(KeptSegment *k) const;
   void void_given(const SegmentOut &correction, std::vector<ViewEvent> *out);
@@ -137,7 +150,9 @@ class MatchView {
   std::vector<MatchModelOut> models_;  // models not (yet) named by a MatchInfo: the newest few
   uint64_t flight_hash_ = 0;           // the model hash the window's flights were prepared with
   std::vector<KeptSegment> window_;
-  uint32_t newest_ = 0;                // the newest seq taken (0: none)
+  uint32_t term_ = 0, owner_ = 0;      // the owner taken: term, server id
+  bool has_owner_ = false;
+  double owner_local_ = 0.0;           // the caller's clock at its newest sample taken
   uint32_t last_event_ = 0;            // the newest event seq given
   bool any_event_ = false;
   std::deque<EventOut> given_;         // voidable events given, the last kVoidableFor sim s

@@ -100,6 +100,10 @@ bool finite_segment(const ball_segment &s) {
   return std::isfinite(s.t0) && ball_v3_finite(s.p0) && ball_v3_finite(s.v0) && ball_v3_finite(s.s0);
 }
 
+bool owner_before(uint32_t term_a, uint32_t server_a, uint32_t term_b, uint32_t server_b) {
+  return term_a != term_b ? term_a < term_b : server_a > server_b;  // plain: terms start at 1 and only grow
+}
+
 bool segment_is_news(uint32_t seq, uint32_t newest, uint32_t info_seq) {
   if (newest == 0) return true;
   if (seq == info_seq && seq != newest) return true;

@@ -70,6 +70,15 @@ bool usable_model(const MatchModelOut &m, uint64_t info_hash);
 // reach no evaluation (nor a JSON record, which has no such numbers).
 bool finite_segment(const ball_segment &s);
 
+// Of two owners of a match, (term, server_id), whether a is older than b
+// (docs/protocol.md, "Terms"): the lower term, or of one term the higher
+// server id. A client takes nothing of an older owner's than one it took.
+bool owner_before(uint32_t term_a, uint32_t server_a, uint32_t term_b, uint32_t server_b);
+// Terms further ahead of the one held than this are not the match's (a
+// forged term 0xFFFFFFFF must not blind a client to its server): a term
+// grows by one a take-over or a claim.
+constexpr uint32_t kMaxTermAhead = 1000;
+
 // Segments further ahead of the newest than this are not the stream's (a
 // forged seq 0xFFFFFFFF once blinded every bot): unless the newest
 // MatchInfo names that seq as the one in effect.

@@ -386,6 +386,7 @@ inline SegmentOut current_segment(const MatchInfoOut &i) {
   SegmentOut s;
   s.match_id = i.match_id;
   s.server_id = i.server_id;
+  s.term = i.term;
   s.server_time = i.server_time;
   s.seq = i.segment_seq;
   s.cause = i.segment_cause;

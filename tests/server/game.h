@@ -92,10 +92,23 @@ struct Game {
     return s;
   }
 
+  // stamped as a server writes them: its id and the match's term
+  uint32_t server_id = 1, term = 1;
+  template <class T> void stamp(std::vector<T> *to, const std::vector<T> &from) {
+    for (T x : from) {
+      x.server_id = server_id;
+      x.term = term;
+      to->push_back(x);
+    }
+  }
   void keep() {
-    events.insert(events.end(), out.events.begin(), out.events.end());
-    segments.insert(segments.end(), out.segments.begin(), out.segments.end());
-    if (out.has_state) states.push_back(out.state);
+    stamp(&events, out.events);
+    stamp(&segments, out.segments);
+    if (out.has_state) {
+      states.push_back(out.state);
+      states.back().server_id = server_id;
+      states.back().term = term;
+    }
   }
 
   // runs frames for `seconds` of real time; parked players send 10 samples a second

@@ -17,8 +17,11 @@ using namespace ballsrv;
 
 namespace {
 
-// A random history of one match as a watcher records it, in order.
-std::vector<json> random_history(std::mt19937_64 &rng, size_t *owner_change) {
+// A random history of one match as a watcher records it, in order: a
+// take-over by server 2 at the next term, after which the old owner, back,
+// writes what it had (seqs again with other contents, an older revision,
+// score and clock) now and then: `stale` counts those lines.
+std::vector<json> random_history(std::mt19937_64 &rng, size_t *owner_change, long *stale = nullptr) {
   std::uniform_real_distribution<double> u(0.0, 1.0);
   ball_model model;
   ball_model_default(&model);
@@ -26,12 +29,14 @@ std::vector<json> random_history(std::mt19937_64 &rng, size_t *owner_change) {
   MatchInfoOut info;
   info.match_id = 3;
   info.server_id = 1;
+  info.term = 1;
   info.players = 2;
   info.frame_time = 1.0 / 60.0;
   info.model = model;
   SegmentOut seg;
   seg.match_id = 3;
   seg.server_id = 1;
+  seg.term = 1;
   seg.seq = 1;
   seg.cause = Cause::serve;
   seg.segment.t0 = 1.0;
@@ -44,13 +49,42 @@ std::vector<json> random_history(std::mt19937_64 &rng, size_t *owner_change) {
   for (int k = 0; k < n; ++k) {
     if (k == change) {
       seg.server_id = info.server_id = 2;  // a take-over: the seqs, revisions and clock go on
+      seg.term = info.term = 2;
       *owner_change = lines.size();
+    }
+    if (k > change && rng() % 3 == 0) {  // the old owner back, on what it had
+      SegmentOut old_seg = seg;
+      old_seg.server_id = 1;
+      old_seg.term = 1;
+      old_seg.segment.p0.y += 0.5;
+      MatchInfoOut old_info = info;
+      old_info.server_id = 1;
+      old_info.term = 1;
+      old_info.revision = info.revision > 5 ? info.revision - 5 : 0;
+      old_info.play.score = {0, 0};
+      old_info.sim_time = sim - 4.0;
+      EventOut old_e;
+      old_e.match_id = 3;
+      old_e.server_id = 1;
+      old_e.term = 1;
+      old_e.seq = event_seq;
+      old_e.time = sim + 0.25;
+      StateOut old_st;
+      old_st.match_id = 3;
+      old_st.server_id = 1;
+      old_st.term = 1;
+      old_st.sim_time = sim - 4.0;
+      for (const json &j : {record_line(old_seg, sim), record_line(old_info, sim), record_line(old_e, sim),
+                            record_line(old_st, sim)})
+        lines.push_back(j);
+      if (stale) *stale += 4;
     }
     lines.push_back(record_line(seg, sim));
     if (k > 0 && rng() % 4 == 0) lines.push_back(record_line(seg, sim));  // delivered twice
     EventOut e;
     e.match_id = 3;
     e.server_id = seg.server_id;
+    e.term = seg.term;
     e.seq = ++event_seq;
     e.kind = rng() % 5 == 0 ? EventKind::point : EventKind::floor;
     e.time = seg.segment.t0;
@@ -65,6 +99,7 @@ std::vector<json> random_history(std::mt19937_64 &rng, size_t *owner_change) {
       StateOut st;
       st.match_id = 3;
       st.server_id = seg.server_id;
+      st.term = seg.term;
       st.sim_time = sim += 0.1 * u(rng);
       lines.push_back(record_line(st, sim));
     }
@@ -102,11 +137,20 @@ History checked(const std::vector<json> &lines) {
   return h;
 }
 
-// One invariant broken in a copy of a history, at a random place after the first lines.
+// One invariant broken in a copy of a history, at a random place after the
+// first lines, by its owner of the time (a line written again by the newest
+// owner: every client takes it).
 std::vector<json> broken(std::mt19937_64 &rng, std::vector<json> lines, size_t change, Broken what) {
   auto pick = [&](const char *type) {
-    std::vector<size_t> at = lines_of(lines, type, 4);
+    std::vector<size_t> at;
+    for (size_t i : lines_of(lines, type, 4))
+      if (lines[i]["term"] == 2 || i < change) at.push_back(i);  // (not the old owner's, back)
     return at[rng() % at.size()];
+  };
+  auto newest = [&](json j) {
+    j["server"] = 2;
+    j["term"] = 2;
+    return j;
   };
   switch (what) {
     case Broken::score: {
@@ -116,7 +160,7 @@ std::vector<json> broken(std::mt19937_64 &rng, std::vector<json> lines, size_t c
       break;
     }
     case Broken::rally: {  // a MatchInfo after the newest whose rally is one lower than the highest
-      json last = lines[lines_of(lines, "match_info").back()];
+      json last = newest(lines[lines_of(lines, "match_info").back()]);
       const uint32_t rally = last["play"]["rally"].get<uint32_t>();
       const uint32_t revision = last["revision"].get<uint32_t>();
       last["revision"] = revision + 1;
@@ -128,7 +172,7 @@ std::vector<json> broken(std::mt19937_64 &rng, std::vector<json> lines, size_t c
       break;
     }
     case Broken::revision: {  // the newest revision again, with another sim time
-      json last = lines[lines_of(lines, "match_info").back()];
+      json last = newest(lines[lines_of(lines, "match_info").back()]);
       last["sim_time"] = last["sim_time"].get<double>() + 0.5;
       lines.push_back(last);
       break;
@@ -140,14 +184,14 @@ std::vector<json> broken(std::mt19937_64 &rng, std::vector<json> lines, size_t c
     }
     case Broken::segment_seq: {
       size_t i = pick("segment");
-      json again = lines[i];
+      json again = newest(lines[i]);
       again["p0"][1] = again["p0"][1].get<double>() + 0.25;
       lines.push_back(again);
       break;
     }
     case Broken::event_seq: {
       size_t i = pick("event");
-      json again = lines[i];
+      json again = newest(lines[i]);
       again["time"] = again["time"].get<double>() + 0.125;
       lines.push_back(again);
       break;
@@ -164,20 +208,35 @@ std::vector<json> broken(std::mt19937_64 &rng, std::vector<json> lines, size_t c
 
 }  // namespace
 
+// The old owner's lines, back after the take-over, break everything if
+// taken: taken by its term, they are counted and break nothing.
 TEST(a_history_of_a_take_over_breaks_nothing) {
   std::mt19937_64 rng(20261206);
-  long checks = 0, continuity = 0;
+  long checks = 0, continuity = 0, stale_lines = 0, found_if_taken = 0;
   for (int k = 0; k < 200; ++k) {
     size_t change = 0;
-    History h = checked(random_history(rng, &change));
+    long stale = 0;
+    std::vector<json> lines = random_history(rng, &change, &stale);
+    History h = checked(lines);
     CHECK_MSG(h.violations().empty(), "history %d: %s", k, h.report().c_str());
     CHECK_EQ(h.counts().owner_changes, 1L);
     CHECK_EQ(h.counts().continuity, 1L);
+    CHECK_EQ(h.counts().old_owner, stale);
     checks += h.counts().checks;
     continuity += h.counts().continuity;
+    stale_lines += stale;
+    if (stale == 0) continue;
+    for (json &j : lines) {  // one owner to a reader without terms: the old owner's lines are taken
+      j["term"] = 1;
+      j["server"] = 2;
+    }
+    found_if_taken += !checked(lines).violations().empty();
   }
-  check::note("200 histories: %ld checks, %ld owner changes checked for continuity, nothing broken", checks,
-              continuity);
+  check::note("200 histories: %ld checks, %ld owner changes checked for continuity, %ld lines of the old owner not "
+              "taken, nothing broken (taken, they broke %ld histories)",
+              checks, continuity, stale_lines, found_if_taken);
+  CHECK(stale_lines > 200);
+  CHECK(found_if_taken > 100);
 }
 
 TEST(each_invariant_broken_once_is_found_by_its_name) {

@@ -19,6 +19,8 @@ namespace {
 // the match's info as the server writes it: its sim time holds from `server_time` on
 MatchInfoOut info_at(const Game &g, double sim_time, double server_time, MatchState state) {
   MatchInfoOut i = g.match.info();
+  i.server_id = g.server_id;  // as its server writes it
+  i.term = g.term;
   i.sim_time = sim_time;
   i.server_time = server_time;
   i.state = state;
@@ -232,6 +234,8 @@ TEST(snapshots_fall_due_on_multiples_of_their_period) {
   w.on_segment(g.segments[0], 0.5);
   EventOut bounce;
   bounce.match_id = g.match.id();
+  bounce.server_id = g.server_id;
+  bounce.term = g.term;
   bounce.kind = EventKind::floor;
   bounce.time = 0.4;
   bounce.seq = 1;

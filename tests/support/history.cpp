@@ -3,6 +3,8 @@
 #include <cmath>
 #include <fstream>
 
+#include "trust.h"
+
 namespace ballsrv {
 
 namespace {
@@ -50,22 +52,39 @@ void History::broke(uint32_t match, Broken what, const std::string &detail) {
   violations_.push_back(Violation{match, what, counts_.lines, detail});
 }
 
+// docs/protocol.md, "Terms": a client takes nothing of an older owner than
+// one it took; the record holds what arrived, the checks what was taken.
+bool History::older_owner(Match &m, uint32_t term, uint32_t server) {
+  if (m.has_owner && owner_before(term, server, m.term, m.server)) {
+    counts_.old_owner++;
+    return true;
+  }
+  m.has_owner = true;
+  m.term = term;
+  m.server = server;
+  return false;
+}
+
 bool History::take(const json &line, std::string *err) {
   counts_.lines++;
   const std::string type = record_type(line);
   try {
     if (type == "match_info") {
       MatchInfoOut i = line.get<MatchInfoOut>();
-      take_info(matches_[i.match_id], i);
+      Match &m = matches_[i.match_id];
+      if (!older_owner(m, i.term, i.server_id)) take_info(m, i);
     } else if (type == "segment") {
       SegmentOut s = line.get<SegmentOut>();
-      take_segment(matches_[s.match_id], s);
+      Match &m = matches_[s.match_id];
+      if (!older_owner(m, s.term, s.server_id)) take_segment(m, s);
     } else if (type == "event") {
       EventOut e = line.get<EventOut>();
-      take_event(matches_[e.match_id], e);
+      Match &m = matches_[e.match_id];
+      if (!older_owner(m, e.term, e.server_id)) take_event(m, e);
     } else if (type == "state") {
       StateOut s = line.get<StateOut>();
-      take_clock(matches_[s.match_id], s.match_id, s.sim_time, "state");
+      Match &m = matches_[s.match_id];
+      if (!older_owner(m, s.term, s.server_id)) take_clock(m, s.match_id, s.sim_time, "state");
     }
   } catch (const std::exception &e) {
     *err = "line " + std::to_string(counts_.lines) + ": not a " + type + ": " + e.what();

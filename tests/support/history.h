@@ -13,6 +13,8 @@
 //     racket hit: those place the ball) starts more than 1 mm from where the
 //     segment in effect before it puts the ball at its t0 (the flight model of
 //     the newest MatchInfo; libball's ball_segment_eval).
+// Lines of an older owner than one taken before are not taken, as by every
+// client (docs/protocol.md, "Terms"); they are counted.
 // It counts what it checked, so that a run that checked nothing is seen.
 #pragma once
 
@@ -41,6 +43,7 @@ struct HistoryCounts {
   long checks = 0;         // comparisons made against what came before
   long owner_changes = 0;  // segments whose server differs from the segment's before it
   long continuity = 0;     // of those, checked for continuity (the others: a serve, a hit or no model yet)
+  long old_owner = 0;      // lines of an older owner than one taken before (docs/protocol.md, "Terms"): not taken
 };
 
 class History {
@@ -73,7 +76,10 @@ class History {
     std::map<uint32_t, EventOut> events;      // by seq
     uint32_t last_server = 0;                 // of the newest segment taken
     bool has_segment = false;
+    uint32_t term = 0, server = 0;            // the newest owner taken
+    bool has_owner = false;
   };
+  bool older_owner(Match &m, uint32_t term, uint32_t server);  // counted, not taken
   void take_info(Match &m, const MatchInfoOut &i);
   void take_segment(Match &m, const SegmentOut &s);
   void take_event(Match &m, const EventOut &e);
