@@ -180,9 +180,9 @@ int main(int argc, char **argv) {
   {
     ball_net_status s;
     if (ball_net_status_of(client, (uint32_t)match, &s) == BALL_OK)
-      printf("rally: %.1f s: %lu poses, %lu segments, %lu events taken; bytes in %lu, out %lu\n", now() - start,
-             (unsigned long)s.samples, (unsigned long)s.segments, (unsigned long)s.events, (unsigned long)s.bytes_in,
-             (unsigned long)s.bytes_out);
+      printf("rally: %.1f s: %lu poses, %lu segments, %lu events taken; bytes in %lu, out %lu; term %u\n",
+             now() - start, (unsigned long)s.samples, (unsigned long)s.segments, (unsigned long)s.events,
+             (unsigned long)s.bytes_in, (unsigned long)s.bytes_out, s.term);
   }
   printf("rally: %d points played, %d hits of mine; leaving\n", played, mine);
   fflush(stdout);

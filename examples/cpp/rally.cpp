@@ -314,10 +314,10 @@ int main(int argc, char **argv) try {
     std::this_thread::sleep_until(t + frame);
   }
   if (std::optional<ball_net_status> s = client.status(match))
-    std::printf("rally: %.1f s: %lu poses, %lu segments, %lu events taken; bytes in %lu, out %lu\n",
+    std::printf("rally: %.1f s: %lu poses, %lu segments, %lu events taken; bytes in %lu, out %lu; term %u\n",
                 duration<double>(ballnet::Clock::now() - start).count(), static_cast<unsigned long>(s->samples),
                 static_cast<unsigned long>(s->segments), static_cast<unsigned long>(s->events),
-                static_cast<unsigned long>(s->bytes_in), static_cast<unsigned long>(s->bytes_out));
+                static_cast<unsigned long>(s->bytes_in), static_cast<unsigned long>(s->bytes_out), s->term);
   std::printf("rally: %d points played, %d hits of mine; leaving\n", played, mine);
   std::fflush(stdout);
   client.leave(match);

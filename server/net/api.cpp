@@ -483,6 +483,8 @@ ball_status ball_net_status_of(const ball_net_client *cc, uint32_t match, ball_n
     out->lost = k.lost;
     out->late = k.late;
     out->voided = k.voided;
+    out->term = v.term();
+    out->old_owner = k.old_owner;
     const OwnCounters *own = c->core->own(match);
     out->samples = own->samples;
     out->link_lost = own->link_lost;

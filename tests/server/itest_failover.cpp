@@ -549,6 +549,7 @@ void case_net_failover(const Env &env) {
   CHECK_EQ(skipped, 0u);
   CHECK(mine_after >= 1);
   CHECK(points_after >= 1);
+  CHECK_MSG(text.find("; term 2\n") != std::string::npos, "the game's last status names no term 2 (the standby's)");
 }
 
 // A primary on host a, a standby on host b, bots and a watcher on host c
@@ -662,11 +663,98 @@ void case_hosts_standby_cut(const Env &env) {
   CHECK_MSG(hits_after >= 3, "%d hits in the 6 s after the heal", hits_after);
 }
 
+// The primary's host stopped (SIGSTOP) or cut off from the others for
+// `seconds`, then back: the standby takes every match over (it hears the
+// players on host c) at the next term, and the primary, back, finds a newer
+// term and yields at once (docs/protocol.md, "Terms"). What the watcher saw
+// breaks nothing (history.h); no sample of the old owner's reached it after
+// the take-over (the new owner's writers are the stronger); the match plays
+// on across the return (a segment at least every 2 s, two liveliness
+// leases, from 1 s before it to 6 s after) and has hits after it. Cut off,
+// the primary loses its players: a watcher on its own host sees it pause
+// every match (PAUSE_VANISHED) and decide no point after that.
+void hosts_outage(const Env &env, bool stall, int seconds) {
+  const int n = 2;
+  HostsRig r;
+  if (!hosts_rig(env, n, &r)) return;
+  Process wa;  // (the primary's side of the cut)
+  if (!stall) {
+    wa = Process::start(r.hosts.on("a", {env.bin + "/ball-watch", "--domain", env.dom(), "--participant-profile", "lan",
+                                         "--no-log", "--duration", "60", "--record", path(env, "watch_a.jsonl")}),
+                        path(env, "watch_a.out"), path(env, "watch_a.err"));
+    usleep(3 * 1000000);
+  }
+  const double cut = realtime_now();
+  if (stall) r.primary.signal(SIGSTOP);
+  else CHECK(r.hosts.cut("a"));
+  usleep(static_cast<useconds_t>(seconds) * 1000000);
+  if (stall) r.primary.signal(SIGCONT);
+  else CHECK(r.hosts.heal("a"));
+  const double back = realtime_now();
+  usleep(6 * 1000000);
+  HistoryCounts counts = hosts_end(r);
+  int hits_after = 0, old_after = 0;
+  std::map<uint32_t, double> last_segment;
+  double widest = 0.0;
+  for (const json &j : r.t->lines) {
+    if (!j.contains("server") || !j.contains("match")) continue;
+    const uint32_t match = j.at("match").get<uint32_t>();
+    old_after += recv(j) > back && j.at("server").get<uint32_t>() == 1;
+    hits_after += recv(j) > back && is_hit(j);
+    if (record_type(j) != "segment" || recv(j) < back - 1.0) continue;
+    if (last_segment.count(match)) widest = std::max(widest, recv(j) - last_segment[match]);
+    last_segment[match] = recv(j);
+  }
+  stop_server(r.standby, "the standby");
+  stop_server(r.primary, "the primary");
+  ServerReport p = report(env, "primary");
+  ServerReport sb = report(env, "standby");
+  note("the primary %s for %d s: %llu take-overs, the primary yielded %llu; %ld changes of owner, %ld lines of "
+       "the old owner not taken, %d of its lines after its return; the widest gap between segments %.2f s, %d "
+       "hits after",
+       stall ? "stopped" : "cut off", seconds, static_cast<unsigned long long>(sb.takeovers),
+       static_cast<unsigned long long>(p.yields), counts.owner_changes, counts.old_owner, old_after, widest,
+       hits_after);
+  CHECK_EQ(sb.takeovers, static_cast<uint64_t>(n));
+  CHECK_EQ(p.yields, static_cast<uint64_t>(n));
+  CHECK_EQ(counts.owner_changes, static_cast<long>(n));
+  CHECK_EQ(old_after, 0);
+  CHECK_MSG(widest <= 2.0, "a match wrote no segment for %.2f s around the return", widest);
+  CHECK_MSG(hits_after >= 3, "%d hits in the 6 s after the return", hits_after);
+  if (stall) return;
+  wa.stop();
+  Tail ta(path(env, "watch_a.jsonl"));
+  ta.poll();
+  std::map<uint32_t, double> paused;  // match -> recv of the primary's PAUSE_VANISHED in the cut
+  int points_after_pause = 0;
+  for (const json &j : ta.lines) {
+    if (record_type(j) != "event" || recv(j) < cut || recv(j) > back) continue;
+    EventOut e = j.get<EventOut>();
+    if (e.server_id != 1) continue;
+    if (e.kind == EventKind::pause && e.reason == Reason::pause_vanished && !paused.count(e.match_id))
+      paused[e.match_id] = recv(j);
+    points_after_pause += e.kind == EventKind::point && paused.count(e.match_id);
+  }
+  note("on the primary's side of the cut: %zu of %d matches paused (a player vanished), %d points after the pause",
+       paused.size(), n, points_after_pause);
+  CHECK_EQ(paused.size(), static_cast<size_t>(n));
+  CHECK_EQ(points_after_pause, 0);
+}
+
+void case_hosts_stall_4(const Env &env) { hosts_outage(env, true, 4); }
+void case_hosts_stall_10(const Env &env) { hosts_outage(env, true, 10); }
+void case_hosts_cut_5(const Env &env) { hosts_outage(env, false, 5); }
+void case_hosts_cut_12(const Env &env) { hosts_outage(env, false, 12); }
+
 }  // namespace
 
 TEST(failover) { itest::in_case(case_failover); }
 TEST(hosts_failover) { itest::in_case(case_hosts_failover); }
 TEST(hosts_standby_cut) { itest::in_case(case_hosts_standby_cut); }
+TEST(hosts_stall_4) { itest::in_case(case_hosts_stall_4); }
+TEST(hosts_stall_10) { itest::in_case(case_hosts_stall_10); }
+TEST(hosts_cut_5) { itest::in_case(case_hosts_cut_5); }
+TEST(hosts_cut_12) { itest::in_case(case_hosts_cut_12); }
 TEST(net_failover) { itest::in_case(case_net_failover); }
 TEST(standby_no_scene) { itest::in_case(case_standby_no_scene); }
 TEST(standby_killed) { itest::in_case(case_standby_killed); }

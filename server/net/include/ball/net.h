@@ -436,6 +436,8 @@ typedef struct ball_net_status {
   uint64_t rackets;            /* the players' racket samples taken (ball_net_config.rackets) */
   uint64_t rackets_refused;    /* and not taken: not from the slot's holder, a slot the match lacks, not newer
                                   than the slot's newest, or come before the match's model */
+  uint32_t term;               /* the term of the match's owner whose samples are taken (docs/protocol.md, "Terms") */
+  uint64_t old_owner;          /* server samples of an older owner than one taken (a lower term): not taken */
 } ball_net_status;
 
 /* The status of a match the client follows. BALL_ENOMATCH: it does not. */
