@@ -37,6 +37,11 @@ bool usable_event(const EventOut &e) {
 
 }  // namespace
 
+bool same_event(const EventOut &a, const EventOut &b) {
+  return a.kind == b.kind && a.index == b.index && a.side == b.side && a.in_play == b.in_play && a.time == b.time &&
+         a.reason == b.reason && a.score == b.score;
+}
+
 bool voids(uint32_t correction_seq, double t0, const EventOut &e) {
   return voidable(e) && e.time > t0 && seq_before(e.segment_seq, correction_seq);
 }
@@ -64,6 +69,7 @@ void MatchView::start_anew() {
   any_event_ = false;
   last_event_ = 0;
   given_.clear();
+  recent_.clear();
   corrections_.clear();
   clock_ = SimClock();
   counters_.anew++;
@@ -237,7 +243,7 @@ bool MatchView::on_event(const EventOut &e, double local, std::vector<ViewEvent>
   }
   take_owner(e.term, e.server_id, local);
   int32_t ahead = static_cast<int32_t>(e.seq - last_event_);
-  if (any_event_ && ahead <= 0) return false;  // given already (a new owner goes on from its own restore)
+  if (any_event_ && ahead <= 0) return replace_given(e, out);  // given already, unless a newer owner's other
   if (any_event_ && static_cast<uint32_t>(ahead) > kMaxSeqAhead) {
     counters_.refused++;  // no stream goes that far: a forged seq must not blind the client
     return false;
@@ -254,15 +260,49 @@ bool MatchView::on_event(const EventOut &e, double local, std::vector<ViewEvent>
     counters_.voided++;
     return true;
   }
+  give(e, out);
+  return true;
+}
+
+void MatchView::give(const EventOut &e, std::vector<ViewEvent> *out) {
   ViewEvent v;
   v.event = e;
   out->push_back(v);
   counters_.events++;
+  recent_.push_back(e);
+  if (recent_.size() > kGivenKept) recent_.pop_front();
   if (voidable(e)) {
     given_.push_back(e);
     while (!given_.empty() && (given_.size() > kGivenKept || given_.front().time < e.time - kVoidableFor))
       given_.pop_front();
   }
+}
+
+// docs/protocol.md, "Terms": a newer owner goes on from the event seq it
+// restored, and writes again events the old owner wrote: the same event is
+// not given twice; another one (the new owner judged the time since
+// otherwise) replaces the one given, which is voided.
+bool MatchView::replace_given(const EventOut &e, std::vector<ViewEvent> *out) {
+  auto was = std::find_if(recent_.begin(), recent_.end(), [&](const EventOut &r) { return r.seq == e.seq; });
+  if (was == recent_.end() || !owner_before(was->term, was->server_id, e.term, e.server_id)) return false;
+  if (same_event(*was, e)) {
+    was->term = e.term;  // (now the newer owner's)
+    was->server_id = e.server_id;
+    return false;
+  }
+  for (auto it = given_.begin(); it != given_.end(); ++it)
+    if (it->seq == was->seq && it->term == was->term && it->server_id == was->server_id) {
+      ViewEvent v;
+      v.note = ViewNote::voided;
+      v.event = *it;
+      out->push_back(v);
+      counters_.voided++;
+      given_.erase(it);
+      break;
+    }
+  recent_.erase(was);
+  counters_.replaced++;
+  give(e, out);
   return true;
 }
 

@@ -51,6 +51,7 @@ struct ViewCounters {
   uint64_t voided = 0;    // events a correction took back (given or not)
   uint64_t anew = 0;      // times the match was started anew
   uint64_t old_owner = 0; // samples of an older owner than the one taken (docs/protocol.md, "Terms")
+  uint64_t replaced = 0;  // events given that a newer owner's other event of their seq replaced (each voided)
 };
 
 // The ball as a view answers it.
@@ -136,6 +137,8 @@ class MatchView {
   void prepare(KeptSegment *k) const;
   void void_given(const SegmentOut &correction, std::vector<ViewEvent> *out);
   bool voided_before(const EventOut &e) const;
+  void give(const EventOut &e, std::vector<ViewEvent> *out);
+  bool replace_given(const EventOut &e, std::vector<ViewEvent> *out);
   ViewEvent note(ViewNote n, double time) const;
 
   uint32_t id_;
@@ -156,6 +159,7 @@ class MatchView {
   uint32_t last_event_ = 0;            // the newest event seq given
   bool any_event_ = false;
   std::deque<EventOut> given_;         // voidable events given, the last kVoidableFor sim s
+  std::deque<EventOut> recent_;        // the newest kGivenKept events given, any kind
   std::deque<std::pair<uint32_t, double>> corrections_;  // (seq, t0) of the newest corrections
   unsigned mine_ = 0;  // the slots this client holds, a bit each
   std::vector<double> delays_;         // the newest one-way delays, a ring
@@ -186,5 +190,8 @@ class EffectFeed {
 // (docs/protocol.md, "Corrections"): a collision's or a point's, written
 // before it (its segment older, serial arithmetic) for a later time.
 bool voids(uint32_t correction_seq, double t0, const EventOut &e);
+// Two events of one seq that say the same: kind, index, side, in play, time,
+// reason and score (not segment_seq: a new owner numbers its segments on).
+bool same_event(const EventOut &a, const EventOut &b);
 
 }  // namespace ballsrv

@@ -746,6 +746,78 @@ void case_hosts_stall_10(const Env &env) { hosts_outage(env, true, 10); }
 void case_hosts_cut_5(const Env &env) { hosts_outage(env, false, 5); }
 void case_hosts_cut_12(const Env &env) { hosts_outage(env, false, 12); }
 
+// The players split between the servers: the primary and player 0 on
+// host a, the standby and player 1 on host b, a watcher on host c; hosts a
+// and b cut from each other only, for 10 s. Each side loses a player: the
+// primary pauses the match (PAUSE_VANISHED), the standby, which hears
+// player 1, takes it over at the next term and pauses it too; no point is
+// decided while they are apart. At the heal the primary yields, the match
+// resumes with the standby within two liveliness leases and plays on, and
+// the watcher's record breaks nothing.
+void case_hosts_players_split(const Env &env) {
+  Hosts hosts{{"a", "b", "c"}};
+  CHECK_MSG(hosts.ok(), "the hosts' namespaces: %s", hosts.error().c_str());
+  if (!hosts.ok()) return;
+  auto start = [&](const char *host, const std::string &who, const std::string &exe, std::vector<std::string> args) {
+    args.insert(args.begin(), {env.bin + "/" + exe, "--domain", env.dom(), "--participant-profile", "lan"});
+    return Process::start(hosts.on(host, args), path(env, who + ".out"), path(env, who + ".err"));
+  };
+  Process primary = start("a", "primary", "ball-server",
+                          {"--server-id", "1", "--matches", "1", "--startup-wait", "0", "--duration", "120",
+                           "--state-rate", "10", "--stats-json", path(env, "primary.json")});
+  Process standby = start("b", "standby", "ball-server",
+                          {"--server-id", "2", "--standby", "--startup-wait", "0.5", "--duration", "120",
+                           "--state-rate", "10", "--stats-json", path(env, "standby.json")});
+  usleep(1000000);
+  Process w = start("c", "watch", "ball-watch", {"--no-log", "--duration", "120", "--record", path(env, "watch.jsonl")});
+  Process bot0 = start("a", "bot0", "ball-bot", {"--player", "0", "--duration", "100", "--seed", "3"});
+  Process bot1 = start("b", "bot1", "ball-bot", {"--player", "1", "--duration", "100", "--seed", "4"});
+  Tail t(path(env, "watch.jsonl"));
+  if (!rallies(t, 1, 2, 40.0)) {
+    CHECK_MSG(false, "the split players had no 2 hits within 40 s");
+    return;
+  }
+  CHECK(hosts.split("a", "b"));
+  const double split = realtime_now();
+  usleep(10 * 1000000);
+  CHECK(hosts.join("a", "b"));
+  const double healed = realtime_now();
+  usleep(8 * 1000000);
+  bot0.stop();
+  bot1.stop();
+  w.stop();
+  t.poll();
+  check_history(t.lines);
+  int points_apart = 0, hits_after = 0;
+  double resumed = -1.0;
+  std::map<uint32_t, int> paused_by;  // server -> PAUSE_VANISHED events while apart
+  for (const json &j : t.lines) {
+    if (record_type(j) != "event") continue;
+    EventOut e = j.get<EventOut>();
+    const double at = recv(j);
+    // (both sides paused by then: the player timeout, 1 s, and a take-over's 1.4 s)
+    points_apart += e.kind == EventKind::point && at > split + 3.0 && at < healed;
+    if (e.kind == EventKind::pause && e.reason == Reason::pause_vanished && at > split && at < healed)
+      paused_by[e.server_id]++;
+    if (e.kind == EventKind::resume && e.server_id == 2 && at > healed && resumed < 0.0) resumed = at - healed;
+    hits_after += at > healed && is_hit(j);
+  }
+  stop_server(standby, "the standby");
+  stop_server(primary, "the primary");
+  ServerReport p = report(env, "primary");
+  ServerReport sb = report(env, "standby");
+  note("players split for 10 s: the standby took over %llu, the primary yielded %llu; paused while apart by server 1: "
+       "%d, by server 2: %d; %d points decided apart; resumed by server 2 %.2f s after the heal, %d hits after",
+       static_cast<unsigned long long>(sb.takeovers), static_cast<unsigned long long>(p.yields), paused_by[1],
+       paused_by[2], points_apart, resumed, hits_after);
+  CHECK_EQ(sb.takeovers, 1u);
+  CHECK_EQ(p.yields, 1u);
+  CHECK(paused_by[2] >= 1);
+  CHECK_EQ(points_apart, 0);
+  CHECK_MSG(resumed >= 0.0 && resumed <= 2.0, "resumed %.2f s after the heal (-1: never)", resumed);
+  CHECK_MSG(hits_after >= 3, "%d hits in the 8 s after the heal", hits_after);
+}
+
 }  // namespace
 
 TEST(failover) { itest::in_case(case_failover); }
@@ -755,6 +827,7 @@ TEST(hosts_stall_4) { itest::in_case(case_hosts_stall_4); }
 TEST(hosts_stall_10) { itest::in_case(case_hosts_stall_10); }
 TEST(hosts_cut_5) { itest::in_case(case_hosts_cut_5); }
 TEST(hosts_cut_12) { itest::in_case(case_hosts_cut_12); }
+TEST(hosts_players_split) { itest::in_case(case_hosts_players_split); }
 TEST(net_failover) { itest::in_case(case_net_failover); }
 TEST(standby_no_scene) { itest::in_case(case_standby_no_scene); }
 TEST(standby_killed) { itest::in_case(case_standby_killed); }

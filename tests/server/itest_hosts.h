@@ -3,7 +3,10 @@
 // bridge, and per host a namespace whose one link (eth0, 10.77.0.N/24, and
 // the route for multicast) is a veth to that bridge. Every link is made in
 // its namespace: nothing outside them is touched or addressed. A host is cut
-// off by setting its port on the bridge down, and healed by setting it up.
+// off by setting its port on the bridge down, and healed by setting it up;
+// two hosts are cut from each other only (each still reaching the others)
+// by isolating both their ports (a bridge forwards nothing between two
+// isolated ports), and joined again by ending that.
 // The destructor removes every namespace (the veths go with them); a rig
 // also removes those a killed earlier run left, named after its dead pid.
 // Needs root (CAP_NET_ADMIN) and iproute2's ip (./run setup).
@@ -57,6 +60,8 @@ class Hosts {
   std::string address(const std::string &h) const { return "10.77.0." + std::to_string(index(h) + 1); }
   bool cut(const std::string &h) { return ip({"-n", ns("switch"), "link", "set", port(h), "down"}); }
   bool heal(const std::string &h) { return ip({"-n", ns("switch"), "link", "set", port(h), "up"}); }
+  bool split(const std::string &a, const std::string &b) { return isolate(a, "on") && isolate(b, "on"); }
+  bool join(const std::string &a, const std::string &b) { return isolate(a, "off") && isolate(b, "off"); }
 
  private:
   static std::string prefix() { return "libball-itest-"; }
@@ -67,6 +72,9 @@ class Hosts {
     return i;
   }
   std::string port(const std::string &h) const { return "p" + std::to_string(index(h)); }
+  bool isolate(const std::string &h, const char *on) {
+    return ip({"-n", ns("switch"), "link", "set", port(h), "type", "bridge_slave", "isolated", on});
+  }
   static std::string ip_path() {
     for (const char *p : {"/usr/sbin/ip", "/sbin/ip", "/usr/bin/ip", "/bin/ip"})
       if (access(p, X_OK) == 0) return p;

@@ -147,6 +147,12 @@ std::vector<json> broken(std::mt19937_64 &rng, std::vector<json> lines, size_t c
       if (lines[i]["term"] == 2 || i < change) at.push_back(i);  // (not the old owner's, back)
     return at[rng() % at.size()];
   };
+  auto pick_newest = [&](const char *type) {
+    std::vector<size_t> at;
+    for (size_t i : lines_of(lines, type, change))
+      if (lines[i]["term"] == 2 && lines[i].value("kind", "") != "point") at.push_back(i);
+    return at[rng() % at.size()];
+  };
   auto newest = [&](json j) {
     j["server"] = 2;
     j["term"] = 2;
@@ -182,16 +188,14 @@ std::vector<json> broken(std::mt19937_64 &rng, std::vector<json> lines, size_t c
       lines[i]["sim_time"] = lines[i]["sim_time"].get<double>() - 1.0;
       break;
     }
-    case Broken::segment_seq: {
-      size_t i = pick("segment");
-      json again = newest(lines[i]);
+    case Broken::segment_seq: {  // (one of the newest owner's: a seq is its owner's)
+      json again = lines[pick_newest("segment")];
       again["p0"][1] = again["p0"][1].get<double>() + 0.25;
       lines.push_back(again);
       break;
     }
-    case Broken::event_seq: {
-      size_t i = pick("event");
-      json again = newest(lines[i]);
+    case Broken::event_seq: {  // (a floor event: its score is not the POINT events' track)
+      json again = lines[pick_newest("event")];
       again["time"] = again["time"].get<double>() + 0.125;
       lines.push_back(again);
       break;

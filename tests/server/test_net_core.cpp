@@ -340,6 +340,35 @@ TEST(a_gone_owner_is_forgotten) {
   CHECK(v.window().size() <= 1u);
 }
 
+// docs/protocol.md, "Terms": a newer owner writes again events of seqs the
+// old one wrote; the same event is not given twice, another replaces the
+// one given, which is voided (a VOIDED note naming it); an older owner's
+// event of a seq given is never given.
+TEST(a_newer_owners_other_event_replaces_the_one_given) {
+  Game g;
+  MatchView v(7, ServerChoice{}, me());
+  std::vector<ViewEvent> out;
+  Handed h;
+  CHECK(v.on_info(info_of(g, 1, 1), kSkew, &out));
+  for (uint32_t s = 1; s <= 6; ++s) v.on_event(event(s, EventKind::floor, 0.5 * s), kSkew, &out);
+  h.take(out);
+  CHECK(v.on_info(info_of(g, 2, 2), kSkew, &out));
+  CHECK(!v.on_event(event(5, EventKind::floor, 2.5, 2, 2), kSkew, &out));  // the same: not again
+  CHECK(v.on_event(event(6, EventKind::racket, 2.9, 2, 2), kSkew, &out));  // another: replaces it
+  CHECK(!v.on_event(event(6, EventKind::racket, 2.9, 2, 2), kSkew, &out)); // (given now)
+  CHECK(v.on_event(event(7, EventKind::floor, 3.5, 2, 2), kSkew, &out));
+  h.take(out);
+  CHECK((h.seqs == std::vector<uint32_t>{1, 2, 3, 4, 5, 6, 6, 7}));
+  CHECK_EQ(h.notes[ViewNote::voided], 1);
+  bool named = false;
+  for (const auto &e : h.all)
+    named = named || (e.note == ViewNote::voided && e.event.seq == 6 && e.event.kind == EventKind::floor &&
+                      e.event.server_id == 1);
+  CHECK(named);
+  CHECK_EQ(v.counters().replaced, 1u);
+  CHECK_EQ(v.counters().voided, 1u);
+}
+
 // A correction voids the collision and point events given for a later time
 // (a VOIDED note each, with its seq) and those that come after it.
 TEST(a_correction_voids_events_given_and_to_come) {

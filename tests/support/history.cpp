@@ -138,9 +138,12 @@ void History::take_info(Match &m, const MatchInfoOut &i) {
   if (m.has_info) {
     const MatchInfoOut &was = m.info;
     counts_.checks += 3;
-    if (i.revision < was.revision)
+    // (a newer owner's revisions come after the older's, whatever their number:
+    // each side of a partition may have written the next one)
+    const bool newer = i.term != was.term || i.server_id != was.server_id;
+    if (!newer && i.revision < was.revision)
       broke(i.match_id, Broken::revision, std::to_string(i.revision) + " after " + std::to_string(was.revision));
-    else if (i.revision == was.revision &&
+    else if (!newer && i.revision == was.revision &&
              !(i.sim_time == was.sim_time && i.play == was.play && i.segment_seq == was.segment_seq))
       broke(i.match_id, Broken::revision, std::to_string(i.revision) + " came with two contents");
     if (i.sim_time < was.sim_time - kClockSlack)
@@ -153,12 +156,15 @@ void History::take_info(Match &m, const MatchInfoOut &i) {
   // with the events: the two topics may arrive in either order)
   score_seen(m, i.match_id, i.play.score, where);
   m.rally = std::max(m.rally, i.play.rally);
-  if (!m.has_info || i.revision >= m.info.revision) m.info = i;
+  if (!m.has_info || i.revision >= m.info.revision || i.term != m.info.term || i.server_id != m.info.server_id)
+    m.info = i;
   m.has_info = true;
 }
 
+History::Key History::key(uint32_t term, uint32_t server, uint32_t seq) { return {term, UINT32_MAX - server, seq}; }
+
 void History::take_segment(Match &m, const SegmentOut &s) {
-  auto it = m.segments.find(s.seq);
+  auto it = m.segments.find(key(s.term, s.server_id, s.seq));
   if (it != m.segments.end()) {
     counts_.checks++;
     if (!same_segment(it->second, s))
@@ -172,18 +178,19 @@ void History::take_segment(Match &m, const SegmentOut &s) {
     counts_.owner_changes++;
     check_continuity(m, s);
   }
-  m.segments[s.seq] = s;
+  m.segments[key(s.term, s.server_id, s.seq)] = s;
   m.last_server = s.server_id;
   m.has_segment = true;
 }
 
 void History::check_continuity(Match &m, const SegmentOut &s) {
   if (s.cause == Cause::serve || s.cause == Cause::racket || !m.has_info) return;
-  // the segment in effect at s's t0 before it: of the lower seqs, the one
-  // of the latest t0 not after it (docs/protocol.md, "Segments")
+  // the segment in effect at s's t0 before it: of those before it by
+  // (owner, seq), the one of the latest t0 not after it (docs/protocol.md,
+  // "Segments", "Terms")
   const SegmentOut *before = nullptr;
   for (const auto &kv : m.segments)
-    if (kv.first < s.seq && kv.second.segment.t0 <= s.segment.t0 &&
+    if (kv.first < key(s.term, s.server_id, s.seq) && kv.second.segment.t0 <= s.segment.t0 &&
         (!before || kv.second.segment.t0 >= before->segment.t0))
       before = &kv.second;
   if (!before) return;
@@ -203,14 +210,14 @@ void History::check_continuity(Match &m, const SegmentOut &s) {
 }
 
 void History::take_event(Match &m, const EventOut &e) {
-  auto it = m.events.find(e.seq);
+  auto it = m.events.find(key(e.term, e.server_id, e.seq));
   if (it != m.events.end()) {
     counts_.checks++;
     if (!same_event(it->second, e))
       broke(e.match_id, Broken::event_seq, std::to_string(e.seq) + " came with two contents");
     return;
   }
-  m.events[e.seq] = e;
+  m.events[key(e.term, e.server_id, e.seq)] = e;
   if (e.kind != EventKind::point) return;
   // the POINT events' own track: each at least the score of every point before it
   std::array<int, 2> &best = m.event_score;

@@ -6,9 +6,11 @@
 //   - score: a side's score in a MatchInfo's play or a POINT event went back;
 //   - rally: a MatchInfo's rally count went back;
 //   - revision: a MatchInfo's revision went back, or one revision came with
-//     two contents (another sim time, play or segment);
+//     two contents (another sim time, play or segment), of one owner (a
+//     newer owner's come after an older's, whatever their number);
 //   - clock: the sim time of a MatchInfo or a ball state went back;
-//   - segment seq / event seq: one seq came with two contents;
+//   - segment seq / event seq: one seq of one owner came with two contents
+//     (a newer owner numbers on from what it restored: its seqs are its own);
 //   - continuity: the first segment a new server wrote (not a serve or a
 //     racket hit: those place the ball) starts more than 1 mm from where the
 //     segment in effect before it puts the ball at its t0 (the flight model of
@@ -22,6 +24,7 @@
 #include <cstdint>
 #include <map>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "records.h"
@@ -72,14 +75,18 @@ class History {
     MatchInfoOut info;  // the newest of the highest revision
     double sim_time = 0.0;  // the ball states' newest
     bool has_clock = false;
-    std::map<uint32_t, SegmentOut> segments;  // by seq
-    std::map<uint32_t, EventOut> events;      // by seq
+    std::map<std::tuple<uint32_t, uint32_t, uint32_t>, SegmentOut> segments;  // by key()
+    std::map<std::tuple<uint32_t, uint32_t, uint32_t>, EventOut> events;      // by key()
     uint32_t last_server = 0;                 // of the newest segment taken
     bool has_segment = false;
     uint32_t term = 0, server = 0;            // the newest owner taken
     bool has_owner = false;
   };
   bool older_owner(Match &m, uint32_t term, uint32_t server);  // counted, not taken
+  // a segment's or an event's place in its match's order: by owner (term,
+  // then the lower server id later), then by seq
+  using Key = std::tuple<uint32_t, uint32_t, uint32_t>;
+  static Key key(uint32_t term, uint32_t server, uint32_t seq);
   void take_info(Match &m, const MatchInfoOut &i);
   void take_segment(Match &m, const SegmentOut &s);
   void take_event(Match &m, const EventOut &e);

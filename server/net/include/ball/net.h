@@ -321,7 +321,8 @@ typedef enum ball_net_event_kind {
   /* the library's own (seq 0) */
   BALL_NET_EVENT_SERVER,     /* the match's server changed (a failover): `server` is the new one */
   BALL_NET_EVENT_SLOT,       /* this client's slot `index`: value 1 taken, 0 lost */
-  BALL_NET_EVENT_VOIDED,     /* a correction took back an event given before: value its seq, the other
+  BALL_NET_EVENT_VOIDED,     /* a correction, or a newer owner's other event of its seq (docs/protocol.md,
+                                "Terms"), took back an event given before: value its seq, the other
                                 fields that event's (its kind aside) */
   BALL_NET_EVENT_GAP,        /* events never came: value how many (seqs skipped) */
   BALL_NET_EVENT_KIND_COUNT
@@ -423,7 +424,7 @@ typedef struct ball_net_status {
                                   pair or a seq that does not fit (docs/protocol.md, "Clients that trust no one") */
   uint64_t lost;               /* events that never came (gaps in their seqs) */
   uint64_t late;               /* segments that came after their t0 on this client's clock */
-  uint64_t voided;             /* events a correction took back */
+  uint64_t voided;             /* events a correction, or a newer owner's other event of their seq, took back */
   uint64_t samples;            /* racket poses written */
   uint64_t link_lost;          /* racket poses the simulated network lost (ball_net_config's link_loss) */
   uint64_t write_failures;     /* writes DDS refused (poses and controls) */
