@@ -32,6 +32,7 @@ set(BALL_DDS_DOMAINS
   "dds_hosts_cut_5|145|test: the primary's network namespace cut off for 5 s: the standby with the players takes over, the primary yields at the heal"
   "dds_hosts_cut_12|146|test: the primary's network namespace cut off for 12 s: as for 5 s"
   "dds_hosts_players_split|147|test: the players split between the primary's and the standby's namespaces for 10 s: both pause, no point decided apart, the standby's term plays on at the heal"
+  "dds_hosts_claimants_meet|148|test: two claimants cut from each other claim one match, each in its own term, and when they meet the older term yields and the clients' stream does not change"
   "dds_key_flood|113|test: a stranger floods a player's own keys: the player never vanishes"
   "dds_create_expires|114|test: a created match nobody joins goes, its MatchInfo disposed"
   "dds_secure|115|test: DDS Security: no plaintext on the wire, strangers and other matches' players kept out"

@@ -71,7 +71,17 @@ uint32_t Cluster::stronger_than(const ParticipantId &from, uint32_t own) const {
 Cluster::Follow Cluster::follow_plan(const MatchInfoOut &info, double t0, const ball_model **model) {
   *model = nullptr;
   if (!settings_.standby) return Follow::none;
-  if (followed_.count(info.match_id)) return Follow::update;
+  auto f = followed_.find(info.match_id);
+  if (f != followed_.end()) {
+    // nothing of an older owner than the one followed while that one lives
+    // (docs/protocol.md, "Terms")
+    const MatchInfoOut &was = f->second.info;
+    if (f->second.lost_at < 0.0 && owner_before(info.term, info.server_id, was.term, was.server_id)) {
+      stats_.stale_terms++;
+      return Follow::none;
+    }
+    return Follow::update;
+  }
   if (model_waits_.size() > kMaxPeers) model_waits_.clear();  // (matches no model came for: forgotten)
   auto m = other_models_.find(info.match_id);
   if (m != other_models_.end() && usable_model(m->second, info.model_hash)) *model = &m->second.model;

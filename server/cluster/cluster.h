@@ -50,6 +50,21 @@ constexpr double kPlayersSettle = 2.0;
 // term of the newest match it steps (docs/protocol.md, "Terms"): above
 // every role's strength, so that a newer term always outranks
 constexpr uint32_t kTermStrength = 100;
+// A term is a round and the low bits of its server's id (docs/protocol.md,
+// "Terms"): two servers that start or take over one match in ignorance of
+// each other give it two terms, and DDS, every server and every client
+// rank them alike (by strength, by term).
+constexpr uint32_t kTermIdBits = 8;
+// The term a server of id `server_id` starts or takes over a match at
+// whose highest term heard (or followed) is `heard`: the next round.
+inline uint32_t next_term(uint32_t heard, uint32_t server_id) {
+  return (((heard >> kTermIdBits) + 1) << kTermIdBits) | (server_id & ((1u << kTermIdBits) - 1));
+}
+// The writers' strength of a role's `base` at `term`, held below 2^32.
+inline uint32_t term_strength(uint32_t base, uint32_t term) {
+  uint64_t s = static_cast<uint64_t>(base) + static_cast<uint64_t>(kTermStrength) * term;
+  return s > UINT32_MAX ? UINT32_MAX : static_cast<uint32_t>(s);
+}
 // other servers' ServerStatus writers a cluster keeps at most: the remote
 // participants the QoS profiles allow (total_participants), so that forged
 // writers cannot grow it without bound; a lost one is forgotten
@@ -76,7 +91,7 @@ struct ClusterStats {
   uint64_t conflicts = 0;          // MatchInfo of one of our matches from another server
   uint64_t takeovers = 0;          // followed matches taken over
   uint64_t takeovers_waiting = 0;  // take-overs held back: none of the match's players heard here
-  uint64_t stale_terms = 0;        // another server's MatchInfo of one of our matches at an older term
+  uint64_t stale_terms = 0;        // another server's MatchInfo of an older owner than ours or the followed one
   uint64_t yields = 0;             // matches given up to a server that outranks this one
   uint64_t claims = 0;             // matches claimed (configured or created)
   uint64_t follow_failures = 0;    // another server's matches this one could not follow or restore

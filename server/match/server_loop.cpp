@@ -87,10 +87,10 @@ ServerLoop::Scheduled ServerLoop::schedule(Match *m) {
   // golden ratio of their ids), not all in one wake-up: 1000 at once took
   // 10-20 ms, and every frame of that wake-up overran, 1 in 60
   s.next_info = now + settings_.info_interval * std::fmod(static_cast<double>(m->id()) * 0.6180339887498949, 1.0);
-  // one more than any term of it heard (docs/protocol.md, "Terms"); its
+  // the round after any term of it heard (docs/protocol.md, "Terms"); its
   // writers outrank every older term's
-  s.term = cluster_.heard_term(m->id()) + 1;
-  raise_strength(base_strength_ + kTermStrength * s.term);
+  s.term = next_term(cluster_.heard_term(m->id()), settings_.server_id);
+  raise_strength(term_strength(base_strength_, s.term));
   return s;
 }
 
@@ -251,8 +251,8 @@ void ServerLoop::take_over_match(uint32_t id, double t0, double now) {
   }
   cluster_.taken_over(id, true);
   s.revision = p.info.revision;
-  s.term = std::max(s.term, p.info.term + 1);
-  raise_strength(base_strength_ + kTermStrength * s.term);
+  s.term = std::max(s.term, next_term(p.info.term, settings_.server_id));
+  raise_strength(term_strength(base_strength_, s.term));
   s.last_frame_real = first_real - m->frame_time();  // the instant the sim time `target` holds for
   s.taken_over = true;
   s.since = now;

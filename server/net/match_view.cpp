@@ -75,9 +75,17 @@ void MatchView::start_anew() {
   counters_.anew++;
 }
 
-bool MatchView::owner_fits(uint32_t term, uint32_t server, double local) const {
+bool MatchView::owner_fits(uint32_t term, uint32_t server, double local) {
   if (!has_owner_ || local - owner_local_ > kForgetOwner) return true;
-  return !owner_before(term, server, term_, owner_) && term - term_ <= kMaxTermAhead;
+  if (owner_before(term, server, term_, owner_)) {
+    counters_.old_owner++;
+    return false;
+  }
+  if (term - term_ > kMaxTermAhead) {
+    counters_.refused++;  // no match goes through that many rounds: forged
+    return false;
+  }
+  return true;
 }
 
 // An older owner than the one held is taken only once that one is
@@ -99,10 +107,7 @@ bool MatchView::on_info(const MatchInfoOut &in, double local, std::vector<ViewEv
     counters_.refused++;
     return false;
   }
-  if (!owner_fits(in.term, in.server_id, local)) {
-    counters_.old_owner++;
-    return false;
-  }
+  if (!owner_fits(in.term, in.server_id, local)) return false;
   bool anew = take_owner(in.term, in.server_id, local);
   if (!anew && has_info_ && in.sim_time + kAnew < info_.sim_time) start_anew();
   if (!clock_.observe(in.sim_time, in.server_time, in.settings.time_base, in.state == MatchState::playing, local)) {
@@ -195,10 +200,7 @@ bool MatchView::on_segment(const SegmentOut &s, double local, std::vector<ViewEv
     counters_.refused++;
     return false;
   }
-  if (!owner_fits(s.term, s.server_id, local)) {
-    counters_.old_owner++;
-    return false;
-  }
+  if (!owner_fits(s.term, s.server_id, local)) return false;
   take_owner(s.term, s.server_id, local);
   bool news = window_.empty() || later(s, window_.back().segment);
   if (!keep(s)) return true;  // held already
@@ -237,10 +239,7 @@ bool MatchView::on_event(const EventOut &e, double local, std::vector<ViewEvent>
     counters_.refused++;
     return false;
   }
-  if (!owner_fits(e.term, e.server_id, local)) {
-    counters_.old_owner++;
-    return false;
-  }
+  if (!owner_fits(e.term, e.server_id, local)) return false;
   take_owner(e.term, e.server_id, local);
   int32_t ahead = static_cast<int32_t>(e.seq - last_event_);
   if (any_event_ && ahead <= 0) return replace_given(e, out);  // given already, unless a newer owner's other
@@ -308,10 +307,7 @@ bool MatchView::replace_given(const EventOut &e, std::vector<ViewEvent> *out) {
 
 bool MatchView::on_state(const StateOut &s, double local) {
   if (s.match_id != id_) return false;
-  if (has_info_ && servers_.accepts(s.server_id) && !owner_fits(s.term, s.server_id, local)) {
-    counters_.old_owner++;
-    return false;
-  }
+  if (has_info_ && servers_.accepts(s.server_id) && !owner_fits(s.term, s.server_id, local)) return false;
   if (has_info_ && servers_.accepts(s.server_id)) take_owner(s.term, s.server_id, local);
   if (!has_info_ || !servers_.accepts(s.server_id) ||
       !clock_.observe(s.sim_time, s.server_time, info_.settings.time_base, s.state == MatchState::playing, local)) {

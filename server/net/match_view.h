@@ -131,7 +131,7 @@ class MatchView {
   // docs/protocol.md, "Terms": whether a sample of (term, server) may be
   // taken at `local`; taking one makes its owner the held one (true: an
   // older one, the match started anew)
-  bool owner_fits(uint32_t term, uint32_t server, double local) const;
+  bool owner_fits(uint32_t term, uint32_t server, double local);  // (counts what it refuses)
   bool take_owner(uint32_t term, uint32_t server, double local);
   bool keep(const SegmentOut &s);  // false: held already
   void prepare(KeptSegment *k) const;

@@ -75,9 +75,9 @@ bool finite_segment(const ball_segment &s);
 // server id. A client takes nothing of an older owner's than one it took.
 bool owner_before(uint32_t term_a, uint32_t server_a, uint32_t term_b, uint32_t server_b);
 // Terms further ahead of the one held than this are not the match's (a
-// forged term 0xFFFFFFFF must not blind a client to its server): a term
-// grows by one a take-over or a claim.
-constexpr uint32_t kMaxTermAhead = 1000;
+// forged term 0xFFFFFFFF must not blind a client to its server): 1000
+// rounds, a term being 256 x round + a server's (docs/protocol.md, "Terms").
+constexpr uint32_t kMaxTermAhead = 1000u << 8;
 
 // Segments further ahead of the newest than this are not the stream's (a
 // forged seq 0xFFFFFFFF once blinded every bot): unless the newest

@@ -621,7 +621,7 @@ void case_create_flood(const Env &env) {
 }
 
 // A participant posing as a server on an open domain, its writers stronger
-// than the real server's (ownership strength 1000 in a QoS file of its
+// than the real server's (ownership strength 4e9, above every term's, in a QoS file of its
 // own), forges match 0's own topics for 4 s: a MatchInfo with level 99, a
 // segment with seq 0xFFFFFFFF, ball states whose clock is 10,000 s ahead,
 // and a well-formed MatchInfo of a match 7 whose scene is a FIFO's path.
@@ -638,7 +638,7 @@ void case_forged_server(const Env &env) {
   size_t at = text.find(primary);
   CHECK_MSG(at != std::string::npos, "no primary strength in the QoS file");
   if (at == std::string::npos) return;
-  text.replace(at, primary.size(), "<ownershipStrength><value>1000</value></ownershipStrength>");
+  text.replace(at, primary.size(), "<ownershipStrength><value>4000000000</value></ownershipStrength>");
   std::string err;
   CHECK(write_file(qos, text, &err));
   struct Fifo {  // a FIFO a scene name points at: opening it for reading would hang
@@ -691,7 +691,7 @@ void case_forged_server(const Env &env) {
     json j = json::parse(file_text(stats[i]), nullptr, false);
     refused[i] = j.is_object() ? j.value("refused", uint64_t{0}) : 0;
   }
-  note("a forged server at strength 1000 wrote %ld rounds of forgeries for match 0; the bots refused %llu and %llu "
+  note("a forged server at strength 4e9 wrote %ld rounds of forgeries for match 0; the bots refused %llu and %llu "
        "server samples and went on (%d hits after); the server refused %llu MatchInfo, yielded %llu",
        forged, static_cast<unsigned long long>(refused[0]), static_cast<unsigned long long>(refused[1]), after,
        static_cast<unsigned long long>(r.others_refused), static_cast<unsigned long long>(r.yields));

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "ball/vec3.h"
+#include "cluster.h"
 #include "history.h"
 #include "itest_hosts.h"
 #include "itest_kit.h"
@@ -549,7 +550,9 @@ void case_net_failover(const Env &env) {
   CHECK_EQ(skipped, 0u);
   CHECK(mine_after >= 1);
   CHECK(points_after >= 1);
-  CHECK_MSG(text.find("; term 2\n") != std::string::npos, "the game's last status names no term 2 (the standby's)");
+  // the standby's term: the round after the primary's (its first), server 2's
+  const std::string term = "; term " + std::to_string(next_term(next_term(0, 1), 2)) + "\n";
+  CHECK_MSG(text.find(term) != std::string::npos, "the game's last status names no %s (the standby's)", term.c_str());
 }
 
 // A primary on host a, a standby on host b, bots and a watcher on host c
@@ -818,6 +821,72 @@ void case_hosts_players_split(const Env &env) {
   CHECK_MSG(hits_after >= 3, "%d hits in the 8 s after the heal", hits_after);
 }
 
+// Two claimants cut from each other (hosts a and b, their bridge ports
+// isolated from the start), the players and a watcher on host c, which
+// reaches both: each claims match 0, in its own round of terms (server 1's
+// and server 2's: two terms, docs/protocol.md, "Terms"), and the clients
+// play the stronger writer's, server 2's. When a and b meet, server 1 finds
+// a newer term and yields: no client takes a sample of server 1's after
+// the meeting, the watcher's record breaks nothing, the match plays on.
+void case_hosts_claimants_meet(const Env &env) {
+  Hosts hosts{{"a", "b", "c"}};
+  CHECK_MSG(hosts.ok(), "the hosts' namespaces: %s", hosts.error().c_str());
+  if (!hosts.ok()) return;
+  CHECK(hosts.split("a", "b"));
+  auto start = [&](const char *host, const std::string &who, const std::string &exe, std::vector<std::string> args) {
+    args.insert(args.begin(), {env.bin + "/" + exe, "--domain", env.dom(), "--participant-profile", "lan"});
+    return Process::start(hosts.on(host, args), path(env, who + ".out"), path(env, who + ".err"));
+  };
+  auto claimant = [&](const char *host, int id) {
+    const std::string who = "claim" + std::to_string(id);
+    return start(host, who, "ball-server",
+                 {"--server-id", std::to_string(id), "--claim", "1", "--matches", "1", "--duration", "120",
+                  "--state-rate", "10", "--stats-json", path(env, who + ".json")});
+  };
+  Process one = claimant("a", 1);
+  Process two = claimant("b", 2);
+  usleep(3 * 1000000);  // (each claims after its startup wait, and steps after another)
+  Process w = start("c", "watch", "ball-watch", {"--no-log", "--duration", "120", "--record", path(env, "watch.jsonl")});
+  Process load = start("c", "load", "ball-load", {"--matches", "1", "--rate", "20", "--warmup", "1", "--duration", "100"});
+  Tail t(path(env, "watch.jsonl"));
+  bool rallying = rallies(t, 1, 2, 40.0);
+  CHECK_MSG(rallying, "no 2 hits within 40 s");
+  if (!rallying) return;
+  usleep(3 * 1000000);
+  CHECK(hosts.join("a", "b"));
+  const double met = realtime_now();
+  usleep(6 * 1000000);
+  load.stop();
+  w.stop();
+  t.poll();
+  check_history(t.lines);
+  int from_one_after = 0, hits_after = 0;
+  std::set<uint32_t> terms;
+  for (const json &j : t.lines) {
+    if (!j.contains("server") || !j.contains("term")) continue;
+    from_one_after += recv(j) > met && j.at("server").get<uint32_t>() == 1;
+    hits_after += recv(j) > met && is_hit(j);
+    terms.insert(j.at("term").get<uint32_t>());
+  }
+  stop_server(two, "claimant 2");
+  stop_server(one, "claimant 1");
+  ServerReport r1 = report(env, "claim1");
+  ServerReport r2 = report(env, "claim2");
+  note("claimants apart: claims %llu and %llu; at the meeting claimant 1 yielded %llu, claimant 2 %llu; %d samples "
+       "of claimant 1 after it, terms seen %zu (newest %u), %d hits after",
+       static_cast<unsigned long long>(r1.claims), static_cast<unsigned long long>(r2.claims),
+       static_cast<unsigned long long>(r1.yields), static_cast<unsigned long long>(r2.yields), from_one_after,
+       terms.size(), terms.empty() ? 0u : *terms.rbegin(), hits_after);
+  CHECK_EQ(r1.claims, 1u);
+  CHECK_EQ(r2.claims, 1u);
+  CHECK_EQ(r1.yields, 1u);
+  CHECK_EQ(r2.yields, 0u);
+  CHECK_EQ(from_one_after, 0);
+  CHECK_EQ(terms.size(), 1u);  // (the stream the clients took never changed)
+  CHECK(!terms.empty() && *terms.rbegin() == next_term(0, 2));
+  CHECK_MSG(hits_after >= 3, "%d hits in the 6 s after the meeting", hits_after);
+}
+
 }  // namespace
 
 TEST(failover) { itest::in_case(case_failover); }
@@ -828,6 +897,7 @@ TEST(hosts_stall_10) { itest::in_case(case_hosts_stall_10); }
 TEST(hosts_cut_5) { itest::in_case(case_hosts_cut_5); }
 TEST(hosts_cut_12) { itest::in_case(case_hosts_cut_12); }
 TEST(hosts_players_split) { itest::in_case(case_hosts_players_split); }
+TEST(hosts_claimants_meet) { itest::in_case(case_hosts_claimants_meet); }
 TEST(net_failover) { itest::in_case(case_net_failover); }
 TEST(standby_no_scene) { itest::in_case(case_standby_no_scene); }
 TEST(standby_killed) { itest::in_case(case_standby_killed); }

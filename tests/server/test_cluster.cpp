@@ -191,6 +191,48 @@ TEST(terms_decide_two_owners) {
   CHECK_EQ(c.heard_term(7), 3u);
 }
 
+// A term is the next round and the server id's low bits: two servers
+// that start one match in ignorance of each other give it two terms, each
+// above every term heard; the writers' strength grows with the term and
+// stays below 2^32.
+TEST(terms_are_rounds_and_ids) {
+  CHECK_EQ(next_term(0, 1), 257u);
+  CHECK_EQ(next_term(0, 2), 258u);
+  CHECK_EQ(next_term(258, 1), 513u);
+  CHECK_EQ(next_term(257, 0x1FF), 767u);  // (the id's low 8 bits)
+  std::mt19937_64 rng(38);
+  for (int k = 0; k < 10000; ++k) {
+    uint32_t heard = static_cast<uint32_t>(rng() % 0xFFFF0000u), a = static_cast<uint32_t>(rng()),
+             b = static_cast<uint32_t>(rng());
+    CHECK(next_term(heard, a) > heard);
+    if ((a & 0xFF) != (b & 0xFF)) CHECK(next_term(heard, a) != next_term(heard, b));
+    CHECK(term_strength(20, next_term(heard, a)) >= term_strength(10, heard));
+  }
+  CHECK_EQ(term_strength(20, 0xFFFFFFFFu), 0xFFFFFFFFu);
+}
+
+// A standby follows nothing of an older owner than the one it follows
+// while that one lives: a primary back at its old term beside the server
+// that took its match over; once the newer one is lost, it follows again.
+TEST(a_standby_follows_no_older_owner) {
+  Owner o;
+  Cluster c(standby_settings(3, 10));  // server 3
+  MatchInfoOut newer = o.info();
+  newer.server_id = 2;
+  newer.term = 2;
+  CHECK(c.hear_info(newer, participant(2), true, false, 0, kNow) == Cluster::Heard::noted);
+  c.yielded(7, newer, participant(2), true);  // (followed from then on)
+  const ball_model *model = nullptr;
+  MatchInfoOut older = o.info();  // server 1's, term 1
+  older.term = 1;
+  CHECK(c.follow_plan(older, 0.0, &model) == Cluster::Follow::none);
+  CHECK_EQ(c.stats().stale_terms, 1u);
+  newer.revision++;
+  CHECK(c.follow_plan(newer, 0.0, &model) == Cluster::Follow::update);
+  c.server_lost(participant(2), 1.0);
+  CHECK(c.follow_plan(older, 1.0, &model) == Cluster::Follow::update);
+}
+
 // A MatchInfo of a match this server steps is a conflict: it yields, and
 // a standby follows the match from then on.
 TEST(a_conflict_yields_and_a_standby_follows) {

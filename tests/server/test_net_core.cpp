@@ -327,13 +327,18 @@ TEST(a_gone_owner_is_forgotten) {
   std::vector<Sample> held = written(g, 2.0, kSkew);
   for (const auto &x : held) feed(v, x, &out);
   double last = held.back().local;
+  MatchInfoOut forged = info_of(g, 2, 3 + kMaxTermAhead + 1);  // more than 1000 rounds ahead: refused
+  const uint64_t refused = v.counters().refused;
+  CHECK(!v.on_info(forged, last, &out));
+  CHECK_EQ(v.counters().refused, refused + 1);
+  CHECK(v.on_info(info_of(g, 2, 3 + kMaxTermAhead), last, &out));  // (as far as a match may go)
   Game again;
   again.join(0, participant(1));
   again.run(1.0);
   MatchInfoOut i = info_of(again, 1, 1);
   CHECK(!v.on_info(i, last + MatchView::kForgetOwner - 0.1, &out));
   CHECK_EQ(v.counters().old_owner, 1u);
-  CHECK_EQ(v.term(), 3u);
+  CHECK_EQ(v.term(), 3u + kMaxTermAhead);
   CHECK(v.on_info(i, last + MatchView::kForgetOwner + 0.1, &out));
   CHECK_EQ(v.term(), 1u);
   CHECK_EQ(v.counters().anew, 1u);

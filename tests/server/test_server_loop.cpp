@@ -866,13 +866,13 @@ TEST(another_server_for_our_match) {
   CHECK_EQ(r.loop->cluster().stats().others_refused, 2u);
   CHECK_EQ(r.loop->cluster().stats().yields, 0u);
   CHECK(r.host.find(0) != nullptr);
-  // an older term's owner (ours is 1): stale, nothing yielded
+  // an older term's owner (ours is round 1's, next_term(0, 1)): stale, nothing yielded
   r.port.others.push_back({theirs, participant(9)});
   r.loop->step();
   CHECK_EQ(r.loop->cluster().stats().stale_terms, 1u);
   CHECK(r.host.find(0) != nullptr);
-  // while running, a newer term's: reported at the status, with the participant
-  theirs.term = 2;
+  // while running, a newer term's (the next round): reported at the status, with the participant
+  theirs.term = next_term(next_term(0, 1), 2);
   r.port.others.push_back({theirs, participant(9)});
   int seen = 0;
   ParticipantId who{};
