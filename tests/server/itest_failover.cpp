@@ -564,6 +564,14 @@ void case_net_failover(const Env &env) {
 // n matches on host a, a standby on host b, bots and a watcher on host c, on
 // participant profile lan (multicast over the hosts' bridge), started in that
 // order; `rallying`: every match had 2 hits within 40 s.
+// A program of the project run on a host, on the case's domain and
+// participant profile lan; its output to WHO.out and WHO.err.
+Process on_host(const Env &env, const Hosts &hosts, const char *host, const std::string &who, const std::string &exe,
+                std::vector<std::string> args) {
+  args.insert(args.begin(), {env.bin + "/" + exe, "--domain", env.dom(), "--participant-profile", "lan"});
+  return Process::start(hosts.on(host, args), path(env, who + ".out"), path(env, who + ".err"));
+}
+
 struct HostsRig {
   Hosts hosts{{"a", "b", "c"}};
   Process primary, standby, w, load;
@@ -575,8 +583,7 @@ bool hosts_rig(const Env &env, int n, HostsRig *r) {
   CHECK_MSG(r->hosts.ok(), "the hosts' namespaces: %s", r->hosts.error().c_str());
   if (!r->hosts.ok()) return false;
   auto start = [&](const char *host, const std::string &who, const std::string &exe, std::vector<std::string> args) {
-    args.insert(args.begin(), {env.bin + "/" + exe, "--domain", env.dom(), "--participant-profile", "lan"});
-    return Process::start(r->hosts.on(host, args), path(env, who + ".out"), path(env, who + ".err"));
+    return on_host(env, r->hosts, host, who, exe, std::move(args));
   };
   const std::vector<std::string> server = {"--duration", "120", "--state-rate", "10"};
   auto with = [&](std::vector<std::string> a) {
@@ -682,9 +689,8 @@ void hosts_outage(const Env &env, bool stall, int seconds) {
   if (!hosts_rig(env, n, &r)) return;
   Process wa;  // (the primary's side of the cut)
   if (!stall) {
-    wa = Process::start(r.hosts.on("a", {env.bin + "/ball-watch", "--domain", env.dom(), "--participant-profile", "lan",
-                                         "--no-log", "--duration", "60", "--record", path(env, "watch_a.jsonl")}),
-                        path(env, "watch_a.out"), path(env, "watch_a.err"));
+    wa = on_host(env, r.hosts, "a", "watch_a", "ball-watch",
+                 {"--no-log", "--duration", "60", "--record", path(env, "watch_a.jsonl")});
     usleep(3 * 1000000);
   }
   const double cut = realtime_now();
@@ -762,8 +768,7 @@ void case_hosts_players_split(const Env &env) {
   CHECK_MSG(hosts.ok(), "the hosts' namespaces: %s", hosts.error().c_str());
   if (!hosts.ok()) return;
   auto start = [&](const char *host, const std::string &who, const std::string &exe, std::vector<std::string> args) {
-    args.insert(args.begin(), {env.bin + "/" + exe, "--domain", env.dom(), "--participant-profile", "lan"});
-    return Process::start(hosts.on(host, args), path(env, who + ".out"), path(env, who + ".err"));
+    return on_host(env, hosts, host, who, exe, std::move(args));
   };
   Process primary = start("a", "primary", "ball-server",
                           {"--server-id", "1", "--matches", "1", "--startup-wait", "0", "--duration", "120",
@@ -834,8 +839,7 @@ void case_hosts_claimants_meet(const Env &env) {
   if (!hosts.ok()) return;
   CHECK(hosts.split("a", "b"));
   auto start = [&](const char *host, const std::string &who, const std::string &exe, std::vector<std::string> args) {
-    args.insert(args.begin(), {env.bin + "/" + exe, "--domain", env.dom(), "--participant-profile", "lan"});
-    return Process::start(hosts.on(host, args), path(env, who + ".out"), path(env, who + ".err"));
+    return on_host(env, hosts, host, who, exe, std::move(args));
   };
   auto claimant = [&](const char *host, int id) {
     const std::string who = "claim" + std::to_string(id);
