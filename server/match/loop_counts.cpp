@@ -105,6 +105,7 @@ ServerReport ServerLoop::report() const {
   r.conflicts = c.conflicts;
   r.takeovers = c.takeovers;
   r.takeovers_waiting = c.takeovers_waiting;
+  r.stale_terms = c.stale_terms;
   r.yields = c.yields;
   r.claims = c.claims;
   r.follow_failures = c.follow_failures;

@@ -915,10 +915,11 @@ void case_hosts_claimants_meet(const Env &env) {
   stop_server(one, "claimant 1");
   ServerReport r1 = report(env, "claim1");
   ServerReport r2 = report(env, "claim2");
-  note("claimants apart: claims %llu and %llu; at the meeting claimant 1 yielded %llu, claimant 2 %llu; %d samples "
-       "of claimant 1 after it, terms seen %zu (newest %u), %d hits after",
+  note("claimants apart: claims %llu and %llu; at the meeting claimant 1 yielded %llu, claimant 2 %llu (its older "
+       "terms heard: %llu); %d samples of claimant 1 after it, terms seen %zu (newest %u), %d hits after",
        static_cast<unsigned long long>(r1.claims), static_cast<unsigned long long>(r2.claims),
-       static_cast<unsigned long long>(r1.yields), static_cast<unsigned long long>(r2.yields), from_one_after,
+       static_cast<unsigned long long>(r1.yields), static_cast<unsigned long long>(r2.yields),
+       static_cast<unsigned long long>(r2.stale_terms), from_one_after,
        terms.size(), terms.empty() ? 0u : *terms.rbegin(), hits_after);
   CHECK_EQ(r1.claims, 1u);
   CHECK_EQ(r2.claims, 1u);
