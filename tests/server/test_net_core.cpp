@@ -200,40 +200,24 @@ bool feed(MatchView &v, const Sample &s, std::vector<ViewEvent> *out) {
 // and `event_from` (a take-over goes on from the old owner's).
 std::vector<Sample> written(Game &g, double seconds, double skew, uint32_t seq_from = 0, uint32_t event_from = 0) {
   std::vector<Sample> out;
+  auto add = [&](int kind, double local) -> Sample & {
+    out.emplace_back();
+    out.back().kind = kind;
+    out.back().local = local;
+    return out.back();
+  };
   size_t segs = g.segments.size(), evs = g.events.size(), sts = g.states.size();
   for (int k = 0; k < static_cast<int>(seconds * 60.0); ++k) {
     g.run(1.0 / 60.0);
     double local = g.now + skew;
     if (k % 6 == 0) {
-      Sample i;
+      Sample &i = add(0, local);
       i.info = info_of(g, g.server_id, g.term);
       i.info.segment_seq += seq_from;
-      i.local = local;
-      out.push_back(i);
     }
-    for (; segs < g.segments.size(); ++segs) {
-      Sample x;
-      x.kind = 1;
-      x.segment = g.segments[segs];
-      x.segment.seq += seq_from;
-      x.local = local;
-      out.push_back(x);
-    }
-    for (; evs < g.events.size(); ++evs) {
-      Sample x;
-      x.kind = 2;
-      x.event = g.events[evs];
-      x.event.seq += event_from;
-      x.local = local;
-      out.push_back(x);
-    }
-    for (; sts < g.states.size(); ++sts) {
-      Sample x;
-      x.kind = 3;
-      x.state = g.states[sts];
-      x.local = local;
-      out.push_back(x);
-    }
+    for (; segs < g.segments.size(); ++segs) (add(1, local).segment = g.segments[segs]).seq += seq_from;
+    for (; evs < g.events.size(); ++evs) (add(2, local).event = g.events[evs]).seq += event_from;
+    for (; sts < g.states.size(); ++sts) add(3, local).state = g.states[sts];
   }
   return out;
 }
