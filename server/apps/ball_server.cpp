@@ -57,9 +57,10 @@ void run_loop(ServerLoop &loop, const ServerConfig &config, const Run &run) {
 int serve(ServerConfig &config, const ServerScenes &scenes, const Run &run) {
   std::string err;
   std::string profile = find_profile(config.profile);
-  auto domain = dds::Domain::open(config.domain, profile, config.participant, config.discovery_server,
+  auto domain = dds::Domain::open(config.domain, profile, config.participant,
+                                  {config.discovery_server, config.tcp_peers, config.tcp_listen, config.tcp_public},
                                   "ball-server " + std::to_string(config.server_id), &err,
-                                  {config.security, config.identity});
+                                  {config.security, config.identity, config.tls});
   if (!domain) return fail(kProgram, err);
   // the player timeout is the liveliness lease the racket samples reader requests
   auto host = make_host(&config, scenes, domain->reader_lease(dds::kRacketProfile), &err);

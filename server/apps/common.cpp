@@ -114,14 +114,25 @@ void add_dds_options(CLI::App &app, DdsOptions *o) {
   app.add_option("--profile", o->profile,
                  "QoS profile file (default: $BALL_QOS_PROFILE, the installed one, the source tree's)");
   app.add_option("--participant-profile", o->participant,
-                 "participant profile of that file: loopback (default), lan, discovery_client");
+                 "participant profile of that file: loopback (default), lan, discovery_client, tcp_server, tcp_client");
   app.add_option("--discovery-server", o->discovery_server,
                  "with discovery_client: the Discovery Server(s), HOST:PORT[;HOST:PORT...] as in ROS_DISCOVERY_SERVER "
                  "(default: the profile's, 127.0.0.1:11811)");
   app.add_option("--secure", o->security,
                  "DDS Security: the folder of ca.pem, governance.p7s, permissions.p7s and the identities "
                  "(docs/security.md; ./run certs makes test ones)");
-  app.add_option("--identity", o->identity, "with --secure: this participant's identity, NAME.pem and NAME.key");
+  app.add_option("--identity", o->identity,
+                 "with --secure or --tls: this participant's identity, NAME.pem and NAME.key");
+  app.add_option("--tcp-peers", o->tcp_peers,
+                 "with tcp_client or tcp_server: the servers to connect to, HOST:PORT[;HOST:PORT...] "
+                 "(docs/deploy.md; default: tcp_client's 127.0.0.1:7400, none for tcp_server)");
+  app.add_option("--tcp-listen", o->tcp_listen, "with tcp_server: the TCP port to listen on (default 7400)")
+      ->check(CLI::Range(1, 65535));
+  app.add_option("--tcp-public-address", o->tcp_public,
+                 "with tcp_server behind a router that forwards its port: the router's IPv4 address");
+  app.add_option("--tls", o->tls,
+                 "with tcp_client or tcp_server: TLS, with ca.pem and the --identity's certificate in this folder; "
+                 "a peer without a certificate of that CA is refused (docs/deploy.md)");
 }
 
 std::vector<std::string> dds_arguments(const DdsOptions &o) {
@@ -130,6 +141,10 @@ std::vector<std::string> dds_arguments(const DdsOptions &o) {
   if (!o.discovery_server.empty()) a.insert(a.end(), {"--discovery-server", o.discovery_server});
   if (!o.security.empty()) a.insert(a.end(), {"--secure", o.security});
   if (!o.identity.empty()) a.insert(a.end(), {"--identity", o.identity});
+  if (!o.tcp_peers.empty()) a.insert(a.end(), {"--tcp-peers", o.tcp_peers});
+  if (o.tcp_listen != 0) a.insert(a.end(), {"--tcp-listen", std::to_string(o.tcp_listen)});
+  if (!o.tcp_public.empty()) a.insert(a.end(), {"--tcp-public-address", o.tcp_public});
+  if (!o.tls.empty()) a.insert(a.end(), {"--tls", o.tls});
   return a;
 }
 

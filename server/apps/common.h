@@ -54,7 +54,8 @@ std::string scenes_dir();
 std::string program_dir();
 
 // The DDS options every program has: domain, profile file, participant
-// profile, and the Discovery Servers of a client profile ("": the profile's).
+// profile, the Discovery Servers of a client profile, a TCP profile's peers,
+// port and address ("" and 0: the profile's), DDS Security and TLS.
 struct DdsOptions {
   int domain = 0;
   std::string profile;
@@ -62,6 +63,10 @@ struct DdsOptions {
   std::string discovery_server;
   std::string security;  // DDS Security's folder ("": an open domain; docs/security.md)
   std::string identity;  // the identity in it: NAME.pem and NAME.key
+  std::string tcp_peers;   // a TCP profile's servers, HOST:PORT[;HOST:PORT...] ("": the profile's)
+  int tcp_listen = 0;      // a TCP server profile's listening port (0: the profile's)
+  std::string tcp_public;  // its address as players reach it, behind a router ("": its own)
+  std::string tls;         // TLS's folder for a TCP profile: ca.pem and the identity ("": plain TCP)
 };
 void add_dds_options(CLI::App &app, DdsOptions *o);
 // The same options as arguments, for a program this one starts ("--domain", "7", ...).

@@ -134,8 +134,8 @@ void parse_into(const json &root, const std::string &base_dir, ServerConfig *c) 
     const Field<ServerConfig> *f = find_field(server_fields(), k);
     if (!f) bad(p, "unknown key \"" + k + "\"");
     if (k == "defaults") continue;
-    if (k == "profile" || k == "security") {
-      (k == "profile" ? c->profile : c->security) = relative_to(text(v, p), base_dir);
+    if (k == "profile" || k == "security" || k == "tls") {
+      (k == "profile" ? c->profile : k == "tls" ? c->tls : c->security) = relative_to(text(v, p), base_dir);
     } else if (k == "catalogue") {
       if (!v.is_object()) bad(p, "expected an object of scene names and scenes");
       const Field<MatchConfig> &name = *find_field(match_fields(), "scene_name");
@@ -179,14 +179,25 @@ const std::vector<Field<ServerConfig>> &server_fields() {
       {"domain", &C::domain, whole(0, kMaxDomain), "", "DDS domain id (docs/server-reference.md, \"DDS domains\")"},
       {"profile", std::monostate{}, {}, "", "the QoS profile file, relative to the config file", nullptr,
        "found as above"},
-      {"participant_profile", &C::participant, {}, "", "`loopback`, `lan`, `discovery_client`"},
+      {"participant_profile", &C::participant, {}, "",
+       "`loopback`, `lan`, `discovery_client`, `tcp_server` (docs/deploy.md)"},
       {"discovery_server", &C::discovery_server, {}, "",
        "with `discovery_client`: `HOST:PORT[;HOST:PORT...]` (docs/server.md, \"Without multicast: a Discovery "
        "Server\")", nullptr, "the profile's"},
       {"security", std::monostate{}, {}, "",
        "DDS Security: the folder of the CA, the signed documents and the identities, relative to the config "
        "file (docs/security.md)", nullptr, "an open domain"},
-      {"identity", &C::identity, {}, "", "with `security`: the server's identity (NAME.pem, NAME.key)"},
+      {"identity", &C::identity, {}, "", "with `security` or `tls`: the server's identity (NAME.pem, NAME.key)"},
+      {"tcp_peers", &C::tcp_peers, {}, "",
+       "with `tcp_server`: the other servers to connect to, `HOST:PORT[;HOST:PORT...]` (docs/deploy.md)", nullptr,
+       "none"},
+      {"tcp_listen", &C::tcp_listen, whole(1, 65535), "", "with `tcp_server`: the TCP port it listens on", nullptr,
+       "7400"},
+      {"tcp_public_address", &C::tcp_public, {}, "",
+       "with `tcp_server` behind a router that forwards its port: the router's IPv4 address", nullptr, "its own"},
+      {"tls", std::monostate{}, {}, "",
+       "with `tcp_server`: TLS, the folder of ca.pem and the identity, relative to the config file; a peer "
+       "without a certificate of that CA is refused (docs/deploy.md)", nullptr, "plain TCP"},
       {"max_matches", &C::max_matches, whole(1, 100000), "", "room for matches; sizes every DDS resource limit",
        "--max-matches", create_room.c_str()},
       {"allow_create", &C::allow_create, {}, "", "clients may CREATE matches from the catalogue (`--no-create`)"},
@@ -299,6 +310,10 @@ void ServerOptions::add(CLI::App &app) {
   discovery_server_ = app.get_option("--discovery-server");
   security_ = app.get_option("--secure");
   identity_ = app.get_option("--identity");
+  tcp_peers_ = app.get_option("--tcp-peers");
+  tcp_listen_ = app.get_option("--tcp-listen");
+  tcp_public_ = app.get_option("--tcp-public-address");
+  tls_ = app.get_option("--tls");
 }
 
 bool ServerOptions::apply(ServerConfig *config, std::string *err) const {
@@ -308,6 +323,10 @@ bool ServerOptions::apply(ServerConfig *config, std::string *err) const {
   if (discovery_server_->count()) config->discovery_server = dds_.discovery_server;
   if (security_->count()) config->security = dds_.security;
   if (identity_->count()) config->identity = dds_.identity;
+  if (tcp_peers_->count()) config->tcp_peers = dds_.tcp_peers;
+  if (tcp_listen_->count()) config->tcp_listen = dds_.tcp_listen;
+  if (tcp_public_->count()) config->tcp_public = dds_.tcp_public;
+  if (tls_->count()) config->tls = dds_.tls;
   server_.apply(config);
   if (no_create_) config->allow_create = false;
   if (standby_) config->standby = true;

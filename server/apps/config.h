@@ -37,7 +37,11 @@ struct ServerConfig {
   std::string participant = "loopback";      // its participant profile
   std::string discovery_server;              // a client profile's Discovery Servers ("": the profile's)
   std::string security;                      // DDS Security's folder ("": an open domain)
-  std::string identity;                      // the server's identity in it
+  std::string identity;                      // the server's identity in it (and in tls)
+  std::string tcp_peers;                     // a TCP profile's other servers ("": the profile's)
+  int tcp_listen = 0;                        // a TCP profile's listening port (0: the profile's)
+  std::string tcp_public;                    // its address as players reach it ("": its own)
+  std::string tls;                           // TLS's folder for a TCP profile ("": plain TCP)
   uint32_t max_matches = 0;                  // 0: the configured matches, plus kCreateRoom when CREATE is allowed,
                                              // plus kFollowRoom for a standby
   bool allow_create = true;                  // clients may CREATE matches from the catalogue
@@ -87,7 +91,8 @@ class ServerOptions {
   FieldOptions<MatchConfig> match_;
   DdsOptions dds_;
   CLI::Option *domain_ = nullptr, *profile_ = nullptr, *participant_ = nullptr, *discovery_server_ = nullptr,
-              *security_ = nullptr, *identity_ = nullptr;
+              *security_ = nullptr, *identity_ = nullptr, *tcp_peers_ = nullptr, *tcp_listen_ = nullptr,
+              *tcp_public_ = nullptr, *tls_ = nullptr;
   int matches_ = 0;
   bool no_create_ = false;
   bool standby_ = false;

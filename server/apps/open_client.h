@@ -26,7 +26,9 @@ inline ball_net_client *open_client(const DdsOptions &o, const std::string &name
   c.discovery_servers = o.discovery_server.empty() ? nullptr : o.discovery_server.c_str();
   c.qos_file = profile.empty() ? nullptr : profile.c_str();
   c.security_dir = o.security.empty() ? nullptr : o.security.c_str();
-  c.identity = o.security.empty() ? nullptr : o.identity.c_str();
+  c.identity = o.security.empty() && o.tls.empty() ? nullptr : o.identity.c_str();
+  c.tcp_peers = o.tcp_peers.empty() ? nullptr : o.tcp_peers.c_str();
+  c.tls_dir = o.tls.empty() ? nullptr : o.tls.c_str();
   c.servers = servers.empty() ? nullptr : servers.c_str();
   c.name = name.c_str();
   if (more) more(&c);

@@ -15,8 +15,9 @@ namespace app {
 
 // nullptr with a sentence in err (dds::Domain::open)
 inline std::unique_ptr<dds::Domain> open_domain(const DdsOptions &o, const std::string &name, std::string *err) {
-  return dds::Domain::open(o.domain, find_profile(o.profile), o.participant, o.discovery_server, name, err,
-                           dds::Security{o.security, o.identity});
+  return dds::Domain::open(o.domain, find_profile(o.profile), o.participant,
+                           dds::Reach{o.discovery_server, o.tcp_peers, o.tcp_listen, o.tcp_public}, name, err,
+                           dds::Security{o.security, o.identity, o.tls});
 }
 
 }  // namespace app

@@ -105,9 +105,21 @@ constexpr const char *kAnyMatchPartition = "match/*";
 
 // DDS Security for a participant (docs/security.md): the folder of the
 // certificates and signed documents (`./run certs`) and the identity in it.
+// TLS on the TCP transport (docs/deploy.md) is here too: the same identity's
+// certificate, checked against the folder's ca.pem both ways.
 struct Security {
   std::string dir;       // "": an open domain
-  std::string identity;  // NAME: NAME.pem and NAME.key in dir
+  std::string identity;  // NAME: NAME.pem and NAME.key in dir (and in tls_dir)
+  std::string tls_dir;   // "": plain TCP; else TLS with ca.pem and the identity in this folder
+};
+
+// Where a participant reaches beyond its profile (docs/deploy.md); "" and 0
+// keep the profile's.
+struct Reach {
+  std::string discovery_servers;  // a Discovery Server client's: HOST:PORT[;HOST:PORT...]
+  std::string tcp_peers;          // a TCP profile's servers to connect to: HOST:PORT[;HOST:PORT...]
+  int tcp_port = 0;               // a TCP profile's listening port, [1, 65535]
+  std::string tcp_public;         // a listening TCP profile's IPv4 address as its peers reach it
 };
 
 
@@ -197,18 +209,21 @@ class Domain {
  public:
   explicit Domain(Key);
   // Loads `profile_file` (once per process; "": kBuiltinProfiles), then creates the participant
-  // with `participant_profile` on `domain_id`. A non-empty
-  // `discovery_servers` (HOST:PORT[;HOST:PORT...], ROS_DISCOVERY_SERVER's
-  // syntax: the n-th entry is server id n) replaces the Discovery Servers of
-  // a client profile. Returns nullptr with a sentence in err: a missing or
-  // invalid profile file, a domain id outside [0, 232], discovery servers
-  // for a profile that is not a Discovery Server client or a list Fast DDS
-  // cannot read, a participant that cannot be created.
+  // with `participant_profile` on `domain_id`. What `reach` gives replaces
+  // the profile's: reach.discovery_servers (ROS_DISCOVERY_SERVER's syntax:
+  // the n-th entry is server id n) a Discovery Server client's servers; the
+  // TCP fields its TCP transport's initial peers, listening port and public
+  // address. Returns nullptr with a sentence in err: a missing or invalid
+  // profile file, a domain id outside [0, 232], a reach field for a profile
+  // without that kind of transport or a list that cannot be read, a
+  // participant that cannot be created.
   // With security.dir, the participant authenticates with the identity's
-  // certificate and obeys the signed governance and permissions (a missing
-  // file is an error naming it).
+  // certificate and obeys the signed governance and permissions; with
+  // security.tls_dir, its TCP connections are TLS with that certificate, and
+  // a peer without one signed by ca.pem is refused (a missing file is an
+  // error naming it).
   static std::unique_ptr<Domain> open(int domain_id, const std::string &profile_file,
-                                      const std::string &participant_profile, const std::string &discovery_servers,
+                                      const std::string &participant_profile, const Reach &reach,
                                       const std::string &name, std::string *err, const Security &security = {});
   ~Domain();
   // Deletes the entities as the destructor does, but never ends the

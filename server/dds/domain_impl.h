@@ -22,6 +22,10 @@
 #include <fastdds/dds/topic/IContentFilterFactory.hpp>
 #include <fastdds/dds/topic/TypeSupport.hpp>
 #include <fastdds/rtps/attributes/ServerAttributes.h>
+#include <fastdds/rtps/transport/TCPv4TransportDescriptor.h>
+#include <fastrtps/utils/IPLocator.h>
+#include <arpa/inet.h>
+#include <sstream>
 #include <fastdds/rtps/common/InstanceHandle.h>
 #include <fastcdr/Cdr.h>
 #include <fastcdr/FastBuffer.h>

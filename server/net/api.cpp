@@ -213,8 +213,10 @@ ball_status core_settings_of(const ball_net_config &config, CoreSettings *out, s
   if (config.rackets != 0 && config.rackets != 1) return refuse(BALL_ERANGE, "rackets must be 0 or 1");
   if (config.server_status != 0 && config.server_status != 1)
     return refuse(BALL_ERANGE, "server_status must be 0 or 1");
-  if (config.identity && !config.security_dir) return refuse(BALL_EINVAL, "an identity needs security_dir");
+  if (config.identity && !config.security_dir && !config.tls_dir)
+    return refuse(BALL_EINVAL, "an identity needs security_dir or tls_dir");
   if (config.security_dir && !config.identity) return refuse(BALL_EINVAL, "security_dir needs an identity");
+  if (config.tls_dir && !config.identity) return refuse(BALL_EINVAL, "tls_dir needs an identity");
   CoreSettings settings;
   if (!ServerChoice::parse(or_empty(config.servers), &settings.servers, why)) return BALL_ERANGE;
   if (!config.security_dir && !settings.servers.bound().empty())

@@ -132,11 +132,13 @@ extern "C" ball_status ball_net_open(const ball_net_config *config, ball_net_cli
     std::string err;
     ball_status st = core_settings_of(*config, &settings, &err);
     if (st != BALL_OK) return say(st, err);
-    dds::Security security{or_empty(config->security_dir), or_empty(config->identity)};
+    dds::Security security{or_empty(config->security_dir), or_empty(config->identity), or_empty(config->tls_dir)};
+    dds::Reach reach;
+    reach.discovery_servers = or_empty(config->discovery_servers);
+    reach.tcp_peers = or_empty(config->tcp_peers);
     auto domain = dds::Domain::open(config->domain, or_empty(config->qos_file),
-                                    config->participant ? config->participant : "loopback",
-                                    or_empty(config->discovery_servers), config->name ? config->name : "ball-net", &err,
-                                    security);
+                                    config->participant ? config->participant : "loopback", reach,
+                                    config->name ? config->name : "ball-net", &err, security);
     if (!domain) return say(BALL_ENETWORK, err);
     const int matches = static_cast<int>(settings.max_matches);
     dds::ClientNeeds needs;

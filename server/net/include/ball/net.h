@@ -66,11 +66,12 @@ typedef struct ball_net_config {
   int domain;                     /* DDS domain id, [0, 232] */
   const char *participant;        /* participant profile: "loopback" (this host only), "lan" (UDP on
                                      every interface, multicast discovery), "discovery_client" (a
-                                     Discovery Server); docs/server.md, "Several hosts" */
+                                     Discovery Server); docs/server.md, "Several hosts"; "tcp_client"
+                                     (TCP out to the servers, across the internet: docs/deploy.md) */
   const char *discovery_servers;  /* HOST:PORT[;HOST:PORT...] for "discovery_client"; NULL: the profile's */
   const char *qos_file;           /* a QoS profile file; NULL: the library's own (docs/protocol.md's) */
   const char *security_dir;       /* DDS Security: the folder of ./run certs; NULL: an open domain */
-  const char *identity;           /* the identity in it (NAME.pem, NAME.key); with security_dir */
+  const char *identity;           /* the identity in it (NAME.pem, NAME.key); with security_dir or tls_dir */
   const char *servers;            /* the servers it takes the match topics from: "1,2"; "1=server1" binds
                                      server 1 to that certificate (with security_dir); NULL: any */
   const char *name;               /* the DDS participant's name; NULL: "ball-net" */
@@ -94,6 +95,10 @@ typedef struct ball_net_config {
                                      bytes of payload a second); 0: not */
   int server_status;              /* 1: also read the servers' status (ball/server_status, once a second
                                      each): for the tap alone (ball_net_set_tap); 0: not */
+  const char *tcp_peers;          /* "tcp_client": the servers, HOST:PORT[;HOST:PORT...]; NULL: the
+                                     profile's (127.0.0.1:7400) */
+  const char *tls_dir;            /* "tcp_client": TLS with ca.pem and the identity in this folder (a
+                                     server without a certificate of that CA is refused); NULL: plain TCP */
 } ball_net_config;
 
 /* Defaults: domain 0, loopback, any server, CLOCK_MONOTONIC, no simulated network. */
