@@ -1028,28 +1028,6 @@ void case_busy(const Env &env) {
   CHECK_MSG(first.running(), "the first server stopped");
 }
 
-// `fastdds discovery` is a Python launcher that runs fast-discovery-server
-// as its child and ends with it. Signals go to that child (SIGINT: a clean
-// stop, as by Ctrl-C; SIGKILL: a crash) so that the launcher reaps it: a
-// signal to the whole group would leave the server to init as an orphan.
-// Declared after its clients, it is stopped first, and Process stops the
-// group if that did not end it.
-struct DiscoveryServer {
-  Process p;
-  DiscoveryServer() = default;
-  DiscoveryServer(DiscoveryServer &&) = default;
-  DiscoveryServer &operator=(DiscoveryServer &&) = default;
-  ~DiscoveryServer() { end(SIGINT); }
-  void end(int sig) {
-    if (!p.running()) return;
-    std::ifstream children("/proc/" + std::to_string(p.pid()) + "/task/" + std::to_string(p.pid()) + "/children");
-    pid_t child = -1;
-    if (children >> child) kill(child, sig);
-    else p.signal(sig);
-    p.wait(5.0);
-  }
-};
-
 // ball-load's bots split over two processes measure what one process does:
 // each process counts the hits of its own matches only (its meter reads
 // every match's segments), so the same four matches give about the same

@@ -1,7 +1,8 @@
 // Hosts of a networked case in network namespaces of their own
 // (docs/server-tests.md, "Several hosts"): a switch namespace holding a
 // bridge, and per host a namespace whose one link (eth0, 10.77.0.N/24, and
-// the route for multicast) is a veth to that bridge. Every link is made in
+// the route for multicast) is a veth to that bridge; and, with add_home, a
+// home router doing NAT with hosts behind it. Every link is made in
 // its namespace: nothing outside them is touched or addressed. A host is cut
 // off by setting its port on the bridge down, and healed by setting it up;
 // two hosts are cut from each other only (each still reaching the others)
@@ -15,6 +16,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <filesystem>
 #include <string>
@@ -31,17 +33,38 @@ class Hosts {
     ok_ = ip({"netns", "add", ns("switch")}) && ip({"-n", ns("switch"), "link", "set", "lo", "up"}) &&
           ip({"-n", ns("switch"), "link", "add", "br0", "type", "bridge"}) &&
           ip({"-n", ns("switch"), "link", "set", "br0", "up"});
-    for (size_t i = 0; ok_ && i < names_.size(); ++i) {
-      const std::string &h = names_[i];
-      const std::string port = "p" + std::to_string(i);
-      ok_ = ip({"netns", "add", ns(h)}) &&
-            ip({"link", "add", "eth0", "netns", ns(h), "type", "veth", "peer", "name", port, "netns", ns("switch")}) &&
-            ip({"-n", ns("switch"), "link", "set", port, "master", "br0"}) &&
-            ip({"-n", ns("switch"), "link", "set", port, "up"}) && ip({"-n", ns(h), "link", "set", "lo", "up"}) &&
-            ip({"-n", ns(h), "addr", "add", address(h) + "/24", "dev", "eth0"}) &&
-            ip({"-n", ns(h), "link", "set", "eth0", "up"}) &&
-            ip({"-n", ns(h), "route", "add", "224.0.0.0/4", "dev", "eth0"});
+    for (size_t i = 0; ok_ && i < names_.size(); ++i)
+      ok_ = attach(names_[i], "switch", "br0", "p" + std::to_string(i), address(names_[i])) &&
+            ip({"-n", ns(names_[i]), "route", "add", "224.0.0.0/4", "dev", "eth0"});
+  }
+  // A home router on the switch (a host like the others, named `router`)
+  // and hosts behind it on its own LAN, 192.168.7.0/24 (a bridge in the
+  // router, its address .1), whose only way out is the router's NAT
+  // (nftables masquerade on its eth0); from outside it forwards nothing
+  // into the LAN but the replies of connections made from inside, as home
+  // routers do. Needs nftables' nft (./run setup).
+  bool add_home(const std::string &router, const std::vector<std::string> &home) {
+    names_.push_back(router);
+    router_ = router;
+    const std::string r = ns(router);
+    ok_ = ok_ && attach(router, "switch", "br0", "p" + std::to_string(names_.size() - 1), address(router)) &&
+          ip({"-n", r, "link", "add", "br1", "type", "bridge"}) && ip({"-n", r, "link", "set", "br1", "up"}) &&
+          ip({"-n", r, "addr", "add", "192.168.7.1/24", "dev", "br1"}) &&
+          run(on(router, {"sysctl", "-q", "-w", "net.ipv4.ip_forward=1"})) &&
+          run(on(router, {nft_path(),
+                          "add table ip home; "
+                          "add chain ip home nat { type nat hook postrouting priority srcnat; }; "
+                          "add rule ip home nat oifname eth0 masquerade; "
+                          "add chain ip home in { type filter hook forward priority filter; policy drop; }; "
+                          "add rule ip home in ct state established,related accept; "
+                          "add rule ip home in iifname br1 accept"}));
+    for (const std::string &h : home) {
+      names_.push_back(h);
+      home_.push_back(h);
+      ok_ = ok_ && attach(h, router, "br1", "h" + std::to_string(home_.size()), address(h)) &&
+            ip({"-n", ns(h), "route", "add", "default", "via", "192.168.7.1"});
     }
+    return ok_;
   }
   ~Hosts() {
     for (const std::string &h : names_) ip({"netns", "del", ns(h)});
@@ -57,9 +80,15 @@ class Hosts {
     argv.insert(argv.begin(), {ip_path(), "netns", "exec", ns(h)});
     return argv;
   }
-  std::string address(const std::string &h) const { return "10.77.0." + std::to_string(index(h) + 1); }
-  bool cut(const std::string &h) { return ip({"-n", ns("switch"), "link", "set", port(h), "down"}); }
-  bool heal(const std::string &h) { return ip({"-n", ns("switch"), "link", "set", port(h), "up"}); }
+  // a host's address: 10.77.0.N on the switch, 192.168.7.N behind a home router
+  std::string address(const std::string &h) const {
+    for (size_t i = 0; i < home_.size(); ++i)
+      if (home_[i] == h) return "192.168.7." + std::to_string(i + 2);
+    return "10.77.0." + std::to_string(index(h) + 1);
+  }
+  // host h's link to its switch or home router down (cut) or up again (heal)
+  bool cut(const std::string &h) { return ip({"-n", port_ns(h), "link", "set", port(h), "down"}); }
+  bool heal(const std::string &h) { return ip({"-n", port_ns(h), "link", "set", port(h), "up"}); }
   bool split(const std::string &a, const std::string &b) { return isolate(a, "on") && isolate(b, "on"); }
   bool join(const std::string &a, const std::string &b) { return isolate(a, "off") && isolate(b, "off"); }
 
@@ -71,9 +100,28 @@ class Hosts {
     while (i < names_.size() && names_[i] != h) ++i;
     return i;
   }
-  std::string port(const std::string &h) const { return "p" + std::to_string(index(h)); }
+  bool at_home(const std::string &h) const { return std::find(home_.begin(), home_.end(), h) != home_.end(); }
+  std::string port(const std::string &h) const {
+    if (!at_home(h)) return "p" + std::to_string(index(h));
+    return "h" + std::to_string(std::find(home_.begin(), home_.end(), h) - home_.begin() + 1);
+  }
+  std::string port_ns(const std::string &h) const { return ns(at_home(h) ? router_ : "switch"); }
   bool isolate(const std::string &h, const char *on) {
     return ip({"-n", ns("switch"), "link", "set", port(h), "type", "bridge_slave", "isolated", on});
+  }
+  // host h's link eth0, a veth whose other end `port` is on `bridge` in namespace `at`
+  bool attach(const std::string &h, const std::string &at, const std::string &bridge, const std::string &port,
+              const std::string &addr) {
+    return ip({"netns", "add", ns(h)}) &&
+           ip({"link", "add", "eth0", "netns", ns(h), "type", "veth", "peer", "name", port, "netns", ns(at)}) &&
+           ip({"-n", ns(at), "link", "set", port, "master", bridge}) && ip({"-n", ns(at), "link", "set", port, "up"}) &&
+           ip({"-n", ns(h), "link", "set", "lo", "up"}) && ip({"-n", ns(h), "addr", "add", addr + "/24", "dev", "eth0"}) &&
+           ip({"-n", ns(h), "link", "set", "eth0", "up"});
+  }
+  static std::string nft_path() {
+    for (const char *p : {"/usr/sbin/nft", "/sbin/nft"})
+      if (access(p, X_OK) == 0) return p;
+    return "/usr/sbin/nft";
   }
   static std::string ip_path() {
     for (const char *p : {"/usr/sbin/ip", "/sbin/ip", "/usr/bin/ip", "/bin/ip"})
@@ -82,12 +130,14 @@ class Hosts {
   }
   bool ip(std::vector<std::string> args) {
     args.insert(args.begin(), ip_path());
+    return run(args);
+  }
+  bool run(const std::vector<std::string> &args) {
     ballsrv::app::Process p = ballsrv::app::Process::start(args, "/dev/null", "/dev/null");
     int rc = p.pid() > 0 ? p.wait(10.0) : -1;
     if (rc != 0 && error_.empty()) {
-      error_ = "ip";
-      for (size_t i = 1; i < args.size(); ++i) error_ += " " + args[i];
-      error_ += ": exit status " + std::to_string(rc) + " (root and iproute2 needed)";
+      for (const std::string &a : args) error_ += (error_.empty() ? "" : " ") + a;
+      error_ += ": exit status " + std::to_string(rc) + " (root, iproute2 and nftables needed)";
     }
     return rc == 0;
   }
@@ -104,6 +154,8 @@ class Hosts {
   }
 
   std::vector<std::string> names_;
+  std::vector<std::string> home_;  // behind the home router
+  std::string router_;
   bool ok_ = false;
   std::string error_;
 };

@@ -245,4 +245,26 @@ inline void in_case(void (*fn)(const Env &)) {
             shm_after.size() - shm_before.size());
 }
 
+// `fastdds discovery` is a Python launcher that runs fast-discovery-server
+// as its child and ends with it. Signals go to that child (SIGINT: a clean
+// stop, as by Ctrl-C; SIGKILL: a crash) so that the launcher reaps it: a
+// signal to the whole group would leave the server to init as an orphan.
+// Declared after its clients, it is stopped first, and Process stops the
+// group if that did not end it.
+struct DiscoveryServer {
+  Process p;
+  DiscoveryServer() = default;
+  DiscoveryServer(DiscoveryServer &&) = default;
+  DiscoveryServer &operator=(DiscoveryServer &&) = default;
+  ~DiscoveryServer() { end(SIGINT); }
+  void end(int sig) {
+    if (!p.running()) return;
+    std::ifstream children("/proc/" + std::to_string(p.pid()) + "/task/" + std::to_string(p.pid()) + "/children");
+    pid_t child = -1;
+    if (children >> child) kill(child, sig);
+    else p.signal(sig);
+    p.wait(5.0);
+  }
+};
+
 }  // namespace itest

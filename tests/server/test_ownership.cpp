@@ -46,9 +46,9 @@ template <class T>
 void two_writers(const char *topic, const char *profile) {
   std::string err;
   const std::string qos = app::find_profile("");
-  auto pa = Domain::open(BALL_TEST_DOMAIN, qos, "loopback", "", "ownership a", &err);
-  auto pb = Domain::open(BALL_TEST_DOMAIN, qos, "loopback", "", "ownership b", &err);
-  auto pc = Domain::open(BALL_TEST_DOMAIN, qos, "loopback", "", "ownership reader", &err);
+  auto pa = Domain::open(BALL_TEST_DOMAIN, qos, "loopback", {}, "ownership a", &err);
+  auto pb = Domain::open(BALL_TEST_DOMAIN, qos, "loopback", {}, "ownership b", &err);
+  auto pc = Domain::open(BALL_TEST_DOMAIN, qos, "loopback", {}, "ownership reader", &err);
   CHECK_MSG(pa && pb && pc, "%s", err.c_str());
   if (!pa || !pb || !pc) return;
   Writer<T> a = pa->writer<T>(topic, profile, {4}, &err, kPrimaryProfile);

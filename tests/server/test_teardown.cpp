@@ -119,7 +119,7 @@ TEST(a_participant_goes_inside_the_limit) {
       [] {
         std::string err;
         {
-          auto d = dds::Domain::open(BALL_TEST_DOMAIN, app::find_profile(""), "loopback", "", "teardown test", &err);
+          auto d = dds::Domain::open(BALL_TEST_DOMAIN, app::find_profile(""), "loopback", {}, "teardown test", &err);
           if (!d) {
             std::fprintf(stderr, "open: %s\n", err.c_str());
             _exit(3);

@@ -1,0 +1,289 @@
+// The cases across the internet (docs/deploy.md): a server on a public
+// address, its players and a watcher behind a home router doing NAT, over
+// the TCP profiles (tcp_server, tcp_client), plain, under DDS Security and
+// over TLS; the same layout on UDP does not connect; a stranger beside the
+// players reaches nothing through TLS; a player's link cut for 3 s comes
+// back by itself. Network namespaces the case makes and removes
+// (itest_hosts.h): server host s (10.77.0.1), router r (10.77.0.2), behind
+// it p and q (the players), w (a watcher) and x (a stranger).
+#include "itest_checks.h"
+#include "itest_hosts.h"
+#include "itest_kit.h"
+
+using check::note;
+
+namespace {
+
+using namespace itest;
+
+enum class Guard { none, dds_security, tls };
+
+struct Wan {
+  Hosts hosts{{"s"}};
+  std::string port;                    // the server's TCP port
+  std::vector<std::string> security;   // a client's certificate options but --identity
+  std::string certs;
+  Process server, w, p, q;
+  std::unique_ptr<Tail> t;
+};
+
+// A program of the project on host h, its output to WHO.out and WHO.err.
+Process on(const Env &env, const Wan &n, const char *h, const std::string &who, const std::string &exe,
+           std::vector<std::string> args) {
+  args.insert(args.begin(), {env.bin + "/" + exe, "--domain", env.dom()});
+  return Process::start(n.hosts.on(h, args), path(env, who + ".out"), path(env, who + ".err"));
+}
+
+// A client's options on the TCP profile toward the server, as identity `who`.
+std::vector<std::string> client(const Wan &n, const std::string &who, std::vector<std::string> more) {
+  std::vector<std::string> a = {"--participant-profile", "tcp_client", "--tcp-peers",
+                                n.hosts.address("s") + ":" + n.port};
+  a.insert(a.end(), n.security.begin(), n.security.end());
+  if (!n.security.empty()) a.insert(a.end(), {"--identity", who});
+  a.insert(a.end(), more.begin(), more.end());
+  return a;
+}
+
+// The layout, the server of match 0 on s, a watcher on w and a bot on each
+// of p and q; true once the match rallies (6 hits within 40 s).
+bool wan_rig(const Env &env, Guard guard, Wan *n) {
+  n->hosts.add_home("r", {"p", "q", "w", "x"});
+  CHECK_MSG(n->hosts.ok(), "the hosts' namespaces: %s", n->hosts.error().c_str());
+  if (!n->hosts.ok()) return false;
+  n->port = std::to_string(20000 + env.domain);
+  if (guard != Guard::none) {
+    n->certs = path(env, "certs");
+    std::string err;
+    CHECK_EQ(run_to_end(env, {"/bin/bash", env.source + "/server/security/certs.sh", n->certs, "1"}, "certs", &err), 0);
+    n->security = {guard == Guard::tls ? "--tls" : "--secure", n->certs};
+  }
+  std::vector<std::string> s = {"--participant-profile", "tcp_server", "--tcp-listen", n->port, "--server-id", "1",
+                                "--matches", "1", "--startup-wait", "0", "--duration", "120", "--state-rate", "10",
+                                "--stats-json", path(env, "server.json")};
+  s.insert(s.end(), n->security.begin(), n->security.end());
+  if (!n->security.empty()) s.insert(s.end(), {"--identity", "server1"});
+  n->server = on(env, *n, "s", "server", "ball-server", s);
+  usleep(500000);
+  n->w = on(env, *n, "w", "watch", "ball-watch",
+            client(*n, "watch", {"--no-log", "--duration", "120", "--record", path(env, "watch.jsonl")}));
+  n->t = std::make_unique<Tail>(path(env, "watch.jsonl"));
+  CHECK_MSG(!wait_for(*n->t, 20.0, [](const json &j) { return is_type(j, "ready"); }).is_null(),
+            "the watcher behind the NAT did not match the server within 20 s");
+  for (int slot = 0; slot < 2; ++slot) {
+    const char *host = slot == 0 ? "p" : "q";
+    std::vector<std::string> bot = client(*n, slot == 0 ? "m0-a" : "m0-b",
+                                          {"--match", "0", "--player", std::to_string(slot), "--seed",
+                                           std::to_string(slot + 1), "--duration", "100"});
+    (slot == 0 ? n->p : n->q) = on(env, *n, host, std::string("bot") + host, "ball-bot", bot);
+    usleep(1000000);  // (players arrive one by one: docs/deploy.md, "Limits")
+  }
+  bool rallying = rallies(*n->t, 1, 6, 40.0);
+  if (!rallying) {
+    Process ss = Process::start(n->hosts.on("s", {"ss", "-tn"}), path(env, "ss-failed.out"), "/dev/null");
+    ss.wait(5.0);
+  }
+  CHECK_MSG(rallying, "match 0 had no 6 hits through the NAT within 40 s; the server's connections: %s",
+            file_text(path(env, "ss-failed.out")).c_str());
+  return rallying;
+}
+
+// The TCP connections the server's host has with its clients: the peers'
+// addresses, one per connection (ss in its namespace).
+std::vector<std::string> server_peers(const Env &env, const Wan &n) {
+  Process ss = Process::start(n.hosts.on("s", {"ss", "-Htn", "state", "established"}), path(env, "ss.out"),
+                              path(env, "ss.err"));
+  ss.wait(5.0);
+  std::vector<std::string> peers;
+  std::istringstream in(file_text(path(env, "ss.out")));
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream f(line);
+    std::string recv_q, send_q, local, peer;
+    if (!(f >> recv_q >> send_q >> local >> peer)) continue;
+    if (local.substr(local.rfind(':') + 1) != n.port) continue;  // (the server's own outgoing ones)
+    peers.push_back(peer.substr(0, peer.rfind(':')));
+  }
+  return peers;
+}
+
+// Stops the clients, then the server, and checks what the watcher saw.
+void wan_end(Wan &n) {
+  for (Process *c : {&n.p, &n.q, &n.w}) c->stop(5.0);
+  n.t->poll();
+  check_history(n.t->lines);
+  int rc = n.server.stop(5.0);
+  CHECK_MSG(rc == 0, "the server's exit status on SIGTERM: %d", rc);
+}
+
+// A match through the NAT: every connection the server has comes from the
+// router's address (the players' own are private), and what the watcher
+// saw breaks nothing.
+void wan_plays(const Env &env, Guard guard) {
+  Wan n;
+  if (!wan_rig(env, guard, &n)) return;
+  std::vector<std::string> peers = server_peers(env, n);
+  size_t from_router = count_if(peers.begin(), peers.end(), [&](const std::string &a) { return a == n.hosts.address("r"); });
+  note("through the NAT: the server has %zu client connections, %zu from the router's address %s", peers.size(),
+       from_router, n.hosts.address("r").c_str());
+  CHECK(peers.size() >= 3u);  // the watcher and two bots
+  CHECK_EQ(from_router, peers.size());
+  wan_end(n);
+}
+
+void case_wan_tcp(const Env &env) { wan_plays(env, Guard::none); }
+void case_wan_secure(const Env &env) { wan_plays(env, Guard::dds_security); }
+
+// Over TLS, a stranger on the players' LAN: a bot without a certificate, a
+// bot with a certificate of another CA, and raw bytes (wan_stranger.py):
+// none gets a slot or a byte of RTPS back, the server has no UDP port, and
+// the rally goes on.
+void case_wan_tls(const Env &env) {
+  Wan n;
+  if (!wan_rig(env, Guard::tls, &n)) return;
+  std::string err;
+  const std::string other = path(env, "other-ca");
+  CHECK_EQ(run_to_end(env, {"/bin/bash", env.source + "/server/security/certs.sh", other, "1"}, "other-ca", &err), 0);
+  const double from = realtime_now();
+  std::vector<std::string> stranger = {"--participant-profile", "tcp_client", "--tcp-peers",
+                                       n.hosts.address("s") + ":" + n.port, "--match", "0", "--player", "0",
+                                       "--duration", "6"};
+  Process none = on(env, n, "x", "stranger-plain", "ball-bot", stranger);
+  usleep(1000000);
+  stranger.insert(stranger.end(), {"--tls", other, "--identity", "m0-a"});
+  Process foreign = on(env, n, "x", "stranger-other-ca", "ball-bot", stranger);
+  Process raw = Process::start(n.hosts.on("x", {env.python, env.source + "/tests/server/wan_stranger.py",
+                                                n.hosts.address("s"), n.port, env.dom()}),
+                               path(env, "stranger-raw.out"), path(env, "stranger-raw.err"));
+  CHECK_EQ(raw.wait(30.0), 0);
+  none.wait(15.0);
+  foreign.wait(15.0);
+  json attack = json::parse(file_text(path(env, "stranger-raw.out")), nullptr, false);
+  CHECK_MSG(attack.is_object(), "wan_stranger.py wrote no JSON: %s", file_text(path(env, "stranger-raw.err")).c_str());
+  if (attack.is_object()) {
+    note("the stranger's raw tries: %s", attack.dump().c_str());
+    CHECK(!attack["plain"]["rtps_back"].get<bool>());
+    CHECK(!attack["tls"]["rtps_back"].get<bool>());
+  }
+  for (const char *who : {"stranger-plain", "stranger-other-ca"}) {
+    std::string out = file_text(path(env, std::string(who) + ".out")) + file_text(path(env, std::string(who) + ".err"));
+    CHECK_MSG(out.find("holds match") == std::string::npos, "%s got a slot: %s", who, out.c_str());
+  }
+  double last = 0.0;
+  int hits = hits_within(*n.t, from, 4, 20.0, &last);
+  note("over TLS: %d hits in play after the stranger began", hits);
+  CHECK(hits >= 4);
+  // the server's host has no UDP socket at all (ss in its namespace)
+  Process ss = Process::start(n.hosts.on("s", {"ss", "-Huan"}), path(env, "ss-udp.out"), path(env, "ss-udp.err"));
+  ss.wait(5.0);
+  CHECK_MSG(file_text(path(env, "ss-udp.out")).empty(), "UDP sockets on the server's host: %s",
+            file_text(path(env, "ss-udp.out")).c_str());
+  wan_end(n);
+}
+
+// The same layout on UDP (a Discovery Server on the server's host, the
+// profile that needs no multicast): the clients' announcements give their
+// private addresses, which the server cannot reach, so that the watcher
+// never matches the server and no bot gets a slot.
+void case_wan_udp(const Env &env) {
+  Wan n;
+  n.hosts.add_home("r", {"p", "q", "w", "x"});
+  CHECK_MSG(n.hosts.ok(), "the hosts' namespaces: %s", n.hosts.error().c_str());
+  if (!n.hosts.ok()) return;
+  const std::string ds = n.hosts.address("s") + ":11811";
+  DiscoveryServer discovery;
+  discovery.p = Process::start(n.hosts.on("s", {env.fastdds, "discovery", "-x", "discovery_server@" + find_profile(""),
+                                                "-l", n.hosts.address("s"), "-p", "11811"}),
+                               path(env, "ds.out"), path(env, "ds.err"));
+  const std::vector<std::string> udp = {"--participant-profile", "discovery_client", "--discovery-server", ds};
+  auto with = [&](std::vector<std::string> a) {
+    a.insert(a.begin() + 1, udp.begin(), udp.end());
+    return a;
+  };
+  Server server(Process::start(
+      n.hosts.on("s", with({env.bin + "/ball-server", "--domain", env.dom(), "--matches", "1", "--startup-wait", "0",
+                            "--duration", "60"})),
+      path(env, "server.out"), path(env, "server.err")));
+  // (the server reaches the Discovery Server on its own host: a watcher there sees it)
+  Process here = Process::start(
+      n.hosts.on("s", with({env.bin + "/ball-watch", "--domain", env.dom(), "--no-log", "--duration", "60",
+                            "--record", path(env, "here.jsonl")})),
+      path(env, "here.out"), path(env, "here.err"));
+  Process w = Process::start(
+      n.hosts.on("w", with({env.bin + "/ball-watch", "--domain", env.dom(), "--no-log", "--duration", "60",
+                            "--record", path(env, "watch.jsonl")})),
+      path(env, "watch.out"), path(env, "watch.err"));
+  Process bot = Process::start(
+      n.hosts.on("p", with({env.bin + "/ball-bot", "--domain", env.dom(), "--match", "0", "--duration", "15"})),
+      path(env, "bot.out"), path(env, "bot.err"));
+  Tail t_here(path(env, "here.jsonl"));
+  bool seen_here = !wait_for(t_here, 15.0, [](const json &j) { return is_type(j, "match_info"); }).is_null();
+  bot.wait(25.0);
+  Tail t(path(env, "watch.jsonl"));
+  t.poll();
+  size_t infos = count(t.lines, [](const json &j) { return is_type(j, "match_info"); });
+  std::string bot_out = file_text(path(env, "bot.out")) + file_text(path(env, "bot.err"));
+  note("UDP through the NAT: a watcher on the server's host saw the match: %s; behind the NAT: %zu MatchInfos, the "
+       "bot %s a slot",
+       seen_here ? "yes" : "no", infos, bot_out.find("holds match") != std::string::npos ? "got" : "got no");
+  CHECK(seen_here);
+  CHECK_EQ(infos, 0u);
+  CHECK(bot_out.find("holds match") == std::string::npos);
+  here.stop(5.0);
+  w.stop(5.0);
+}
+
+// The link of a player (host p) cut for 3 s, then back: the player's
+// connection comes back by itself; the match pauses (vanished) and resumes
+// by its rules; a watcher on p's own host loses no segment or event and gets
+// none twice (check_stream), and what the watcher on w saw breaks nothing.
+void case_wan_link_cut(const Env &env) {
+  Wan n;
+  if (!wan_rig(env, Guard::none, &n)) return;
+  Process wp = on(env, n, "p", "watch_p", "ball-watch",
+                  client(n, "watch", {"--no-log", "--duration", "60", "--record", path(env, "watch_p.jsonl")}));
+  Tail tp(path(env, "watch_p.jsonl"));
+  CHECK(!wait_for(tp, 20.0, [](const json &j) { return is_type(j, "match_info"); }).is_null());
+  usleep(2000000);
+  const double cut = realtime_now();
+  CHECK(n.hosts.cut("p"));
+  usleep(3000000);
+  CHECK(n.hosts.heal("p"));
+  const double healed = realtime_now();
+  size_t from = 0;
+  json pause = wait_for(*n.t, 5.0, [&](const json &j) {
+    return is_event(j, EventKind::pause) && j.get<EventOut>().reason == Reason::pause_vanished && recv(j) > cut;
+  }, &from);
+  CHECK_MSG(!pause.is_null(), "no PAUSE_VANISHED after the cut");
+  json resume = wait_for(*n.t, 15.0, [](const json &j) { return is_event(j, EventKind::resume); }, &from);
+  CHECK_MSG(!resume.is_null(), "no RESUME within 15 s of the pause");
+  double last = 0.0;
+  int hits = hits_within(*n.t, healed, 4, 25.0, &last);
+  usleep(2000000);
+  wp.stop(5.0);
+  tp.poll();
+  std::map<uint32_t, Seen> seen = by_match(tp.lines);
+  int bounces = check_stream(0, seen[0]);
+  check_history(tp.lines);
+  size_t before = 0, after = 0;
+  for (double r : seen[0].segment_recv) (r < cut ? before : after) += r < cut || r > healed;
+  CHECK_MSG(before >= 3 && after >= 3, "the cut host's watcher got %zu segments before the cut, %zu after the heal",
+            before, after);
+  note("a player's link cut for 3 s: paused %.1f s after the cut, resumed %.1f s after the heal, %d hits after; the "
+       "cut host's watcher got %zu segments and %zu events, %d bounces checked",
+       pause.is_null() ? -1.0 : recv(pause) - cut, resume.is_null() ? -1.0 : recv(resume) - healed, hits,
+       seen[0].segments.size(), seen[0].events.size(), bounces);
+  CHECK(hits >= 4);
+  wan_end(n);  // (the bots' output is whole once they ended)
+  std::string bot = file_text(path(env, "botp.out")) + file_text(path(env, "botp.err"));
+  size_t holds = 0;
+  for (size_t at = bot.find("holds match"); at != std::string::npos; at = bot.find("holds match", at + 1)) holds++;
+  CHECK_MSG(holds == 1u, "the player on p took a slot %zu times (it should have kept its one)", holds);
+}
+
+}  // namespace
+
+TEST(wan_tcp) { itest::in_case(case_wan_tcp); }
+TEST(wan_secure) { itest::in_case(case_wan_secure); }
+TEST(wan_tls) { itest::in_case(case_wan_tls); }
+TEST(wan_udp) { itest::in_case(case_wan_udp); }
+TEST(wan_link_cut) { itest::in_case(case_wan_link_cut); }
