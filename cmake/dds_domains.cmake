@@ -38,6 +38,8 @@ set(BALL_DDS_DOMAINS
   "dds_wan_secure|151|test: the same under DDS Security"
   "dds_wan_tls|152|test: the same over TLS, a stranger beside the players refused: no slot, no RTPS byte back, no UDP port"
   "dds_wan_udp|153|test: the same layout on UDP with a Discovery Server does not connect through the NAT"
+  "dds_wan_failover|155|test: the primary killed over TCP, players behind the NAT: the standby on another host takes the match over, the rally goes on"
+  "dds_wan_public_address|156|test: a server behind its data centre's port forward: announcing its own address nobody matches it, announcing the router's the players behind their NAT play"
   "dds_wan_link_cut|154|test: a player's link behind the NAT cut for 3 s: it comes back by itself, the match pauses and resumes, nothing lost or repeated"
   "dds_key_flood|113|test: a stranger floods a player's own keys: the player never vanishes"
   "dds_create_expires|114|test: a created match nobody joins goes, its MatchInfo disposed"

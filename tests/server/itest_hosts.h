@@ -19,6 +19,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <filesystem>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -38,31 +39,40 @@ class Hosts {
             ip({"-n", ns(names_[i]), "route", "add", "224.0.0.0/4", "dev", "eth0"});
   }
   // A home router on the switch (a host like the others, named `router`)
-  // and hosts behind it on its own LAN, 192.168.7.0/24 (a bridge in the
-  // router, its address .1), whose only way out is the router's NAT
-  // (nftables masquerade on its eth0); from outside it forwards nothing
-  // into the LAN but the replies of connections made from inside, as home
-  // routers do. Needs nftables' nft (./run setup).
-  bool add_home(const std::string &router, const std::vector<std::string> &home) {
+  // and hosts behind it on its own LAN, 192.168.N.0/24 (N = 7 for the first
+  // router, 8 for the next...; a bridge in the router, its address .1),
+  // whose only way out is the router's NAT (nftables masquerade on its
+  // eth0); from outside it forwards nothing into the LAN but the replies of
+  // connections made from inside, as home routers do, and, with `forward`
+  // (a TCP port and a host of its LAN), the connections to that port, to
+  // that host (dnat), as a data centre's router does. Needs nftables' nft
+  // (./run setup).
+  bool add_home(const std::string &router, const std::vector<std::string> &home, int forward = 0,
+                const std::string &to = "") {
     names_.push_back(router);
-    router_ = router;
+    routers_.push_back(router);
     const std::string r = ns(router);
+    const std::string lan = "192.168." + std::to_string(6 + routers_.size()) + ".";
+    std::string rules =
+        "add table ip home; "
+        "add chain ip home nat { type nat hook postrouting priority srcnat; }; "
+        "add rule ip home nat oifname eth0 masquerade; "
+        "add chain ip home in { type filter hook forward priority filter; policy drop; }; "
+        "add rule ip home in ct state established,related accept; "
+        "add rule ip home in iifname br1 accept";
+    for (size_t i = 0; i < home.size(); ++i) lans_[home[i]] = {routers_.size() - 1, i};
+    if (forward)
+      rules += "; add chain ip home pre { type nat hook prerouting priority dstnat; }; "
+               "add rule ip home pre iifname eth0 tcp dport " + std::to_string(forward) + " dnat to " +
+               address(to) + "; add rule ip home in iifname eth0 ct status dnat accept";
     ok_ = ok_ && attach(router, "switch", "br0", "p" + std::to_string(names_.size() - 1), address(router)) &&
           ip({"-n", r, "link", "add", "br1", "type", "bridge"}) && ip({"-n", r, "link", "set", "br1", "up"}) &&
-          ip({"-n", r, "addr", "add", "192.168.7.1/24", "dev", "br1"}) &&
-          run(on(router, {"sysctl", "-q", "-w", "net.ipv4.ip_forward=1"})) &&
-          run(on(router, {nft_path(),
-                          "add table ip home; "
-                          "add chain ip home nat { type nat hook postrouting priority srcnat; }; "
-                          "add rule ip home nat oifname eth0 masquerade; "
-                          "add chain ip home in { type filter hook forward priority filter; policy drop; }; "
-                          "add rule ip home in ct state established,related accept; "
-                          "add rule ip home in iifname br1 accept"}));
+          ip({"-n", r, "addr", "add", lan + "1/24", "dev", "br1"}) &&
+          run(on(router, {"sysctl", "-q", "-w", "net.ipv4.ip_forward=1"})) && run(on(router, {nft_path(), rules}));
     for (const std::string &h : home) {
       names_.push_back(h);
-      home_.push_back(h);
-      ok_ = ok_ && attach(h, router, "br1", "h" + std::to_string(home_.size()), address(h)) &&
-            ip({"-n", ns(h), "route", "add", "default", "via", "192.168.7.1"});
+      ok_ = ok_ && attach(h, router, "br1", port(h), address(h)) &&
+            ip({"-n", ns(h), "route", "add", "default", "via", lan + "1"});
     }
     return ok_;
   }
@@ -80,10 +90,11 @@ class Hosts {
     argv.insert(argv.begin(), {ip_path(), "netns", "exec", ns(h)});
     return argv;
   }
-  // a host's address: 10.77.0.N on the switch, 192.168.7.N behind a home router
+  // a host's address: 10.77.0.N on the switch, 192.168.7.N behind the first home router
   std::string address(const std::string &h) const {
-    for (size_t i = 0; i < home_.size(); ++i)
-      if (home_[i] == h) return "192.168.7." + std::to_string(i + 2);
+    auto it = lans_.find(h);
+    if (it != lans_.end())
+      return "192.168." + std::to_string(7 + it->second.first) + "." + std::to_string(it->second.second + 2);
     return "10.77.0." + std::to_string(index(h) + 1);
   }
   // host h's link to its switch or home router down (cut) or up again (heal)
@@ -100,12 +111,14 @@ class Hosts {
     while (i < names_.size() && names_[i] != h) ++i;
     return i;
   }
-  bool at_home(const std::string &h) const { return std::find(home_.begin(), home_.end(), h) != home_.end(); }
   std::string port(const std::string &h) const {
-    if (!at_home(h)) return "p" + std::to_string(index(h));
-    return "h" + std::to_string(std::find(home_.begin(), home_.end(), h) - home_.begin() + 1);
+    auto it = lans_.find(h);
+    return it == lans_.end() ? "p" + std::to_string(index(h)) : "h" + std::to_string(it->second.second + 1);
   }
-  std::string port_ns(const std::string &h) const { return ns(at_home(h) ? router_ : "switch"); }
+  std::string port_ns(const std::string &h) const {
+    auto it = lans_.find(h);
+    return ns(it == lans_.end() ? "switch" : routers_[it->second.first]);
+  }
   bool isolate(const std::string &h, const char *on) {
     return ip({"-n", ns("switch"), "link", "set", port(h), "type", "bridge_slave", "isolated", on});
   }
@@ -154,8 +167,8 @@ class Hosts {
   }
 
   std::vector<std::string> names_;
-  std::vector<std::string> home_;  // behind the home router
-  std::string router_;
+  std::vector<std::string> routers_;                            // the home routers, in order
+  std::map<std::string, std::pair<size_t, size_t>> lans_;  // a LAN host: (its router, its place there)
   bool ok_ = false;
   std::string error_;
 };

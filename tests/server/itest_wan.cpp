@@ -18,12 +18,20 @@ using namespace itest;
 
 enum class Guard { none, dds_security, tls };
 
+// The case's hosts and programs. The server (server 1) runs on `server_host`
+// and a standby (server 2), if `standby_host` is set, on that host; the
+// clients connect to `peers` (by default the server's address).
 struct Wan {
-  Hosts hosts{{"s"}};
-  std::string port;                    // the server's TCP port
+  explicit Wan(const Env &env, std::vector<std::string> public_hosts = {"s"})
+      : hosts(std::move(public_hosts)), port(std::to_string(20000 + env.domain)) {}
+  Hosts hosts;
+  std::string port;                    // the servers' TCP port
+  std::string server_host = "s", standby_host;
+  std::string peers;                   // the clients' --tcp-peers ("": the server's address)
+  std::vector<std::string> server_extra;
   std::vector<std::string> security;   // a client's certificate options but --identity
   std::string certs;
-  Process server, w, p, q;
+  Process server, standby, w, p, q;
   std::unique_ptr<Tail> t;
 };
 
@@ -37,7 +45,7 @@ Process on(const Env &env, const Wan &n, const char *h, const std::string &who, 
 // A client's options on the TCP profile toward the server, as identity `who`.
 std::vector<std::string> client(const Wan &n, const std::string &who, std::vector<std::string> more) {
   std::vector<std::string> a = {"--participant-profile", "tcp_client", "--tcp-peers",
-                                n.hosts.address("s") + ":" + n.port};
+                                n.peers.empty() ? n.hosts.address(n.server_host) + ":" + n.port : n.peers};
   a.insert(a.end(), n.security.begin(), n.security.end());
   if (!n.security.empty()) a.insert(a.end(), {"--identity", who});
   a.insert(a.end(), more.begin(), more.end());
@@ -50,7 +58,6 @@ bool wan_rig(const Env &env, Guard guard, Wan *n) {
   n->hosts.add_home("r", {"p", "q", "w", "x"});
   CHECK_MSG(n->hosts.ok(), "the hosts' namespaces: %s", n->hosts.error().c_str());
   if (!n->hosts.ok()) return false;
-  n->port = std::to_string(20000 + env.domain);
   if (guard != Guard::none) {
     n->certs = path(env, "certs");
     std::string err;
@@ -60,10 +67,18 @@ bool wan_rig(const Env &env, Guard guard, Wan *n) {
   std::vector<std::string> s = {"--participant-profile", "tcp_server", "--tcp-listen", n->port, "--server-id", "1",
                                 "--matches", "1", "--startup-wait", "0", "--duration", "120", "--state-rate", "10",
                                 "--stats-json", path(env, "server.json")};
+  s.insert(s.end(), n->server_extra.begin(), n->server_extra.end());
   s.insert(s.end(), n->security.begin(), n->security.end());
   if (!n->security.empty()) s.insert(s.end(), {"--identity", "server1"});
-  n->server = on(env, *n, "s", "server", "ball-server", s);
+  n->server = on(env, *n, n->server_host.c_str(), "server", "ball-server", s);
   usleep(500000);
+  if (!n->standby_host.empty()) {
+    n->standby = on(env, *n, n->standby_host.c_str(), "standby", "ball-server",
+                    {"--participant-profile", "tcp_server", "--tcp-listen", n->port, "--server-id", "2", "--standby",
+                     "--startup-wait", "0.5", "--duration", "120", "--state-rate", "10", "--tcp-peers",
+                     n->hosts.address(n->server_host) + ":" + n->port, "--stats-json", path(env, "standby.json")});
+    usleep(1500000);
+  }
   n->w = on(env, *n, "w", "watch", "ball-watch",
             client(*n, "watch", {"--no-log", "--duration", "120", "--record", path(env, "watch.jsonl")}));
   n->t = std::make_unique<Tail>(path(env, "watch.jsonl"));
@@ -111,15 +126,18 @@ void wan_end(Wan &n) {
   for (Process *c : {&n.p, &n.q, &n.w}) c->stop(5.0);
   n.t->poll();
   check_history(n.t->lines);
-  int rc = n.server.stop(5.0);
-  CHECK_MSG(rc == 0, "the server's exit status on SIGTERM: %d", rc);
+  for (Process *s : {&n.standby, &n.server})
+    if (s->running()) {
+      int rc = s->stop(5.0);
+      CHECK_MSG(rc == 0, "a server's exit status on SIGTERM: %d", rc);
+    }
 }
 
 // A match through the NAT: every connection the server has comes from the
 // router's address (the players' own are private), and what the watcher
 // saw breaks nothing.
 void wan_plays(const Env &env, Guard guard) {
-  Wan n;
+  Wan n(env);
   if (!wan_rig(env, guard, &n)) return;
   std::vector<std::string> peers = server_peers(env, n);
   size_t from_router = count_if(peers.begin(), peers.end(), [&](const std::string &a) { return a == n.hosts.address("r"); });
@@ -138,7 +156,7 @@ void case_wan_secure(const Env &env) { wan_plays(env, Guard::dds_security); }
 // none gets a slot or a byte of RTPS back, the server has no UDP port, and
 // the rally goes on.
 void case_wan_tls(const Env &env) {
-  Wan n;
+  Wan n(env);
   if (!wan_rig(env, Guard::tls, &n)) return;
   std::string err;
   const std::string other = path(env, "other-ca");
@@ -185,7 +203,7 @@ void case_wan_tls(const Env &env) {
 // private addresses, which the server cannot reach, so that the watcher
 // never matches the server and no bot gets a slot.
 void case_wan_udp(const Env &env) {
-  Wan n;
+  Wan n(env);
   n.hosts.add_home("r", {"p", "q", "w", "x"});
   CHECK_MSG(n.hosts.ok(), "the hosts' namespaces: %s", n.hosts.error().c_str());
   if (!n.hosts.ok()) return;
@@ -237,7 +255,7 @@ void case_wan_udp(const Env &env) {
 // by its rules; a watcher on p's own host loses no segment or event and gets
 // none twice (check_stream), and what the watcher on w saw breaks nothing.
 void case_wan_link_cut(const Env &env) {
-  Wan n;
+  Wan n(env);
   if (!wan_rig(env, Guard::none, &n)) return;
   Process wp = on(env, n, "p", "watch_p", "ball-watch",
                   client(n, "watch", {"--no-log", "--duration", "60", "--record", path(env, "watch_p.jsonl")}));
@@ -280,6 +298,66 @@ void case_wan_link_cut(const Env &env) {
   CHECK_MSG(holds == 1u, "the player on p took a slot %zu times (it should have kept its one)", holds);
 }
 
+// A primary on host a and a standby on host b, both on public addresses,
+// the clients behind the home router listing both: the primary killed
+// (SIGKILL) mid-rally, the standby takes the match over and the rally goes
+// on, over TCP as on UDP (docs/server.md, "Several servers and failover").
+void case_wan_failover(const Env &env) {
+  Wan n(env, {"a", "b"});
+  n.server_host = "a";
+  n.standby_host = "b";
+  n.peers = n.hosts.address("a") + ":" + n.port + ";" + n.hosts.address("b") + ":" + n.port;
+  if (!wan_rig(env, Guard::none, &n)) return;
+  const double killed = realtime_now();
+  n.server.signal(SIGKILL);
+  n.server.wait(2.0);
+  json taken = wait_for(*n.t, 10.0, [&](const json &j) {
+    return is_type(j, "match_info") && j.get<MatchInfoOut>().server_id == 2 && recv(j) > killed;
+  });
+  CHECK_MSG(!taken.is_null(), "no MatchInfo of the standby within 10 s of the kill");
+  double last = 0.0;
+  int hits = hits_within(*n.t, killed, 4, 25.0, &last);
+  wan_end(n);
+  ServerReport s = report(env, "standby");
+  note("over TCP through the NAT: the standby's MatchInfo %.2f s after the kill, %d hits after, %llu take-overs",
+       taken.is_null() ? -1.0 : recv(taken) - killed, hits, static_cast<unsigned long long>(s.takeovers));
+  CHECK(hits >= 4);
+  CHECK_EQ(s.takeovers, 1u);
+}
+
+// The server in a data centre whose router forwards the port to the
+// server's private address (dnat): announcing the router's address
+// (--tcp-public-address), the players behind their own router play;
+// announcing its own, a watcher there never matches it (it is told to
+// reach the server at an address it cannot reach).
+void case_wan_public_address(const Env &env) {
+  for (bool announce : {false, true}) {
+    Wan n(env, {});
+    n.hosts.add_home("dc", {"d"}, std::stoi(n.port), "d");
+    n.server_host = "d";
+    n.peers = n.hosts.address("dc") + ":" + n.port;
+    if (announce) {
+      n.server_extra = {"--tcp-public-address", n.hosts.address("dc")};
+      if (wan_rig(env, Guard::none, &n)) note("announcing %s: the match rallies", n.hosts.address("dc").c_str());
+      wan_end(n);
+      continue;
+    }
+    n.hosts.add_home("r", {"p", "q", "w", "x"});
+    CHECK_MSG(n.hosts.ok(), "the hosts' namespaces: %s", n.hosts.error().c_str());
+    Server server(on(env, n, "d", "unannounced", "ball-server",
+                     {"--participant-profile", "tcp_server", "--tcp-listen", n.port, "--matches", "1",
+                      "--startup-wait", "0", "--duration", "60"}));
+    Process w = on(env, n, "w", "unannounced-watch", "ball-watch",
+                   client(n, "watch", {"--no-log", "--duration", "60", "--record", path(env, "unannounced.jsonl")}));
+    Tail t(path(env, "unannounced.jsonl"));
+    json ready = wait_for(t, 12.0, [](const json &j) { return is_type(j, "ready"); });
+    note("announcing its own address %s: the watcher %s", n.hosts.address("d").c_str(),
+         ready.is_null() ? "never matched the server in 12 s" : "matched it");
+    CHECK(ready.is_null());
+    w.stop(5.0);
+  }
+}
+
 }  // namespace
 
 TEST(wan_tcp) { itest::in_case(case_wan_tcp); }
@@ -287,3 +365,5 @@ TEST(wan_secure) { itest::in_case(case_wan_secure); }
 TEST(wan_tls) { itest::in_case(case_wan_tls); }
 TEST(wan_udp) { itest::in_case(case_wan_udp); }
 TEST(wan_link_cut) { itest::in_case(case_wan_link_cut); }
+TEST(wan_failover) { itest::in_case(case_wan_failover); }
+TEST(wan_public_address) { itest::in_case(case_wan_public_address); }
