@@ -6,6 +6,9 @@
 // back by itself. Network namespaces the case makes and removes
 // (itest_hosts.h): server host s (10.77.0.1), router r (10.77.0.2), behind
 // it p and q (the players), w (a watcher) and x (a stranger).
+#include <cstdlib>
+#include <functional>
+
 #include "itest_checks.h"
 #include "itest_hosts.h"
 #include "itest_kit.h"
@@ -30,7 +33,9 @@ struct Wan {
   std::string peers;                   // the clients' --tcp-peers ("": the server's address)
   std::vector<std::string> server_extra;
   std::vector<std::string> security;   // a client's certificate options but --identity
+  std::vector<std::string> watch_extra;
   std::string certs;
+  std::function<void(Wan *)> before_clients;  // run once the servers are up
   Process server, standby, w, p, q;
   std::unique_ptr<Tail> t;
 };
@@ -79,8 +84,10 @@ bool wan_rig(const Env &env, Guard guard, Wan *n) {
                      n->hosts.address(n->server_host) + ":" + n->port, "--stats-json", path(env, "standby.json")});
     usleep(1500000);
   }
-  n->w = on(env, *n, "w", "watch", "ball-watch",
-            client(*n, "watch", {"--no-log", "--duration", "120", "--record", path(env, "watch.jsonl")}));
+  if (n->before_clients) n->before_clients(n);
+  std::vector<std::string> watch = {"--no-log", "--duration", "120", "--record", path(env, "watch.jsonl")};
+  watch.insert(watch.end(), n->watch_extra.begin(), n->watch_extra.end());
+  n->w = on(env, *n, "w", "watch", "ball-watch", client(*n, "watch", watch));
   n->t = std::make_unique<Tail>(path(env, "watch.jsonl"));
   CHECK_MSG(!wait_for(*n->t, 20.0, [](const json &j) { return is_type(j, "ready"); }).is_null(),
             "the watcher behind the NAT did not match the server within 20 s");
@@ -358,6 +365,124 @@ void case_wan_public_address(const Env &env) {
   }
 }
 
+// One match through the test's relay (tests/support/delay_relay.py) on the
+// home router, between the players' LAN and the server, delaying each
+// direction by `delay` s one way with jitter of a fifth of that; the
+// players' own connections to the server are dropped by the router, so
+// that everything goes through it (the server announces the relay's
+// address). Its figures as a JSON row, the hits in play of the 30 s from
+// the first serve in *hits; null after a failed check.
+json delay_run(const Env &env, double delay, std::vector<EventOut> *hits) {
+  const double jitter = delay / 5.0;
+  Wan n(env);
+  const std::string relay_at = "192.168.7.1:" + n.port;  // the router's LAN address (itest_hosts.h)
+  n.peers = relay_at;
+  n.server_extra = {"--tcp-public-address", "192.168.7.1"};
+  const std::string summary = path(env, "watch.json"), relay_stats = path(env, "relay.json");
+  for (const std::string &f : {summary, relay_stats, path(env, "watch.jsonl"), path(env, "server.json")})
+    std::remove(f.c_str());  // (the run before's)
+  n.watch_extra = {"--summary-json", summary};
+  Process relay;
+  n.before_clients = [&](Wan *w) {
+    Process drop = Process::start(
+        w->hosts.on("r", {"/usr/sbin/nft", "insert rule ip home in iifname br1 tcp dport " + w->port + " drop"}),
+        path(env, "nft.out"), path(env, "nft.err"));
+    CHECK_EQ(drop.wait(5.0), 0);
+    char d[32], j[32];
+    std::snprintf(d, sizeof d, "%.4f", delay);
+    std::snprintf(j, sizeof j, "%.4f", jitter);
+    relay = Process::start(w->hosts.on("r", {env.python, env.source + "/tests/support/delay_relay.py", "--listen",
+                                             relay_at, "--to", w->hosts.address("s") + ":" + w->port, "--delay", d,
+                                             "--jitter", j, "--stats", relay_stats}),
+                           path(env, "relay.out"), path(env, "relay.err"));
+    double end = mono_now() + 10.0;
+    while (file_text(path(env, "relay.out")).find("listening") == std::string::npos && mono_now() < end)
+      usleep(50000);
+  };
+  if (!wan_rig(env, Guard::none, &n)) return json();
+  double t0 = first_serve(*n.t), last = 0.0;
+  if (t0 >= 0.0) hits_within(*n.t, t0, 1000, 30.0, &last);
+  wan_end(n);
+  CHECK_EQ(relay.stop(5.0), 0);
+  for (const json &j : n.t->lines)
+    if (is_hit(j) && recv(j) <= t0 + 30.0) hits->push_back(j.get<EventOut>());
+  ServerReport r = report(env, "server");
+  uint64_t rewinds = 0, tested = 0;
+  for (const auto &m : r.matches) rewinds += m.counters.rewinds, tested += m.counters.late_tested;
+  WatchSummary w;
+  json rs = json::parse(file_text(relay_stats), nullptr, false);
+  CHECK_MSG(rs.is_object(), "no relay stats: %s", file_text(path(env, "relay.err")).c_str());
+  if (!read_summary(summary, &w) || !rs.is_object() || w.matches.empty()) return json();
+  const double up = rs["up"]["delay_mean"].get<double>(), down = rs["down"]["delay_mean"].get<double>();
+  note("%.0f ms one way (jitter %.0f ms; the relay's mean %.0f up, %.0f down): %zu hits in 30 s, %llu late samples "
+       "tested, %llu rewinds, desync %.3g m; sample-to-segment p50 %.0f ms at the server, %.0f ms at the watcher; "
+       "bounces %llu ahead, %llu late",
+       delay * 1e3, jitter * 1e3, up * 1e3, down * 1e3, hits->size(), (unsigned long long)tested,
+       (unsigned long long)rewinds, w.matches[0].max_error, w.latency_server_p50 * 1e3, w.latency_p50 * 1e3,
+       (unsigned long long)w.bounces_ahead, (unsigned long long)w.bounces_late);
+  CHECK(rs["connections"].get<int>() >= 3);
+  CHECK(up >= delay && down >= delay);
+  CHECK_MSG(hits->size() >= 6u, "%zu hits in 30 s", hits->size());
+  CHECK(w.matches[0].max_error <= 1e-9);
+  return {{"delay", delay},
+          {"jitter", jitter},
+          {"relay_up_mean", up},
+          {"relay_down_mean", down},
+          {"hits_30s", hits->size()},
+          {"rewinds", rewinds},
+          {"late_tested", tested},
+          {"desync", w.matches[0].max_error},
+          {"sample_to_segment_server_p50", w.latency_server_p50},
+          {"sample_to_segment_server_p99", w.latency_server_p99},
+          {"sample_to_segment_watcher_p50", w.latency_p50},
+          {"sample_to_segment_watcher_p99", w.latency_p99},
+          {"bounces_ahead", w.bounces_ahead},
+          {"bounces_late", w.bounces_late},
+          {"bounce_lead_p50", w.bounce_lead_p50}};
+}
+
+// Real delay ($BALL_WAN_DELAY s one way, default 0.15): the match behind
+// it and the same match (the same bots, the same seeds) at 0 ms. It
+// rallies, the watcher's ball is the server's (desync 0), and every hit is
+// judged as at 0 ms: the same racket hits each ball, within one sample
+// interval of the bots (1/30 s) and a frame of the same sim time, 0.25 m of
+// the same point, 0.5 m/s of the same return. (Two runs at 0 ms differ by as
+// much as a few ms and cm: the bots sample on their own clocks.) The row
+// goes to wan_delay.json in the work folder (`./run bench-wan` gathers
+// them).
+void case_wan_delay(const Env &env) {
+  const char *given = std::getenv("BALL_WAN_DELAY");
+  const double delay = given ? std::atof(given) : 0.15;
+  std::vector<EventOut> at0, behind;
+  json base = delay_run(env, 0.0, &at0);
+  json row = delay_run(env, delay, &behind);
+  if (base.is_null() || row.is_null()) return;
+  const size_t n = std::min(at0.size(), behind.size());
+  size_t same_racket = 0;
+  double dt = 0.0, dp = 0.0, dv = 0.0;
+  for (size_t k = 0; k < n; ++k) {
+    same_racket += at0[k].index == behind[k].index;
+    dt = std::max(dt, std::fabs(at0[k].time - behind[k].time));
+    dp = std::max(dp, ball_v3_norm(ball_v3_sub(at0[k].point, behind[k].point)));
+    dv = std::max(dv, ball_v3_norm(ball_v3_sub(at0[k].velocity_out, behind[k].velocity_out)));
+  }
+  row["hits_compared"] = n;
+  row["same_racket"] = same_racket;
+  row["max_time_difference"] = dt;
+  row["max_point_difference"] = dp;
+  row["max_return_difference"] = dv;
+  std::ofstream(path(env, "wan_delay.json")) << row.dump() << "\n";
+  note("behind %.0f ms against 0 ms: %zu hits compared, %zu by the same racket; the largest difference %.3g s in "
+       "time, %.3g m in the point, %.3g m/s in the return",
+       delay * 1e3, n, same_racket, dt, dp, dv);
+  CHECK(n >= 6u);
+  CHECK(at0.size() <= behind.size() + 1 && behind.size() <= at0.size() + 1);
+  CHECK_EQ(same_racket, n);
+  CHECK(dt <= 1.0 / 30.0 + 1.0 / 60.0);
+  CHECK(dp <= 0.25);
+  CHECK(dv <= 0.5);
+}
+
 }  // namespace
 
 TEST(wan_tcp) { itest::in_case(case_wan_tcp); }
@@ -367,3 +492,4 @@ TEST(wan_udp) { itest::in_case(case_wan_udp); }
 TEST(wan_link_cut) { itest::in_case(case_wan_link_cut); }
 TEST(wan_failover) { itest::in_case(case_wan_failover); }
 TEST(wan_public_address) { itest::in_case(case_wan_public_address); }
+TEST(wan_delay) { itest::in_case(case_wan_delay); }
