@@ -13,7 +13,7 @@ set ylabel "ms"
 unset logscale
 set format y "%g"
 set yrange [0:*]
-set key top left
+set key center right
 plot f using 1:2 with linespoints ls 1 title "racket sample written -> its hit's segment written by the server (p50)", \
      f using 1:3 with linespoints ls 2 title "the same, p99", \
      f using 1:4 with linespoints ls 3 title "racket sample written -> the segment received by the watcher (p50)", \
