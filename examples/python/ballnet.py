@@ -169,7 +169,9 @@ class Config(_Struct):  # ball_net_config
                 ("link_loss", ctypes.c_double),
                 ("link_seed", ctypes.c_uint64),
                 ("rackets", ctypes.c_int),
-                ("server_status", ctypes.c_int)]
+                ("server_status", ctypes.c_int),
+                ("tcp_peers", ctypes.c_char_p),
+                ("tls_dir", ctypes.c_char_p)]
 
 
 class Slot(_Struct):  # ball_net_slot
@@ -351,7 +353,7 @@ class Client:
 
     Keyword arguments are ball_net_config's fields (participant, discovery_servers, qos_file,
     security_dir, identity, servers, name, max_matches, ball_states, rackets, server_status, link_delay,
-    link_jitter, link_loss, link_seed); None keeps the default. Error when
+    link_jitter, link_loss, link_seed, tcp_peers, tls_dir); None keeps the default. Error when
     the library refuses (a field out of range, a domain whose ports are taken, ...).
     A context manager: leaving the block closes it. Every call on a closed client raises
     Error with status BALL_ECLOSED; close() itself may be called again.
@@ -365,7 +367,7 @@ class Client:
             numbers = ("max_matches", "ball_states", "rackets", "server_status", "link_delay", "link_jitter",
                        "link_loss", "link_seed")
             if key not in ("participant", "discovery_servers", "qos_file", "security_dir", "identity",
-                           "servers", "name") + numbers:
+                           "servers", "name", "tcp_peers", "tls_dir") + numbers:
                 raise TypeError("Client() got an unexpected keyword argument %r" % key)
             if value is not None:
                 setattr(c, key, value if key in numbers else _text(value))

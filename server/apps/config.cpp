@@ -191,8 +191,8 @@ const std::vector<Field<ServerConfig>> &server_fields() {
       {"tcp_peers", &C::tcp_peers, {}, "",
        "with `tcp_server`: the other servers to connect to, `HOST:PORT[;HOST:PORT...]` (docs/deploy.md)", nullptr,
        "none"},
-      {"tcp_listen", &C::tcp_listen, whole(1, 65535), "", "with `tcp_server`: the TCP port it listens on", nullptr,
-       "7400"},
+      {"tcp_listen", &C::tcp_listen, whole(0, 65535), "", "with `tcp_server`: the TCP port it listens on; 0: the "
+       "profile's", nullptr, "0 (7400)"},
       {"tcp_public_address", &C::tcp_public, {}, "",
        "with `tcp_server` behind a router that forwards its port: the router's IPv4 address", nullptr, "its own"},
       {"tls", std::monostate{}, {}, "",

@@ -146,7 +146,7 @@ namespace {
 #define BALL_NET_CONFIG_FIELDS(X)                                                                              \
   X(domain) X(participant) X(discovery_servers) X(qos_file) X(security_dir) X(identity) X(servers) X(name)     \
   X(max_matches) X(ball_states) X(clock) X(clock_user) X(link_delay) X(link_jitter) X(link_loss) X(link_seed)     \
-  X(rackets) X(server_status)
+  X(rackets) X(server_status) X(tcp_peers) X(tls_dir)
 #define BALL_NET_MATCH_FIELDS(X)                                                                               \
   X(id) X(server) X(scene) X(level) X(state) X(players) X(slots) X(score) X(rally) X(serving_side) X(time_base) \
   X(sim_time) X(net_x) X(court_x) X(court_z) X(model_hash)

@@ -11,7 +11,7 @@ import sys
 def main():
     rows = [json.loads(line) for line in open(sys.argv[1]) if line.strip()]
     ms = lambda s: s * 1e3
-    print("| one way (jitter) ms | relay's mean up / down ms | hits in 30 s | late samples tested | rewinds "
+    print("| one way (jitter) ms | relay's mean up / down ms | hits in 20 s | late samples tested | rewinds "
           "| sample-to-segment p50 / p99 at the server ms | at the watcher ms | bounces ahead / late "
           "| bounce lead p50 ms | desync m | hits by the same racket as at 0 ms | largest difference from 0 ms: "
           "time ms, point cm, return m/s |")
@@ -21,7 +21,7 @@ def main():
         for r in rows:
             print("| %.0f (%.0f) | %.0f / %.0f | %d | %d | %d | %.0f / %.0f | %.0f / %.0f | %d / %d | %.0f | %.3g "
                   "| %d of %d | %.1f, %.1f, %.2f |" % (
-                ms(r["delay"]), ms(r["jitter"]), ms(r["relay_up_mean"]), ms(r["relay_down_mean"]), r["hits_30s"],
+                ms(r["delay"]), ms(r["jitter"]), ms(r["relay_up_mean"]), ms(r["relay_down_mean"]), r["hits_20s"],
                 r["late_tested"], r["rewinds"], ms(r["sample_to_segment_server_p50"]),
                 ms(r["sample_to_segment_server_p99"]), ms(r["sample_to_segment_watcher_p50"]),
                 ms(r["sample_to_segment_watcher_p99"]), r["bounces_ahead"], r["bounces_late"],
@@ -30,7 +30,7 @@ def main():
             dat.write("%g %g %g %g %g %g %d\n" % (
                 ms(r["delay"]), ms(r["sample_to_segment_server_p50"]), ms(r["sample_to_segment_server_p99"]),
                 ms(r["sample_to_segment_watcher_p50"]), ms(r["sample_to_segment_watcher_p99"]),
-                ms(r["bounce_lead_p50"]), r["hits_30s"]))
+                ms(r["bounce_lead_p50"]), r["hits_20s"]))
 
 
 if __name__ == "__main__":

@@ -304,7 +304,7 @@ static void names_and_sizes(void **state) {
   assert_null(ball_net_field(BALL_NET_TYPE_COUNT, 0));
   for (k = 0; ball_net_field(BALL_NET_TYPE_CONFIG, k); k++) {
   }
-  assert_int_equal(k, 18); /* every member of ball_net_config */
+  assert_int_equal(k, 20); /* every member of ball_net_config */
   for (k = 0; k < BALL_STATUS_COUNT; k++) assert_string_not_equal(ball_strerror((ball_status)k), "unknown status");
 }
 

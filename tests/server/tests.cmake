@@ -151,6 +151,17 @@ endforeach()
 # flood only (beside the other, dds_key_flood's player twice lost a player timeout of samples
 # in the server's receive path, which they share with the stranger's flood, and its slot vanished)
 set_tests_properties(dds_flood dds_key_flood PROPERTIES RUN_SERIAL TRUE)
+# the cases across the internet each alone: Fast DDS 2.9's race of logical
+# ports (docs/deploy.md, "Limits") is lost more often on a busy machine, and
+# dds_wan_delay measures latency
+set_tests_properties(dds_wan_tcp dds_wan_secure dds_wan_tls dds_wan_udp dds_wan_link_cut dds_wan_failover
+  dds_wan_public_address dds_wan_delay PROPERTIES RUN_SERIAL TRUE)
+# the partition cases too: beside another case, a new owner's first segments
+# were twice in five runs dropped by a watcher that still knew its writers'
+# old strength while the old owner lived (dds_hosts_players_split: segments
+# 9 to 11 of the standby never arrived); alone they pass (server-tests.md)
+set_tests_properties(dds_hosts_stall_4 dds_hosts_stall_10 dds_hosts_cut_5 dds_hosts_cut_12 dds_hosts_players_split
+  dds_hosts_claimants_meet PROPERTIES RUN_SERIAL TRUE)
 
 # the demo under DDS Security (./run demo --secure) rallies: its summary
 # counts hits; the certificates are made by the script ./run certs runs
