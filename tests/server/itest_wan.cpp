@@ -505,6 +505,32 @@ void case_wan_delay(const Env &env) {
   CHECK(dv <= 0.5);
 }
 
+// What the TCP options refuse, before any participant is made: each with
+// status 1 and a sentence naming what is wrong.
+void case_wan_refused(const Env &env) {
+  struct Refused {
+    std::vector<std::string> args;
+    const char *expect;
+  } refused[] = {
+      {{"--tcp-peers", "10.77.0.1:7400"}, "has no TCP transport"},
+      {{"--participant-profile", "tcp_client", "--tcp-peers", "10.77.0.1"}, "is not HOST:PORT"},
+      {{"--participant-profile", "tcp_client", "--tcp-peers", "10.77.0.1:70000"}, "is not HOST:PORT"},
+      {{"--participant-profile", "tcp_client", "--tcp-peers", "no-such-host.invalid:7400"}, "has no IPv4 address"},
+      {{"--participant-profile", "tcp_client", "--tls", path(env, "none"), "--identity", "m0-a"}, "ca.pem"},
+      {{"--tls", env.source, "--identity", "m0-a"}, "ca.pem"},
+      {{"--participant-profile", "tcp_client", "--tls", path(env, "none")}, "needs --identity"},
+  };
+  int k = 0;
+  for (const Refused &r : refused) {
+    std::vector<std::string> argv = {env.bin + "/ball-watch", "--domain", env.dom(), "--duration", "3"};
+    argv.insert(argv.end(), r.args.begin(), r.args.end());
+    std::string err;
+    int rc = run_to_end(env, argv, "refused" + std::to_string(++k), &err);
+    note("%s: status %d: %s", r.args.back().c_str(), rc, err.substr(0, err.find('\n')).c_str());
+    CHECK_MSG(rc == 1 && err.find(r.expect) != std::string::npos, "status %d: %s", rc, err.c_str());
+  }
+}
+
 }  // namespace
 
 TEST(wan_tcp) { itest::in_case(case_wan_tcp); }
@@ -515,3 +541,4 @@ TEST(wan_link_cut) { itest::in_case(case_wan_link_cut); }
 TEST(wan_failover) { itest::in_case(case_wan_failover); }
 TEST(wan_public_address) { itest::in_case(case_wan_public_address); }
 TEST(wan_delay) { itest::in_case(case_wan_delay); }
+TEST(wan_refused) { itest::in_case(case_wan_refused); }
