@@ -167,15 +167,11 @@ void parse_into(const json &root, const std::string &base_dir, ServerConfig *c) 
   }
 }
 
-}  // namespace
-
-const std::vector<Field<ServerConfig>> &server_fields() {
-  using F = Field<ServerConfig>;
+// The rows of the DDS settings: the domain, the profiles, Discovery
+// Servers, the TCP transport and security (server_fields keeps their place).
+std::vector<Field<ServerConfig>> dds_fields() {
   using C = ServerConfig;
-  static const std::string create_room = "configured + " + std::to_string(kCreateRoom) +
-                                         " when CREATE is allowed, + " + std::to_string(kFollowRoom) + " for a standby";
-  static const std::vector<F> table = {
-      {"server_id", &C::server_id, whole(0, UINT32_MAX), "", "in every sample the server writes", "--server-id"},
+  return {
       {"domain", &C::domain, whole(0, kMaxDomain), "", "DDS domain id (docs/server-reference.md, \"DDS domains\")"},
       {"profile", std::monostate{}, {}, "", "the QoS profile file, relative to the config file", nullptr,
        "found as above"},
@@ -198,6 +194,17 @@ const std::vector<Field<ServerConfig>> &server_fields() {
       {"tls", std::monostate{}, {}, "",
        "with `tcp_server`: TLS, the folder of ca.pem and the identity, relative to the config file; a peer "
        "without a certificate of that CA is refused (docs/deploy.md)", nullptr, "plain TCP"},
+  };
+}
+
+}  // namespace
+
+const std::vector<Field<ServerConfig>> &server_fields() {
+  using F = Field<ServerConfig>;
+  using C = ServerConfig;
+  static const std::string create_room = "configured + " + std::to_string(kCreateRoom) +
+                                         " when CREATE is allowed, + " + std::to_string(kFollowRoom) + " for a standby";
+  static const std::vector<F> rest = {
       {"max_matches", &C::max_matches, whole(1, 100000), "", "room for matches; sizes every DDS resource limit",
        "--max-matches", create_room.c_str()},
       {"allow_create", &C::allow_create, {}, "", "clients may CREATE matches from the catalogue (`--no-create`)"},
@@ -229,6 +236,13 @@ const std::vector<Field<ServerConfig>> &server_fields() {
       {"matches", std::monostate{}, {}, "", "a list of match settings, each with `id` (default: its index) and `scene`",
        nullptr, "one match on `default`"},
   };
+  static const std::vector<F> table = [] {
+    std::vector<F> t = {
+        {"server_id", &C::server_id, whole(0, UINT32_MAX), "", "in every sample the server writes", "--server-id"}};
+    for (const F &f : dds_fields()) t.push_back(f);
+    t.insert(t.end(), rest.begin(), rest.end());
+    return t;
+  }();
   return table;
 }
 

@@ -176,6 +176,15 @@ struct Publications : public fdds::DomainParticipantListener {
   }
 };
 
+// A readable file; a folder made absolute (Fast DDS wants file:// URIs of
+// absolute paths). (domain.cpp)
+bool readable(const std::string &path);
+std::string absolute(const std::string &dir);
+// The TCP fields of `reach` and TLS over a profile's participant QoS, or
+// false with err (transport.cpp).
+bool use_tcp(const Reach &reach, fdds::DomainParticipantQos *qos, std::string *err);
+bool use_tls(const Security &sec, fdds::DomainParticipantQos *qos, std::string *err);
+
 // Doors (domain.h) as Fast DDS content filters of a class of our own: the
 // filter expression is the door's index. Fast DDS evaluates a reader's
 // filter before the sample enters its history (StatelessReader and
