@@ -253,7 +253,7 @@ bool measure(const LoadOptions &o, int matches, double state_rate, LoadRow *row,
   Snapshot at[2];
   int snaps = 0;
   bool ok = true;
-  auto ranges = split_matches(0, matches, o.bot_processes);
+  auto ranges = split_matches(o.first_match, matches, o.bot_processes);
   if (ranges.size() <= 1) {
     LoadOptions one = o;
     one.matches = matches;
