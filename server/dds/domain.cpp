@@ -1,5 +1,7 @@
 #include "domain.h"
 
+#include <algorithm>
+
 #include "domain_impl.h"
 
 namespace ballsrv {
@@ -341,6 +343,23 @@ bool Domain::close(double limit) {
   }
   worker.detach();  // (stuck inside Fast DDS: its entities are left to it)
   return false;
+}
+
+void Domain::remove_writer(fdds::DataWriter *w) {
+  if (!w || !impl_) return;
+  auto &ws = impl_->writers;
+  ws.erase(std::remove(ws.begin(), ws.end(), w), ws.end());
+  impl_->publisher->delete_datawriter(w);
+}
+
+void Domain::remove_reader(fdds::DataReader *r) {
+  if (!r || !impl_) return;
+  auto &rs = impl_->readers;
+  rs.erase(std::remove(rs.begin(), rs.end(), r), rs.end());
+  const fdds::DataReaderListener *l = r->get_listener();
+  impl_->subscriber->delete_datareader(r);
+  auto &ls = impl_->listeners;  // (after the reader: DDS calls it until then)
+  ls.erase(std::remove_if(ls.begin(), ls.end(), [l](const auto &p) { return p.get() == l; }), ls.end());
 }
 
 Domain::~Domain() {

@@ -256,12 +256,26 @@ class Domain {
   uint32_t writer_strength(const char *profile) const;
   template <class T>
   Reader<T> reader(const char *topic, const char *profile, Sizing sizing, std::string *err);
+  // Deletes an endpoint of this Domain now (its readers or writers see it
+  // gone); the handle is invalid after. Harmless on an invalid handle.
+  template <class T>
+  void remove(Writer<T> *w) {
+    remove_writer(w->w_);
+    *w = Writer<T>();
+  }
+  template <class T>
+  void remove(Reader<T> *r) {
+    remove_reader(r->r_);
+    *r = Reader<T>();
+  }
 
   // The liveliness lease a data_reader profile requests (s; 0: none).
   double reader_lease(const char *profile) const;
 
  private:
   friend struct RawAccess;  // the tests' raw writers (testing/raw.h)
+  void remove_writer(eprosima::fastdds::dds::DataWriter *w);
+  void remove_reader(eprosima::fastdds::dds::DataReader *r);
   struct Impl;
   std::unique_ptr<Impl> impl_;
   int domain_id_ = 0;

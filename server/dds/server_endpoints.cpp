@@ -87,7 +87,7 @@ void ServerEndpoints::admit(const std::vector<std::pair<uint32_t, int>> &matches
 
 std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, int players, uint32_t create_ids,
                                                        const char *role, bool follows, std::string *err) {
-  std::unique_ptr<ServerEndpoints> p(new ServerEndpoints(d));
+  std::unique_ptr<ServerEndpoints> p(new ServerEndpoints(d, role));
   int match_room = matches;
   int sample_room = match_room * std::max(1, players) + 64;  // + room for junk keys
   constexpr int kInboxPerSlot = 64;  // samples a slot may have waiting between two frames, on average
@@ -121,6 +121,42 @@ std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, i
   return p;
 }
 
+ServerEndpoints::View &ServerEndpoints::view(uint32_t match) {
+  auto it = views_.find(match);
+  if (it != views_.end()) {
+    it->second.retire = {};  // (a match served again before its view went)
+    return it->second;
+  }
+  View &v = views_[match];
+  // (a writer the domain refuses stays invalid: each write to it is then refused, and counted)
+  std::string err;
+  Sizing own{1, 0, match_partition(match)};
+  v.segments = domain_.writer<SegmentOut>(kSegmentTopic, kSegmentProfile, own, &err, role_);
+  v.events = domain_.writer<EventOut>(kEventTopic, kEventProfile, own, &err, role_);
+  v.states = domain_.writer<StateOut>(kStateTopic, kStateProfile, own, &err, role_);
+  v.infos = domain_.writer<MatchInfoOut>(kInfoTopic, kInfoProfile, own, &err, role_);
+  v.models = domain_.writer<MatchModelOut>(kModelTopic, kModelProfile, own, &err, role_);
+  if (strength_) {
+    v.segments.set_strength(strength_), v.events.set_strength(strength_), v.states.set_strength(strength_);
+    v.infos.set_strength(strength_), v.models.set_strength(strength_);
+  }
+  return v;
+}
+
+void ServerEndpoints::remove_retired() {
+  const auto now = std::chrono::steady_clock::now();
+  for (auto it = views_.begin(); it != views_.end();) {
+    View &v = it->second;
+    if (v.retire == std::chrono::steady_clock::time_point{} || now < v.retire) {
+      ++it;
+      continue;
+    }
+    domain_.remove(&v.segments), domain_.remove(&v.events), domain_.remove(&v.states);
+    domain_.remove(&v.infos), domain_.remove(&v.models);
+    it = views_.erase(it);
+  }
+}
+
 bool ServerEndpoints::assert_liveliness() {
   // the best-effort ball states assert theirs by being written (Fast DDS sends
   // no heartbeat for them); a standby's writers that never wrote harm nobody
@@ -130,24 +166,49 @@ bool ServerEndpoints::assert_liveliness() {
   ok = models_.assert_liveliness() && ok;
   ok = status_.assert_liveliness() && ok;
   states_.assert_liveliness();
+  // a view's writers only while a reader has them (one that matches later
+  // has them asserted within a quarter of its lease)
+  for (auto &kv : views_) {
+    View &v = kv.second;
+    if (v.segments.matched() > 0) ok = v.segments.assert_liveliness() && ok;
+    if (v.events.matched() > 0) ok = v.events.assert_liveliness() && ok;
+    if (v.infos.matched() > 0) ok = v.infos.assert_liveliness() && ok;
+    if (v.models.matched() > 0) ok = v.models.assert_liveliness() && ok;
+  }
   return ok;
 }
 
 bool ServerEndpoints::set_strength(uint32_t strength) {
-  return segments_.set_strength(strength) && events_.set_strength(strength) && states_.set_strength(strength) &&
-         infos_.set_strength(strength) && models_.set_strength(strength);
+  strength_ = strength;
+  bool ok = segments_.set_strength(strength) && events_.set_strength(strength) && states_.set_strength(strength) &&
+            infos_.set_strength(strength) && models_.set_strength(strength);
+  for (auto &kv : views_) {
+    View &v = kv.second;
+    ok = v.segments.set_strength(strength) && v.events.set_strength(strength) && v.states.set_strength(strength) &&
+         v.infos.set_strength(strength) && v.models.set_strength(strength) && ok;
+  }
+  return ok;
 }
 
 bool ServerEndpoints::dispose_match(uint32_t match_id) {
+  constexpr auto kViewKept = std::chrono::seconds(5);  // for the view's readers to take the disposal
   MatchInfoOut key;
   key.match_id = match_id;
   MatchModelOut model_key;
   model_key.match_id = match_id;
   bool ok = infos_.dispose(key);
-  return models_.dispose(model_key) && ok;
+  ok = models_.dispose(model_key) && ok;
+  auto it = views_.find(match_id);
+  if (it == views_.end()) return ok;
+  View &v = it->second;
+  ok = v.infos.dispose(key) && ok;
+  ok = v.models.dispose(model_key) && ok;
+  v.retire = std::chrono::steady_clock::now() + kViewKept;
+  return ok;
 }
 
 void ServerEndpoints::take_notes(std::vector<PortNote> *out) {
+  remove_retired();
   // another server's writers gone (liveliness lost, or unmatched with its participant)
   notes_.clear();
   others_.drain_status(&notes_);

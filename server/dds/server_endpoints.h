@@ -2,8 +2,10 @@
 // writers on a Domain, sized for its matches and players.
 #pragma once
 
+#include <chrono>
 #include <memory>
 #include <string>
+#include <unordered_map>
 
 #include "domain.h"
 #include "server_loop.h"
@@ -30,19 +32,43 @@ class ServerEndpoints : public ServerPort {
   bool take_other_segment(SegmentOut *segment, ParticipantId *from) override;
   bool take_other_status(StatusOut *status, ParticipantId *from) override;
   bool take_other_model(MatchModelOut *model, ParticipantId *from) override;
-  bool write(const SegmentOut &s) override { return segments_.write(s); }
-  bool write(const EventOut &e) override { return events_.write(e); }
-  bool write(const StateOut &s) override { return states_.write(s); }
-  bool write(const MatchInfoOut &i) override { return infos_.write(i); }
+  // every match's writer, and the match's own in its partition (View)
+  bool write(const SegmentOut &s) override { return segments_.write(s) & view(s.match_id).segments.write(s); }
+  bool write(const EventOut &e) override { return events_.write(e) & volatile_write(view(e.match_id).events, e); }
+  bool write(const StateOut &s) override { return states_.write(s) & volatile_write(view(s.match_id).states, s); }
+  bool write(const MatchInfoOut &i) override { return infos_.write(i) & view(i.match_id).infos.write(i); }
   bool write(const StatusOut &s) override { return status_.write(s); }
-  bool write(const MatchModelOut &m) override { return models_.write(m); }
+  bool write(const MatchModelOut &m) override { return models_.write(m) & view(m.match_id).models.write(m); }
   bool assert_liveliness() override;
   bool dispose_match(uint32_t match_id) override;
   bool set_strength(uint32_t strength) override;
 
  private:
-  explicit ServerEndpoints(Domain &domain) : domain_(domain) {}
+  explicit ServerEndpoints(Domain &domain, const char *role) : domain_(domain), role_(role) {}
+  // A match's own writers of the five match topics, in its DDS partition
+  // match/<id> (docs/protocol.md, "A match's own partition"): a reader there
+  // gets that match's samples alone. Made at the match's first write, with
+  // the writers' strength; kept 5 s after the match is disposed (its
+  // readers take the disposal), then deleted.
+  struct View {
+    Writer<SegmentOut> segments;
+    Writer<EventOut> events;
+    Writer<StateOut> states;
+    Writer<MatchInfoOut> infos;
+    Writer<MatchModelOut> models;
+    std::chrono::steady_clock::time_point retire{};  // disposed: deleted from then on
+  };
+  View &view(uint32_t match);
+  void remove_retired();
+  // a volatile topic's sample reaches no later reader: unwritten without one
+  template <class W, class T>
+  static bool volatile_write(W &w, const T &sample) {
+    return w.valid() && (w.matched() == 0 || w.write(sample));
+  }
   Domain &domain_;
+  const char *role_;
+  uint32_t strength_ = 0;  // set_strength's (0: the role's)
+  std::unordered_map<uint32_t, View> views_;
   std::shared_ptr<class MatchDoor> sample_door_, control_door_;
   Writer<SegmentOut> segments_;
   Writer<EventOut> events_;

@@ -16,7 +16,9 @@
 #                                 a grant per identity: servers write the server topics and read
 #                                 the players' in every match partition; a player writes racket
 #                                 samples and controls only in its match's partition match/<m>
-#                                 (load: in every match/*); a watcher only reads
+#                                 (load: in every match/*); a watcher only reads. The five match
+#                                 topics in a match's own partition: servers write them in every
+#                                 match/*, a player reads its own match's, load and watch every one
 # A real deployment makes its own CA and keeps ca.key off the hosts (docs/security.md).
 set -euo pipefail
 dir=${1:?usage: certs.sh DIR [MATCHES]}
@@ -50,6 +52,9 @@ done
 
 server_topics="<topic>ball/ball_state</topic><topic>ball/segments</topic><topic>ball/events</topic><topic>ball/match_info</topic><topic>ball/match_model</topic><topic>ball/server_status</topic>"
 player_topics="<topic>ball/racket_samples</topic><topic>ball/match_control</topic>"
+# the five topics a match's server writes a second time in the match's own partition (docs/protocol.md)
+match_topics="<topic>ball/ball_state</topic><topic>ball/segments</topic><topic>ball/events</topic><topic>ball/match_info</topic><topic>ball/match_model</topic>"
+views() { echo "<topics>$match_topics</topics><partitions><partition>$1</partition></partitions>"; }
 domains="<domains><id_range><min>0</min><max>232</max></id_range></domains>"
 not_before=$(date -u -d '-1 day' +%Y-%m-%dT%H:%M:%S)
 not_after=$(date -u -d "+$days days" +%Y-%m-%dT%H:%M:%S)
@@ -92,13 +97,13 @@ grant() {  # NAME RULES
   echo '     xsi:noNamespaceSchemaLocation="http://www.omg.org/spec/DDS-Security/20170801/omg_shared_ca_permissions.xsd">'
   echo '  <permissions>'
   for name in server1 server2 server3; do
-    grant "$name" "<allow_rule>$domains<publish><topics>$server_topics</topics></publish><subscribe><topics>$server_topics</topics></subscribe><subscribe><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></subscribe></allow_rule>"
+    grant "$name" "<allow_rule>$domains<publish><topics>$server_topics</topics></publish><publish>$(views 'match/*')</publish><subscribe><topics>$server_topics</topics></subscribe><subscribe><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></subscribe></allow_rule>"
   done
-  grant watch "<allow_rule>$domains<subscribe><topics>$server_topics</topics></subscribe><subscribe><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></subscribe></allow_rule>"
-  grant load "<allow_rule>$domains<publish><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></publish><subscribe><topics>$server_topics</topics></subscribe></allow_rule>"
+  grant watch "<allow_rule>$domains<subscribe><topics>$server_topics</topics></subscribe><subscribe>$(views 'match/*')</subscribe><subscribe><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></subscribe></allow_rule>"
+  grant load "<allow_rule>$domains<publish><topics>$player_topics</topics><partitions><partition>match/*</partition></partitions></publish><subscribe><topics>$server_topics</topics></subscribe><subscribe>$(views 'match/*')</subscribe></allow_rule>"
   for ((m = 0; m < matches; m++)); do
     for p in a b; do
-      grant "m$m-$p" "<allow_rule>$domains<publish><topics>$player_topics</topics><partitions><partition>match/$m</partition></partitions></publish><subscribe><topics>$server_topics</topics></subscribe><subscribe><topics><topic>ball/racket_samples</topic></topics><partitions><partition>match/$m</partition></partitions></subscribe></allow_rule>"
+      grant "m$m-$p" "<allow_rule>$domains<publish><topics>$player_topics</topics><partitions><partition>match/$m</partition></partitions></publish><subscribe><topics>$server_topics</topics></subscribe><subscribe>$(views "match/$m")</subscribe><subscribe><topics><topic>ball/racket_samples</topic></topics><partitions><partition>match/$m</partition></partitions></subscribe></allow_rule>"
     done
   done
   echo '  </permissions>'
