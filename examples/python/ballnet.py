@@ -171,7 +171,8 @@ class Config(_Struct):  # ball_net_config
                 ("rackets", ctypes.c_int),
                 ("server_status", ctypes.c_int),
                 ("tcp_peers", ctypes.c_char_p),
-                ("tls_dir", ctypes.c_char_p)]
+                ("tls_dir", ctypes.c_char_p),
+                ("followed_only", ctypes.c_int)]
 
 
 class Slot(_Struct):  # ball_net_slot
@@ -353,7 +354,7 @@ class Client:
 
     Keyword arguments are ball_net_config's fields (participant, discovery_servers, qos_file,
     security_dir, identity, servers, name, max_matches, ball_states, rackets, server_status, link_delay,
-    link_jitter, link_loss, link_seed, tcp_peers, tls_dir); None keeps the default. Error when
+    link_jitter, link_loss, link_seed, tcp_peers, tls_dir, followed_only); None keeps the default. Error when
     the library refuses (a field out of range, a domain whose ports are taken, ...).
     A context manager: leaving the block closes it. Every call on a closed client raises
     Error with status BALL_ECLOSED; close() itself may be called again.
@@ -365,7 +366,7 @@ class Client:
         c.domain = domain
         for key, value in config.items():
             numbers = ("max_matches", "ball_states", "rackets", "server_status", "link_delay", "link_jitter",
-                       "link_loss", "link_seed")
+                       "link_loss", "link_seed", "followed_only")
             if key not in ("participant", "discovery_servers", "qos_file", "security_dir", "identity",
                            "servers", "name", "tcp_peers", "tls_dir") + numbers:
                 raise TypeError("Client() got an unexpected keyword argument %r" % key)

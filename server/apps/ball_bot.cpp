@@ -58,7 +58,7 @@ int main(int argc, char **argv) {
   PlayerParams pp;
   double duration = 0.0;
   std::string stats_json;
-  bool quiet = false, stay = false;
+  bool quiet = false, stay = false, every_match = false;
   DdsOptions dds_opt;
   FieldOptions<PlayerParams> player_opt;
   player_opt.add(cli, player_fields(), pp);
@@ -66,6 +66,9 @@ int main(int argc, char **argv) {
   cli.add_flag("--stay", stay, "keep the slot on exit: no LEAVE, it ends at once as if the bot vanished (the match pauses)");
   cli.add_option("--stats-json", stats_json, "write the bot's counters to FILE as JSON at exit");
   cli.add_flag("--quiet,-q", quiet, "print only errors");
+  cli.add_flag("--every-match", every_match,
+               "read every match on the domain, not its own alone (what the bot receives then grows with the "
+               "matches: docs/client.md, \"What it costs\")");
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
   player_opt.apply(&pp);
@@ -73,7 +76,10 @@ int main(int argc, char **argv) {
   std::string err;
   install_stop_signals();
   ball_net_client *client =
-      open_client(dds_opt, "ball-bot", pp.servers, [&](ball_net_config *c) { set_link(pp, c); }, &err);
+      open_client(dds_opt, "ball-bot", pp.servers, [&](ball_net_config *c) {
+        set_link(pp, c);
+        c->followed_only = every_match ? 0 : 1;
+      }, &err);
   if (!client) return fail(kProgram, err);
   int left = 0;
   BotReport r;

@@ -4,7 +4,7 @@ namespace ballsrv {
 namespace dds {
 
 std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNeeds &n, std::string *err) {
-  std::unique_ptr<ClientEndpoints> p(new ClientEndpoints());
+  std::unique_ptr<ClientEndpoints> p(new ClientEndpoints(d, n));
   for (const auto &b : n.server_certs) {
     SubjectKey key{};
     if (!d.subject_key(b.second, &key, err)) {
@@ -18,16 +18,7 @@ std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNe
     p->controls_ = d.writer<ControlIn>(kControlTopic, kControlProfile, {n.controls, 0, n.partition}, err);
     if (!p->samples_.valid() || !p->controls_.valid()) return nullptr;
   }
-  p->segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {n.matches}, err);
-  p->infos_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {n.matches}, err);
-  if (n.states) p->states_ = d.reader<StateOut>(kStateTopic, kStateProfile, {n.matches}, err);
-  p->models_ = d.reader<MatchModelOut>(kModelTopic, kModelProfile, {n.matches}, err);
-  if (!p->segments_.valid() || !p->infos_.valid() || (n.states && !p->states_.valid()) || !p->models_.valid())
-    return nullptr;
-  if (n.events) {
-    p->events_ = d.reader<EventOut>(kEventTopic, kEventProfile, {n.matches}, err);
-    if (!p->events_.valid()) return nullptr;
-  }
+  if (!p->open_lens("", &p->lens_, err)) return nullptr;
   if (n.status) {
     p->status_ = d.reader<StatusOut>(kStatusTopic, kStatusProfile, {16}, err);
     if (!p->status_.valid()) return nullptr;
@@ -38,6 +29,46 @@ std::unique_ptr<ClientEndpoints> ClientEndpoints::open(Domain &d, const ClientNe
     if (!p->rackets_.valid()) return nullptr;
   }
   return p;
+}
+
+bool ClientEndpoints::open_lens(const std::string &partition, Lens *l, std::string *err) {
+  Domain &d = domain_;
+  const ClientNeeds &n = needs_;
+  l->segments = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {n.matches, 0, partition}, err);
+  l->infos = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {n.matches, 0, partition}, err);
+  if (n.states) l->states = d.reader<StateOut>(kStateTopic, kStateProfile, {n.matches, 0, partition}, err);
+  l->models = d.reader<MatchModelOut>(kModelTopic, kModelProfile, {n.matches, 0, partition}, err);
+  if (n.events) l->events = d.reader<EventOut>(kEventTopic, kEventProfile, {n.matches, 0, partition}, err);
+  if (l->segments.valid() && l->infos.valid() && (!n.states || l->states.valid()) && l->models.valid() &&
+      (!n.events || l->events.valid()))
+    return true;
+  remove(l);
+  return false;
+}
+
+void ClientEndpoints::remove(Lens *l) {
+  domain_.remove(&l->segments), domain_.remove(&l->infos), domain_.remove(&l->states);
+  domain_.remove(&l->events), domain_.remove(&l->models);
+}
+
+bool ClientEndpoints::narrow(const std::set<uint32_t> &matches, std::string *err) {
+  std::string partitions;  // Fast DDS's list of an endpoint's partitions: NAME;NAME...
+  for (uint32_t m : matches) partitions += (partitions.empty() ? "" : ";") + match_partition(m);
+  Lens fresh;
+  if (!open_lens(partitions, &fresh, err)) return false;
+  if (old_) remove(old_.get());  // (a narrow while the last one overlaps: the newer old readers stay)
+  old_ = std::make_unique<Lens>(std::move(lens_));
+  lens_ = std::move(fresh);
+  narrowed_ = std::chrono::steady_clock::now();
+  return true;
+}
+
+void ClientEndpoints::retire_old() {
+  if (!old_) return;
+  double since = std::chrono::duration<double>(std::chrono::steady_clock::now() - narrowed_).count();
+  if (since < kOverlap || (!lens_.hears() && since < kOverlapMost)) return;
+  remove(old_.get());
+  old_.reset();
 }
 
 Reader<RacketSampleIn> racket_reader(Domain &d, int matches, const std::string &partition, std::string *err) {

@@ -2,6 +2,8 @@
 // the load generator or a watcher needs on a Domain.
 #pragma once
 
+#include <chrono>
+#include <set>
 #include <type_traits>
 #include <map>
 #include <memory>
@@ -46,27 +48,55 @@ class ClientEndpoints : public ClientPort {
   // nullptr with err when an endpoint cannot be made
   static std::unique_ptr<ClientEndpoints> open(Domain &domain, const ClientNeeds &needs, std::string *err);
 
-  bool take(MatchInfoOut *info) override { return take_trusted(infos_, info); }
-  bool take(SegmentOut *segment) override { return take_trusted(segments_, segment); }
-  bool take(StateOut *state) override { return take_trusted(states_, state); }
-  bool take(EventOut *event) override { return take_trusted(events_, event); }
+  bool take(MatchInfoOut *info) override { return take_lens(&Lens::infos, info); }
+  bool take(SegmentOut *segment) override { return take_lens(&Lens::segments, segment); }
+  bool take(StateOut *state) override { return take_lens(&Lens::states, state); }
+  bool take(EventOut *event) override { return take_lens(&Lens::events, event); }
   bool take(StatusOut *status) override { return take_trusted(status_, status); }
-  bool take(MatchModelOut *model) override { return take_trusted(models_, model); }
+  bool take(MatchModelOut *model) override {
+    retire_old();
+    return take_lens(&Lens::models, model);
+  }
   bool take(RacketSampleIn *sample) override;
   uint64_t untrusted() const override { return untrusted_; }
   bool write(const RacketSampleIn &sample) override { return samples_.write(sample); }
   bool write(const ControlIn &control) override { return controls_.write(control); }
-  bool hears_server() const override {
-    return segments_.matched() > 0 && infos_.matched() > 0 && (!events_.valid() || events_.matched() > 0);
-  }
+  bool hears_server() const override { return lens_.hears(); }
+  // Reads the five match topics in the partitions of `matches` alone from
+  // now on (docs/protocol.md, "A match's own partition"; {}: the default
+  // partition, every match). New readers are made; the old ones are taken
+  // from too until the new ones hear a server and kOverlap s have passed
+  // (or kOverlapMost), so that nothing written meanwhile is lost (what
+  // comes twice, the news rules drop). false with err: a reader refused.
+  bool narrow(const std::set<uint32_t> &matches, std::string *err);
+  static constexpr double kOverlap = 2.0, kOverlapMost = 10.0;
 
  private:
-  ClientEndpoints() = default;
+  ClientEndpoints(Domain &domain, const ClientNeeds &needs) : domain_(domain), needs_(needs) {}
+  // the readers of the five match topics in one set of partitions
+  struct Lens {
+    Reader<SegmentOut> segments;
+    Reader<MatchInfoOut> infos;
+    Reader<StateOut> states;
+    Reader<EventOut> events;
+    Reader<MatchModelOut> models;
+    bool hears() const {
+      return segments.matched() > 0 && infos.matched() > 0 && (!events.valid() || events.matched() > 0);
+    }
+  };
+  bool open_lens(const std::string &partition, Lens *out, std::string *err);
+  void remove(Lens *l);
+  void retire_old();
+  template <class T>
+  bool take_lens(Reader<T> Lens::*which, T *out) {
+    if (take_trusted(lens_.*which, out)) return true;
+    return old_ && take_trusted((*old_).*which, out);
+  }
   // the next sample whose server id, if bound to a certificate, came from its holder
   template <class T>
   bool take_trusted(Reader<T> &r, T *out) {
     SampleMeta meta;
-    while (r.take(out, &meta)) {
+    while (r.valid() && r.take(out, &meta)) {
       auto it = bound_.find(out->server_id);
       if (it == bound_.end() || prefix_fits(meta.from, it->second)) {
         if constexpr (!std::is_same_v<T, StatusOut> && !std::is_same_v<T, MatchModelOut>) {
@@ -79,16 +109,16 @@ class ClientEndpoints : public ClientPort {
     }
     return false;
   }
+  Domain &domain_;
+  ClientNeeds needs_;
   std::map<uint32_t, SubjectKey> bound_;
   uint64_t untrusted_ = 0;
   Writer<RacketSampleIn> samples_;
   Writer<ControlIn> controls_;
-  Reader<SegmentOut> segments_;
-  Reader<MatchInfoOut> infos_;
-  Reader<StateOut> states_;
-  Reader<EventOut> events_;
+  Lens lens_;
+  std::unique_ptr<Lens> old_;  // the readers before the last narrow, while they overlap
+  std::chrono::steady_clock::time_point narrowed_{};
   Reader<StatusOut> status_;
-  Reader<MatchModelOut> models_;
   Reader<RacketSampleIn> rackets_;
 };
 

@@ -146,7 +146,7 @@ namespace {
 #define BALL_NET_CONFIG_FIELDS(X)                                                                              \
   X(domain) X(participant) X(discovery_servers) X(qos_file) X(security_dir) X(identity) X(servers) X(name)     \
   X(max_matches) X(ball_states) X(clock) X(clock_user) X(link_delay) X(link_jitter) X(link_loss) X(link_seed)     \
-  X(rackets) X(server_status) X(tcp_peers) X(tls_dir)
+  X(rackets) X(server_status) X(tcp_peers) X(tls_dir) X(followed_only)
 #define BALL_NET_MATCH_FIELDS(X)                                                                               \
   X(id) X(server) X(scene) X(level) X(state) X(players) X(slots) X(score) X(rally) X(serving_side) X(time_base) \
   X(sim_time) X(net_x) X(court_x) X(court_z) X(model_hash)
@@ -213,6 +213,8 @@ ball_status core_settings_of(const ball_net_config &config, CoreSettings *out, s
   if (config.rackets != 0 && config.rackets != 1) return refuse(BALL_ERANGE, "rackets must be 0 or 1");
   if (config.server_status != 0 && config.server_status != 1)
     return refuse(BALL_ERANGE, "server_status must be 0 or 1");
+  if (config.followed_only != 0 && config.followed_only != 1)
+    return refuse(BALL_ERANGE, "followed_only must be 0 or 1");
   if (config.identity && !config.security_dir && !config.tls_dir)
     return refuse(BALL_EINVAL, "an identity needs security_dir or tls_dir");
   if (config.security_dir && !config.identity) return refuse(BALL_EINVAL, "security_dir needs an identity");

@@ -295,6 +295,7 @@ ball_status ClientCore::unwatch(uint32_t match, ClientPort &port, std::string *w
   if (!f) return refuse(BALL_ENOMATCH, "the client does not follow " + match_name(match), why);
   if (f->view->slot() >= 0) leave(match, -1, port, why);
   followed_.erase(match);
+  port.unfollow(match);
   return BALL_OK;
 }
 
@@ -316,7 +317,7 @@ ball_status ClientCore::join(uint32_t match, int slot, ClientPort &port, double 
     c.kind = ControlKind::join;
     c.player = slot;
     if (!write(port, c, f)) {
-      if (!was_followed) followed_.erase(match);
+      if (!was_followed) followed_.erase(match), port.unfollow(match);
       return refuse(BALL_ENETWORK, "the transport refused the join of " + match_name(match), why);
     }
   }

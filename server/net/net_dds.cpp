@@ -4,6 +4,7 @@
 #include <map>
 #include <memory>
 #include <new>
+#include <set>
 #include <string>
 
 #include "client_endpoints.h"
@@ -25,11 +26,15 @@ const char *or_empty(const char *s) { return s ? s : ""; }
 // match/<id>, made when first needed; on an open domain one pair). With
 // `rackets`, the players' racket samples too: on an open domain the
 // endpoints' one reader; under DDS Security one reader in the partition of
-// each match followed, made when it is first followed.
+// each match followed, made when it is first followed. With `followed_only`,
+// the endpoints read the matches followed alone, in their partitions
+// (ClientEndpoints::narrow), every match while none is followed.
 class NetPort : public ClientPort {
  public:
-  NetPort(dds::Domain &domain, std::unique_ptr<dds::ClientEndpoints> readers, int matches, bool rackets)
-      : domain_(domain), readers_(std::move(readers)), matches_(matches), rackets_(rackets) {}
+  NetPort(dds::Domain &domain, std::unique_ptr<dds::ClientEndpoints> readers, int matches, bool rackets,
+          bool followed_only)
+      : domain_(domain), readers_(std::move(readers)), matches_(matches), rackets_(rackets),
+        followed_only_(followed_only) {}
   bool take(MatchInfoOut *i) override { return readers_->take(i); }
   bool take(SegmentOut *s) override { return readers_->take(s); }
   bool take(StateOut *s) override { return readers_->take(s); }
@@ -43,6 +48,12 @@ class NetPort : public ClientPort {
     return false;
   }
   bool follow(uint32_t match, std::string *why) override {
+    if (followed_only_ && !followed_.count(match)) {
+      std::set<uint32_t> more = followed_;
+      more.insert(match);
+      if (!readers_->narrow(more, why)) return false;
+      followed_ = std::move(more);
+    }
     if (!rackets_ || !domain_.secure()) return true;
     std::string partition = dds::match_partition(match);
     if (racket_readers_.count(partition)) return true;
@@ -50,6 +61,10 @@ class NetPort : public ClientPort {
     if (!r.valid()) return false;
     racket_readers_.emplace(partition, std::move(r));
     return true;
+  }
+  void unfollow(uint32_t match) override {
+    std::string why;  // (fewer partitions than before: refused only where the domain refuses every reader)
+    if (followed_only_ && followed_.erase(match) && !readers_->narrow(followed_, &why)) error_ = why;
   }
   bool write(const RacketSampleIn &s) override {
     Pair *p = pair(s.match_id);
@@ -87,6 +102,8 @@ class NetPort : public ClientPort {
   int matches_;
   std::map<std::string, Pair> pairs_;
   bool rackets_;
+  bool followed_only_;
+  std::set<uint32_t> followed_;  // (with followed_only)
   std::map<std::string, dds::Reader<RacketSampleIn>> racket_readers_;  // by partition (DDS Security)
   std::string error_;
   WireSizes sizes_ = dds::wire_sizes();
@@ -154,7 +171,8 @@ extern "C" ball_status ball_net_open(const ball_net_config *config, ball_net_cli
       domain->close(dds::kTeardownLimit);
       return say(BALL_ENETWORK, err);
     }
-    auto port = std::make_unique<NetPort>(*domain, std::move(readers), matches, settings.rackets);
+    auto port =
+        std::make_unique<NetPort>(*domain, std::move(readers), matches, settings.rackets, config->followed_only != 0);
     st = open_over(std::make_unique<DdsTransport>(std::move(domain), std::move(port)), *config, client, &err);
     return say(st, st == BALL_OK ? "" : err);
   } catch (const std::bad_alloc &) {

@@ -34,6 +34,9 @@ class ClientPort {
   // players' rackets in a match's partition under DDS Security) begins to.
   // false with a sentence in *why: it cannot (the follow is refused).
   virtual bool follow(uint32_t /*match*/, std::string * /*why*/) { return true; }
+  // The client follows `match` no more (a port that reads only the matches
+  // followed stops reading it).
+  virtual void unfollow(uint32_t /*match*/) {}
   // false: the write was refused (the caller counts it)
   [[nodiscard]] virtual bool write(const RacketSampleIn &sample) = 0;
   [[nodiscard]] virtual bool write(const ControlIn &control) = 0;

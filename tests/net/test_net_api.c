@@ -113,6 +113,10 @@ static void open_refuses_a_bad_config(void **state) {
   c.identity = "player";
   assert_int_equal(ball_net_open(&c, &client, why, sizeof why), BALL_EINVAL);
   ball_net_config_default(&c);
+  c.followed_only = 2;
+  assert_int_equal(ball_net_open(&c, &client, why, sizeof why), BALL_ERANGE);
+  assert_non_null(strstr(why, "followed_only"));
+  ball_net_config_default(&c);
   c.domain = BALL_TEST_DOMAIN;
   c.qos_file = "/nonexistent/qos.xml";
   assert_int_equal(ball_net_open(&c, &client, why, sizeof why), BALL_ENETWORK);
@@ -304,7 +308,8 @@ static void names_and_sizes(void **state) {
   assert_null(ball_net_field(BALL_NET_TYPE_COUNT, 0));
   for (k = 0; ball_net_field(BALL_NET_TYPE_CONFIG, k); k++) {
   }
-  assert_int_equal(k, 20); /* every member of ball_net_config */
+  assert_int_equal(k, 21); /* every member of ball_net_config */
+  assert_int_equal(ball_net_offsetof(BALL_NET_TYPE_CONFIG, "followed_only"), offsetof(ball_net_config, followed_only));
   for (k = 0; k < BALL_STATUS_COUNT; k++) assert_string_not_equal(ball_strerror((ball_status)k), "unknown status");
 }
 

@@ -34,6 +34,8 @@ struct Wan {
   std::vector<std::string> server_extra;
   std::vector<std::string> security;   // a client's certificate options but --identity
   std::vector<std::string> watch_extra;
+  std::string matches = "1";                 // the server's --matches
+  std::vector<std::string> bot_extra[2];     // more options of each slot's bot
   std::string certs;
   std::function<void(Wan *)> before_clients;  // run once the servers are up
   int reconnects = 0;                         // clients started again (wan_rig)
@@ -71,7 +73,7 @@ bool wan_rig(const Env &env, Guard guard, Wan *n) {
     n->security = {guard == Guard::tls ? "--tls" : "--secure", n->certs};
   }
   std::vector<std::string> s = {"--participant-profile", "tcp_server", "--tcp-listen", n->port, "--server-id", "1",
-                                "--matches", "1", "--startup-wait", "0", "--duration", "120", "--state-rate", "10",
+                                "--matches", n->matches, "--startup-wait", "0", "--duration", "120", "--state-rate", "10",
                                 "--stats-json", path(env, "server.json")};
   s.insert(s.end(), n->server_extra.begin(), n->server_extra.end());
   s.insert(s.end(), n->security.begin(), n->security.end());
@@ -108,6 +110,7 @@ bool wan_rig(const Env &env, Guard guard, Wan *n) {
     std::vector<std::string> bot = client(*n, slot == 0 ? "m0-a" : "m0-b",
                                           {"--match", "0", "--player", std::to_string(slot), "--seed",
                                            std::to_string(slot + 1), "--duration", "100"});
+    bot.insert(bot.end(), n->bot_extra[slot].begin(), n->bot_extra[slot].end());
     Process &b = slot == 0 ? n->p : n->q;
     bool joined = false;
     for (int attempt = 0; attempt < 3 && !joined; ++attempt) {
@@ -533,6 +536,68 @@ void case_wan_refused(const Env &env) {
 
 }  // namespace
 
+// Bytes host h's TCP connections have received so far (ss's bytes_received:
+// the RTPS stream, without TCP and IP headers or bare acknowledgements).
+double rx_bytes(const Env &env, const Wan &n, const std::string &h) {
+  std::string out = path(env, "rx-" + h + ".out");
+  Process::start(n.hosts.on(h, {"ss", "-tinH"}), out, "/dev/null").wait(5.0);
+  std::string text = file_text(out);
+  double sum = 0.0;
+  const std::string key = "bytes_received:";
+  for (size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + 1))
+    sum += std::atof(text.c_str() + at + key.size());
+  return sum;
+}
+
+// Bytes a second hosts p and q receive over `seconds` s.
+std::pair<double, double> rx_rates(const Env &env, const Wan &n, double seconds) {
+  double p0 = rx_bytes(env, n, "p"), q0 = rx_bytes(env, n, "q");
+  usleep(static_cast<useconds_t>(seconds * 1e6));
+  return {(rx_bytes(env, n, "p") - p0) / seconds, (rx_bytes(env, n, "q") - q0) / seconds};
+}
+
+// What one player receives does not grow with the matches on its server
+// (docs/protocol.md, "A match's own partition"): match 0's bot on p reads
+// its match's partition, the other, on q, every match (--every-match). Each
+// host's link counts its bytes (all of it: RTPS, TCP and IP) while match 0
+// plays alone (the other matches idle), then while `kOthers` more matches
+// play beside it.
+void case_wan_bytes(const Env &env) {
+  constexpr int kOthers = 24;
+  constexpr double kWindow = 10.0;
+  Wan n(env, {"s", "l"});
+  n.matches = std::to_string(1 + kOthers);
+  n.bot_extra[1] = {"--every-match"};
+  if (!wan_rig(env, Guard::none, &n)) return;
+  n.t->poll();
+  int hits0 = hits_by_match(n.t->lines)[0];
+  auto alone = rx_rates(env, n, kWindow);
+  n.t->poll();
+  int hits_alone = hits_by_match(n.t->lines)[0] - hits0;
+  Process load = on(env, n, "l", "load", "ball-load",
+                    client(n, "load", {"--matches", std::to_string(kOthers), "--first-match", "1", "--warmup", "3",
+                                       "--duration", "100"}));
+  bool all = rallies(*n.t, 1 + kOthers, 1, 30.0);
+  std::map<uint32_t, int> hits = hits_by_match(n.t->lines);
+  CHECK_MSG(all, "the %d other matches did not all play within 30 s (%zu did)", kOthers, hits.size());
+  n.t->poll();
+  hits0 = hits_by_match(n.t->lines)[0];
+  auto beside = rx_rates(env, n, kWindow);
+  n.t->poll();
+  int hits_beside = hits_by_match(n.t->lines)[0] - hits0;
+  note("match 0's hits in the windows: %d alone, %d beside", hits_alone, hits_beside);
+  load.stop(5.0);
+  note("bytes a second in, match 0 alone / beside %d more matches: its own partition (p) %.0f / %.0f (x%.3f); "
+       "every match (q) %.0f / %.0f (x%.2f)",
+       kOthers, alone.first, beside.first, beside.first / alone.first, alone.second, beside.second,
+       beside.second / alone.second);
+  CHECK(alone.first > 500.0);  // (match 0's ball states, segments and infos do reach p)
+  CHECK(std::fabs(beside.first / alone.first - 1.0) <= 0.10);
+  // (what the partition keeps away; alone, q already reads the idle matches' MatchInfos)
+  CHECK(beside.second / alone.second >= 2.0);
+  wan_end(n);
+}
+
 TEST(wan_tcp) { itest::in_case(case_wan_tcp); }
 TEST(wan_secure) { itest::in_case(case_wan_secure); }
 TEST(wan_tls) { itest::in_case(case_wan_tls); }
@@ -542,3 +607,4 @@ TEST(wan_failover) { itest::in_case(case_wan_failover); }
 TEST(wan_public_address) { itest::in_case(case_wan_public_address); }
 TEST(wan_delay) { itest::in_case(case_wan_delay); }
 TEST(wan_refused) { itest::in_case(case_wan_refused); }
+TEST(wan_bytes) { itest::in_case(case_wan_bytes); }

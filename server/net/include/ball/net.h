@@ -99,6 +99,10 @@ typedef struct ball_net_config {
                                      profile's (127.0.0.1:7400) */
   const char *tls_dir;            /* "tcp_client": TLS with ca.pem and the identity in this folder (a
                                      server without a certificate of that CA is refused); NULL: plain TCP */
+  int followed_only;              /* 1: read only the matches the client follows, in their own DDS partitions
+                                     (what it receives does not grow with the matches on the server; while it
+                                     follows none, every match's info, for ball_net_matches); 0: every match
+                                     (docs/client.md, "What it costs") */
 } ball_net_config;
 
 /* Defaults: domain 0, loopback, any server, CLOCK_MONOTONIC, no simulated network. */
