@@ -44,6 +44,7 @@ set(BALL_DDS_DOMAINS
   "dds_wan_delay|158|test: 150 ms each way (jitter 30 ms) through the test's relay between the players' LAN and the server: the match rallies, lag compensation finds the late hits, the watcher's ball is the server's"
   "dds_wan_refused|157|test: bad TCP and TLS options refused before any participant is made, each with a sentence"
   "dds_wan_bytes|160|test: what a player behind the NAT receives a second, its match alone and beside 24 more: flat within 10 % in its match's partition, growing when it reads every match"
+  "dds_wan_renew|161|test: TCP clients that hear no server start anew after 5 s, then play once it comes"
   "dds_wan_link_cut|154|test: a player's link behind the NAT cut for 3 s: it comes back by itself, the match pauses and resumes, nothing lost or repeated"
   "dds_key_flood|113|test: a stranger floods a player's own keys: the player never vanishes"
   "dds_create_expires|114|test: a created match nobody joins goes, its MatchInfo disposed"

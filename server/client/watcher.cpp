@@ -163,6 +163,10 @@ void Watcher::on_line(const json &line) {
     ready_ = true;
     return;
   }
+  if (type == "renewed") {  // (the client started anew: docs/deploy.md, "Limits")
+    out_.records.push_back({{"type", "renewed"}, {"recv", real_}});
+    return;
+  }
   if (type == "server_status") {
     StatusOut s = line.get<StatusOut>();
     servers_[s.server_id] = s;

@@ -274,6 +274,7 @@ std::unique_ptr<Domain> Domain::open(int domain_id, const std::string &profile_f
   d->impl_ = std::make_unique<Impl>();
   d->domain_id_ = domain_id;
   d->secure_ = !security.dir.empty();
+  d->connects_out_ = tcp_client_only(qos);
   d->security_dir_ = absolute(security.dir);
   d->impl_->participant = factory->create_participant(domain_id, qos, &d->impl_->publications,
                                                       fdds::StatusMask::none());

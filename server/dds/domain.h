@@ -237,6 +237,9 @@ class Domain {
   ParticipantId id() const;
   int domain_id() const { return domain_id_; }
   bool secure() const { return secure_; }
+  // A TCP client: its profile's TCP transports listen on no port, every
+  // connection is made out by it (a participant made anew makes new ones).
+  bool connects_out() const { return connects_out_; }
   // The SubjectKey of identity NAME (NAME.pem in the security folder);
   // false with a sentence in err (an open domain, a missing or unreadable
   // certificate).
@@ -280,6 +283,7 @@ class Domain {
   std::unique_ptr<Impl> impl_;
   int domain_id_ = 0;
   bool secure_ = false;
+  bool connects_out_ = false;
   std::string security_dir_;  // absolute
 };
 

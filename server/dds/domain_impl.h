@@ -183,6 +183,8 @@ std::string absolute(const std::string &dir);
 // The TCP fields of `reach` and TLS over a profile's participant QoS, or
 // false with err (transport.cpp).
 bool use_tcp(const Reach &reach, fdds::DomainParticipantQos *qos, std::string *err);
+// Whether the participant's transports are TCPv4 ones listening on no port.
+bool tcp_client_only(const fdds::DomainParticipantQos &qos);
 bool use_tls(const Security &sec, fdds::DomainParticipantQos *qos, std::string *err);
 
 // Doors (domain.h) as Fast DDS content filters of a class of our own: the

@@ -71,6 +71,17 @@ bool tcp_peers(const std::string &list, eprosima::fastrtps::rtps::LocatorList_t 
 
 // The TCP fields of `reach` over the profile's (docs/deploy.md), or false
 // with err.
+bool tcp_client_only(const fdds::DomainParticipantQos &qos) {
+  using Tcp = eprosima::fastdds::rtps::TCPv4TransportDescriptor;
+  bool tcp = false;
+  for (const auto &t : qos.transport().user_transports) {
+    const auto *d = dynamic_cast<const Tcp *>(t.get());
+    if (!d || !d->listening_ports.empty()) return false;
+    tcp = true;
+  }
+  return tcp && !qos.transport().use_builtin_transports;
+}
+
 bool use_tcp(const Reach &reach, fdds::DomainParticipantQos *qos, std::string *err) {
   if (reach.tcp_peers.empty() && reach.tcp_port == 0 && reach.tcp_public.empty()) return true;
   auto tcp = own_tcp_transports(qos);

@@ -1,5 +1,6 @@
 #include "client_core.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace ballsrv {
@@ -154,6 +155,7 @@ void ClientCore::pump(ClientPort &port, double local, double real) {
   EventOut ev;
   while (port.take(&ev)) {
     Followed *f = p.of(ev.match_id, p.size.event);
+    if (f && ev.kind == EventKind::refused) f->answered = p.local;
     p.put(p.tap(ev, ev.reception, f && f->view->on_event(ev, p.at(ev.reception), &scratch_)));
   }
   StatusOut status;  // (read when the config asks for it: only the tap has it)
@@ -255,6 +257,48 @@ bool ClientCore::Followed::joining() const {
   return w;
 }
 
+bool ClientCore::Followed::waits_for_slot() const {
+  bool w = any && view->slot() < 0;
+  for (int k = 0; k < kMaxPlayers; ++k) w = w || (want[k] && !view->holds(k));
+  return w;
+}
+
+bool ClientCore::wants_renewal(bool hears, double local) {
+  if (renewed_at_ < 0.0) renewed_at_ = heard_at_ = local;
+  if (hears) heard_at_ = local;
+  bool stuck = !hears && local - heard_at_ >= renew_wait_;
+  bool waiting = false;
+  for (auto &kv : followed_) {
+    Followed &f = kv.second;
+    if (!f.waits_for_slot()) {
+      f.join_since = -1.0;
+      continue;
+    }
+    waiting = true;
+    double since = std::max({f.join_since, f.answered, renewed_at_});
+    stuck = stuck || (hears && f.join_since >= 0.0 && local - since >= renew_wait_);
+  }
+  if (hears && !waiting && !stuck) renew_wait_ = kRenewFirst;
+  if (!stuck) return false;
+  renewed_at_ = heard_at_ = local;
+  renew_wait_ = std::min(2.0 * renew_wait_, kRenewMost);
+  return true;
+}
+
+void ClientCore::renewed(const ParticipantId &me, double local) {
+  me_ = me;
+  renewals_++;
+  tapped_ready_ = false;  // (the new participant's "ready" when it hears a server)
+  for (auto &kv : followed_) {
+    Followed &f = kv.second;
+    f.view->set_me(me);
+    f.next_join.fill(local);
+    if (f.join_since >= 0.0) f.join_since = local;
+  }
+  for (auto &kv : creating_) kv.second.next = local;
+  if (tap_) tap_(json{{"type", "renewed"}, {"renewals", renewals_}});
+}
+
 void ClientCore::send_due(ClientPort &port, double local) {
   for (auto &kv : followed_) {
     Followed &f = kv.second;
@@ -269,6 +313,7 @@ void ClientCore::send_due(ClientPort &port, double local) {
       c.player = k < kMaxPlayers ? k : -1;
       write(port, c, &f);
       f.next_join[k] = local + settings_.retry;
+      if (f.join_since < 0.0) f.join_since = local;
     }
   }
   for (auto it = creating_.begin(); it != creating_.end();) {
@@ -320,6 +365,7 @@ ball_status ClientCore::join(uint32_t match, int slot, ClientPort &port, double 
       if (!was_followed) followed_.erase(match), port.unfollow(match);
       return refuse(BALL_ENETWORK, "the transport refused the join of " + match_name(match), why);
     }
+    if (f->join_since < 0.0) f->join_since = local;
   }
   if (slot < 0) f->any = true;
   else f->want[k] = true;

@@ -101,6 +101,21 @@ class ClientCore {
   std::vector<const Listed *> matches(double local) const;  // listed now (heard within `silence`), by id
   const Listed *listed(uint32_t match, double local) const;
   std::deque<ViewEvent> &events() { return events_; }  // of every followed match, in order, not taken yet
+
+  // Starting anew (docs/deploy.md, "Limits": a TCP connection Fast DDS 2.9
+  // left deaf). Called after each pump with whether the port hears a
+  // server: true when the client should make its participant anew, either
+  // because no server has been heard for `renew_wait` s since it opened (or
+  // last started anew, or last heard one), or because a JOIN has had no
+  // answer (the slot held, or a refusal in its match) for that long while a
+  // server is heard. Each time it says so the wait doubles, up to
+  // kRenewMost s; it is kRenewFirst again once a server is heard and no JOIN
+  // waits. After a new participant, renewed() with its id: the views take
+  // it as theirs, every JOIN and CREATE waiting is sent at once.
+  static constexpr double kRenewFirst = 5.0, kRenewMost = 60.0;
+  bool wants_renewal(bool hears, double local);
+  void renewed(const ParticipantId &me, double local);
+  uint64_t renewals() const { return renewals_; }
   uint64_t refused() const { return refused_; }        // samples of matches it does not follow that were not usable
 
  private:
@@ -115,7 +130,10 @@ class ClientCore {
     std::array<std::unique_ptr<Link<RacketSampleIn>>, kMaxPlayers> links;  // each slot's simulated network
     MatchRackets rackets;                      // the players' rackets (CoreSettings::rackets)
     OwnCounters own;
+    double join_since = -1.0;  // the caller's clock of the first JOIN not answered yet (-1: none waits)
+    double answered = -1.0;    // of the newest refusal in the match (an answer to someone's control)
     bool joining() const;
+    bool waits_for_slot() const;  // a slot wanted that it does not hold
   };
   struct Creating {
     ControlIn control;
@@ -158,6 +176,10 @@ class ClientCore {
   bool tapped_ready_ = false;  // the tap's "ready" line is out
   uint64_t refused_ = 0;
   uint64_t lost_writes_ = 0;  // controls DDS refused outside a followed match (CREATE)
+  double renewed_at_ = -1.0;  // the caller's clock when it opened or last started anew
+  double heard_at_ = -1.0;    // and when it last heard a server (or renewed_at_)
+  double renew_wait_ = kRenewFirst;
+  uint64_t renewals_ = 0;
 };
 
 }  // namespace ballsrv

@@ -75,6 +75,8 @@ class MatchView {
 
   // `servers`: whose samples it takes; `me`: this client's participant (its slot)
   MatchView(uint32_t id, const ServerChoice &servers, const ParticipantId &me);
+  // the client's participant from now on (a client started anew: ClientCore::renewed)
+  void set_me(const ParticipantId &me) { me_ = me; }
 
   // What the server said; `local` is the caller's clock at its reception.
   // false: refused (counted). Notes and events for the caller go to `out`.

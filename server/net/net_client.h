@@ -23,6 +23,16 @@ class Transport {
   virtual std::string error() const { return {}; }
   // Deletes what it made; false when that took longer than `limit` s (left to it).
   virtual bool close(double limit) = 0;
+  // Whether starting anew may help a client that hears no server
+  // (ClientCore::wants_renewal): a TCP client's connections are its own.
+  virtual bool renewable() const { return false; }
+  // Makes its participant and endpoints anew (the matches followed read
+  // again), then deletes the old ones; port() and id() are the new ones'.
+  // false with a sentence: the old ones are kept.
+  virtual bool renew(std::string *why) {
+    *why = "this transport cannot start anew";
+    return false;
+  }
 };
 
 // The settings a config asks for; BALL_OK, or a refusal with its sentence

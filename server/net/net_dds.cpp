@@ -1,6 +1,7 @@
 // ball_net_open: a client of ball/net.h on a DDS participant (server/dds's
 // Domain and client endpoints), its writers one pair per DDS partition.
 #include <algorithm>
+#include <functional>
 #include <map>
 #include <memory>
 #include <new>
@@ -62,6 +63,19 @@ class NetPort : public ClientPort {
     racket_readers_.emplace(partition, std::move(r));
     return true;
   }
+  // A port made anew takes the matches the old one followed (once, not one by one).
+  bool adopt(const NetPort &old, std::string *why) {
+    if (followed_only_ && !old.followed_.empty()) {
+      if (!readers_->narrow(old.followed_, why)) return false;
+      followed_ = old.followed_;
+    }
+    for (const auto &r : old.racket_readers_) {
+      auto fresh = dds::racket_reader(domain_, 1, r.first, why);
+      if (!fresh.valid()) return false;
+      racket_readers_.emplace(r.first, std::move(fresh));
+    }
+    return true;
+  }
   void unfollow(uint32_t match) override {
     std::string why;  // (fewer partitions than before: refused only where the domain refuses every reader)
     if (followed_only_ && followed_.erase(match) && !readers_->narrow(followed_, &why)) error_ = why;
@@ -109,24 +123,79 @@ class NetPort : public ClientPort {
   WireSizes sizes_ = dds::wire_sizes();
 };
 
+// A participant and its port, as ball_net_open's config asks.
+struct Made {
+  std::unique_ptr<dds::Domain> domain;
+  std::unique_ptr<NetPort> port;
+};
+using Maker = std::function<ball_status(Made *, std::string *)>;
+
 class DdsTransport : public Transport {
  public:
-  DdsTransport(std::unique_ptr<dds::Domain> domain, std::unique_ptr<NetPort> port)
-      : domain_(std::move(domain)), port_(std::move(port)) {}
-  ClientPort &port() override { return *port_; }
-  ParticipantId id() const override { return domain_->id(); }
-  std::string error() const override { return port_ ? port_->error() : std::string(); }
-  bool close(double limit) override {
-    port_.reset();  // handles only: the Domain owns the entities
-    bool done = domain_->close(limit);
-    domain_.reset();
-    return done;
+  DdsTransport(Made made, Maker maker) : made_(std::move(made)), maker_(std::move(maker)) {}
+  ClientPort &port() override { return *made_.port; }
+  ParticipantId id() const override { return made_.domain->id(); }
+  std::string error() const override { return made_.port ? made_.port->error() : std::string(); }
+  bool close(double limit) override { return close(&made_, limit); }
+  bool renewable() const override { return made_.domain && made_.domain->connects_out(); }
+  bool renew(std::string *why) override {
+    Made fresh;
+    if (maker_(&fresh, why) != BALL_OK) return false;
+    if (!fresh.port->adopt(*made_.port, why)) {
+      close(&fresh, dds::kTeardownLimit);
+      return false;
+    }
+    std::swap(made_, fresh);
+    close(&fresh, dds::kTeardownLimit);  // (the old one's: bounded, as ball_net_close's)
+    return true;
   }
 
  private:
-  std::unique_ptr<dds::Domain> domain_;
-  std::unique_ptr<NetPort> port_;
+  static bool close(Made *m, double limit) {
+    m->port.reset();  // handles only: the Domain owns the entities
+    bool done = !m->domain || m->domain->close(limit);
+    m->domain.reset();
+    return done;
+  }
+  Made made_;
+  Maker maker_;
 };
+
+// What makes the config's participant and port, now and whenever the
+// client starts anew (the config's strings copied: the caller's may go).
+Maker maker_of(const ball_net_config &config, const CoreSettings &settings) {
+  dds::Security security{or_empty(config.security_dir), or_empty(config.identity), or_empty(config.tls_dir)};
+  dds::Reach reach;
+  reach.discovery_servers = or_empty(config.discovery_servers);
+  reach.tcp_peers = or_empty(config.tcp_peers);
+  std::string qos_file = or_empty(config.qos_file);
+  std::string profile = config.participant ? config.participant : "loopback";
+  std::string name = config.name ? config.name : "ball-net";
+  const int domain_id = config.domain;
+  const int matches = static_cast<int>(settings.max_matches);
+  dds::ClientNeeds needs;
+  needs.players = 0;  // the writers are the port's, per partition
+  needs.matches = matches;
+  needs.events = true;
+  needs.states = config.ball_states != 0;
+  needs.status = config.server_status != 0;  // (for the tap alone)
+  needs.server_certs = settings.servers.bound();
+  const bool rackets = settings.rackets, followed_only = config.followed_only != 0;
+  return [=](Made *out, std::string *err) {
+    auto domain = dds::Domain::open(domain_id, qos_file, profile, reach, name, err, security);
+    if (!domain) return BALL_ENETWORK;
+    dds::ClientNeeds n = needs;
+    n.rackets = rackets && !domain->secure();  // (secure: a reader per match followed, NetPort)
+    auto readers = dds::ClientEndpoints::open(*domain, n, err);
+    if (!readers) {
+      domain->close(dds::kTeardownLimit);
+      return BALL_ENETWORK;
+    }
+    out->port = std::make_unique<NetPort>(*domain, std::move(readers), matches, rackets, followed_only);
+    out->domain = std::move(domain);
+    return BALL_OK;
+  };
+}
 
 }  // namespace
 
@@ -149,31 +218,11 @@ extern "C" ball_status ball_net_open(const ball_net_config *config, ball_net_cli
     std::string err;
     ball_status st = core_settings_of(*config, &settings, &err);
     if (st != BALL_OK) return say(st, err);
-    dds::Security security{or_empty(config->security_dir), or_empty(config->identity), or_empty(config->tls_dir)};
-    dds::Reach reach;
-    reach.discovery_servers = or_empty(config->discovery_servers);
-    reach.tcp_peers = or_empty(config->tcp_peers);
-    auto domain = dds::Domain::open(config->domain, or_empty(config->qos_file),
-                                    config->participant ? config->participant : "loopback", reach,
-                                    config->name ? config->name : "ball-net", &err, security);
-    if (!domain) return say(BALL_ENETWORK, err);
-    const int matches = static_cast<int>(settings.max_matches);
-    dds::ClientNeeds needs;
-    needs.players = 0;  // the writers are the port's, per partition
-    needs.matches = matches;
-    needs.events = true;
-    needs.states = config->ball_states != 0;
-    needs.status = config->server_status != 0;  // (for the tap alone)
-    needs.server_certs = settings.servers.bound();
-    needs.rackets = settings.rackets && !domain->secure();  // (secure: a reader per match followed, NetPort)
-    auto readers = dds::ClientEndpoints::open(*domain, needs, &err);
-    if (!readers) {
-      domain->close(dds::kTeardownLimit);
-      return say(BALL_ENETWORK, err);
-    }
-    auto port =
-        std::make_unique<NetPort>(*domain, std::move(readers), matches, settings.rackets, config->followed_only != 0);
-    st = open_over(std::make_unique<DdsTransport>(std::move(domain), std::move(port)), *config, client, &err);
+    Made made;
+    Maker maker = maker_of(*config, settings);
+    st = maker(&made, &err);
+    if (st != BALL_OK) return say(st, err);
+    st = open_over(std::make_unique<DdsTransport>(std::move(made), std::move(maker)), *config, client, &err);
     return say(st, st == BALL_OK ? "" : err);
   } catch (const std::bad_alloc &) {
     return say(BALL_ENOMEM, "out of memory");

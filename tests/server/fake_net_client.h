@@ -23,7 +23,7 @@ class FakeNet {
     c.clock_user = &now;
     if (more) more(&c);
     std::string why;
-    open_over(std::make_unique<Over>(port, me), c, &client, &why);
+    open_over(std::make_unique<Over>(*this, me), c, &client, &why);
   }
   ~FakeNet() { ball_net_free(client); }
   FakeNet(const FakeNet &) = delete;
@@ -32,14 +32,24 @@ class FakeNet {
   FakeClientPort port;
   double now = 0.0;  // the client's clock
   ball_net_client *client = nullptr;
+  // a transport that may start anew (a TCP client's): each renewal a new
+  // participant, its id's last byte the previous one's plus one
+  bool renewable = false;
+  int renewals = 0;
 
  private:
   struct Over : Transport {
-    Over(FakeClientPort &p, const ParticipantId &m) : port_(p), me_(m) {}
-    ClientPort &port() override { return port_; }
+    Over(FakeNet &net, const ParticipantId &m) : net_(net), me_(m) {}
+    ClientPort &port() override { return net_.port; }
     ParticipantId id() const override { return me_; }
     bool close(double) override { return true; }
-    FakeClientPort &port_;
+    bool renewable() const override { return net_.renewable; }
+    bool renew(std::string *) override {
+      net_.renewals++;
+      me_[11]++;
+      return true;
+    }
+    FakeNet &net_;
     ParticipantId me_;
   };
 };

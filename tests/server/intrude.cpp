@@ -78,6 +78,10 @@ int main(int argc, char **argv) {
   dds::Writer<MatchInfoOut> forged;
   dds::Writer<SegmentOut> forged_segments;
   dds::Writer<StateOut> forged_states;
+  // and the same in the match's own partition (docs/protocol.md, "A match's own partition")
+  dds::Writer<MatchInfoOut> forged_here;
+  dds::Writer<SegmentOut> forged_segments_here;
+  dds::Writer<StateOut> forged_states_here;
   const char *by = strength.empty() ? nullptr : strength.c_str();
   if (as_server >= 0) {
     forged = d->writer<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {16}, &err, by);
@@ -86,6 +90,14 @@ int main(int argc, char **argv) {
     if (forged_segments.valid())
       forged_states = d->writer<StateOut>(dds::kStateTopic, dds::kStateProfile, {16}, &err, by);
     if (!forged.valid() || (forge && !forged_states.valid())) return fail(kProgram, err);
+    if (forge) {
+      dds::Sizing here{16, 0, dds::match_partition(static_cast<uint32_t>(match))};
+      forged_here = d->writer<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, here, &err, by);
+      forged_segments_here = d->writer<SegmentOut>(dds::kSegmentTopic, dds::kSegmentProfile, here, &err, by);
+      forged_states_here = d->writer<StateOut>(dds::kStateTopic, dds::kStateProfile, here, &err, by);
+      if (!forged_here.valid() || !forged_segments_here.valid() || !forged_states_here.valid())
+        return fail(kProgram, err);
+    }
   } else {
     samples = d->writer<RacketSampleIn>(dds::kRacketTopic, dds::kRacketProfile, {keys, 0, partition}, &err);
     if (samples.valid())
@@ -122,7 +134,7 @@ int main(int argc, char **argv) {
         MatchInfoOut f = newest;
         f.server_id = static_cast<uint32_t>(as_server);
         f.level = 99;
-        bool ok = forged.write(f);
+        bool ok = forged.write(f) & forged_here.write(f);
         if (decoy >= 0) {
           MatchInfoOut g = newest;
           g.match_id = static_cast<uint32_t>(decoy);
@@ -140,14 +152,14 @@ int main(int argc, char **argv) {
         seg.seq = 0xFFFFFFFFu;
         seg.segment.t0 = sim;
         seg.segment.p0 = ball_v3(0.0, 5.0, 0.0);
-        ok = forged_segments.write(seg) && ok;
+        ok = forged_segments.write(seg) && forged_segments_here.write(seg) && ok;
         StateOut far;
         far.match_id = match;
         far.server_id = static_cast<uint32_t>(as_server);
         far.sim_time = sim + 10000.0;
         far.server_time = realtime_now();
         far.segment_seq = 0xFFFFFFFFu;
-        ok = forged_states.write(far) && ok;
+        ok = forged_states.write(far) && forged_states_here.write(far) && ok;
         if (ok) sent_infos++;
         else refused++;
       }

@@ -203,6 +203,77 @@ struct Players {
   PlayerGroup group;
 };
 
+// A TCP client starts anew (docs/deploy.md, "Limits") when it hears no
+// server for 5 s, and when a JOIN has no answer for that long while it
+// hears one; each time it waits twice as long, and never while a refusal
+// answers its JOIN or its slot is held. A transport that cannot start anew
+// is never asked.
+TEST(a_client_that_hears_no_answer_starts_anew) {
+  Game g;
+  const ParticipantId me = participant(9);
+  FakeNet net(me);
+  net.renewable = true;
+  ball_net_event ev[16];
+  int n = 0;
+  auto poll_until = [&](double t) {
+    for (; net.now < t - 1e-9; net.now += 0.1) CHECK_EQ(ball_net_poll(net.client, ev, 16, &n), BALL_OK);
+  };
+  net.port.heard = false;
+  poll_until(4.9);
+  CHECK_EQ(net.renewals, 0);
+  poll_until(5.2);
+  CHECK_EQ(net.renewals, 1);  // no server in 5 s
+  poll_until(14.9);
+  CHECK_EQ(net.renewals, 1);  // then 10 s
+  poll_until(15.3);
+  CHECK_EQ(net.renewals, 2);
+  // a server heard: the wait is 5 s again once nothing waits
+  net.port.heard = true;
+  poll_until(16.0);
+  const uint32_t match = g.match.id();
+  CHECK_EQ(ball_net_join(net.client, match, 1), BALL_OK);
+  size_t joins = net.port.controls.size();
+  poll_until(20.9);
+  CHECK_EQ(net.renewals, 2);
+  CHECK(net.port.controls.size() > joins);  // (JOINs resent, unanswered)
+  poll_until(21.3);
+  CHECK_EQ(net.renewals, 3);  // a JOIN unanswered for 5 s while the server is heard
+  // the new participant's JOIN goes out at once
+  CHECK(net.port.controls.back().kind == ControlKind::join);
+  // a refusal in the match is an answer: no renewal while they come
+  ParticipantId renewed = me;
+  renewed[11] += 3;
+  ParticipantId other = participant(1);
+  g.control(ControlKind::join, other, 1);
+  server_says(g, net.port);
+  for (double t = 21.3; t < 40.0; t += 1.0) {
+    EventOut refused;
+    refused.match_id = match;
+    refused.server_id = 1;
+    refused.kind = EventKind::refused;
+    refused.seq = static_cast<uint32_t>(100 + t);
+    net.port.events.push_back(refused);
+    poll_until(t + 1.0);
+  }
+  CHECK_EQ(net.renewals, 3);
+  // the slot given to the new participant: held, nothing waits
+  g.control(ControlKind::leave, other, 1);
+  CHECK(g.control(ControlKind::join, renewed, 1) == Reason::none);
+  for (double t = 40.0; t < 80.0; t += 1.0) {  // (its server's MatchInfo once a second)
+    server_says(g, net.port);
+    poll_until(t + 1.0);
+  }
+  CHECK_EQ(net.renewals, 3);
+  int slot = -1;
+  CHECK_EQ(ball_net_slot_of(net.client, match, &slot), BALL_OK);
+  CHECK_EQ(slot, 1);
+  // a transport that cannot start anew is never asked
+  FakeNet udp(me);
+  udp.port.heard = false;
+  for (udp.now = 0.0; udp.now < 30.0; udp.now += 0.5) CHECK_EQ(ball_net_poll(udp.client, ev, 16, &n), BALL_OK);
+  CHECK_EQ(udp.renewals, 0);
+}
+
 // wire, no scene file, and sends at its rate what the server accepts.
 TEST(player_joins_then_sends) {
   Game g;
