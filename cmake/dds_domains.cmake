@@ -45,6 +45,7 @@ set(BALL_DDS_DOMAINS
   "dds_wan_refused|157|test: bad TCP and TLS options refused before any participant is made, each with a sentence"
   "dds_wan_bytes|160|test: what a player behind the NAT receives a second, its match alone and beside 24 more: flat within 10 % in its match's partition, growing when it reads every match"
   "dds_wan_renew|161|test: TCP clients that hear no server start anew after 5 s, then play once it comes"
+  "dds_wan_stall|162|test: the primary stopped for 6 s over TCP, players behind the NAT: the standby takes over at the next term, the primary yields on its return, nothing of it reaches the watcher after"
   "dds_wan_link_cut|154|test: a player's link behind the NAT cut for 3 s: it comes back by itself, the match pauses and resumes, nothing lost or repeated"
   "dds_key_flood|113|test: a stranger floods a player's own keys: the player never vanishes"
   "dds_create_expires|114|test: a created match nobody joins goes, its MatchInfo disposed"

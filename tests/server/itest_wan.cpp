@@ -357,6 +357,44 @@ void case_wan_failover(const Env &env) {
   CHECK_EQ(s.takeovers, 1u);
 }
 
+// The same layout, the primary stopped (SIGSTOP) for 6 s and let go on:
+// the standby takes the match over at the next term, the primary yields it
+// on its return over its still open TCP connections, and from 1 s after
+// the return the watcher gets nothing of the primary's; the rally goes on.
+void case_wan_stall(const Env &env) {
+  Wan n(env, {"a", "b"});
+  n.server_host = "a";
+  n.standby_host = "b";
+  n.peers = n.hosts.address("a") + ":" + n.port + ";" + n.hosts.address("b") + ":" + n.port;
+  if (!wan_rig(env, Guard::none, &n)) return;
+  const double stopped = realtime_now();
+  n.server.signal(SIGSTOP);
+  json taken = wait_for(*n.t, 10.0, [&](const json &j) {
+    return is_type(j, "match_info") && j.get<MatchInfoOut>().server_id == 2 && recv(j) > stopped;
+  });
+  CHECK_MSG(!taken.is_null(), "no MatchInfo of the standby within 10 s of the stop");
+  sleep_until(mono_now() + std::max(0.0, stopped + 6.0 - realtime_now()));
+  const double back = realtime_now();
+  n.server.signal(SIGCONT);
+  double last = 0.0;
+  int hits = hits_within(*n.t, back, 4, 25.0, &last);
+  n.t->poll();
+  size_t of_old = count_if(n.t->lines.begin(), n.t->lines.end(), [&](const json &j) {
+    return j.contains("server") && j.value("server", 0u) == 1u && recv(j) > back + 1.0 &&
+           (is_type(j, "match_info") || is_type(j, "segment") || is_type(j, "event") || is_type(j, "state"));
+  });
+  wan_end(n);
+  ServerReport primary = report(env, "server"), standby = report(env, "standby");
+  note("over TCP through the NAT: the standby's MatchInfo %.2f s after the stop; after the return %d hits, %zu "
+       "samples of the old owner, %llu take-overs, %llu yields",
+       taken.is_null() ? -1.0 : recv(taken) - stopped, hits, of_old,
+       static_cast<unsigned long long>(standby.takeovers), static_cast<unsigned long long>(primary.yields));
+  CHECK(hits >= 4);
+  CHECK_EQ(of_old, 0u);
+  CHECK_EQ(standby.takeovers, 1u);
+  CHECK_EQ(primary.yields, 1u);
+}
+
 // The server in a data centre whose router forwards the port to the
 // server's private address (dnat): announcing the router's address
 // (--tcp-public-address), the players behind their own router play;
@@ -660,3 +698,4 @@ TEST(wan_delay) { itest::in_case(case_wan_delay); }
 TEST(wan_refused) { itest::in_case(case_wan_refused); }
 TEST(wan_bytes) { itest::in_case(case_wan_bytes); }
 TEST(wan_renew) { itest::in_case(case_wan_renew); }
+TEST(wan_stall) { itest::in_case(case_wan_stall); }
