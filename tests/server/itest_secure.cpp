@@ -377,8 +377,44 @@ void case_discovery_flood(const Env &env) {
   w.stop();
 }
 
+// The secure UDP domain's documented limit (docs/security.md, "Which
+// profile holds against whom"): one plaintext datagram from a host without
+// any certificate, a participant disposal in the name of slot 0's holder
+// (its GUID prefix, plaintext in every announcement), removes the player:
+// the match pauses (PAUSE_VANISHED) and does not resume, though the bot
+// plays on. This checks the limit the page states; when Debian's Fast DDS
+// takes the fix of CVE-2023-50257 it fails, and the page must change.
+void case_secure_udp_disposal(const Env &env) {
+  Case c{env};
+  std::string err, certs = path(env, "certs");
+  CHECK_EQ(run_to_end(env, {"/bin/bash", env.source + "/server/security/certs.sh", certs, "1"}, "certs", &err), 0);
+  auto sec = [&](const char *who) { return std::vector<std::string>{"--secure", certs, "--identity", who}; };
+  Rally r = rally(c, "disposal", sec("server1"), sec("watch"), sec("m0-a"), sec("m0-b"));
+  int hits = hits_after_serve_within(r.t, 3, 20.0);
+  CHECK_MSG(hits >= 3, "%d hits before the datagram", hits);
+  std::string holder = slot0_holder(r.t);
+  size_t from = r.t.lines.size();
+  const double sent = realtime_now();
+  CHECK_EQ(run_to_end(env, {env.python, env.source + "/tests/server/udp_disposal.py", "127.0.0.1", env.dom(), holder},
+                      "disposal", &err),
+           0);
+  json paused = wait_for(r.t, 3.0, [](const json &j) {
+    return is_event(j, EventKind::pause) && j.get<EventOut>().index == 0;
+  }, &from);
+  bool resumed = !wait_for(r.t, 8.0, [](const json &j) { return is_event(j, EventKind::resume); }, &from).is_null();
+  const bool bot_on = r.b0.running();
+  note("one plaintext disposal datagram in slot 0's holder's name: %s %.2f s after it, %s within 8 s; the bot %s",
+       paused.is_null() ? "no pause" : "paused", paused.is_null() ? -1.0 : recv(paused) - sent,
+       resumed ? "resumed" : "not resumed", bot_on ? "still running" : "ended");
+  CHECK_MSG(!paused.is_null(), "the documented limit did not reproduce: no pause within 3 s (security.md must change)");
+  CHECK(!resumed);
+  CHECK(bot_on);
+  for (Process *p : {&r.b0, &r.b1, &r.w}) p->stop();
+}
+
 }  // namespace
 
 TEST(secure) { itest::in_case(case_secure); }
+TEST(secure_udp_disposal) { itest::in_case(case_secure_udp_disposal); }
 TEST(discovery_flood) { itest::in_case(case_discovery_flood); }
 TEST(load_secure) { itest::in_case(case_load_secure); }
