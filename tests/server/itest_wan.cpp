@@ -334,12 +334,18 @@ void case_wan_link_cut(const Env &env) {
 // the clients behind the home router listing both: the primary killed
 // (SIGKILL) mid-rally, the standby takes the match over and the rally goes
 // on, over TCP as on UDP (docs/server.md, "Several servers and failover").
+// A primary on host a and a standby on host b, the clients listing both;
+// true once the match rallies (wan_rig).
+bool two_servers_rig(const Env &env, Wan *n) {
+  n->server_host = "a";
+  n->standby_host = "b";
+  n->peers = n->hosts.address("a") + ":" + n->port + ";" + n->hosts.address("b") + ":" + n->port;
+  return wan_rig(env, Guard::none, n);
+}
+
 void case_wan_failover(const Env &env) {
   Wan n(env, {"a", "b"});
-  n.server_host = "a";
-  n.standby_host = "b";
-  n.peers = n.hosts.address("a") + ":" + n.port + ";" + n.hosts.address("b") + ":" + n.port;
-  if (!wan_rig(env, Guard::none, &n)) return;
+  if (!two_servers_rig(env, &n)) return;
   const double killed = realtime_now();
   n.server.signal(SIGKILL);
   n.server.wait(2.0);
@@ -363,10 +369,7 @@ void case_wan_failover(const Env &env) {
 // the return the watcher gets nothing of the primary's; the rally goes on.
 void case_wan_stall(const Env &env) {
   Wan n(env, {"a", "b"});
-  n.server_host = "a";
-  n.standby_host = "b";
-  n.peers = n.hosts.address("a") + ":" + n.port + ";" + n.hosts.address("b") + ":" + n.port;
-  if (!wan_rig(env, Guard::none, &n)) return;
+  if (!two_servers_rig(env, &n)) return;
   const double stopped = realtime_now();
   n.server.signal(SIGSTOP);
   json taken = wait_for(*n.t, 10.0, [&](const json &j) {
