@@ -136,10 +136,7 @@ ServerEndpoints::View &ServerEndpoints::view(uint32_t match) {
   v.states = domain_.writer<StateOut>(kStateTopic, kStateProfile, own, &err, role_);
   v.infos = domain_.writer<MatchInfoOut>(kInfoTopic, kInfoProfile, own, &err, role_);
   v.models = domain_.writer<MatchModelOut>(kModelTopic, kModelProfile, own, &err, role_);
-  if (strength_) {
-    v.segments.set_strength(strength_), v.events.set_strength(strength_), v.states.set_strength(strength_);
-    v.infos.set_strength(strength_), v.models.set_strength(strength_);
-  }
+  if (strength_) v.set_strength(strength_);
   return v;
 }
 
@@ -182,11 +179,7 @@ bool ServerEndpoints::set_strength(uint32_t strength) {
   strength_ = strength;
   bool ok = segments_.set_strength(strength) && events_.set_strength(strength) && states_.set_strength(strength) &&
             infos_.set_strength(strength) && models_.set_strength(strength);
-  for (auto &kv : views_) {
-    View &v = kv.second;
-    ok = v.segments.set_strength(strength) && v.events.set_strength(strength) && v.states.set_strength(strength) &&
-         v.infos.set_strength(strength) && v.models.set_strength(strength) && ok;
-  }
+  for (auto &kv : views_) ok = kv.second.set_strength(strength) && ok;
   return ok;
 }
 

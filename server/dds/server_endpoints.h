@@ -57,6 +57,10 @@ class ServerEndpoints : public ServerPort {
     Writer<MatchInfoOut> infos;
     Writer<MatchModelOut> models;
     std::chrono::steady_clock::time_point retire{};  // disposed: deleted from then on
+    bool set_strength(uint32_t s) {
+      return segments.set_strength(s) & events.set_strength(s) & states.set_strength(s) & infos.set_strength(s) &
+             models.set_strength(s);
+    }
   };
   View &view(uint32_t match);
   void remove_retired();

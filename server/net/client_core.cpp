@@ -257,10 +257,14 @@ bool ClientCore::Followed::joining() const {
   return w;
 }
 
+bool ClientCore::Followed::wants(int k) const {
+  return k < kMaxPlayers ? want[k] && !view->holds(k) : any && view->slot() < 0;
+}
+
 bool ClientCore::Followed::waits_for_slot() const {
-  bool w = any && view->slot() < 0;
-  for (int k = 0; k < kMaxPlayers; ++k) w = w || (want[k] && !view->holds(k));
-  return w;
+  for (int k = 0; k <= kMaxPlayers; ++k)
+    if (wants(k)) return true;
+  return false;
 }
 
 bool ClientCore::wants_renewal(bool hears, double local) {
@@ -304,8 +308,7 @@ void ClientCore::send_due(ClientPort &port, double local) {
     Followed &f = kv.second;
     // each slot wanted and not held, and `any` while none is held
     for (int k = 0; k <= kMaxPlayers; ++k) {
-      bool wanted = k < kMaxPlayers ? f.want[k] && !f.view->holds(k) : f.any && f.view->slot() < 0;
-      if (!wanted || local < f.next_join[k]) continue;
+      if (!f.wants(k) || local < f.next_join[k]) continue;
       ControlIn c;
       c.match_id = kv.first;
       c.seq = ++control_seq_;

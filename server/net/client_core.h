@@ -133,6 +133,7 @@ class ClientCore {
     double join_since = -1.0;  // the caller's clock of the first JOIN not answered yet (-1: none waits)
     double answered = -1.0;    // of the newest refusal in the match (an answer to someone's control)
     bool joining() const;
+    bool wants(int k) const;      // slot k (kMaxPlayers: any) wanted and not held
     bool waits_for_slot() const;  // a slot wanted that it does not hold
   };
   struct Creating {
