@@ -321,6 +321,7 @@ void Watcher::on_event(const ball_net_event &e) {
       say(e.match, e.time, "match now served by server " + std::to_string(e.server));
       return;
     case BALL_NET_EVENT_SLOT: return;  // (a watcher holds none)
+    case BALL_NET_EVENT_SOUND: return;  // (its collision's flag, counted with it)
     default: break;
   }
   if (static_cast<int>(e.kind) < 0 || e.kind >= BALL_NET_EVENT_SERVER) return;
@@ -472,6 +473,9 @@ void Watcher::snapshot_written(const SnapshotDue &due, const SnapshotRecord &dra
 void Watcher::tally(Watched &w, const EventOut &e, int sign) {
   WatchedMatchSummary &t = w.tally;
   auto add = [sign](uint64_t &n) { n = sign > 0 ? n + 1 : n - (n > 0); };
+  bool collision = e.kind == EventKind::floor || e.kind == EventKind::net || e.kind == EventKind::wall ||
+                   e.kind == EventKind::racket;
+  if (collision && e.sound) add(t.sounds);  // the paper's sound event (docs/protocol.md, "Events")
   switch (e.kind) {
     case EventKind::racket:
       add(e.in_play ? t.hits : t.dead_hits);
@@ -482,7 +486,6 @@ void Watcher::tally(Watched &w, const EventOut &e, int sign) {
       break;
     case EventKind::net: add(t.nets); break;
     case EventKind::wall: add(t.walls); break;
-    case EventKind::sound: add(t.sounds); break;
     case EventKind::serve: add(t.serves); break;
     case EventKind::point:
       add(e.side < 0 ? t.lets : t.points);

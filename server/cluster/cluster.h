@@ -34,7 +34,7 @@ constexpr double kFollowWake = 1.0 / 60.0;
 // one in effect and those written ahead of their contact
 constexpr size_t kFollowedSegments = 8;
 // real s a followed MatchInfo's server_time may lie from this server's
-// realtime clock: an owner writes its MatchInfo at least once a second,
+// realtime clock: an owner writes its MatchInfo at least every 4 s,
 // stamped with its newest frame's deadline, and the servers of a domain keep
 // their clocks in step (NTP); a take-over maps the owner's sim clock by that stamp
 constexpr double kMaxClockGap = 10.0;
@@ -44,7 +44,7 @@ constexpr double kMaxClockGap = 10.0;
 constexpr double kModelWait = 2.0;
 // s a take-over held back for want of players waits once they are heard
 // again: a healed cut brings the owner back too, a little after its
-// players' samples (its liveliness, its MatchInfo at least once a second)
+// players' samples (its liveliness, asserted 4 times a second)
 constexpr double kPlayersSettle = 2.0;
 // a server's match writers are as strong as its role plus this much per
 // term of the newest match it steps (docs/protocol.md, "Terms"): above

@@ -11,6 +11,7 @@ namespace {
 
 constexpr double kFarAway = 30.0;     // m beyond the court: the ball has left it
 constexpr double kAheadHorizon = 10.0; // sim s: how far ahead a static contact is looked for (docs/protocol.md)
+constexpr double kAheadLead = 0.5;     // real s before a foreseen contact its segment is written (docs/protocol.md)
 
 // A decided point on the rules' state: the score, the next server, the serve
 // due serve_delay after the instant t it was decided.
@@ -108,18 +109,24 @@ void Match::took_effect(const SegmentOut &s) {
 
 void Match::write_ahead(MatchOutput *out) {
   const ball_model &m = model();
-  if (ahead_.valid || m.scheme != BALL_SCHEME_EXACT ||
-      !(m.effects & (BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_WALLS)))
+  if (m.scheme != BALL_SCHEME_EXACT || !(m.effects & (BALL_EFFECT_FLOOR | BALL_EFFECT_NET | BALL_EFFECT_WALLS)))
     return;
-  // from the segment's start, as the step looks for its next contact
-  ball_prediction pr{};
-  pr.events = &ahead_.event;
-  pr.cap_events = 1;
-  double t0 = sim_.seg.t0;
-  if (ball_predict(&m, &sim_.seg, t0, t0 + kAheadHorizon, kAheadHorizon, &pr) != BALL_OK || pr.n_events < 1 ||
-      !(ahead_.event.time > sim_.time))
-    return;
+  if (!ahead_.valid) {
+    // from the segment's start, as the step looks for its next contact
+    ball_prediction pr{};
+    pr.events = &ahead_.event;
+    pr.cap_events = 1;
+    double t0 = sim_.seg.t0;
+    if (ball_predict(&m, &sim_.seg, t0, t0 + kAheadHorizon, kAheadHorizon, &pr) != BALL_OK || pr.n_events < 1 ||
+        !(ahead_.event.time > sim_.time))
+      return;
+    ahead_.valid = true;
+    ahead_.written = false;
+  }
+  // written kAheadLead of real time before the contact: a racket hit
+  // before then supersedes it unwritten (the bounce after the next one)
   const ball_event &ev = ahead_.event;
+  if (ahead_.written || ev.time - sim_.time > kAheadLead * config_.time_base) return;
   SegmentOut s;
   s.match_id = config_.id;
   s.seq = ++segment_seq_;
@@ -132,13 +139,13 @@ void Match::write_ahead(MatchOutput *out) {
   s.play = judged(ev);
   out->segments.push_back(s);
   ahead_.segment = s;
-  ahead_.valid = true;
+  ahead_.written = true;
   counters_.ahead++;
 }
 
 bool Match::is_ahead(const ball_event &ev) const {
   const ball_event &a = ahead_.event;
-  return ahead_.valid && ev.kind == a.kind && ev.index == a.index && ev.time == a.time &&
+  return ahead_.valid && ahead_.written && ev.kind == a.kind && ev.index == a.index && ev.time == a.time &&
          same_segment(ev.segment, a.segment);
 }
 
@@ -155,7 +162,7 @@ Call Match::judge(Rally &r, const ball_event &ev) const {
 
 PlayState Match::judged(const ball_event &ev) const {
   Rally r = rally_;
-  uint32_t events = ev.sound ? 2u : 1u;  // the collision and its sound
+  uint32_t events = 1;  // the collision (its sound is its flag)
   Call call = r.live() ? judge(r, ev) : Call{};
   PlayState &p = r.state();
   if (call.decided) {
@@ -366,11 +373,11 @@ void Match::advance(double dt, bool with_state, MatchOutput *out) {
     bool still = sim_.seg.grounded && ball_v3_norm(b.velocity) < 0.05;
     apply(rally_.on_frame(far || still, sim_.time, config_.max_rally_time), sim_.time, out);
   }
-  bool had_ahead = ahead_.valid;
   write_ahead(out);
-  // a contact stepped as foreseen with none written ahead after it: only a
-  // MatchInfo tells a standby that this server stepped it (docs/protocol.md)
-  if (stepped_ahead_ && !(ahead_.valid && !had_ahead)) out->info_changed = true;
+  // a contact stepped as foreseen with none foreseen after it: only a
+  // MatchInfo tells a standby that this server stepped it (docs/protocol.md;
+  // the next one's segment, written later, tells it otherwise)
+  if (stepped_ahead_ && !ahead_.valid) out->info_changed = true;
   stepped_ahead_ = false;
 
   if (!with_state) return;
@@ -407,13 +414,7 @@ void Match::emit_collision(const ball_event &ev, EventKind kind, int index, Matc
   e.velocity_out = ev.velocity_out;
   e.segment_seq = current_seq_;
   e.score = rules().score;
-  out->events.push_back(e);
-  if (e.sound) {
-    EventOut s = e;
-    s.kind = EventKind::sound;
-    s.seq = ++rules().event_seq;
-    out->events.push_back(s);
-  }
+  out->events.push_back(e);  // its sound is its flag: no EVENT_SOUND (docs/protocol.md, "Events")
 }
 
 void Match::handle_event(const ball_event &ev, MatchOutput *out) {

@@ -149,9 +149,10 @@ class Match {
   // The segment of the next static contact, written before the contact
   // (docs/protocol.md, "Segments ahead of time").
   struct Ahead {
-    bool valid = false;
-    ball_event event{};  // the contact as libball predicts it
-    SegmentOut segment;  // as written
+    bool valid = false;    // a contact foreseen
+    bool written = false;  // its segment written (kAheadLead before it)
+    ball_event event{};    // the contact as libball predicts it
+    SegmentOut segment;    // as written
   };
 
   void write_ahead(MatchOutput *out);

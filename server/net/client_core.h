@@ -29,7 +29,7 @@ constexpr size_t kMaxClientMatches = 4096;
 struct CoreSettings {
   ServerChoice servers;         // whose samples it takes
   double retry = 0.5;           // s between a JOIN or a CREATE and the next while the server has not answered
-  double silence = 3.0;         // s a match goes unheard before it is not listed (a server writes it once a second)
+  double silence = 10.0;        // s a match goes unheard before it is not listed (docs/protocol.md, "Time")
   size_t max_matches = kMaxClientMatches;  // matches listed and followed at most (the readers' room)
   bool rackets = false;         // keeps the players' rackets of the matches followed (racket())
   LinkParams link;              // a simulated network for the racket poses (none by default)

@@ -21,16 +21,30 @@ bool later(const SegmentOut &a, const SegmentOut &b) {
   return seq_before(b.seq, a.seq);
 }
 
-bool voidable(const EventOut &e) {
+bool collision(const EventOut &e) {
   return e.kind == EventKind::racket || e.kind == EventKind::floor || e.kind == EventKind::net ||
-         e.kind == EventKind::wall || e.kind == EventKind::sound || e.kind == EventKind::point;
+         e.kind == EventKind::wall;
+}
+
+bool voidable(const EventOut &e) { return collision(e) || e.kind == EventKind::point; }
+
+// A note to the caller; a collision whose sound flag is set is followed by
+// the library's sound event, its twin of the same seq (docs/client.md,
+// "Events"; the server writes no EVENT_SOUND: docs/protocol.md, "Events").
+// Voiding the collision voids its twin with it.
+void put(const ViewEvent &v, std::vector<ViewEvent> *out) {
+  out->push_back(v);
+  if (v.note != ViewNote::none || !collision(v.event) || !v.event.sound) return;
+  out->push_back(v);
+  out->back().event.kind = EventKind::sound;
 }
 
 bool finite3(const ball_vec3 &v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // an event a caller can be given: its numbers finite, its enums the IDL's
+// (EVENT_SOUND is none of them: the library makes its own, put above)
 bool usable_event(const EventOut &e) {
-  return std::isfinite(e.time) && finite3(e.point) && finite3(e.velocity_in) && finite3(e.velocity_out) &&
+  return e.kind != EventKind::sound && std::isfinite(e.time) && finite3(e.point) && finite3(e.velocity_in) && finite3(e.velocity_out) &&
          std::isfinite(e.value) && static_cast<unsigned>(e.kind) < static_cast<unsigned>(kEnumCount<EventKind>) &&
          static_cast<unsigned>(e.reason) < static_cast<unsigned>(kEnumCount<Reason>);
 }
@@ -266,7 +280,7 @@ bool MatchView::on_event(const EventOut &e, double local, std::vector<ViewEvent>
 void MatchView::give(const EventOut &e, std::vector<ViewEvent> *out) {
   ViewEvent v;
   v.event = e;
-  out->push_back(v);
+  put(v, out);
   counters_.events++;
   recent_.push_back(e);
   if (recent_.size() > kGivenKept) recent_.pop_front();

@@ -70,8 +70,8 @@ class MatchView {
   // s of the caller's clock: an owner of whom nothing came this long is
   // forgotten, and any owner's samples are taken again (a match served
   // anew after its servers were gone; an owner writes a MatchInfo at
-  // least once a second and its writers live for a 1 s lease)
-  static constexpr double kForgetOwner = 5.0;
+  // least every 4 s and its writers live for a 1 s lease: docs/protocol.md, "Time")
+  static constexpr double kForgetOwner = 10.0;
 
   // `servers`: whose samples it takes; `me`: this client's participant (its slot)
   MatchView(uint32_t id, const ServerChoice &servers, const ParticipantId &me);

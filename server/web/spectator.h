@@ -24,7 +24,7 @@ namespace ballsrv {
 struct SpectatorSettings {
   double aspect = 4.0 / 3.0;    // width / height of the page's view (its camera presets are placed for it)
   double clock_every = 0.1;     // real s between two clock messages of a match
-  double silence = 2.5;         // real s without a MatchInfo after which a match's server is gone
+  double silence = 10.0;        // real s without a MatchInfo after which a match's server is gone (docs/protocol.md, "Time")
   size_t keep_messages = 4096;  // messages a late reader can still catch up with
   size_t page_segments = 32;    // segments of a match a page is given at once
   size_t page_events = 32;      // events of a match a page is given at once

@@ -416,7 +416,7 @@ static void poses_of_a_slot_held(void **state) {
   assert_int_equal(s.write_failures, 0);
   assert_int_equal(s.clock_known, 1);
   /* the server goes away: the ball still answers from what came; the
-     match leaves the list 3 s after its last MatchInfo (docs/client.md) */
+     match leaves the list 10 s after its last MatchInfo (docs/client.md) */
   {
     ball_net_match m;
     ball_net_ball b;
@@ -424,12 +424,12 @@ static void poses_of_a_slot_held(void **state) {
     assert_int_equal(ball_net_match_info(c, 0, &m), BALL_OK);
     stop_server();
     gone = now();
-    while (now() - gone < 5.0 && ball_net_match_info(c, 0, &m) == BALL_OK) {
+    while (now() - gone < 12.0 && ball_net_match_info(c, 0, &m) == BALL_OK) {
       assert_int_equal(ball_net_poll(c, e, 32, &n), BALL_OK);
       pause_seconds(0.05);
     }
     assert_int_equal(ball_net_match_info(c, 0, &m), BALL_ENOMATCH);
-    assert_true(now() - gone > 2.0 && now() - gone < 4.2); /* its last info came up to 1 s before the stop */
+    assert_true(now() - gone > 6.0 && now() - gone < 10.2); /* its last info came up to 4 s before the stop */
     assert_int_equal(ball_net_ball_at(c, 0, now(), &b), BALL_OK);
   }
   assert_int_equal(ball_net_close(c), BALL_OK);

@@ -94,10 +94,11 @@ TEST(serve_lands_in_then_double_bounce) {
   // every collision starts the segment it names
   for (const auto &e : g.events)
     if (e.kind == EventKind::floor) CHECK(e.segment_seq >= 2u);
-  // a sound event repeats every loud bounce
+  // the paper's sound event is a loud bounce's flag: none is written apart (docs/protocol.md, "Events")
   int loud = 0;
   for (const auto &e : g.events) loud += (e.kind == EventKind::floor && e.sound);
-  CHECK_EQ(g.count(EventKind::sound), loud);
+  CHECK(loud > 0);
+  CHECK_EQ(g.count(EventKind::sound), 0);
 }
 
 TEST(serves_alternate_and_land_in) {

@@ -63,16 +63,30 @@ EventOut event(uint32_t seq, EventKind kind = EventKind::floor, double time = 1.
   return e;
 }
 
-// What a view handed on: the server's events' seqs, and its notes
+// What a view handed on: the server's events' seqs, and its notes; the
+// library's sound events apart, each right after its loud collision
 struct Handed {
   std::vector<uint32_t> seqs;
   std::map<ViewNote, int> notes;
   std::vector<ViewEvent> all;
+  int sounds = 0, loud = 0, unpaired = 0;
   void take(std::vector<ViewEvent> &out) {
-    for (const auto &v : out) {
+    for (size_t i = 0; i < out.size(); ++i) {
+      const ViewEvent &v = out[i];
       all.push_back(v);
-      if (v.note == ViewNote::none) seqs.push_back(v.event.seq);
-      else notes[v.note]++;
+      bool collision = v.event.kind == EventKind::floor || v.event.kind == EventKind::net ||
+                       v.event.kind == EventKind::wall || v.event.kind == EventKind::racket;
+      if (v.note == ViewNote::none && v.event.kind == EventKind::sound) {
+        sounds++;
+        bool paired = i > 0 && out[i - 1].note == ViewNote::none && out[i - 1].event.seq == v.event.seq &&
+                      out[i - 1].event.sound;
+        unpaired += !paired;
+      } else if (v.note == ViewNote::none) {
+        seqs.push_back(v.event.seq);
+        loud += collision && v.event.sound;
+      } else {
+        notes[v.note]++;
+      }
     }
     out.clear();
   }
@@ -424,6 +438,10 @@ TEST(a_match_started_anew_drops_what_was_held) {
   CHECK(!v.window().empty() && v.window().back().segment.seq == fresh.segments.back().seq);
   CHECK(v.window().back().segment.seq < newest);
   CHECK(h.seqs.size() == g.events.size() + fresh.events.size());
+  // every loud collision given is followed by its sound, and only those
+  CHECK(h.loud > 0);
+  CHECK_EQ(h.sounds, h.loud);
+  CHECK_EQ(h.unpaired, 0);
 }
 
 // What does not fit is refused, counted, and changes nothing: another
@@ -795,7 +813,7 @@ TEST(a_clients_rackets_are_their_holders_samples) {
 }
 
 // CREATE goes out until a MatchInfo of the match appears; the list holds
-// what was heard within `silence` (3 s); a bad CREATE is refused, not sent.
+// what was heard within `silence` (10 s); a bad CREATE is refused, not sent.
 TEST(the_core_creates_until_the_match_appears_and_lists_the_heard) {
   Game g;
   ClientCore core(CoreSettings{}, me());
@@ -816,8 +834,8 @@ TEST(the_core_creates_until_the_match_appears_and_lists_the_heard) {
   for (int k = 1; k <= 10; ++k) core.pump(port, 1.1 + 0.1 * k, 1.1 + 0.1 * k);
   CHECK_EQ(port.controls.size(), 3u);
   CHECK_EQ(core.matches(2.0).size(), 1u);
-  CHECK(core.listed(7, 4.0) != nullptr);
-  CHECK(core.matches(4.1).empty());  // not heard for 3 s
+  CHECK(core.listed(7, 11.0) != nullptr);
+  CHECK(core.matches(11.1).empty());  // not heard for 10 s
 }
 
 CHECK_MAIN

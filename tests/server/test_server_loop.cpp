@@ -517,8 +517,9 @@ TEST(frames_come_at_their_deadlines) {
   CHECK_EQ(r.loop->stats().skipped, 0u);
   CHECK_EQ(r.loop->stats().late_max, 0.0);  // the fake clock wakes exactly on time
   CHECK_NEAR(r.clock.now, kStart + 59.0 / 60.0, 1e-9);
-  // and MatchInfo once more at each match's first frame, then once a second
-  CHECK_EQ(r.port.infos.size(), 4u);
+  // and match 0's MatchInfo once more at its first frame: the periodic ones
+  // come 4 s apart, spread over the interval by id (match 1's at kStart + 2.47)
+  CHECK_EQ(r.port.infos.size(), 3u);
   CHECK_EQ(r.port.infos[2].revision, 2u);
   CHECK_EQ(r.port.infos[0].server_id, 5u);
   CHECK_EQ(r.port.statuses.size(), 0u);
@@ -566,9 +567,9 @@ TEST(the_status_comes_once_an_interval) {
   CHECK_EQ(s.server_id, 5u);
   CHECK_NEAR(s.uptime, 1.0, 1e-9);
   CHECK_NEAR(s.server_time, kStart + 1.0 + kRealOffset, 1e-6);
-  // and each match's periodic MatchInfo, spread over the second by id (the
-  // golden ratio): match 0's at kStart and kStart + 1, match 1's at kStart + 0.618
-  CHECK_EQ(r.port.infos.size(), 5u);
+  // and each match's periodic MatchInfo, 4 s apart and spread over them by id
+  // (the golden ratio): match 0's at kStart, match 1's at kStart + 2.47
+  CHECK_EQ(r.port.infos.size(), 3u);
   r.run_until(kStart + 2.0);
   CHECK(r.loop->step());
   CHECK_EQ(r.port.statuses.size(), 2u);
@@ -576,6 +577,10 @@ TEST(the_status_comes_once_an_interval) {
   std::string line = status_line(r.loop->status());
   CHECK_MSG(line.find("ball-server 5: 2 s, matches 2 (0 playing)") == 0, "%s", line.c_str());
   CHECK_MSG(line.find("failed writes 0, overruns 0") != std::string::npos, "%s", line.c_str());
+  r.run_until(kStart + 2.55);
+  CHECK_EQ(r.port.infos.size(), 4u);  // match 1's, at its first frame after kStart + 2.47
+  r.run_until(kStart + 4.05);
+  CHECK_EQ(r.port.infos.size(), 5u);  // match 0's, 4 s after its first
 }
 
 TEST(percentiles_of_the_work_per_wake_up) {
@@ -796,7 +801,9 @@ TEST(refused_writes_are_counted) {
   ball_scene_default(&scene);
   std::string err;
   CHECK(host.add_match(default_config(), scene, &err));
-  ServerLoop loop(host, port, clock, LoopSettings{});
+  LoopSettings ls;
+  ls.info_interval = 1.0;
+  ServerLoop loop(host, port, clock, ls);
   loop.start();  // one MatchInfo and its MatchModel
   while (!loop.step()) {
   }  // its periodic MatchInfo at 0.326 s (id 7: 7 x 0.618 mod 1 of the interval) and the model again, then the status

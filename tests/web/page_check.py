@@ -451,7 +451,7 @@ def main():
         base = 2 ** 32 - 2
         events = [  # (seq, kind, time, segment_seq, arrives after the correction, void)
             (1, "racket", 1.00, base, False, False), (2, "floor", 1.30, base + 1, False, True),
-            (3, "sound", 1.30, base + 1, False, True), (4, "serve", 1.35, base + 1, False, False),
+            (3, "net", 1.30, base + 1, False, True), (4, "serve", 1.35, base + 1, False, False),
             (5, "point", 1.40, base + 1, False, True), (6, "floor", 1.20, base + 1, False, False),
             (7, "racket", 1.50, base + 1, True, True), (8, "racket", 1.50, 1, True, False),
             (9, "floor", 1.60, 2, True, False)]
