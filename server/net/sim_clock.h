@@ -24,8 +24,10 @@ class SimClock {
   // A (sim_time, server_time) pair received at local realtime `local_now`.
   // false (and counted in rejected()) for a pair that does not fit: a
   // number that is not finite, a time base outside [0.05, 20], or, once
-  // the clock runs, an offset more than kMaxJump from the clock's own (a
-  // forged pair must not move the clock); kConfirm such pairs in a row that
+  // the clock runs, an offset more than kMaxJump above the clock's own or
+  // kMaxFresher below it (a forged pair must not move the clock; a fresher
+  // pair lies below, by up to the age of the clock's first: the MatchInfo a
+  // late joiner gets first may be 4 s old); kConfirm such pairs in a row that
   // agree with each other are a new clock (a server on another host) and
   // the estimate starts anew from them.
   bool observe(double sim_time, double server_time, double time_base, bool running, double local_now) {
@@ -34,7 +36,7 @@ class SimClock {
       rejected_++;
       return false;
     }
-    if (valid_ && std::fabs(offset - this->offset()) > kMaxJump) {
+    if (valid_ && (offset - this->offset() > kMaxJump || this->offset() - offset > kMaxFresher)) {
       rejected_++;
       bool agrees = outliers_ > 0 && std::fabs(offset - outlier_offset_) <= kMaxJump;
       outliers_ = agrees ? outliers_ + 1 : 1;
@@ -95,7 +97,8 @@ class SimClock {
   double time_base() const { return time_base_; }
   unsigned long rejected() const { return rejected_; }  // pairs that did not fit
 
-  static constexpr double kMaxJump = 2.0;  // s: an offset this far from the clock's is not its
+  static constexpr double kMaxJump = 2.0;     // s: an offset this far above the clock's is not its
+  static constexpr double kMaxFresher = 5.0;  // s: nor one this far below (docs/protocol.md, "Clients that trust no one")
   static constexpr int kConfirm = 10;      // pairs in a row that make a new clock (a burst of forged ones must be long)
 
  private:

@@ -400,11 +400,18 @@ void case_net_failover(const Env &env) {
   std::istringstream lines(text);
   std::string line;
   size_t changed_at = std::string::npos, pos = 0;
-  int mine_after = 0, points_after = 0;
+  int mine_after = 0, points_after = 0, sounds = 0, unpaired = 0;
   while (std::getline(lines, line)) {
     unsigned seq = 0, server_id = 0;
     char kind[32];
-    if (std::sscanf(line.c_str(), "rally: event %u %31s server %u", &seq, kind, &server_id) == 3) seqs.push_back(seq);
+    if (std::sscanf(line.c_str(), "rally: event %u %31s server %u", &seq, kind, &server_id) == 3) {
+      if (std::string(kind) != "sound") {
+        seqs.push_back(seq);
+      } else {  // the library's own, right after its loud collision, of its seq
+        sounds++;
+        unpaired += seqs.empty() || seqs.back() != seq;
+      }
+    }
     if (line.find("now served by server 2") != std::string::npos && changed_at == std::string::npos) changed_at = pos;
     if (changed_at != std::string::npos) {
       mine_after += line.find("(me)") != std::string::npos;
@@ -426,6 +433,8 @@ void case_net_failover(const Env &env) {
   CHECK(seqs.size() > 20u);
   CHECK_EQ(repeats, 0u);
   CHECK_EQ(skipped, 0u);
+  CHECK(sounds > 0);
+  CHECK_EQ(unpaired, 0);
   CHECK(mine_after >= 1);
   CHECK(points_after >= 1);
   // the standby's term: the round after the primary's (its first), server 2's

@@ -22,6 +22,7 @@ bool static_cause(Cause c) { return c == Cause::floor || c == Cause::net || c ==
 struct Tally {
   size_t contacts = 0, ahead = 0, superseded = 0, states = 0, events = 0;
   double min_lead = 1e300;  // sim s from writing to the contact
+  double max_lead = 0.0;
   double worst = 0.0;       // m: the client's ball from the rule against the server's states
   int wrong_seq = 0, wrong_event = 0, wrong_sound = 0;
 };
@@ -41,6 +42,7 @@ void check_output(const std::vector<SegmentOut> &segments, const std::vector<dou
     if (i < written_at.size() && written_at[i] < s.segment.t0) {
       t->ahead++;
       t->min_lead = std::fmin(t->min_lead, s.segment.t0 - written_at[i]);
+      t->max_lead = std::fmax(t->max_lead, s.segment.t0 - written_at[i]);
     }
     // superseded: a later seq starts no later; never in effect at any time
     auto later = all.upper_bound(s.seq);
@@ -119,6 +121,10 @@ TEST(static_contacts_are_written_before_they_happen) {
   CHECK(t.contacts >= 300);
   CHECK_EQ(t.ahead, t.contacts);
   CHECK(t.min_lead > 0.0);
+  // 0.5 s of real time before the contact (time base 1), at a frame's end:
+  // never earlier, so a hit before then leaves it unwritten (docs/protocol.md)
+  CHECK_MSG(t.max_lead <= 0.5, "lead up to %.4f s", t.max_lead);
+  CHECK_MSG(t.min_lead > 0.48, "lead from %.4f s", t.min_lead);
   CHECK(t.superseded >= 100);  // the rallies do test superseding
   CHECK(written_ahead >= t.contacts);  // (and those a rewind wrote)
   CHECK_EQ(corrected, 0u);

@@ -54,8 +54,9 @@ TEST(sim_clock_refuses_pairs_that_do_not_fit) {
   CHECK(!c.observe(15.0, 1005.0, 50.0, true, 1005.0 + skew));
   CHECK(!c.observe(15.0, 1005.0, 0.0, true, 1005.0 + skew));
   for (int i = 0; i < 3; ++i) CHECK(!c.observe(1e9, 1e12, 1.0, true, 1005.0 + skew));
-  CHECK(!c.observe(15.0, 1005.0 + 3.0, 1.0, true, 1005.0 + skew));  // 3 s off: a jump
-  CHECK_EQ(c.rejected(), 7ul);
+  CHECK(!c.observe(15.0, 1005.0 - 3.0, 1.0, true, 1005.0 + skew));  // 3 s above: a jump
+  CHECK(!c.observe(15.0, 1005.0 + 6.0, 1.0, true, 1005.0 + skew));  // 6 s below: a jump
+  CHECK_EQ(c.rejected(), 8ul);
   CHECK_NEAR(c.sim_now(1005.0 + skew), before, 0.0);
   // a real pair between forged ones breaks their run
   for (int i = 0; i < SimClock::kConfirm - 1; ++i) CHECK(!c.observe(50.0, 2000.0 + i, 1.0, true, 1005.0 + skew));
@@ -65,6 +66,21 @@ TEST(sim_clock_refuses_pairs_that_do_not_fit) {
   for (int i = 0; i < SimClock::kConfirm - 1; ++i) CHECK(!c.observe(20.0 + i, 500.0 + i, 1.0, true, 1006.0 + i + skew));
   CHECK(c.observe(20.0 + 9, 500.0 + 9, 1.0, true, 1006.0 + 9 + skew));
   CHECK_NEAR(c.sim_now(1016.0 + skew), 30.0, 1e-9);
+}
+
+// The first pair a late joiner gets is a transient-local MatchInfo, written
+// up to 4 s before (docs/protocol.md, "Time"): its offset lies that much
+// above the true one. The next, fresh pair is taken at once, whatever that
+// age, and the clock is the fresh one's.
+TEST(sim_clock_takes_a_fresh_pair_after_a_stale_first) {
+  for (double age = 0.0; age <= 4.0; age += 0.25) {
+    SimClock c;
+    const double skew = 100.0;
+    CHECK(c.observe(10.0, 1000.0, 1.0, true, 1000.0 + age + skew + 0.001));
+    CHECK(c.observe(10.0 + age + 0.5, 1000.0 + age + 0.5, 1.0, true, 1000.0 + age + 0.5 + skew + 0.001));
+    CHECK_NEAR(c.offset(), skew + 0.001, 1e-9);
+    CHECK_NEAR(c.sim_now(1000.0 + age + 1.0 + skew), 10.0 + age + 0.999, 1e-9);
+  }
 }
 
 TEST(link_delays_reorders_and_loses) {

@@ -79,6 +79,16 @@ std::vector<json> random_history(std::mt19937_64 &rng, size_t *owner_change, lon
         lines.push_back(j);
       if (stale) *stale += 4;
     }
+    if (k > 0 && k != change && rng() % 3 == 0) {
+      // a contact written ahead that this segment supersedes (a lower seq,
+      // a later t0): never in effect, so never what the ball continues from
+      SegmentOut ahead = seg;
+      ahead.cause = Cause::floor;
+      ahead.segment.t0 = seg.segment.t0 + 0.05 + 0.3 * u(rng);
+      ahead.segment.p0.x += 5.0;
+      lines.push_back(record_line(ahead, sim));
+      seg.seq++;
+    }
     lines.push_back(record_line(seg, sim));
     if (k > 0 && rng() % 4 == 0) lines.push_back(record_line(seg, sim));  // delivered twice
     EventOut e;
@@ -113,7 +123,7 @@ std::vector<json> random_history(std::mt19937_64 &rng, size_t *owner_change, lon
     CHECK(ball_segment_eval(&model, &seg.segment, t1, &at) == BALL_OK);
     seg.seq++;
     seg.cause = rng() % 3 == 0 ? Cause::racket : Cause::floor;
-    if (seg.seq == static_cast<uint32_t>(change) + 1) seg.cause = Cause::floor;  // checked across the change
+    if (k + 1 == change) seg.cause = Cause::floor;  // checked across the change
     seg.segment.t0 = t1;
     seg.segment.p0 = at.position;
     seg.segment.v0 = ball_v3(at.velocity.x, std::fabs(at.velocity.y) + 1.0, at.velocity.z);

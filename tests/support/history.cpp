@@ -186,13 +186,11 @@ void History::take_segment(Match &m, const SegmentOut &s) {
 void History::check_continuity(Match &m, const SegmentOut &s) {
   if (s.cause == Cause::serve || s.cause == Cause::racket || !m.has_info) return;
   // the segment in effect at s's t0 before it: of those before it by
-  // (owner, seq), the one of the latest t0 not after it (docs/protocol.md,
-  // "Segments", "Terms")
+  // (owner, seq), the last whose t0 is not after it (docs/protocol.md,
+  // "Segments", "Terms"; one of a later t0 but an earlier seq is superseded)
   const SegmentOut *before = nullptr;
-  for (const auto &kv : m.segments)
-    if (kv.first < key(s.term, s.server_id, s.seq) && kv.second.segment.t0 <= s.segment.t0 &&
-        (!before || kv.second.segment.t0 >= before->segment.t0))
-      before = &kv.second;
+  for (const auto &kv : m.segments)  // (by key: owner, then seq)
+    if (kv.first < key(s.term, s.server_id, s.seq) && kv.second.segment.t0 <= s.segment.t0) before = &kv.second;
   if (!before) return;
   ball_model model = m.info.model;
   ball_state at{};

@@ -77,8 +77,8 @@ typedef struct ball_net_config {
   const char *name;               /* the DDS participant's name; NULL: "ball-net" */
   int max_matches;                /* matches its readers make room for, [1, 4096]; 0: 4096 */
   int ball_states;                /* 1: also read the server's ball states (up to its frame rate: a clock pair
-                                     each, and their bytes); 0: the clock from MatchInfo alone, once a second and
-                                     at every change (docs/client.md, "What it costs") */
+                                     each, and their bytes); 0: the clock from MatchInfo alone, at every change and
+                                     4 s after the last one (docs/client.md, "What it costs") */
   ball_net_clock clock;           /* the caller's clock; NULL: CLOCK_MONOTONIC */
   void *clock_user;               /* passed to clock */
   /* A simulated network for this client's racket poses, to try a game behind a bad one: each pose is
@@ -165,7 +165,7 @@ typedef struct ball_net_match {
 } ball_net_match;
 
 /* The matches the domain's servers serve (those the client trusts, each
- * heard within the last 3 s), by id: up to cap into out, *n of them (may
+ * heard within the last 10 s), by id: up to cap into out, *n of them (may
  * be more than cap: then call again with room for *n). */
 BALL_NET_API ball_status ball_net_matches(ball_net_client *client, ball_net_match *out, int cap, int *n);
 
@@ -317,7 +317,7 @@ typedef enum ball_net_event_kind {
   BALL_NET_EVENT_NET,        /* the net (eq 6) */
   BALL_NET_EVENT_WALL,       /* index: the wall */
   BALL_NET_EVENT_RACKET,     /* a hit; index: the racket, which is the player slot */
-  BALL_NET_EVENT_SOUND,      /* the paper's sound event: repeats a collision whose sound flag is set */
+  BALL_NET_EVENT_SOUND,      /* the paper's sound event: the library's, right after a collision whose sound flag is set */
   BALL_NET_EVENT_SERVE,      /* index: the serving slot */
   BALL_NET_EVENT_POINT,      /* side: who won it (-1: a let); reason why; score after it */
   BALL_NET_EVENT_PAUSE,      /* index: the slot concerned or -1; reason why */
