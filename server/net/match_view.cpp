@@ -108,6 +108,7 @@ bool MatchView::take_owner(uint32_t term, uint32_t server, double local) {
   bool older = has_owner_ && owner_before(term, server, term_, owner_);
   if (older) start_anew();
   if (!has_owner_ || older || owner_before(term_, owner_, term, server)) {
+    if (has_owner_ && !older) clock_.rebase();  // a newer owner: its sim clock may be another (two claimants)
     term_ = term;
     owner_ = server;
     has_owner_ = true;

@@ -29,7 +29,10 @@ class SimClock {
   // pair lies below, by up to the age of the clock's first: the MatchInfo a
   // late joiner gets first may be 4 s old); kConfirm such pairs in a row that
   // agree with each other are a new clock (a server on another host) and
-  // the estimate starts anew from them.
+  // the estimate starts anew from them. A pair whose offset fits is taken
+  // only if its sim time fits too: within kMaxJump (times the time base)
+  // of what the clock gives at its server time, unless rebase() was called
+  // (a new owner's clock may be another).
   bool observe(double sim_time, double server_time, double time_base, bool running, double local_now) {
     double offset = local_now - server_time;
     if (!std::isfinite(sim_time) || !std::isfinite(offset) || !(time_base >= 0.05 && time_base <= 20.0)) {
@@ -46,6 +49,12 @@ class SimClock {
       valid_ = false;
     }
     outliers_ = 0;
+    if (valid_ && !rebase_ &&
+        !(std::fabs(sim_time - sim_at_server(server_time)) <= kMaxJump * std::fmax(1.0, time_base_))) {
+      rejected_++;  // a forged sim time under a fitting offset moves nothing
+      return false;
+    }
+    rebase_ = false;
     offsets_[next_ % kWindow] = offset;
     next_++;
     best_ = offsets_[0];  // the minimum kept, for every reading of the clock
@@ -63,6 +72,10 @@ class SimClock {
   }
 
   bool valid() const { return valid_; }
+  // The next pair that fits by its offset sets the sim clock, wherever it is.
+  void rebase() { rebase_ = true; }
+  // The sim time the clock gives at server time t.
+  double sim_at_server(double t) const { return running_ ? sim_time_ + (t - server_time_) * time_base_ : sim_time_; }
 
   double offset() const { return best_; }
   // How far one pair's offset strays above the minimum: the median of the
@@ -110,6 +123,7 @@ class SimClock {
   double best_ = 0.0;  // their minimum
   size_t next_ = 0;
   bool valid_ = false;
+  bool rebase_ = false;
   bool running_ = false;
   double sim_time_ = 0.0, server_time_ = 0.0, time_base_ = 1.0;
 };

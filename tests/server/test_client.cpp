@@ -83,6 +83,32 @@ TEST(sim_clock_takes_a_fresh_pair_after_a_stale_first) {
   }
 }
 
+// A pair of a fitting offset but a sim time that does not fit the clock
+// (the server's time now, the sim 100 s ahead: every bot's clock moved
+// before) moves nothing, whatever its count; neither does one 3 s behind.
+// Pause, slow motion and a late pair fit; a new owner's first pair
+// (rebase) may set the sim clock anywhere.
+TEST(sim_clock_refuses_a_sim_time_that_does_not_fit) {
+  SimClock c;
+  const double skew = 100.0;
+  for (int i = 0; i < 5; ++i) CHECK(c.observe(10.0 + i, 1000.0 + i, 1.0, true, 1000.0 + i + skew + 0.001));
+  for (int i = 0; i < 3 * SimClock::kConfirm; ++i) {
+    const double t = 1004.0 + 0.2 * i;
+    CHECK(!c.observe(14.0 + 0.2 * i + 100.0, t, 1.0, true, t + skew + 0.001));
+  }
+  CHECK(!c.observe(20.0 - 3.0, 1010.0, 1.0, true, 1010.0 + skew + 0.001));
+  CHECK_EQ(c.rejected(), static_cast<unsigned long>(3 * SimClock::kConfirm + 1));
+  CHECK_NEAR(c.sim_now(1010.0 + skew), 20.0 - 0.001, 1e-9);
+  CHECK(c.observe(20.0, 1010.0, 0.5, false, 1010.0 + skew + 0.002));   // paused, slow motion
+  CHECK(c.observe(19.99, 1009.99, 1.0, true, 1010.5 + skew));          // a late pair
+  CHECK(c.observe(20.0, 1011.0, 0.5, true, 1011.0 + skew + 0.001));   // resumed
+  CHECK_NEAR(c.sim_now(1012.0 + skew), 20.0 + 0.999 * 0.5, 1e-9);
+  c.rebase();
+  CHECK(c.observe(500.0, 1012.0, 1.0, true, 1012.0 + skew + 0.001));
+  CHECK_NEAR(c.sim_now(1013.0 + skew), 500.999, 1e-9);
+  CHECK(!c.observe(900.0, 1013.0, 1.0, true, 1013.0 + skew + 0.001));  // once only
+}
+
 TEST(link_delays_reorders_and_loses) {
   Link<int> clean({0.1, 0.0, 0.0}, 1);
   for (int i = 0; i < 10; ++i) clean.send(i, i * 0.01);

@@ -287,9 +287,14 @@ PAGE_API double page_core_voided(page_core *core, int i) {
 
 // A clock message: the watcher's sim time of the match at its realtime
 // `real`, received at the page's clock `local`. 1 taken (SimClock::observe).
+// Its sim time is the watcher's, which applied the client's rules to the
+// server's pairs: taken wherever it is (the clock frozen where a gone
+// server left it, a new server's).
 PAGE_API int page_core_clock(page_core *core, uint32_t match, double sim_time, double real, double time_base,
                              int running, double local) {
-  return core->match(match).clock.observe(sim_time, real, time_base, running != 0, local) ? 1 : 0;
+  SimClock &clock = core->match(match).clock;
+  clock.rebase();
+  return clock.observe(sim_time, real, time_base, running != 0, local) ? 1 : 0;
 }
 // The match's sim time at the page's clock `local`; NaN without a clock.
 PAGE_API double page_core_sim_now(page_core *core, uint32_t match, double local) {
