@@ -62,6 +62,10 @@ class ClientEndpoints : public ClientPort {
   bool write(const RacketSampleIn &sample) override { return samples_.write(sample); }
   bool write(const ControlIn &control) override { return controls_.write(control); }
   bool hears_server() const override { return lens_.hears(); }
+  bool meets_server() const override {
+    return lens_.meets() || (old_ && old_->meets()) || (controls_.valid() && controls_.matched() > 0) ||
+           (status_.valid() && status_.matched() > 0);
+  }
   // Reads the five match topics in the partitions of `matches` alone from
   // now on (docs/protocol.md, "A match's own partition"; {}: the default
   // partition, every match). New readers are made; the old ones are taken
@@ -83,6 +87,7 @@ class ClientEndpoints : public ClientPort {
     bool hears() const {
       return segments.matched() > 0 && infos.matched() > 0 && (!events.valid() || events.matched() > 0);
     }
+    bool meets() const { return segments.matched() > 0 || infos.matched() > 0 || models.matched() > 0; }
   };
   bool open_lens(const std::string &partition, Lens *out, std::string *err);
   void remove(Lens *l);

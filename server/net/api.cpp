@@ -440,7 +440,7 @@ ball_status ball_net_poll(ball_net_client *c, ball_net_event *out, int cap, int 
     c->core->pump(*c->port, now, system_clock(CLOCK_REALTIME));
     // a TCP client that hears no server, or no answer to its JOIN, starts anew (docs/deploy.md, "Limits")
     std::string why;
-    if (c->transport->renewable() && c->core->wants_renewal(c->port->hears_server(), now) &&
+    if (c->transport->renewable() && c->core->wants_renewal(c->port->meets_server(), c->port->hears_server(), now) &&
         c->transport->renew(&why)) {
       c->port = &c->transport->port();
       c->core->renewed(c->transport->id(), now);

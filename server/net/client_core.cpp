@@ -267,10 +267,10 @@ bool ClientCore::Followed::waits_for_slot() const {
   return false;
 }
 
-bool ClientCore::wants_renewal(bool hears, double local) {
+bool ClientCore::wants_renewal(bool meets, bool hears, double local) {
   if (renewed_at_ < 0.0) renewed_at_ = heard_at_ = local;
-  if (hears) heard_at_ = local;
-  bool stuck = !hears && local - heard_at_ >= renew_wait_;
+  if (meets || hears) heard_at_ = local;
+  bool stuck = !meets && !hears && local - heard_at_ >= renew_wait_;
   bool waiting = false;
   for (auto &kv : followed_) {
     Followed &f = kv.second;

@@ -103,17 +103,19 @@ class ClientCore {
   std::deque<ViewEvent> &events() { return events_; }  // of every followed match, in order, not taken yet
 
   // Starting anew (docs/deploy.md, "Limits": a TCP connection Fast DDS 2.9
-  // left deaf). Called after each pump with whether the port hears a
-  // server: true when the client should make its participant anew, either
-  // because no server has been heard for `renew_wait` s since it opened (or
-  // last started anew, or last heard one), or because a JOIN has had no
-  // answer (the slot held, or a refusal in its match) for that long while a
-  // server is heard. Each time it says so the wait doubles, up to
-  // kRenewMost s; it is kRenewFirst again once a server is heard and no JOIN
-  // waits. After a new participant, renewed() with its id: the views take
-  // it as theirs, every JOIN and CREATE waiting is sent at once.
+  // left deaf). Called after each pump with whether the port meets a server
+  // (some endpoint of one matched: ClientPort::meets_server) and hears one:
+  // true when the client should make its participant anew, either because
+  // no server has been met for `renew_wait` s since it opened (or last
+  // started anew, or last met one), or because a JOIN has had no answer
+  // (the slot held, or a refusal in its match) for that long while a server
+  // is heard. A server of many matches takes seconds to be found whole:
+  // meeting it is enough to wait on. Each time it says so the wait doubles,
+  // up to kRenewMost s; it is kRenewFirst again once a server is heard and
+  // no JOIN waits. After a new participant, renewed() with its id: the
+  // views take it as theirs, every JOIN and CREATE waiting is sent at once.
   static constexpr double kRenewFirst = 5.0, kRenewMost = 60.0;
-  bool wants_renewal(bool hears, double local);
+  bool wants_renewal(bool meets, bool hears, double local);
   void renewed(const ParticipantId &me, double local);
   uint64_t renewals() const { return renewals_; }
   uint64_t refused() const { return refused_; }        // samples of matches it does not follow that were not usable

@@ -89,6 +89,7 @@ class NetPort : public ClientPort {
     return p && p->controls.write(c);
   }
   bool hears_server() const override { return readers_->hears_server(); }
+  bool meets_server() const override { return readers_->meets_server(); }
   WireSizes sizes() const override { return sizes_; }
   uint64_t untrusted() const override { return readers_->untrusted(); }
   const std::string &error() const { return error_; }

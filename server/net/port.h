@@ -42,6 +42,10 @@ class ClientPort {
   [[nodiscard]] virtual bool write(const ControlIn &control) = 0;
   // a server's segments, events and match info reach this client from now on
   virtual bool hears_server() const = 0;
+  // some server's endpoint matched one of this client's: discovery goes on
+  // (a server of many matches takes seconds to be found whole); false:
+  // nothing of a server found at all, the client may start anew
+  virtual bool meets_server() const { return hears_server(); }
   // the bytes of one sample of each type on this port (a client counts its traffic by them; zeros: uncounted)
   virtual WireSizes sizes() const { return {}; }
   // samples refused because they claimed a server id bound to a

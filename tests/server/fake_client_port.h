@@ -24,6 +24,7 @@ struct FakeClientPort : ClientPort {
   std::vector<ControlIn> controls;
   bool refuse = false;
   bool heard = true;
+  bool met = false;  // some endpoint of a server matched, though not all of them yet
   template <class T>
   static bool pop(std::deque<T> &q, T *out) {
     if (q.empty()) return false;
@@ -47,6 +48,7 @@ struct FakeClientPort : ClientPort {
     return !refuse;
   }
   bool hears_server() const override { return heard; }
+  bool meets_server() const override { return heard || met; }
   WireSizes wire{};  // what sizes() says
   WireSizes sizes() const override { return wire; }
 };

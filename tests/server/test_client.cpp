@@ -317,6 +317,32 @@ TEST(a_client_that_hears_no_answer_starts_anew) {
 }
 
 // wire, no scene file, and sends at its rate what the server accepts.
+// A server of many matches takes seconds to be found whole: a client that
+// has met some of its endpoints waits on, however long, and its JOIN's
+// silence does not count until it hears the server; once nothing of a
+// server is met, it starts anew 5 s later.
+TEST(a_client_that_meets_a_server_waits_for_the_rest) {
+  Game g;
+  FakeNet net(participant(9));
+  net.renewable = true;
+  ball_net_event ev[16];
+  int n = 0;
+  auto poll_until = [&](double t) {
+    for (; net.now < t - 1e-9; net.now += 0.1) CHECK_EQ(ball_net_poll(net.client, ev, 16, &n), BALL_OK);
+  };
+  net.port.heard = false;
+  net.port.met = true;
+  CHECK_EQ(ball_net_join(net.client, g.match.id(), 1), BALL_OK);
+  poll_until(30.0);
+  CHECK_EQ(net.renewals, 0);
+  CHECK(net.port.controls.size() > 10u);  // (JOINs resent, unanswered)
+  net.port.met = false;
+  poll_until(34.9);
+  CHECK_EQ(net.renewals, 0);
+  poll_until(35.2);
+  CHECK_EQ(net.renewals, 1);
+}
+
 TEST(player_joins_then_sends) {
   Game g;
   ParticipantId me = participant(9);
