@@ -245,6 +245,13 @@ struct Players {
   PlayerGroup group;
 };
 
+// Polls the client every 0.1 s of its clock until t.
+void poll_every_tenth(FakeNet *net, double t) {
+  ball_net_event ev[16];
+  int n = 0;
+  for (; net->now < t - 1e-9; net->now += 0.1) CHECK_EQ(ball_net_poll(net->client, ev, 16, &n), BALL_OK);
+}
+
 // A TCP client starts anew (docs/deploy.md, "Limits") when it hears no
 // server for 5 s, and when a JOIN has no answer for that long while it
 // hears one; each time it waits twice as long, and never while a refusal
@@ -255,11 +262,7 @@ TEST(a_client_that_hears_no_answer_starts_anew) {
   const ParticipantId me = participant(9);
   FakeNet net(me);
   net.renewable = true;
-  ball_net_event ev[16];
-  int n = 0;
-  auto poll_until = [&](double t) {
-    for (; net.now < t - 1e-9; net.now += 0.1) CHECK_EQ(ball_net_poll(net.client, ev, 16, &n), BALL_OK);
-  };
+  auto poll_until = [&](double t) { poll_every_tenth(&net, t); };
   net.port.heard = false;
   poll_until(4.9);
   CHECK_EQ(net.renewals, 0);
@@ -312,7 +315,7 @@ TEST(a_client_that_hears_no_answer_starts_anew) {
   // a transport that cannot start anew is never asked
   FakeNet udp(me);
   udp.port.heard = false;
-  for (udp.now = 0.0; udp.now < 30.0; udp.now += 0.5) CHECK_EQ(ball_net_poll(udp.client, ev, 16, &n), BALL_OK);
+  poll_every_tenth(&udp, 30.0);
   CHECK_EQ(udp.renewals, 0);
 }
 
@@ -325,11 +328,7 @@ TEST(a_client_that_meets_a_server_waits_for_the_rest) {
   Game g;
   FakeNet net(participant(9));
   net.renewable = true;
-  ball_net_event ev[16];
-  int n = 0;
-  auto poll_until = [&](double t) {
-    for (; net.now < t - 1e-9; net.now += 0.1) CHECK_EQ(ball_net_poll(net.client, ev, 16, &n), BALL_OK);
-  };
+  auto poll_until = [&](double t) { poll_every_tenth(&net, t); };
   net.port.heard = false;
   net.port.met = true;
   CHECK_EQ(ball_net_join(net.client, g.match.id(), 1), BALL_OK);
