@@ -384,12 +384,25 @@ void case_discovery_flood(const Env &env) {
 // the match pauses (PAUSE_VANISHED) and does not resume, though the bot
 // plays on. This checks the limit the page states; when Debian's Fast DDS
 // takes the fix of CVE-2023-50257 it fails, and the page must change.
+// The DDS options of identity `who` of the test certificates in `certs`
+std::vector<std::string> secure_as(const std::string &certs, const char *who) {
+  return {"--secure", certs, "--identity", who};
+}
+
+// test certificates for one match (certs.sh) and a rally on the secure UDP
+// domain: the server, a watcher and match 0's two bots, each its identity
+Rally secure_rally(Case &c, const std::string &tag, std::string *certs) {
+  std::string err;
+  *certs = path(c.env, "certs");
+  CHECK_EQ(run_to_end(c.env, {"/bin/bash", c.env.source + "/server/security/certs.sh", *certs, "1"}, "certs", &err), 0);
+  return rally(c, tag, secure_as(*certs, "server1"), secure_as(*certs, "watch"), secure_as(*certs, "m0-a"),
+               secure_as(*certs, "m0-b"));
+}
+
 void case_secure_udp_disposal(const Env &env) {
   Case c{env};
-  std::string err, certs = path(env, "certs");
-  CHECK_EQ(run_to_end(env, {"/bin/bash", env.source + "/server/security/certs.sh", certs, "1"}, "certs", &err), 0);
-  auto sec = [&](const char *who) { return std::vector<std::string>{"--secure", certs, "--identity", who}; };
-  Rally r = rally(c, "disposal", sec("server1"), sec("watch"), sec("m0-a"), sec("m0-b"));
+  std::string err, certs;
+  Rally r = secure_rally(c, "disposal", &certs);
   int hits = hits_after_serve_within(r.t, 3, 20.0);
   CHECK_MSG(hits >= 3, "%d hits before the datagram", hits);
   std::string holder = slot0_holder(r.t);
@@ -412,9 +425,43 @@ void case_secure_udp_disposal(const Env &env) {
   for (Process *p : {&r.b0, &r.b1, &r.w}) p->stop();
 }
 
+// The secure UDP domain's second reported attack (docs/benchmarks.md,
+// "Attacks on the secure UDP domain"): a participant announcement captured
+// on the domain (plaintext, as the protocol has it) sent again 300 times in
+// 3 s, each under a fresh GUID prefix, from a host without certificates,
+// then a normal certified join. What it does here: the server lives, the
+// rally goes on, and the new watcher finds the server.
+void case_secure_udp_replay(const Env &env) {
+  Case c{env};
+  Process cap = capture(env, "replay");
+  std::string certs;
+  Rally r = secure_rally(c, "replay", &certs);
+  int hits = hits_after_serve_within(r.t, 2, 20.0);
+  CHECK_MSG(hits >= 2, "%d hits before the replays", hits);
+  cap.stop();
+  size_t from = r.t.lines.size();
+  json replays = wire_check(env, "spdp", {"spdp", path(env, "replay.pcap"), env.dom(), "--count", "300", "--lease",
+                                          "10", "--rate", "100"});
+  double join_from = mono_now();
+  Process late = ready_watcher(c, path(env, "late.jsonl"), secure_as(certs, "watch"));
+  double joined = mono_now() - join_from;
+  int after = 0;
+  while (after < 2 && !wait_for(r.t, 5.0, is_hit, &from).is_null()) after++;
+  const bool server_on = r.server.p.running();
+  note("%d replayed announcements in %.1f s, then a certified watcher: ready %.1f s after; %d hit(s) after; the "
+       "server %s",
+       replays.value("sent", 0), replays.value("seconds", 0.0), joined, after, server_on ? "still running" : "ended");
+  CHECK_EQ(replays.value("sent", 0), 300);
+  CHECK_MSG(server_on, "the server ended after the replays (docs/security.md and benchmarks.md must change)");
+  CHECK_MSG(late.running(), "the late watcher ended");
+  CHECK_MSG(after >= 2, "%d hits after the replays", after);
+  for (Process *p : {&late, &r.b0, &r.b1, &r.w}) p->stop();
+}
+
 }  // namespace
 
 TEST(secure) { itest::in_case(case_secure); }
 TEST(secure_udp_disposal) { itest::in_case(case_secure_udp_disposal); }
+TEST(secure_udp_replay) { itest::in_case(case_secure_udp_replay); }
 TEST(discovery_flood) { itest::in_case(case_discovery_flood); }
 TEST(load_secure) { itest::in_case(case_load_secure); }
