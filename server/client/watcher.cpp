@@ -473,9 +473,7 @@ void Watcher::snapshot_written(const SnapshotDue &due, const SnapshotRecord &dra
 void Watcher::tally(Watched &w, const EventOut &e, int sign) {
   WatchedMatchSummary &t = w.tally;
   auto add = [sign](uint64_t &n) { n = sign > 0 ? n + 1 : n - (n > 0); };
-  bool collision = e.kind == EventKind::floor || e.kind == EventKind::net || e.kind == EventKind::wall ||
-                   e.kind == EventKind::racket;
-  if (collision && e.sound) add(t.sounds);  // the paper's sound event (docs/protocol.md, "Events")
+  if (is_collision(e.kind) && e.sound) add(t.sounds);  // the paper's sound event (docs/protocol.md, "Events")
   switch (e.kind) {
     case EventKind::racket:
       add(e.in_play ? t.hits : t.dead_hits);

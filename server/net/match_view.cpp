@@ -21,12 +21,7 @@ bool later(const SegmentOut &a, const SegmentOut &b) {
   return seq_before(b.seq, a.seq);
 }
 
-bool collision(const EventOut &e) {
-  return e.kind == EventKind::racket || e.kind == EventKind::floor || e.kind == EventKind::net ||
-         e.kind == EventKind::wall;
-}
-
-bool voidable(const EventOut &e) { return collision(e) || e.kind == EventKind::point; }
+bool voidable(const EventOut &e) { return is_collision(e.kind) || e.kind == EventKind::point; }
 
 // A note to the caller; a collision whose sound flag is set is followed by
 // the library's sound event, its twin of the same seq (docs/client.md,
@@ -34,7 +29,7 @@ bool voidable(const EventOut &e) { return collision(e) || e.kind == EventKind::p
 // Voiding the collision voids its twin with it.
 void put(const ViewEvent &v, std::vector<ViewEvent> *out) {
   out->push_back(v);
-  if (v.note != ViewNote::none || !collision(v.event) || !v.event.sound) return;
+  if (v.note != ViewNote::none || !is_collision(v.event.kind) || !v.event.sound) return;
   out->push_back(v);
   out->back().event.kind = EventKind::sound;
 }

@@ -151,6 +151,11 @@ inline constexpr int kEnumCount<ControlKind> = 0 BALL_CONTROL_KINDS(BALL_ONE);
 template <>
 inline constexpr int kEnumCount<SampleResult> = kDropReasons;
 #undef BALL_ONE
+// A collision's kind: the ones whose event carries the paper's sound flag
+// (docs/protocol.md, "Events")
+inline bool is_collision(EventKind k) {
+  return k == EventKind::floor || k == EventKind::net || k == EventKind::wall || k == EventKind::racket;
+}
 // The name of a value ("unknown" for a value outside the list); drop
 // reasons also name accepted and idle.
 const char *name_of(MatchState v);

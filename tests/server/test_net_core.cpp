@@ -74,8 +74,6 @@ struct Handed {
     for (size_t i = 0; i < out.size(); ++i) {
       const ViewEvent &v = out[i];
       all.push_back(v);
-      bool collision = v.event.kind == EventKind::floor || v.event.kind == EventKind::net ||
-                       v.event.kind == EventKind::wall || v.event.kind == EventKind::racket;
       if (v.note == ViewNote::none && v.event.kind == EventKind::sound) {
         sounds++;
         bool paired = i > 0 && out[i - 1].note == ViewNote::none && out[i - 1].event.seq == v.event.seq &&
@@ -83,7 +81,7 @@ struct Handed {
         unpaired += !paired;
       } else if (v.note == ViewNote::none) {
         seqs.push_back(v.event.seq);
-        loud += collision && v.event.sound;
+        loud += is_collision(v.event.kind) && v.event.sound;
       } else {
         notes[v.note]++;
       }

@@ -61,7 +61,7 @@ TEST(tally_and_desync_from_a_match) {
   CHECK_EQ(m.bounces, in_play_bounces);
   CHECK_EQ(m.hits, 0u);
   uint64_t loud = 0;  // (the sound is its collision's flag: no EVENT_SOUND is written)
-  for (const auto &e : g.events) loud += e.sound && e.kind != EventKind::serve && e.kind != EventKind::point;
+  for (const auto &e : g.events) loud += e.sound && is_collision(e.kind);
   CHECK_EQ(g.count(EventKind::sound), 0);
   CHECK(loud > 0);
   CHECK_EQ(m.sounds, loud);
