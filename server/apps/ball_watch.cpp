@@ -106,12 +106,16 @@ struct Snapshots {
 struct Page {
   int port = -1;  // -1: none
   std::string address = WebSettings().address;
+  std::string proxy;
   std::unique_ptr<WebServer> web;
 
   void add_options(CLI::App &cli) {
     cli.add_option("--http", port, "serve the spectator page on PORT (0: a free port; the URL is printed); "
                                    "docs/bots-and-watchers.md, \"The spectator page\"")->check(CLI::Range(0, 65535));
     cli.add_option("--http-address", address, "with --http: the address to listen on")->capture_default_str();
+    cli.add_option("--http-proxy", proxy,
+                   "with --http: the address of a reverse proxy in front of the page, whose connections have no "
+                   "per-address share (docs/bots-and-watchers.md, \"The page against hostile HTTP\")");
   }
   // Serving, when asked for: "" or what went wrong.
   std::string start() {
@@ -119,6 +123,7 @@ struct Page {
     WebSettings o;
     o.address = address;
     o.port = port;
+    o.http.proxy = proxy;
     o.page_dir = find_page_dir();
     o.wasm_file = find_page_wasm();
     o.three_dir = find_three_dir();

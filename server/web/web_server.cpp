@@ -1,6 +1,6 @@
 #include "web_server.h"
 
-#include <httplib.h>
+#include "http_guard.h"
 
 #include <atomic>
 #include <chrono>
@@ -59,7 +59,7 @@ std::string event_text(const std::string &json_text) { return "data: " + json_te
 struct WebServer::Impl {
   WebSettings settings;
   std::map<std::string, File> files;
-  httplib::Server http;
+  GuardedHttp http;
   std::thread thread;
   int port = 0;
   std::mutex mutex;
@@ -68,9 +68,11 @@ struct WebServer::Impl {
   bool stopping = false;  // under mutex
   std::atomic<int> streaming{0};
   std::atomic<uint64_t> opened{0}, refused{0};
+  std::map<std::string, int> streaming_from;  // pages streaming, by client address (under mutex)
 
+  // pages stream on threads of their own, beside an address's share of others
   Impl(const WebSettings &s, const SpectatorSettings &ss, std::function<ball_model(const MatchInfoOut &)> court)
-      : settings(s), spectator(ss, std::move(court)) {}
+      : settings(s), http(s.http, s.max_pages + 2 * s.http.per_address), spectator(ss, std::move(court)) {}
 
   // The next batch of a page's stream: the snapshot first, then what came
   // after its cursor (waiting for it up to kKeepAlive); a page that fell
@@ -99,9 +101,28 @@ struct WebServer::Impl {
     return true;
   }
 
-  void stream(httplib::Response &res) {
-    if (streaming.fetch_add(1) >= settings.max_pages) {
-      streaming--;
+  // A page's place: within max_pages and its address's share.
+  bool take_place(const std::string &address) {
+    std::lock_guard<std::mutex> lock(mutex);
+    int &mine = streaming_from[address];
+    bool shared = settings.http.proxy.empty() || address != settings.http.proxy;
+    if (streaming >= settings.max_pages || (shared && mine >= settings.pages_per_address)) {
+      if (mine == 0) streaming_from.erase(address);
+      return false;
+    }
+    mine++;
+    streaming++;
+    return true;
+  }
+  void leave_place(const std::string &address) {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = streaming_from.find(address);
+    if (it != streaming_from.end() && --it->second <= 0) streaming_from.erase(it);
+    streaming--;
+  }
+
+  void stream(const httplib::Request &req, httplib::Response &res) {
+    if (!take_place(req.remote_addr)) {
       refused++;
       res.status = 503;
       res.set_content("too many pages are open\n", "text/plain");
@@ -121,7 +142,7 @@ struct WebServer::Impl {
           }
           return sink.write(text.data(), text.size());
         },
-        [this](bool) { streaming--; });
+        [this, address = req.remote_addr](bool) { leave_place(address); });
   }
 };
 
@@ -146,17 +167,13 @@ std::unique_ptr<WebServer> WebServer::start(const WebSettings &settings, const S
     impl->files[f.path] = std::move(file);
   }
   Impl *p = impl.get();
-  // pages stream on threads of their own; two more for the files
-  const size_t threads = static_cast<size_t>(settings.max_pages) + 2;
-  p->http.new_task_queue = [threads] { return new httplib::ThreadPool(threads); };
-  p->http.set_keep_alive_timeout(1);  // an idle connection gives its thread back soon
   for (const auto &kv : p->files) {
     const File *file = &kv.second;
     p->http.Get(kv.first, [file](const httplib::Request &, httplib::Response &res) {
       res.set_content(file->body, file->type.c_str());
     });
   }
-  p->http.Get("/stream", [p](const httplib::Request &, httplib::Response &res) { p->stream(res); });
+  p->http.Get("/stream", [p](const httplib::Request &req, httplib::Response &res) { p->stream(req, res); });
   p->http.Get("/snapshot", [p](const httplib::Request &, httplib::Response &res) {
     std::string body = "[";
     {
@@ -171,6 +188,7 @@ std::unique_ptr<WebServer> WebServer::start(const WebSettings &settings, const S
     *err = "cannot listen on " + settings.address + ":" + std::to_string(settings.port);
     return nullptr;
   }
+  p->http.widen_backlog();
   p->thread = std::thread([p] { p->http.listen_after_bind(); });
   // serving before start returns: a stop() before the listening loop runs would not end it
   for (int i = 0; i < 2000 && !p->http.is_running(); ++i) std::this_thread::sleep_for(std::chrono::milliseconds(1));

@@ -14,6 +14,18 @@
 
 namespace ballsrv {
 
+// The page's bounds against hostile clients (docs/bots-and-watchers.md, "The page
+// against hostile HTTP"); server/web/http_guard.h keeps them.
+struct HttpLimits {
+  int queue = 64;                   // accepted connections waiting for a thread; more are closed at once
+  int per_address = 16;             // connections one client address holds at once; more are closed at once
+  double head_seconds = 5.0;        // a request's head (line and headers) must be whole this long after it begins
+  double idle_seconds = 1.0;        // a connection with no request begun this long is closed
+  size_t head_bytes = 16384;        // a request's head and body, at most (more: the connection is closed)
+  size_t headers = 64;              // header lines of a request, at most (more: 431)
+  std::string proxy;                // a reverse proxy's address: no per-address share for it ("": none)
+};
+
 struct WebSettings {
   std::string address = "127.0.0.1";  // where it listens (another address only when asked)
   int port = 0;                       // 0: a free port, chosen by the system
@@ -21,6 +33,8 @@ struct WebSettings {
   std::string wasm_file;              // ball.wasm: libball and the client core for the page (page_core.cpp)
   std::string three_dir;              // three.js: build/three.min.js, examples/js/controls/OrbitControls.js
   int max_pages = 8;                  // pages streaming at once; more are told 503
+  int pages_per_address = 2;          // pages one client address streams at once; more are told 503
+  HttpLimits http;
 };
 
 class WebServer {

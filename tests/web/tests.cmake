@@ -26,6 +26,18 @@ if(TARGET ball_wasm)
     ENVIRONMENT_MODIFICATION "ASAN_OPTIONS=string_append::new_delete_type_mismatch=0")
 endif()
 
+# the page against hostile HTTP (docs/bots-and-watchers.md, "The page against
+# hostile HTTP"): attacks from other loopback addresses, bounded in count and
+# time, while Python's http.client loads the page (which needs the module)
+ball_dds_domain(web_http_attack attack_domain)
+if(TARGET ball_wasm)
+  add_test(NAME web_http_attack
+    COMMAND ${BALL_WEB_PYTHON} ${CMAKE_CURRENT_LIST_DIR}/http_attack.py --bin ${PROJECT_BINARY_DIR}/server
+            --domain ${attack_domain} --work ${CMAKE_CURRENT_BINARY_DIR}/web_http_attack)
+  set_tests_properties(web_http_attack PROPERTIES LABELS "web" TIMEOUT 120
+    PASS_REGULAR_EXPRESSION "http_attack: passed" FAIL_REGULAR_EXPRESSION "FAIL")
+endif()
+
 # libball and the page's core on WebAssembly (cmake/BallWasm.cmake,
 # server/web/wasm/page_core.cpp, server/web/page/ballwasm.js) in the browser:
 # the glue's layout, the page's core over 2000 matches, and every double of
