@@ -428,7 +428,16 @@ void case_net_failover(const Env &env) {
        "the change of server %d hits of its own, %d points",
        rc, seqs.size(), seqs.empty() ? 0u : seqs.front(), seqs.empty() ? 0u : seqs.back(), repeats, skipped,
        mine_after, points_after);
+  ServerReport r = report(env, "standby");
+  note("the standby: %llu take-overs, %llu follow failures", static_cast<unsigned long long>(r.takeovers),
+       static_cast<unsigned long long>(r.follow_failures));
+  if (rc != 0 || changed_at == std::string::npos) {  // what each side said, for the reader of a failure
+    std::string said = file_text(path(env, "standby.out")) + file_text(path(env, "standby.err"));
+    note("the standby said:\n%s\nthe game's errors:\n%s", said.substr(said.size() > 4000 ? said.size() - 4000 : 0).c_str(),
+         file_text(path(env, "rally.err")).c_str());
+  }
   CHECK_EQ(rc, 0);
+  CHECK_EQ(r.takeovers, 1u);
   CHECK(changed_at != std::string::npos);
   CHECK(seqs.size() > 20u);
   CHECK_EQ(repeats, 0u);
