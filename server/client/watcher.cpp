@@ -12,6 +12,7 @@ namespace ballsrv {
 namespace {
 
 constexpr size_t kKeepLeads = 256;     // contacts written ahead a match keeps until they happen
+constexpr size_t kMaxWatched = 16384;  // matches known before the silent ones are let go
 constexpr size_t kMaxPending = 4096;   // states waiting for a segment that never comes: counted and forgotten
 constexpr double kLeadSettle = 1.0;    // sim s after a contact by which a hit that superseded it has come
 constexpr double kTrailSeconds = 1.0;  // sim s of trail and of event markers
@@ -108,17 +109,49 @@ std::string Watcher::turn(double real) {
     if (ball_net_poll(client_, events, 64, &n) != BALL_OK) return ball_net_message(client_);
     for (int i = 0; i < n; ++i) on_event(events[i]);
   } while (n == 64);
-  for (auto &kv : matches_) {
-    Watched &w = kv.second;
-    if (w.has_info && !w.followed) {
-      w.followed = true;  // (tried once: refused, its samples stay untrusted and counted)
-      if (ball_net_watch(client_, kv.first) != BALL_OK)
-        say(kv.first, w.info.sim_time, std::string("not followed: ") + ball_net_message(client_));
-    }
-    if (w.followed) fetch_model(kv.first, w);
-  }
+  std::vector<uint32_t> fresh;
+  for (auto &kv : matches_)
+    if (kv.second.has_info && !kv.second.followed) fresh.push_back(kv.first);
+  for (uint32_t id : fresh)
+    if (!follow(id)) break;  // (no room: none of the rest has any either)
+  if (matches_.size() > kMaxWatched) let_go_silent();  // (what untrusted lines named)
+  for (auto &kv : matches_)
+    if (kv.second.followed) fetch_model(kv.first, kv.second);
   check_states();
   return "";
+}
+
+// Follows a match with a trusted MatchInfo; false when the client has no
+// room (its max_matches) even after the matches no server serves any more
+// were let go (it is tried again next turn). A match refused for another
+// reason is not tried again: its samples stay untrusted and counted.
+bool Watcher::follow(uint32_t id) {
+  ball_status st = ball_net_watch(client_, id);
+  if (st == BALL_ENOSPACE && let_go_silent() > 0) st = ball_net_watch(client_, id);
+  auto it = matches_.find(id);
+  if (it == matches_.end()) return true;  // (let go itself: silent)
+  Watched &w = it->second;
+  w.followed = st != BALL_ENOSPACE;
+  if (st != BALL_OK && !w.said_refused) say(id, w.info.sim_time, std::string("not followed: ") + ball_net_message(client_));
+  w.said_refused = st != BALL_OK;
+  return st != BALL_ENOSPACE;
+}
+
+// Every match no server serves any more (the client lists it no more)
+// let go: the client unwatches it, the watcher forgets it. A stranger's
+// made-up matches, each heard once, go 10 s after; a match whose server
+// died goes only when the room is needed. How many went.
+size_t Watcher::let_go_silent() {
+  std::vector<uint32_t> silent;
+  ball_net_match m;
+  for (const auto &kv : matches_)
+    if (ball_net_match_info(client_, kv.first, &m) != BALL_OK) silent.push_back(kv.first);
+  for (uint32_t id : silent) {
+    if (matches_[id].followed) ball_net_unwatch(client_, id);
+    matches_.erase(id);
+  }
+  let_go_ += silent.size();
+  return silent.size();
 }
 
 // The whole model of the match's newest info, once the client has it.

@@ -110,6 +110,7 @@ class Watcher {
   uint64_t hits() const { return hits_; }  // racket hits in play, every match
   bool ready() const { return ready_; }
   uint64_t unreadable() const { return unreadable_; }  // tap lines that did not read as their type
+  uint64_t let_go() const { return let_go_; }  // matches forgotten to make room: no server served them any more
   // The matches with a trusted MatchInfo, and what was taken of one (false: none).
   std::vector<uint32_t> match_ids() const;
   bool view(uint32_t match, WatchedView *out) const;
@@ -122,6 +123,7 @@ class Watcher {
     MatchInfoOut info;                        // the newest trusted
     double info_real = 0.0;
     bool followed = false;                    // the client follows it
+    bool said_refused = false;                // the log said it is not followed
     bool has_model = false;
     ball_model model{};                       // ball_net_model's, of the info's model_hash
     uint64_t model_hash = 0;                  // its hash
@@ -148,6 +150,8 @@ class Watcher {
   void on_event(const ball_net_event &e);
   void check_states();
   void fetch_model(uint32_t id, Watched &w);
+  bool follow(uint32_t id);
+  size_t let_go_silent();
   void tally(Watched &w, const EventOut &e, int sign);
   bool wanted(uint32_t id) const { return settings_.match < 0 || id == static_cast<uint32_t>(settings_.match); }
   Watched &watched(uint32_t id) { return matches_[id]; }
@@ -164,7 +168,7 @@ class Watcher {
   Percentiles bounce_lead_;               // real s from a contact's segment received to its t0 (< 0: late)
   uint64_t bounces_ahead_ = 0, bounces_late_ = 0, bounces_superseded_ = 0;
   double start_real_ = 0.0, first_segment_after_ = -1.0;
-  uint64_t hits_ = 0, unreadable_ = 0;
+  uint64_t hits_ = 0, unreadable_ = 0, let_go_ = 0;
   bool ready_ = false;
   WatchOutput out_;
 };

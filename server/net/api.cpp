@@ -319,7 +319,8 @@ ball_status ball_net_match_info(ball_net_client *c, uint32_t match, ball_net_mat
   return guarded(c, [&] {
     double now = c->now();
     const Listed *l = c->core->listed(match, now);
-    if (!l) return c->fail(BALL_ENOMATCH, "no server serves match " + std::to_string(match) + " (none heard within 3 s)");
+    if (!l) return c->fail(BALL_ENOMATCH, "no server serves match " + std::to_string(match) + " (none heard within " +
+                                               std::to_string(static_cast<int>(c->core->silence())) + " s)");
     const MatchView *v = c->core->view(match);
     double sim = v && v->clock().valid() ? v->clock().sim_now(now) : l->info.sim_time;
     to_c(l->info, sim, out, c->transport->id());

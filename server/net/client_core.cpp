@@ -86,7 +86,7 @@ bool ClientCore::take_info(const MatchInfoOut &info, double local) {
   bool listed = false;
   if (!settings_.servers.accepts(info.server_id) || !usable_info(info)) {
     if (!followed(info.match_id)) refused_++;
-  } else if (listed_.count(info.match_id) || listed_.size() < settings_.max_matches) {
+  } else if (listed_.count(info.match_id) || list_room(local)) {
     Listed &l = listed_[info.match_id];
     l.info = info;
     l.heard = local;
@@ -94,6 +94,31 @@ bool ClientCore::take_info(const MatchInfoOut &info, double local) {
   }
   if (Followed *f = followed(info.match_id)) return f->view->on_info(info, local, &scratch_);
   return listed;
+}
+
+// Room in the list for one more match. When it is full, what went unheard
+// for the silence goes (a stranger's made-up ids are heard once, disposed
+// or not; a followed match keeps its view); when nothing did, the match
+// not followed heard longest ago (docs/client.md, "The matches a client lists").
+bool ClientCore::list_room(double local) {
+  if (listed_.size() < settings_.max_matches) return true;
+  auto oldest = listed_.end();
+  for (auto it = listed_.begin(); it != listed_.end();) {
+    if (local - it->second.heard > settings_.silence) {  // (a view of it stays while followed)
+      it = listed_.erase(it);
+      unlisted_++;
+    } else if (followed(it->first)) {
+      ++it;
+    } else {
+      if (oldest == listed_.end() || it->second.heard < oldest->second.heard) oldest = it;
+      ++it;
+    }
+  }
+  if (listed_.size() < settings_.max_matches) return true;
+  if (oldest == listed_.end()) return false;  // (every one followed)
+  listed_.erase(oldest);
+  unlisted_++;
+  return true;
 }
 
 // One pump's clocks, byte counts and tap line (ClientCore::pump).

@@ -119,8 +119,11 @@ class ClientCore {
   void renewed(const ParticipantId &me, double local);
   uint64_t renewals() const { return renewals_; }
   uint64_t refused() const { return refused_; }        // samples of matches it does not follow that were not usable
+  uint64_t unlisted() const { return unlisted_; }
+  double silence() const { return settings_.silence; }      // matches the list let go to make room (list_room)
 
  private:
+  bool list_room(double local);
   struct Followed {
     std::unique_ptr<MatchView> view;
     bool any = false;                          // it wants a slot, any (JOIN -1) until leave
@@ -178,6 +181,7 @@ class ClientCore {
   std::function<void(const json &)> tap_;
   bool tapped_ready_ = false;  // the tap's "ready" line is out
   uint64_t refused_ = 0;
+  uint64_t unlisted_ = 0;
   uint64_t lost_writes_ = 0;  // controls DDS refused outside a followed match (CREATE)
   double renewed_at_ = -1.0;  // the caller's clock when it opened or last started anew
   double heard_at_ = -1.0;    // and when it last heard a server (or renewed_at_)

@@ -395,3 +395,37 @@ TEST(what_does_not_fit_is_recorded_not_used) {
   CHECK_EQ(count_type(w.output(), "segment"), g.segments.size() + 3);  // recorded all the same
   CHECK_EQ(count_type(w.output(), "match_info"), 3u);
 }
+
+// A stranger fills the client's room with made-up matches (each heard
+// once, then disposed or never heard again): a real match that comes 10 s
+// later is listed, followed and shown, its segments taken; what went is
+// counted; while the made-up ones are still heard, the real one waits.
+TEST(a_full_room_lets_go_of_silent_matches) {
+  constexpr int kRoom = 8;
+  Game g = played(3.0);
+  WatchRig w(WatcherSettings{}, [](ball_net_config *c) { c->max_matches = kRoom; });
+  for (uint32_t k = 0; k < 3 * kRoom; ++k) {  // three rooms' worth, in the first second
+    MatchInfoOut fake = info_at(g, 1.0, 1000.0 + k * 0.01, MatchState::waiting);
+    fake.match_id = 5000 + k;
+    w.on_info(fake, 1000.0 + k * 0.01);
+  }
+  std::vector<uint32_t> ids = w.w.match_ids();
+  CHECK_EQ(std::count_if(ids.begin(), ids.end(), [](uint32_t id) { return id >= 5000; }), kRoom);
+  // the real match while they are heard: not followed yet
+  MatchInfoOut real = info_at(g, g.match.sim().time, 1005.0, MatchState::playing);
+  w.on_info(real, 1005.0);
+  ball_net_status st;
+  CHECK(ball_net_status_of(w.net.client, g.match.id(), &st) != BALL_OK);
+  CHECK_EQ(w.w.let_go(), 0u);
+  // 10 s after they were last heard
+  real.server_time = 1011.0;
+  w.on_info(real, 1011.0);
+  for (const auto &s : g.segments) w.on_segment(s, 1011.0);
+  CHECK_EQ(ball_net_status_of(w.net.client, g.match.id(), &st), BALL_OK);
+  WatchedView v;
+  CHECK(w.w.view(g.match.id(), &v));
+  CHECK_EQ(v.segments->size(), g.segments.size());
+  CHECK_EQ(w.w.let_go(), static_cast<uint64_t>(3 * kRoom));  // (every made-up one: none is served)
+  ids = w.w.match_ids();
+  CHECK_EQ(ids.size(), 1u);
+}
