@@ -107,6 +107,7 @@ class ClientEndpoints : public ClientPort {
         if constexpr (!std::is_same_v<T, StatusOut> && !std::is_same_v<T, MatchModelOut>) {
           out->reception.received = meta.reception_time;
           out->reception.written = meta.source_time;
+          out->reception.from = meta.from;
         }
         return true;
       }

@@ -84,8 +84,13 @@ void MatchView::start_anew() {
   counters_.anew++;
 }
 
-bool MatchView::owner_fits(uint32_t term, uint32_t server, double local) {
+bool MatchView::owner_fits(uint32_t term, uint32_t server, const ParticipantId &from, double local) {
   if (!has_owner_ || local - owner_local_ > kForgetOwner) return true;
+  if (term == term_ && server == owner_ && from != ParticipantId{} && owner_from_ != ParticipantId{} &&
+      from != owner_from_ && local - owner_local_ <= kOwnerWriter) {
+    counters_.refused++;  // its server's id and term, another participant's writer: a copy
+    return false;
+  }
   if (owner_before(term, server, term_, owner_)) {
     counters_.old_owner++;
     return false;
@@ -99,7 +104,7 @@ bool MatchView::owner_fits(uint32_t term, uint32_t server, double local) {
 
 // An older owner than the one held is taken only once that one is
 // forgotten: its match is served anew, nothing held of it applies.
-bool MatchView::take_owner(uint32_t term, uint32_t server, double local) {
+bool MatchView::take_owner(uint32_t term, uint32_t server, const ParticipantId &from, double local) {
   bool older = has_owner_ && owner_before(term, server, term_, owner_);
   if (older) start_anew();
   if (!has_owner_ || older || owner_before(term_, owner_, term, server)) {
@@ -108,6 +113,7 @@ bool MatchView::take_owner(uint32_t term, uint32_t server, double local) {
     owner_ = server;
     has_owner_ = true;
   }
+  if (from != ParticipantId{}) owner_from_ = from;
   owner_local_ = local;
   return older;
 }
@@ -117,8 +123,8 @@ bool MatchView::on_info(const MatchInfoOut &in, double local, std::vector<ViewEv
     counters_.refused++;
     return false;
   }
-  if (!owner_fits(in.term, in.server_id, local)) return false;
-  bool anew = take_owner(in.term, in.server_id, local);
+  if (!owner_fits(in.term, in.server_id, in.reception.from, local)) return false;
+  bool anew = take_owner(in.term, in.server_id, in.reception.from, local);
   if (!anew && has_info_ && in.sim_time + kAnew < info_.sim_time) start_anew();
   if (!clock_.observe(in.sim_time, in.server_time, in.settings.time_base, in.state == MatchState::playing, local)) {
     counters_.refused++;
@@ -210,8 +216,8 @@ bool MatchView::on_segment(const SegmentOut &s, double local, std::vector<ViewEv
     counters_.refused++;
     return false;
   }
-  if (!owner_fits(s.term, s.server_id, local)) return false;
-  take_owner(s.term, s.server_id, local);
+  if (!owner_fits(s.term, s.server_id, s.reception.from, local)) return false;
+  take_owner(s.term, s.server_id, s.reception.from, local);
   bool news = window_.empty() || later(s, window_.back().segment);
   if (!keep(s)) return true;  // held already
   counters_.segments++;
@@ -249,8 +255,8 @@ bool MatchView::on_event(const EventOut &e, double local, std::vector<ViewEvent>
     counters_.refused++;
     return false;
   }
-  if (!owner_fits(e.term, e.server_id, local)) return false;
-  take_owner(e.term, e.server_id, local);
+  if (!owner_fits(e.term, e.server_id, e.reception.from, local)) return false;
+  take_owner(e.term, e.server_id, e.reception.from, local);
   int32_t ahead = static_cast<int32_t>(e.seq - last_event_);
   if (any_event_ && ahead <= 0) return replace_given(e, out);  // given already, unless a newer owner's other
   if (any_event_ && static_cast<uint32_t>(ahead) > kMaxSeqAhead) {
@@ -317,8 +323,9 @@ bool MatchView::replace_given(const EventOut &e, std::vector<ViewEvent> *out) {
 
 bool MatchView::on_state(const StateOut &s, double local) {
   if (s.match_id != id_) return false;
-  if (has_info_ && servers_.accepts(s.server_id) && !owner_fits(s.term, s.server_id, local)) return false;
-  if (has_info_ && servers_.accepts(s.server_id)) take_owner(s.term, s.server_id, local);
+  if (has_info_ && servers_.accepts(s.server_id) && !owner_fits(s.term, s.server_id, s.reception.from, local))
+    return false;
+  if (has_info_ && servers_.accepts(s.server_id)) take_owner(s.term, s.server_id, s.reception.from, local);
   if (!has_info_ || !servers_.accepts(s.server_id) ||
       !clock_.observe(s.sim_time, s.server_time, info_.settings.time_base, s.state == MatchState::playing, local)) {
     counters_.refused++;

@@ -72,6 +72,12 @@ class MatchView {
   // anew after its servers were gone; an owner writes a MatchInfo at
   // least every 4 s and its writers live for a 1 s lease: docs/protocol.md, "Time")
   static constexpr double kForgetOwner = 10.0;
+  // s of the caller's clock: the owner's samples come from the participant
+  // that wrote the newest taken; another participant's of the same owner
+  // (a stranger copying its server id and term) are refused while that one
+  // was heard this long ago at most (more than the 4 s between MatchInfos;
+  // a server restarted under its old term is taken after it).
+  static constexpr double kOwnerWriter = 5.0;
 
   // `servers`: whose samples it takes; `me`: this client's participant (its slot)
   MatchView(uint32_t id, const ServerChoice &servers, const ParticipantId &me);
@@ -133,8 +139,9 @@ class MatchView {
   // docs/protocol.md, "Terms": whether a sample of (term, server) may be
   // taken at `local`; taking one makes its owner the held one (true: an
   // older one, the match started anew)
-  bool owner_fits(uint32_t term, uint32_t server, double local);  // (counts what it refuses)
-  bool take_owner(uint32_t term, uint32_t server, double local);
+  // and its writer's participant `from` (zeros: unknown, any)
+  bool owner_fits(uint32_t term, uint32_t server, const ParticipantId &from, double local);  // (counts what it refuses)
+  bool take_owner(uint32_t term, uint32_t server, const ParticipantId &from, double local);
   bool keep(const SegmentOut &s);  // false: held already
   void prepare(KeptSegment *k) const;
   void void_given(const SegmentOut &correction, std::vector<ViewEvent> *out);
@@ -158,6 +165,7 @@ class MatchView {
   uint32_t term_ = 0, owner_ = 0;      // the owner taken: term, server id
   bool has_owner_ = false;
   double owner_local_ = 0.0;           // the caller's clock at its newest sample taken
+  ParticipantId owner_from_{};         // the participant that wrote it (zeros: unknown)
   uint32_t last_event_ = 0;            // the newest event seq given
   bool any_event_ = false;
   std::deque<EventOut> given_;         // voidable events given, the last kVoidableFor sim s

@@ -255,6 +255,7 @@ inline bool operator==(const PlayState &a, const PlayState &b) {
 struct Reception {
   double received = 0.0;  // realtime s its DDS reader received it (0: unknown)
   double written = 0.0;   // its DDS source timestamp, the writer's realtime s (0: unknown)
+  ParticipantId from{};   // its writer's participant GUID prefix (zeros: unknown)
 };
 
 // server -> clients: a flight segment (Segment). Every server sample carries

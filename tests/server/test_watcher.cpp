@@ -429,3 +429,72 @@ TEST(a_full_room_lets_go_of_silent_matches) {
   ids = w.w.match_ids();
   CHECK_EQ(ids.size(), 1u);
 }
+
+// A stranger copies the server's id and term (an open domain): one event
+// of its own, a point 999 seqs ahead with the score 0-99, and a ball state
+// whose sim time lies 100 s ahead. The samples the server's participant
+// wrote keep coming and are taken; the stranger's are refused: the score,
+// the missed events and the clock stay the server's. A server restarted
+// under its old term (another participant) is taken once the first has
+// been silent for kOwnerWriter.
+TEST(a_copy_of_the_owner_from_another_participant_is_refused) {
+  Game g = played(12.0);
+  const ParticipantId server = participant(7), stranger = participant(66);
+  WatchRig w(WatcherSettings{});
+  MatchInfoOut info = info_at(g, g.match.sim().time, 1000.0, MatchState::playing);
+  info.reception.from = server;
+  w.on_info(info, 1000.0);
+  for (SegmentOut s : g.segments) {
+    s.reception.from = server;
+    w.on_segment(s, 1000.0);
+  }
+  const size_t half = g.events.size() / 2;
+  for (size_t k = 0; k < half; ++k) {
+    EventOut e = g.events[k];
+    e.reception.from = server;
+    w.on_event(e, 1000.0);
+  }
+  EventOut forged = g.events[half - 1];
+  forged.reception.from = stranger;
+  forged.kind = EventKind::point;
+  forged.score = {0, 99};
+  forged.seq += 999;
+  w.on_event(forged, 1000.1);
+  ball_net_match before;
+  CHECK_EQ(ball_net_match_info(w.net.client, g.match.id(), &before), BALL_OK);
+  StateOut st = g.states.back();
+  st.reception.from = stranger;
+  st.sim_time += 100.0;
+  st.server_time = 1000.1;
+  w.on_state(st, 1000.1);
+  ball_net_match after;
+  CHECK_EQ(ball_net_match_info(w.net.client, g.match.id(), &after), BALL_OK);
+  CHECK(std::fabs(after.sim_time - before.sim_time) < 1.0);  // (the clock: not moved 100 s)
+  for (size_t k = half; k < g.events.size(); ++k) {
+    EventOut e = g.events[k];
+    e.reception.from = server;
+    w.on_event(e, 1000.2);
+  }
+  WatchedMatchSummary m = w.summary(12).matches[0];
+  CHECK_EQ(m.events_missed, 0u);
+  CHECK_EQ(m.points, static_cast<uint64_t>(g.count(EventKind::point)));
+  CHECK_EQ(m.score[0], g.match.info().play.score[0]);
+  CHECK_EQ(m.score[1], g.match.info().play.score[1]);
+  ball_net_status status;
+  CHECK_EQ(ball_net_status_of(w.net.client, g.match.id(), &status), BALL_OK);
+  CHECK(status.refused >= 2u);
+  // the server restarted under its old term, another participant: taken after kOwnerWriter
+  MatchInfoOut again = info;
+  again.reception.from = participant(8);
+  again.server_time = 1003.0;
+  again.sim_time = info.sim_time + 3.0;  // (its clock goes on)
+  w.on_info(again, 1003.0);
+  ball_net_status later;
+  CHECK_EQ(ball_net_status_of(w.net.client, g.match.id(), &later), BALL_OK);
+  CHECK_EQ(later.refused, status.refused + 1);
+  again.server_time = 1005.3;
+  again.sim_time = info.sim_time + 5.3;
+  w.on_info(again, 1005.3);  // (5.1 s after the first participant's last)
+  CHECK_EQ(ball_net_status_of(w.net.client, g.match.id(), &later), BALL_OK);
+  CHECK_EQ(later.refused, status.refused + 1);
+}
