@@ -41,6 +41,12 @@ Cluster::Heard Cluster::hear_info(const MatchInfoOut &info, const ParticipantId 
     stats_.others_refused++;
     return Heard::refused;
   }
+  if (!knows(from)) {  // (a stranger's made-up matches, or a server whose status is still on its way)
+    if (unknown_.size() >= kMaxPeers && !unknown_.count(info.match_id)) unknown_.clear();
+    unknown_[info.match_id] = {info, from};
+    stats_.unknown_writers++;
+    return Heard::unknown;
+  }
   // only a claimant's configured matches wait for their owners (claims_due;
   // before start they are still the host's): a bounded map, whatever ids come
   bool candidate = hosted;
@@ -55,6 +61,19 @@ Cluster::Heard Cluster::hear_info(const MatchInfoOut &info, const ParticipantId 
   }
   stats_.conflicts++;
   return Heard::conflict;
+}
+
+std::vector<std::pair<MatchInfoOut, ParticipantId>> Cluster::known_infos() {
+  std::vector<std::pair<MatchInfoOut, ParticipantId>> out;
+  for (auto it = unknown_.begin(); it != unknown_.end();) {
+    if (knows(it->second.second)) {
+      out.push_back(it->second);
+      it = unknown_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  return out;
 }
 
 uint32_t Cluster::heard_term(uint32_t match_id) const {
@@ -225,6 +244,23 @@ std::vector<uint32_t> Cluster::due_takeovers(double t0, const std::function<bool
     due.push_back(kv.first);
   }
   return due;
+}
+
+std::vector<uint32_t> Cluster::let_go_unheld(double t0) {
+  std::vector<uint32_t> out;
+  for (auto it = followed_.begin(); it != followed_.end();) {
+    const Followed &f = it->second;
+    bool held = false;
+    for (int i = 0; i < f.info.players && i < kMaxPlayers; ++i) held = held || f.info.slots[i].held;
+    if (f.lost_at >= 0.0 && t0 >= f.lost_at + settings_.takeover_grace && !held) {
+      out.push_back(it->first);
+      stats_.unheld_let_go++;
+      it = followed_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  return out;
 }
 
 const Followed *Cluster::followed(uint32_t match_id) const {

@@ -96,6 +96,8 @@ struct ClusterStats {
   uint64_t claims = 0;             // matches claimed (configured or created)
   uint64_t follow_failures = 0;    // another server's matches this one could not follow or restore
   uint64_t creates_elsewhere = 0;  // CREATEs left to another server (standby, claim rule)
+  uint64_t unknown_writers = 0;    // MatchInfos held back: their writer's ServerStatus was not heard (yet)
+  uint64_t unheld_let_go = 0;      // followed matches whose owner died with no slot held: not taken over
 };
 
 // Another server's match a standby follows.
@@ -143,8 +145,11 @@ class Cluster {
   // A MatchInfo no server could have written (trust.h: usable_other_info)
   // is nobody's: counted, false.
   bool server_wrote(const MatchInfoOut &info);
-  enum class Heard { refused, noted, conflict, stale };
-  // Another server's MatchInfo. hosted: the host has the match (a
+  enum class Heard { refused, noted, conflict, stale, unknown };
+  // Another server's MatchInfo. unknown: its writer is no server heard
+  // alive (no ServerStatus from its participant): nobody yields to it,
+  // follows it or counts it an owner; its newest of each match waits for
+  // that ServerStatus (known_infos). hosted: the host has the match (a
   // claimant's configured one before start, or one it follows); ours: this
   // server steps it. now: server s. conflict: this server must yield it
   // (DDS ranks the writer above us for every reader: the weaker of two
@@ -154,6 +159,9 @@ class Cluster {
   // loop raises its writers above the sender's: stronger_than).
   Heard hear_info(const MatchInfoOut &info, const ParticipantId &from, bool hosted, bool ours, uint32_t our_term,
                   double now);
+  // The MatchInfos held back whose writer is now a server heard alive, to
+  // be heard again (the loop takes the statuses first).
+  std::vector<std::pair<MatchInfoOut, ParticipantId>> known_infos();
   // The highest term of a match heard from other servers (0: none).
   uint32_t heard_term(uint32_t match_id) const;
   // A strength above the writer of participant `from` (its ServerStatus;
@@ -183,6 +191,10 @@ class Cluster {
   // (placement.h) this server is, and whose players it hears
   // (hears_players(id): the side with the players decides), at mono s t0.
   std::vector<uint32_t> due_takeovers(double t0, const std::function<bool(uint32_t)> &hears_players);
+  // The followed matches whose owner was lost a grace ago with no slot
+  // held in its newest MatchInfo: nobody plays them, no take-over; they are
+  // followed no more (the loop removes them from its host).
+  std::vector<uint32_t> let_go_unheld(double t0);
   const Followed *followed(uint32_t match_id) const;
   // The take-over of match_id was done (true) or failed (false): it is
   // followed no more.
@@ -227,6 +239,9 @@ class Cluster {
   std::map<uint32_t, std::pair<ParticipantId, double>> owners_;
   std::vector<MatchConfig> candidates_;  // a claimant's configured matches not (yet) its own
   std::map<uint32_t, uint32_t> terms_;   // the highest term heard of each match, at most kMaxPeers matches
+  // MatchInfos whose writer's ServerStatus was not heard: the newest of each match, at most kMaxPeers
+  std::map<uint32_t, std::pair<MatchInfoOut, ParticipantId>> unknown_;
+  bool knows(const ParticipantId &from) const { return peers_.count(from) > 0; }
   uint32_t claimed_ = 0;
 };
 

@@ -106,6 +106,8 @@ ServerReport ServerLoop::report() const {
   r.takeovers = c.takeovers;
   r.takeovers_waiting = c.takeovers_waiting;
   r.stale_terms = c.stale_terms;
+  r.unknown_writers = c.unknown_writers;
+  r.unheld_let_go = c.unheld_let_go;
   r.yields = c.yields;
   r.claims = c.claims;
   r.follow_failures = c.follow_failures;

@@ -34,22 +34,26 @@ void ServerLoop::drop_own_if_standby() {
   for (uint32_t id : own) host_.remove(id);
 }
 
-// A match created on request that nobody held a slot of for create_timeout
-// goes: a stranger's CREATEs must not fill max_matches (or squat an id) for good.
+// A match created on request, or taken over from a server gone, that nobody
+// held a slot of for create_timeout goes: a stranger's CREATEs (or made-up
+// matches) must not fill max_matches (or squat an id) for good.
 void ServerLoop::expire_created(double t0) {
   for (auto it = sched_.begin(); it != sched_.end();) {
     Match *m = it->match;
     if (m->held()) it->last_held = t0;
-    if (host_.creator(m->id()) == ParticipantId{} || t0 - it->last_held < settings_.create_timeout) {
+    bool expires = host_.creator(m->id()) != ParticipantId{} || it->taken_over;
+    if (!expires || t0 - it->last_held < settings_.create_timeout) {
       ++it;
       continue;
     }
     uint32_t id = m->id();
+    bool taken_over = it->taken_over;
     if (!port_.dispose_match(id)) stats_.totals.write_failures++;
     it = sched_.erase(it);
     host_.remove(id);
     stats_.created_expired++;
-    say("removed match " + std::to_string(id) + ": created, and nobody held a slot for " +
+    say("removed match " + std::to_string(id) + (taken_over ? ": taken over" : ": created") +
+        ", and nobody held a slot for " +
         std::to_string(static_cast<int>(settings_.create_timeout)) + " s");
   }
 }
@@ -145,6 +149,7 @@ void ServerLoop::take_others() {
   MatchModelOut model;
   while (port_.take_other_model(&model, &from)) cluster_.hear_model(model);
   MatchInfoOut info;
+  for (const auto &known : cluster_.known_infos()) other_info(known.first, known.second);
   while (port_.take_other_info(&info, &from)) other_info(info, from);
   SegmentOut seg;
   while (port_.take_other_segment(&seg, &from)) cluster_.hear_segment(seg, from, scheduled(seg.match_id) != nullptr);
@@ -157,7 +162,7 @@ void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from)
   const Scheduled *ours = scheduled(id);
   Cluster::Heard heard = cluster_.hear_info(info, from, host_.find(id) != nullptr, ours != nullptr,
                                             ours ? ours->term : 0, clock_.realtime());
-  if (heard == Cluster::Heard::refused) return;
+  if (heard == Cluster::Heard::refused || heard == Cluster::Heard::unknown) return;
   if (heard == Cluster::Heard::stale) {  // an older term's owner as strong as ours: outrank it
     raise_strength(cluster_.stronger_than(from, cluster_.settings().strength));
     return;
@@ -230,6 +235,10 @@ void ServerLoop::take_over(double t0, double now) {
     const Match *m = host_.find(id);
     return m && m->hears_players(now);
   };
+  for (uint32_t id : cluster_.let_go_unheld(t0)) {
+    host_.remove(id);
+    say("let match " + std::to_string(id) + " go: its owner is gone, and nobody held a slot of it");
+  }
   for (uint32_t id : cluster_.due_takeovers(t0, hears)) take_over_match(id, t0, now);
 }
 

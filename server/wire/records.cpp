@@ -255,7 +255,7 @@ void from_json(const json &j, MatchReport &m) {
   X("hit_found_after", r.hit_found_after) X("hit_found_late_p50", r.hit_found_late_p50)                 \
   X("hit_found_late_p99", r.hit_found_late_p99)                                                         \
   X("takeovers", r.takeovers) X("yields", r.yields) X("claims", r.claims)                               \
-  X("follow_failures", r.follow_failures) X("takeovers_waiting", r.takeovers_waiting) X("stale_terms", r.stale_terms) X("following", r.following) X("created_expired", r.created_expired)
+  X("follow_failures", r.follow_failures) X("takeovers_waiting", r.takeovers_waiting) X("stale_terms", r.stale_terms) X("unknown_writers", r.unknown_writers) X("unheld_let_go", r.unheld_let_go) X("following", r.following) X("created_expired", r.created_expired)
 
 void to_json(json &j, const ServerReport &r) {
   j = json::object();

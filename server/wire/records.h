@@ -176,7 +176,9 @@ struct ServerReport {
   uint64_t takeovers = 0, yields = 0, claims = 0, follow_failures = 0;  // among the servers of a domain
   uint64_t takeovers_waiting = 0;  // take-overs held back until a player of the match was heard
   uint64_t stale_terms = 0;        // other servers' MatchInfo of an older owner than this one or the one followed
-  uint64_t created_expired = 0;  // created matches removed: nobody held a slot for create_timeout
+  uint64_t unknown_writers = 0;    // MatchInfos held back: their participant's ServerStatus not heard (yet)
+  uint64_t unheld_let_go = 0;      // followed matches let go: their owner died with no slot held
+  uint64_t created_expired = 0;  // created or taken-over matches removed: nobody held a slot for create_timeout
   uint32_t following = 0;       // matches followed at the end
   double latency_p50 = 0.0, latency_p99 = 0.0;  // s: a hit's newest sample written -> its segment written
   uint64_t latency_count = 0;

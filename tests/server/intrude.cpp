@@ -19,7 +19,8 @@
 // is no name at all (bytes that are not UTF-8). With --as-server ID it is a server instead
 // (under DDS Security one certified as a server, but not as server ID): it
 // writes no samples, and every 0.2 s writes a copy of the newest MatchInfo
-// it heard, as match --match of server ID; a client that bound ID to
+// it heard, as match --match of server ID (with --junk N, as the N match
+// ids from --match on: made-up matches); a client that bound ID to
 // another certificate must refuse every copy.
 #include <CLI/CLI.hpp>
 #include <cstdio>
@@ -84,7 +85,7 @@ int main(int argc, char **argv) {
   dds::Writer<StateOut> forged_states_here;
   const char *by = strength.empty() ? nullptr : strength.c_str();
   if (as_server >= 0) {
-    forged = d->writer<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {16}, &err, by);
+    forged = d->writer<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, {std::max(16, static_cast<int>(junk))}, &err, by);
     if (forged.valid() && forge)
       forged_segments = d->writer<SegmentOut>(dds::kSegmentTopic, dds::kSegmentProfile, {16}, &err, by);
     if (forged_segments.valid())
@@ -121,7 +122,9 @@ int main(int argc, char **argv) {
     while (infos.take(&in, nullptr)) {
       heard_infos++;
       // --forge: the match's own, from its server (never our own forgeries back)
-      if (forge ? in.match_id == match && in.server_id != static_cast<uint32_t>(as_server) : in.match_id != match)
+      // (else any but its own copies: another match's, or match --match's of another server)
+      if (forge ? in.match_id == match && in.server_id != static_cast<uint32_t>(as_server)
+                : in.match_id != match || in.server_id != static_cast<uint32_t>(as_server))
         newest = in, heard_info = true;
     }
     StateOut st;
@@ -166,10 +169,10 @@ int main(int argc, char **argv) {
       sleep_until(now + 0.2);
       continue;
     }
-    if (forged.valid()) {  // a server: copies of what it heard, as --as-server's match --match
-      if (heard_info) {
+    if (forged.valid()) {  // a server: copies of what it heard, as --as-server's match --match (and on, --junk)
+      for (uint32_t k = 0; heard_info && k < std::max(1u, junk); ++k) {
         MatchInfoOut f = newest;
-        f.match_id = match;
+        f.match_id = match + k;
         f.server_id = static_cast<uint32_t>(as_server);
         if (forged.write(f)) sent_infos++;
         else refused++;

@@ -633,14 +633,7 @@ void case_create_flood(const Env &env) {
 // well-formed match 7 too; both count what they refused.
 void case_forged_server(const Env &env) {
   Case c{env};
-  std::string qos = path(env, "strong_qos.xml"), text = file_text(env.source + "/server/qos/ball_qos.xml");
-  const std::string primary = "<ownershipStrength><value>20</value></ownershipStrength>";
-  size_t at = text.find(primary);
-  CHECK_MSG(at != std::string::npos, "no primary strength in the QoS file");
-  if (at == std::string::npos) return;
-  text.replace(at, primary.size(), "<ownershipStrength><value>4000000000</value></ownershipStrength>");
-  std::string err;
-  CHECK(write_file(qos, text, &err));
+  std::string qos = strong_qos(env);
   struct Fifo {  // a FIFO a scene name points at: opening it for reading would hang
     std::string path = "/tmp/ball-fifo-" + std::to_string(getpid());
     Fifo() { mkfifo(path.c_str(), 0600); }

@@ -368,6 +368,58 @@ void case_standby_no_scene(const Env &env) {
   check_stream(0, seen[0]);
 }
 
+// A stranger on the open domain (ball_intrude as "server 7", no
+// ServerStatus of its own), from writers stronger than any server's:
+// well-formed copies of match 0's MatchInfo as 70 made-up matches for 4 s,
+// then copies of match 0's own for 3 s. The standby follows none of the
+// made-up matches and takes none over when the stranger leaves; the
+// primary yields nothing, and the rally goes on.
+void case_phantom_matches(const Env &env) {
+  Case c{env};
+  Pair p = pair(c, env, 1, 30.0);
+  const std::string qos = strong_qos(env);
+  auto stranger = [&](const std::string &name, std::vector<std::string> args) {
+    args.insert(args.begin(), {"--profile", qos, "--as-server", "7", "--strength", "primary", "--out",
+                               path(env, name + ".json")});
+    return program(env, name, "ball_intrude", args);
+  };
+  Process phantoms = stranger("phantoms", {"--match", "100", "--junk", "70", "--duration", "4"});
+  CHECK_EQ(phantoms.wait(20.0), 0);
+  usleep(2000000);  // its writers' liveliness lost, a take-over's grace past
+  Process copies = stranger("copies", {"--match", "0", "--duration", "3"});
+  CHECK_EQ(copies.wait(20.0), 0);
+  double left = realtime_now();
+  int hits_after = 0;
+  for (double end = mono_now() + 20.0; mono_now() < end && hits_after < 2;) {
+    usleep(100000);
+    p.t.poll();
+    hits_after = static_cast<int>(count(p.t.lines, [&](const json &j) {
+      return j.contains("recv") && recv(j) > left && is_hit(j) && j.get<EventOut>().server_id == 1;
+    }));
+  }
+  p.load.stop();
+  p.w.stop();
+  stop_server(p.standby, "the standby");
+  stop_server(p.primary, "the primary");
+  ServerReport primary = report(env, "primary"), standby = report(env, "standby");
+  json ph = json::parse(file_text(path(env, "phantoms.json")), nullptr, false);
+  json co = json::parse(file_text(path(env, "copies.json")), nullptr, false);
+  long made_up = ph.is_object() ? ph.value("infos", 0L) : 0L, copied = co.is_object() ? co.value("infos", 0L) : 0L;
+  note("a stranger wrote %ld MatchInfos of 70 made-up matches and %ld copies of match 0's; the standby: %llu "
+       "held back, following %u at the end, %llu take-overs; the primary: %llu held back, %llu yields; %d hits "
+       "of server 1 after",
+       made_up, copied, static_cast<unsigned long long>(standby.unknown_writers), standby.following,
+       static_cast<unsigned long long>(standby.takeovers), static_cast<unsigned long long>(primary.unknown_writers),
+       static_cast<unsigned long long>(primary.yields), hits_after);
+  CHECK(made_up >= 70 && copied >= 1);
+  CHECK(standby.unknown_writers >= 70u);
+  CHECK_EQ(standby.following, 1u);  // match 0 alone
+  CHECK_EQ(standby.takeovers, 0u);
+  CHECK(primary.unknown_writers >= 1u);
+  CHECK_EQ(primary.yields, 0u);
+  CHECK_MSG(hits_after >= 2, "%d hits of server 1 after the stranger left", hits_after);
+}
+
 // A game on the client library (examples/c/rally.c, ball/net.h) plays
 // through a failover: the primary is killed mid-rally, the game's events
 // go on from the standby with no seq given twice and none skipped, the
@@ -836,6 +888,7 @@ void case_hosts_claimants_meet(const Env &env) {
 }  // namespace
 
 TEST(failover) { itest::in_case(case_failover); }
+TEST(phantom_matches) { itest::in_case(case_phantom_matches); }
 TEST(hosts_failover) { itest::in_case(case_hosts_failover); }
 TEST(hosts_standby_cut) { itest::in_case(case_hosts_standby_cut); }
 TEST(hosts_stall_4) { itest::in_case(case_hosts_stall_4); }

@@ -108,6 +108,20 @@ inline std::string file_text(const std::string &file) {
 }
 
 // A watcher's --summary-json file: false (and a failed check) when it cannot be read.
+// The project's QoS file with the primary's ownership strength raised to 4e9,
+// written to the case's work folder: a forger's writers above any server's.
+inline std::string strong_qos(const Env &env) {
+  std::string qos = env.work + "/strong_qos.xml", text = file_text(env.source + "/server/qos/ball_qos.xml");
+  const std::string primary = "<ownershipStrength><value>20</value></ownershipStrength>";
+  size_t at = text.find(primary);
+  CHECK_MSG(at != std::string::npos, "no primary strength in the QoS file");
+  if (at != std::string::npos)
+    text.replace(at, primary.size(), "<ownershipStrength><value>4000000000</value></ownershipStrength>");
+  std::string err;
+  CHECK(write_file(qos, text, &err));
+  return qos;
+}
+
 inline bool read_summary(const std::string &file, WatchSummary *out) {
   try {
     *out = json::parse(file_text(file)).get<WatchSummary>();

@@ -95,6 +95,53 @@ TEST(a_standby_takes_over_a_grace_after_the_owner_is_lost) {
   CHECK(c.following().empty() && c.due_takeovers(200.0, kHeard).empty());
 }
 
+// A stranger's MatchInfos (no ServerStatus of its participant) are no
+// server's: 70 made-up matches are neither followed nor counted owners,
+// and only the newest of each is held back (bounded). A real owner whose
+// MatchInfo comes before its ServerStatus is heard again once the status
+// comes. A followed match whose owner dies with no slot held is let go,
+// not taken over; one with a slot held is taken over.
+TEST(a_standby_adopts_only_held_matches_of_servers_it_heard) {
+  Owner o;
+  Cluster c(standby_settings());
+  const ParticipantId stranger = participant(66);
+  for (uint32_t k = 0; k < 70; ++k) {
+    MatchInfoOut fake = o.info();
+    fake.match_id = 100 + k;
+    fake.server_id = 7;
+    CHECK(c.hear_info(fake, stranger, false, false, 0, kNow) == Cluster::Heard::unknown);
+  }
+  CHECK_EQ(c.stats().unknown_writers, 70u);
+  CHECK(c.following().empty() && c.known_infos().empty());
+  CHECK_EQ(c.heard_term(100), 0u);
+  // the owner's MatchInfo first, its status after
+  CHECK(c.hear_info(o.info(), kOwner, false, false, 0, kNow) == Cluster::Heard::unknown);
+  c.hear_status(status_of(1, 20, false), kOwner);
+  auto known = c.known_infos();
+  CHECK(known.size() == 1u && known[0].first.match_id == 7u && known[0].second == kOwner);
+  CHECK(c.known_infos().empty());  // (given once)
+  // held and unheld
+  Cluster held = following_standby(o);
+  Cluster unheld = following_standby(o);
+  MatchInfoOut left = o.info();
+  left.revision++;
+  for (auto &slot : left.slots) slot.held = false;
+  const ball_model *model = nullptr;
+  CHECK(unheld.hear_info(left, kOwner, false, false, 0, kNow) == Cluster::Heard::noted);
+  Cluster::Follow plan = unheld.follow_plan(left, 1.0, &model);
+  CHECK(plan == Cluster::Follow::update);
+  unheld.followed(left, kOwner, plan, true, "");
+  const double grace = held.settings().takeover_grace;
+  for (Cluster *x : {&held, &unheld}) x->server_lost(kOwner, 100.0);
+  CHECK(held.let_go_unheld(100.0 + grace).empty());
+  CHECK_EQ(held.due_takeovers(100.0 + grace, kHeard).size(), 1u);
+  CHECK(unheld.let_go_unheld(100.0 + grace - 1e-9).empty());
+  std::vector<uint32_t> gone = unheld.let_go_unheld(100.0 + grace);
+  CHECK(gone.size() == 1u && gone[0] == 7u);
+  CHECK(unheld.due_takeovers(100.0 + grace, kHeard).empty());
+  CHECK_EQ(unheld.stats().unheld_let_go, 1u);
+}
+
 // The side with the players decides: a standby that hears none of a lost
 // owner's players takes nothing over (the owner may play on with them,
 // cut off from this server alone), counts it once, and takes the match
@@ -217,6 +264,7 @@ TEST(terms_are_rounds_and_ids) {
 TEST(a_standby_follows_no_older_owner) {
   Owner o;
   Cluster c(standby_settings(3, 10));  // server 3
+  c.hear_status(status_of(2, 20, true), participant(2));
   MatchInfoOut newer = o.info();
   newer.server_id = 2;
   newer.term = 2;
@@ -238,6 +286,7 @@ TEST(a_standby_follows_no_older_owner) {
 TEST(a_conflict_yields_and_a_standby_follows) {
   Owner o;
   Cluster c(standby_settings());
+  c.hear_status(status_of(1, 20, false), kOwner);
   MatchInfoOut i = o.info();
   CHECK(c.hear_info(i, kOwner, true, true, 0, kNow) == Cluster::Heard::conflict);
   CHECK_EQ(c.stats().conflicts, 1u);
@@ -345,6 +394,7 @@ TEST(claimants_split_the_matches_each_claims_once) {
   Cluster c(s);
   MatchConfig m = default_config();
   c.set_candidates({m});
+  c.hear_status(status_of(1, 20, false), kOwner);
   CHECK(c.hear_info(o.info(), kOwner, false, false, 0, kNow) == Cluster::Heard::noted);
   CHECK_EQ(c.owners_known(), 1u);
   auto none = [](uint32_t) { return false; };

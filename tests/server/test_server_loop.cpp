@@ -873,10 +873,19 @@ TEST(another_server_for_our_match) {
   CHECK_EQ(r.loop->cluster().stats().others_refused, 2u);
   CHECK_EQ(r.loop->cluster().stats().yields, 0u);
   CHECK(r.host.find(0) != nullptr);
+  // a MatchInfo of a participant whose ServerStatus was not heard: no server's yet, held back
+  r.port.others.push_back({theirs, participant(9)});
+  r.loop->step();
+  CHECK_EQ(r.loop->cluster().stats().unknown_writers, 1u);
+  CHECK_EQ(r.loop->cluster().stats().stale_terms, 0u);
+  StatusOut st;
+  st.server_id = 2;
+  st.strength = 20;
+  r.port.other_status.push_back({st, participant(9)});
   // an older term's owner (ours is round 1's, next_term(0, 1)): stale, nothing yielded
   r.port.others.push_back({theirs, participant(9)});
   r.loop->step();
-  CHECK_EQ(r.loop->cluster().stats().stale_terms, 1u);
+  CHECK_EQ(r.loop->cluster().stats().stale_terms, 2u);  // (the one held back, heard again, and this one)
   CHECK(r.host.find(0) != nullptr);
   // while running, a newer term's (the next round): reported at the status, with the participant
   theirs.term = next_term(next_term(0, 1), 2);
