@@ -117,6 +117,13 @@ inline uint64_t inbox_key(const RacketSampleIn &s, const SampleMeta &m) {
   for (int i = 0; i < 4; ++i) mix(static_cast<uint8_t>(static_cast<uint32_t>(s.player) >> (8 * i)));
   return h;
 }
+// A control's: its writer's, so that one writer's flood takes its own
+// share of the inbox only, never another's JOIN.
+inline uint64_t inbox_key(const ControlIn &, const SampleMeta &m) {
+  uint64_t h = 1469598103934665603ull;
+  for (uint8_t b : m.writer) h = (h ^ b) * 1099511628211ull;
+  return h;
+}
 template <class T>
 uint64_t inbox_key(const T &, const SampleMeta &) {
   return 0;

@@ -106,10 +106,14 @@ std::unique_ptr<ServerEndpoints> ServerEndpoints::open(Domain &d, int matches, i
   Sizing racket{sample_room, sample_room * kInboxPerSlot, from_players, p->sample_door_};
   racket.inbox_per_key = kInboxPerSlot;  // one writer's burst in a slot takes its own share only
   p->samples_ = d.reader<RacketSampleIn>(kRacketTopic, kRacketProfile, racket, err);
-  // an instance for every match and every id a CREATE may name: made-up ids cannot fill it
-  p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile,
-                                     {match_room + static_cast<int>(create_ids) + 64, 0, from_players, p->control_door_},
-                                     err);
+  // an instance for every match and every id a CREATE may name: made-up ids
+  // cannot fill it; an inbox with a share per writer: one writer's flood
+  // cannot push another's JOIN out, nor take more than its share of a turn
+  constexpr int kControlsPerWriter = 8;  // controls a writer may have waiting between two turns
+  const int control_room = match_room + static_cast<int>(create_ids) + 64;
+  Sizing control{control_room, control_room * kControlsPerWriter, from_players, p->control_door_};
+  control.inbox_per_key = kControlsPerWriter;
+  p->controls_ = d.reader<ControlIn>(kControlTopic, kControlProfile, control, err);
   p->others_ = d.reader<MatchInfoOut>(kInfoTopic, kInfoProfile, {match_room + 64}, err);
   // (only a standby reads segments: every other server would take its own back)
   if (follows) p->other_segments_ = d.reader<SegmentOut>(kSegmentTopic, kSegmentProfile, {match_room + 64}, err);
@@ -253,6 +257,7 @@ bool ServerEndpoints::take_control(ControlIn *control) {
   SampleMeta meta;
   if (!controls_.take(control, &meta)) return false;
   control->from = meta.from;
+  control->rejected = meta.rejected;
   control->permitted = !domain_.secure() || domain_.writes_in(meta.writer, match_partition(control->match_id));
   return true;
 }

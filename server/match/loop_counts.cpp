@@ -55,6 +55,7 @@ void ServerLoop::take_notes(double t0) {
         stats_.totals.controls_in += count;
         stats_.totals.controls_refused += count;
         if (n.kind == PortNote::door_control) stats_.controls_at_door += count;
+        if (n.kind == PortNote::control_rejected) stats_.controls_no_room += count;
         break;
       }
     }
@@ -99,6 +100,7 @@ ServerReport ServerLoop::report() const {
   r.deadline_missed = stats_.deadline_missed;
   r.writers_lost = stats_.writers_lost;
   r.controls_at_door = stats_.controls_at_door;
+  r.controls_no_room = stats_.controls_no_room;
   const ClusterStats &c = cluster_.stats();
   r.creates_elsewhere = c.creates_elsewhere;
   r.others_refused = c.others_refused;

@@ -396,6 +396,11 @@ void ServerLoop::take_controls(double now) {
   ControlIn control;
   while (port_.take_control(&control)) {
     stats_.totals.controls_in++;
+    if (control.rejected) {  // over its writer's share of the inbox (server_endpoints.cpp)
+      stats_.totals.controls_refused++;
+      stats_.controls_no_room++;
+      continue;
+    }
     if (!control.valid || !control.permitted) {
       stats_.totals.controls_refused++;
       continue;

@@ -132,6 +132,7 @@ struct LoopStats {
   uint64_t skipped = 0;         // frames skipped after a stall
   uint64_t deadline_missed = 0, writers_lost = 0;
   uint64_t controls_at_door = 0;  // controls the control reader's door turned away (in controls_refused too)
+  uint64_t controls_no_room = 0;  // controls over their writer's share of the inbox, or DDS had no room (in controls_refused too)
   uint64_t liveliness_failures = 0;  // liveliness assertions the port refused
   uint64_t created_expired = 0;  // created matches removed: nobody held a slot for create_timeout
   uint64_t hit_wakes = 0;        // partial frames stepped to a racket hit's instant

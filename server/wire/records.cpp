@@ -248,7 +248,7 @@ void from_json(const json &j, MatchReport &m) {
   X("infos_out", r.infos_out)                                                                           \
   X("skipped_frames", r.skipped_frames) X("late_p99_median", r.late_p99_median)                         \
   X("late_p99_max", r.late_p99_max) X("late_max", r.late_max) X("deadline_missed", r.deadline_missed)   \
-  X("writers_lost", r.writers_lost) X("controls_at_door", r.controls_at_door) X("creates_elsewhere", r.creates_elsewhere) X("others_refused", r.others_refused) X("conflicts", r.conflicts) X("latency_p50", r.latency_p50)         \
+  X("writers_lost", r.writers_lost) X("controls_at_door", r.controls_at_door) X("controls_no_room", r.controls_no_room) X("creates_elsewhere", r.creates_elsewhere) X("others_refused", r.others_refused) X("conflicts", r.conflicts) X("latency_p50", r.latency_p50)         \
   X("latency_p99", r.latency_p99) X("latency_count", r.latency_count) X("matches", r.matches)           \
   X("hit_wakes", r.hit_wakes) X("hit_late_p50", r.hit_late_p50) X("hit_late_p99", r.hit_late_p99)       \
   X("hit_known", r.hit_known) X("hit_wake_late_p99", r.hit_wake_late_p99)                               \

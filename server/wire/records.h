@@ -171,6 +171,7 @@ struct ServerReport {
   double late_p99_median = 0.0, late_p99_max = 0.0, late_max = 0.0;  // s: frames' start after their deadline
   uint64_t deadline_missed = 0, writers_lost = 0, conflicts = 0;
   uint64_t controls_at_door = 0;  // of controls_refused, turned away at the control reader's door
+  uint64_t controls_no_room = 0;  // of controls_refused, over their writer's share of the inbox (or DDS's room)
   uint64_t creates_elsewhere = 0; // of controls_refused, CREATEs left to another server (a standby, the claim rule)
   uint64_t others_refused = 0;    // other participants' MatchInfo and Segments no server writes (trust.h, kMaxClockGap)
   uint64_t takeovers = 0, yields = 0, claims = 0, follow_failures = 0;  // among the servers of a domain

@@ -9,7 +9,8 @@
 // the server as `not_permitted`. With --junk N it cycles through N made-up
 // match ids from --match on, a JOIN and a sample for each: they must not
 // fill the server's readers (with --create its controls are CREATEs: a
-// server takes max_creates of them, the rest take their writer's share). With --as-server ID --forge it
+// server takes max_creates of them, the rest take their writer's share; with --leave SLOT they are LEAVEs
+// of that slot, a player's that the stranger is not). With --as-server ID --forge it
 // forges the server topics of match --match itself instead (the review's
 // findings, from writers as strong as --strength PROFILE of the QoS file
 // says): a MatchInfo with level 99, a segment with seq 0xFFFFFFFF and ball
@@ -46,7 +47,7 @@ int main(int argc, char **argv) {
   DdsOptions dds_opt;
   cli.add_option("--match", match, "the match written into");
   cli.add_option("--partition", partition, "the DDS partition of the writers (\"\": the default one)");
-  cli.add_option("--rate", rate, "racket samples per s")->check(CLI::Range(1.0, 1000.0));
+  cli.add_option("--rate", rate, "racket samples per s")->check(CLI::Range(1.0, 20000.0));
   cli.add_option("--duration", duration, "s to run");
   cli.add_option("--out", out_json, "JSON file of what was sent and heard");
   bool wait_match = false;
@@ -65,6 +66,8 @@ int main(int argc, char **argv) {
   cli.add_option("--scene-name", scene_name, "with --decoy: the scene it names");
   bool create = false;
   cli.add_flag("--create", create, "its controls are CREATEs (scene tennis) instead of JOINs");
+  long leave = -1;
+  cli.add_option("--leave", leave, "its controls are LEAVEs of this slot instead of JOINs (another's: refused)");
   cli.add_flag("--wait-match", wait_match, "send only once a reader matched both writers (all of it then arrives)");
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
@@ -190,8 +193,8 @@ int main(int argc, char **argv) {
       ControlIn c;
       c.match_id = id;
       c.seq = ++control_seq;
-      c.kind = create ? ControlKind::create : ControlKind::join;
-      c.player = 0;
+      c.kind = create ? ControlKind::create : leave >= 0 ? ControlKind::leave : ControlKind::join;
+      c.player = leave >= 0 ? static_cast<int>(leave) : 0;
       c.scene = "tennis";
       if (controls.write(c)) sent_controls++;
       else refused++;

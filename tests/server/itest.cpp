@@ -751,6 +751,45 @@ void case_control_share(const Env &env) {
   CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.status.samples_idle + dropped);
 }
 
+// A stranger's control flood inside the match the bots join: LEAVEs of
+// slot 1 (not its own: each refused) at 5,000 a second, from before the
+// bots start. Each writer has its own share of the server's control inbox,
+// so the bots' JOINs get through at once and they rally; every control
+// that reached the server is counted, refused for want of room
+// (controls_no_room) or for its reason.
+void case_control_flood(const Env &env) {
+  Case c{env};
+  Server server(c.server({"--matches", "1"}));
+  std::string flood_out = path(env, "flood.json");
+  Process f = Process::start({env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "0", "--junk", "1",
+                              "--leave", "1", "--rate", "5000", "--duration", "12", "--wait-match", "--out", flood_out},
+                             path(env, "flood.out"), path(env, "flood.err"));
+  usleep(2000000);
+  std::string rec = path(env, "watch.jsonl");
+  Process w = ready_watcher(c, rec, {"--match", "0"});
+  double started = mono_now();
+  Process b0 = c.bot(0, {"--rate", "15"}), b1 = c.bot(1, {"--rate", "15"});
+  Tail t(rec);
+  json serve = wait_for(t, 20.0, [](const json &j) { return is_type(j, "event") && j.at("kind") == "serve"; });
+  double joined = mono_now() - started;
+  int hits = serve.is_null() ? 0 : hits_after_serve_within(t, 3, 20.0);
+  CHECK_EQ(f.wait(30.0), 0);
+  ServerReport r = stop_all(server, {&b0, &b1, &w}, path(env, "server.json"));
+  json sent = json::parse(file_text(flood_out), nullptr, false);
+  uint64_t controls = sent.is_object() ? sent.value("controls", 0u) : 0u;
+  note("a stranger's %llu LEAVEs of slot 1 in the bots' match: %llu controls in, %llu refused (%llu for want of "
+       "room); the first serve %.2f s after the bots started, %d hits",
+       static_cast<unsigned long long>(controls), static_cast<unsigned long long>(r.status.controls_in),
+       static_cast<unsigned long long>(r.status.controls_refused), static_cast<unsigned long long>(r.controls_no_room),
+       joined, hits);
+  CHECK(controls >= 20000);
+  CHECK_MSG(!serve.is_null() && joined <= 3.0, "the match served %.2f s after its bots started", joined);
+  CHECK_MSG(hits >= 3, "%d hits under the flood", hits);
+  CHECK(r.status.controls_in >= controls * 99 / 100);  // every one that reached it, counted
+  CHECK(r.status.controls_in <= controls + 100);      // (and once: the bots' few besides)
+  CHECK(r.controls_no_room > 0);
+}
+
 // One slot's burst takes its own share of the server's racket inbox only:
 // a holder of match 0 writes 20,000 samples at once while two bots rally
 // in match 1; what did not fit is counted rejected, all of it match 0's.
@@ -1201,6 +1240,7 @@ TEST(key_flood) { in_case(case_key_flood); }
 TEST(junk_keys) { in_case(case_junk_keys); }
 TEST(unreadable) { in_case(case_unreadable); }
 TEST(control_share) { in_case(case_control_share); }
+TEST(control_flood) { in_case(case_control_flood); }
 TEST(create_flood) { in_case(case_create_flood); }
 TEST(forged_server) { in_case(case_forged_server); }
 TEST(inbox_share) { in_case(case_inbox_share); }
