@@ -17,15 +17,22 @@ constexpr double kUnderFloor = 1.0;   // m under it: a swing's straight line thr
 constexpr double kOverNet = 1.0;      // m beyond the net a racket may reach
 constexpr int32_t kMaxSeqJump = 1000; // a holder's seq goes at most this far ahead of its previous (33 s at 30 Hz)
 constexpr int32_t kLateWindow = 16;   // seqs behind a stream's newest arrival a late sample may fill its gap (< 64)
+// samples a holder's stream may capture a second: seqs skipped beyond what
+// the capture times allow (the newest's since the one before it) are no
+// loss (a stream started over, or a writer inflating `lost`), however far
+// within kMaxSeqJump; a capture time cannot run ahead of the match's clock
+// (max_sample_lead), so `lost` grows at most this much a second a slot
+constexpr double kMaxStreamRate = 1000.0;
 
 bool in_range(double v, double lo, double hi) { return v >= lo && v <= hi; }
 
 // the holder's sample `seq` arrived: the seqs the stream's window left
 // behind that never arrived (lost), or, late, it fills its own gap
-uint64_t stream_gap(Slot &slot, uint32_t seq) {
+uint64_t stream_gap(Slot &slot, uint32_t seq, double capture) {
   if (!slot.has_seen) {
     slot.has_seen = true;
     slot.seen_seq = seq;
+    slot.seen_at = capture;
     slot.missing = 0;
     return 0;
   }
@@ -36,7 +43,16 @@ uint64_t stream_gap(Slot &slot, uint32_t seq) {
     return 0;
   }
   if (ahead <= 0 || ahead > kMaxSeqJump) return 0;
+  // (a skip of one or two is always a gap: a capture time earlier than the one before is no forgery of `lost`)
+  if (ahead > 3 && !(ahead - 1 <= (capture - slot.seen_at) * kMaxStreamRate + 2.0)) {  // more than it could have captured
+    uint64_t lost = std::bitset<64>(slot.missing).count();  // (its gaps until now were real)
+    slot.seen_seq = seq;
+    slot.seen_at = capture;
+    slot.missing = 0;
+    return lost;
+  }
   slot.seen_seq = seq;
+  slot.seen_at = capture;
   // the window moves on by `ahead`: the gaps it leaves behind are lost, and
   // the seqs skipped now are its new gaps (those beyond its end lost at once)
   const uint64_t window = (uint64_t{1} << kLateWindow) - 1;
@@ -212,7 +228,7 @@ void Roster::fill(MatchInfoOut *info) const {
 
 // ---- the holders' streams -------------------------------------------------------------
 
-uint64_t Roster::arrived(int k, uint32_t seq) { return stream_gap((*this)[k], seq); }
+uint64_t Roster::arrived(int k, uint32_t seq, double capture) { return stream_gap((*this)[k], seq, capture); }
 
 void Roster::end_stream(Slot &slot) {
   ended_lost_ += std::bitset<64>(slot.missing).count();
@@ -234,7 +250,7 @@ uint64_t Roster::rejected(const RacketSampleIn &s) {
   if (s.player < 0 || s.player >= players_) return 0;
   Slot &slot = (*this)[s.player];
   if (!slot.held || slot.owner != s.from) return 0;
-  return stream_gap(slot, s.seq);
+  return stream_gap(slot, s.seq, s.capture_time);
 }
 
 // ---- a racket sample's checks ----------------------------------------------------------
@@ -246,7 +262,7 @@ SampleResult Roster::check(const RacketSampleIn &s, double now, double sim_now, 
   if (!slot.held) return SampleResult::not_joined;
   if (slot.owner != s.from) return SampleResult::not_owner;
   // the holder's stream: seqs it skipped are samples lost on the way
-  uint64_t gap = stream_gap(slot, s.seq);
+  uint64_t gap = stream_gap(slot, s.seq, s.capture_time);
   if (lost) *lost += gap;
   if (!std::isfinite(s.capture_time) || !ball_v3_finite(s.center) || !ball_v3_finite(s.normal))
     return SampleResult::nonfinite;

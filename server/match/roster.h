@@ -28,6 +28,7 @@ struct Slot {
   bool has_seen = false;
   uint32_t seen_seq = 0;     // the newest of the holder's samples that arrived, whatever became of it
   uint64_t missing = 0;      // bit i: seq seen_seq - 1 - i skipped and not (yet) arrived
+  double seen_at = 0.0;      // sim s: seen_seq's capture time
   SampleRef ref;             // the newest accepted sample
   bool has_prev = false;     // prev_*: the newest sample that passed every check (accepted or idle)
   double prev_time = 0.0;    // sim s: its capture time
@@ -81,7 +82,7 @@ class Roster {
   // ---- the holders' streams (docs/protocol.md, `lost`) ----
   // The seqs the holder's stream left behind that never arrived: a sample
   // `seq` of slot k's holder arrived (a late one fills its own gap).
-  uint64_t arrived(int k, uint32_t seq);
+  uint64_t arrived(int k, uint32_t seq, double capture);  // capture: its capture time, sim s
   uint64_t rejected(const RacketSampleIn &s);  // a sample the reader had no room for: its gap only
   void end_streams();                         // all their gaps lost (the server stops)
   uint64_t take_lost();                       // the gaps of streams that ended since the last call

@@ -394,6 +394,7 @@ TEST(lost_counts_each_skipped_seq_of_the_holder_once) {
     for (int i = 0; i < 400; ++i) {
       if (i % 8 == 0) g.run(0.02);
       RacketSampleIn s = g.parked_sample(0);
+      s.capture_time -= (7 - i % 8) * 0.0025;  // captured 400 a second, each at its own time
       double u = seeded_uniform(&rng, 0.0, 1.0);
       if (u < 0.3 && arrived > 0) continue;  // never arrives
       if (arrived == 0) first = s.seq;
@@ -440,6 +441,38 @@ TEST(lost_counts_each_skipped_seq_of_the_holder_once) {
   CHECK_EQ(g.match.take_lost(), 2u);
 }
 
+// A holder cannot make `lost` grow faster than its capture times allow
+// (kMaxStreamRate, 1000 a second): 300 samples 1/30 s apart, each 999 seqs
+// past the one before (in reach of kMaxSeqJump), count no loss; a real
+// stream at 30 a second that lost 9 in 10 counts each of them.
+TEST(lost_grows_no_faster_than_capture_times_allow) {
+  Game g = two_players();
+  g.run(1.0);
+  g.park[0] = false;
+  CHECK(g.control(ControlKind::join, A, 0) == Reason::none);
+  uint64_t forged = 0, real = 0;
+  for (int i = 0; i < 300; ++i) {
+    g.run(1.0 / 30.0);
+    g.seq[0] += 998;  // (parked_sample adds the 999th)
+    g.match.on_sample(g.parked_sample(0), g.now, &forged);
+  }
+  g.match.end_streams();
+  forged += g.match.take_lost();
+  CHECK(g.control(ControlKind::join, A, 0) == Reason::none);  // a new stream
+  g.seq[0] = 0;
+  for (int i = 0; i < 300; ++i) {
+    g.run(1.0 / 30.0);
+    if (i % 10 == 0) g.match.on_sample(g.parked_sample(0), g.now, &real);
+    else g.seq[0]++;  // written, never arrived
+  }
+  g.match.end_streams();
+  real += g.match.take_lost();
+  check::note("300 jumps of 999 seqs 1/30 s apart: %llu lost; 270 of 300 never arrived: %llu lost",
+       static_cast<unsigned long long>(forged), static_cast<unsigned long long>(real));
+  CHECK_EQ(forged, 0u);
+  CHECK_EQ(real, 261u);  // (the 9 after the last that arrived are not known to be)
+}
+
 // A stream with known gaps, late samples, a forged jump and a rejoin, by
 // hand: a gap counts lost once the stream is 16 seqs past it (or ends)
 // without it; a late sample that fills its gap before then counts where it
@@ -452,7 +485,7 @@ TEST(lost_counts_a_gap_once_the_window_has_passed_it) {
   CHECK(g.control(ControlKind::join, A, 0) == Reason::none);  // the stream starts anew
   uint64_t lost = 0;
   auto next = [&](uint32_t seq) {
-    g.run(0.02);
+    g.run(0.04);  // (time enough for the jumps below: kMaxStreamRate)
     g.seq[0] = seq - 1;
     return g.match.on_sample(g.parked_sample(0), g.now, &lost);
   };

@@ -56,9 +56,10 @@ TEST(every_seq_that_never_arrived_is_counted_lost_once) {
     uint64_t lost = 0;
     std::set<uint32_t> delivered;
     for (uint32_t seq : sent) {
-      lost += r.arrived(0, seq);
+      double capture = (seq - first) / 30.0;  // captured 30 a second
+      lost += r.arrived(0, seq, capture);
       delivered.insert(seq);
-      if (g() % 10 == 0) lost += r.arrived(0, seq);  // a duplicate: nothing
+      if (g() % 10 == 0) lost += r.arrived(0, seq, capture);  // a duplicate: nothing
     }
     r.end_streams();
     lost += r.take_lost();
