@@ -54,6 +54,7 @@ set(BALL_DDS_DOMAINS
   "web_http_attack|165|test: the spectator page against hostile HTTP: header floods, slow heads, idle connections, per-address shares"
   "dds_phantom_matches|166|test: a stranger's copies of a MatchInfo as 70 made-up matches and as the match's own: the standby adopts none, the primary yields nothing"
   "dds_control_flood|167|test: a stranger's 5,000 LEAVEs a second in the bots' match: their JOINs go through at once, every control counted"
+  "dds_secure_slots|168|test: slots bound to identities on the secure domain: a certified player JOINing another's slot is refused, the rally goes on"
   "dds_secure|115|test: DDS Security: no plaintext on the wire, strangers and other matches' players kept out"
   "demo_secure|116|test: the demo under DDS Security rallies"
   "demo_failover|138|test: `./run demo --failover`: the primary killed, the standby takes the match over, the rally goes on"

@@ -4,11 +4,14 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "certificate.h"
 #include "common.h"
 #include "options_impl.h"
 
@@ -271,6 +274,22 @@ std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes
   host->set_scene_source([](const std::string &name, ball_scene *scene, std::string *e) {
     return plain_scene_name(name) && load_scene(name, scene, e);
   });
+  if (!config->slot_owners.empty()) {  // (docs/security.md, "Slots bound to identities")
+    if (config->security.empty()) {
+      *err = "--slot-owner needs a secure domain (--secure): on an open domain a participant is whoever it says";
+      return nullptr;
+    }
+    std::map<std::pair<uint32_t, int>, SubjectKey> keys;
+    for (const auto &o : config->slot_owners) {
+      SubjectKey key;
+      if (!subject_key_of(config->security + "/" + o.identity + ".pem", &key, err)) return nullptr;
+      keys[{o.match, o.slot}] = key;
+    }
+    host->set_slot_rule([keys](uint32_t match, int slot, const ParticipantId &who) {
+      auto it = keys.find({match, slot});
+      return it == keys.end() || prefix_fits(who, it->second);
+    });
+  }
   for (size_t i = 0; i < config->matches.size(); ++i) {
     MatchEntry &e = config->matches[i];
     const ball_scene &sc = scenes.matches[i];
@@ -315,6 +334,9 @@ void ServerOptions::add(CLI::App &app) {
       ->check(CLI::Range(1, 100000));
   app.add_flag("--no-create", no_create_, "refuse CREATE requests (allow_create false)");
   app.add_flag("--standby", standby_, "a hot standby: follow the other servers' matches (standby true)");
+  app.add_option("--slot-owner", slot_owners_,
+                 "with --secure: slot SLOT of match MATCH may be held only by the holder of IDENTITY.pem in the "
+                 "--secure folder (MATCH:SLOT=IDENTITY; repeated)");
   server_.add(app, server_fields(), ServerConfig{});
   match_.add(app, match_fields(), MatchConfig{});
   add_dds_options(app, &dds_);
@@ -343,6 +365,18 @@ bool ServerOptions::apply(ServerConfig *config, std::string *err) const {
   if (tls_->count()) config->tls = dds_.tls;
   server_.apply(config);
   if (no_create_) config->allow_create = false;
+  for (const std::string &text : slot_owners_) {
+    unsigned match = 0;
+    int slot = -1, used = 0;
+    size_t eq = text.find('=');
+    if (eq == std::string::npos || std::sscanf(text.c_str(), "%u:%d%n", &match, &slot, &used) != 2 ||
+        static_cast<size_t>(used) != eq || slot < 0 || slot >= kMaxPlayers || !plain_scene_name(text.substr(eq + 1))) {
+      *err = "--slot-owner " + text + ": not MATCH:SLOT=IDENTITY (a slot in [0, " + std::to_string(kMaxPlayers - 1) +
+             "], an identity's name)";
+      return false;
+    }
+    config->slot_owners.push_back({match, slot, text.substr(eq + 1)});
+  }
   if (standby_) config->standby = true;
   auto settle = [&](MatchConfig *c) {
     match_.apply(c);

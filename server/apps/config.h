@@ -42,6 +42,14 @@ struct ServerConfig {
   int tcp_listen = 0;                        // a TCP profile's listening port (0: the profile's)
   std::string tcp_public;                    // its address as players reach it ("": its own)
   std::string tls;                           // TLS's folder for a TCP profile ("": plain TCP)
+  // slots bound to identities on a secure domain (--slot-owner MATCH:SLOT=IDENTITY): that slot
+  // is IDENTITY's alone (docs/security.md, "Slots bound to identities")
+  struct SlotOwner {
+    uint32_t match = 0;
+    int slot = 0;
+    std::string identity;
+  };
+  std::vector<SlotOwner> slot_owners;
   uint32_t max_matches = 0;                  // 0: the configured matches, plus kCreateRoom when CREATE is allowed,
                                              // plus kFollowRoom for a standby
   bool allow_create = true;                  // clients may CREATE matches from the catalogue
@@ -95,6 +103,7 @@ class ServerOptions {
               *tcp_public_ = nullptr, *tls_ = nullptr;
   int matches_ = 0;
   bool no_create_ = false;
+  std::vector<std::string> slot_owners_;  // --slot-owner MATCH:SLOT=IDENTITY
   bool standby_ = false;
 };
 

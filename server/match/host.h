@@ -22,6 +22,8 @@ class Host {
   // One participant may have at most `n` matches it created standing (a
   // stranger's CREATEs must not fill max_matches for good).
   void set_max_creates(uint32_t n) { max_creates_ = n; }
+  // Which participant may hold which slot of which match (Match::set_slot_rule): every match's, those to come too.
+  void set_slot_rule(std::function<bool(uint32_t match, int slot, const ParticipantId &who)> rule);
   bool allows_create() const { return allow_create_; }
   // The match ids a CREATE may name (the rest refused, `bad_value`): a
   // bounded key space, so that made-up CREATE ids cannot fill the control
@@ -80,6 +82,7 @@ class Host {
   SceneSource source_;
   std::vector<std::unique_ptr<Match>> matches_;
   std::map<uint32_t, Match *> by_id_;
+  std::function<bool(uint32_t, int, const ParticipantId &)> slot_rule_;
   std::map<uint32_t, ParticipantId> creators_;  // the matches created on request, by whom
   uint32_t max_creates_ = UINT32_MAX;
   CreateIds create_ids_;

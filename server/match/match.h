@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -52,6 +53,10 @@ class Match {
  public:
   // Builds the model (build_match_model) and the court; false with err.
   bool init(const MatchConfig &config, const ball_scene &scene, std::string *err);
+  // Which participant may hold which slot (docs/security.md, "Slots bound to
+  // identities"): a JOIN of a slot the rule refuses is REFUSED_NOT_PLAYER,
+  // free or vanished; none: anyone may hold any.
+  void set_slot_rule(std::function<bool(int slot, const ParticipantId &who)> rule) { slot_rule_ = std::move(rule); }
 
   // One frame at real time `now`: presence, the state machine, the serve,
   // the step and the rules.
@@ -192,6 +197,7 @@ class Match {
   Reason on_player_control(const ControlIn &c, MatchOutput *out);  // SERVE, LEVEL, PAUSE, RESUME, TIME_BASE of a holder
   int side_of_point(ball_vec3 p) const { return court_.side_of(p.x); }
 
+  std::function<bool(int, const ParticipantId &)> slot_rule_;
   MatchConfig config_;
   ball_sim sim_{};
   uint64_t model_hash_ = 0;  // ball_model_hash of the sim's model, kept as the model changes

@@ -26,9 +26,13 @@ Reason Match::on_control(const ControlIn &c, double now, MatchOutput *out) {
 }
 
 Reason Match::on_join(const ControlIn &c, double now, MatchOutput *out) {
-  int slot = c.player == -1 ? roster_.free_slot(c.from, now, config_.player_timeout) : c.player;
-  if (c.player == -1 && slot < 0) return refuse(c, Reason::refused_no_room, out);
+  // the slots it may hold: on a secure domain a slot bound to an identity is that identity's alone
+  unsigned allowed = 0;
+  for (int k = 0; k < config_.players; ++k) allowed |= (!slot_rule_ || slot_rule_(k, c.from)) ? 1u << k : 0u;
+  int slot = c.player == -1 ? roster_.free_slot(c.from, now, config_.player_timeout, allowed) : c.player;
+  if (c.player == -1 && slot < 0) return refuse(c, allowed ? Reason::refused_no_room : Reason::refused_not_player, out);
   if (slot < 0 || slot >= config_.players) return refuse(c, Reason::refused_bad_value, out);
+  if (!(allowed >> slot & 1u)) return refuse(c, Reason::refused_not_player, out);  // another identity's, free or not
   switch (roster_.join(slot, c.from, now, config_.player_timeout)) {
     case Roster::Join::again: return Reason::none;
     case Roster::Join::refused: return refuse(c, Reason::refused_slot_held, out);

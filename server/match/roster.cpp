@@ -133,13 +133,14 @@ bool Roster::hears_players(double now, double timeout) const {
 
 // ---- JOIN and LEAVE ---------------------------------------------------------------
 
-int Roster::free_slot(const ParticipantId &who, double now, double timeout) const {
+int Roster::free_slot(const ParticipantId &who, double now, double timeout, unsigned allowed) const {
+  auto may = [allowed](int i) { return (allowed >> i & 1u) != 0; };
   for (int i = 0; i < players_; ++i)
     if ((*this)[i].held && (*this)[i].owner == who) return i;  // already its
   for (int i = 0; i < players_; ++i)
-    if (!(*this)[i].held) return i;
+    if (may(i) && !(*this)[i].held) return i;
   for (int i = 0; i < players_; ++i)
-    if (!(*this)[i].alive || now - (*this)[i].last_seen > timeout) return i;  // vanished
+    if (may(i) && (!(*this)[i].alive || now - (*this)[i].last_seen > timeout)) return i;  // vanished
   return -1;
 }
 

@@ -64,7 +64,7 @@ class Roster {
   // ---- JOIN and LEAVE ----
   // The slot a JOIN of any slot gets: the one `who` holds already, a free
   // one, or one whose holder vanished (lost, or not seen for timeout); -1: no room.
-  int free_slot(const ParticipantId &who, double now, double timeout) const;
+  int free_slot(const ParticipantId &who, double now, double timeout, unsigned allowed = ~0u) const;  // allowed: a bit a slot
   enum class Join { again, taken, refused };
   // again: `who` holds it already (its stream starts anew); taken: a new
   // holder (the racket's history is the caller's to clear); refused: another holds it and is there.

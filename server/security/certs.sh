@@ -10,7 +10,8 @@
 #   NAME.pem NAME.key             an identity each: server1 server2 server3 (servers), watch
 #                                 (a watcher), load (the load generator, a player of every
 #                                 match), and for every match m in 0..MATCHES-1 the players
-#                                 m<m>-a and m<m>-b (default MATCHES 2)
+#                                 m<m>-a and m<m>-b (default MATCHES 2), meant for slots 0
+#                                 and 1 (ball-server --slot-owner m:0=m<m>-a --slot-owner m:1=m<m>-b)
 #   governance.xml governance.p7s the domain's rules: nobody unauthenticated, everything encrypted
 #   permissions.xml permissions.p7s
 #                                 a grant per identity: servers write the server topics and read

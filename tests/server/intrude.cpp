@@ -66,8 +66,9 @@ int main(int argc, char **argv) {
   cli.add_option("--scene-name", scene_name, "with --decoy: the scene it names");
   bool create = false;
   cli.add_flag("--create", create, "its controls are CREATEs (scene tennis) instead of JOINs");
-  long leave = -1;
+  long leave = -1, join_slot = 0;
   cli.add_option("--leave", leave, "its controls are LEAVEs of this slot instead of JOINs (another's: refused)");
+  cli.add_option("--join", join_slot, "the slot its JOINs name")->check(CLI::Range(-1, 3));
   cli.add_flag("--wait-match", wait_match, "send only once a reader matched both writers (all of it then arrives)");
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
@@ -194,7 +195,7 @@ int main(int argc, char **argv) {
       c.match_id = id;
       c.seq = ++control_seq;
       c.kind = create ? ControlKind::create : leave >= 0 ? ControlKind::leave : ControlKind::join;
-      c.player = leave >= 0 ? static_cast<int>(leave) : 0;
+      c.player = static_cast<int>(leave >= 0 ? leave : join_slot);
       c.scene = "tennis";
       if (controls.write(c)) sent_controls++;
       else refused++;

@@ -458,9 +458,52 @@ void case_secure_udp_replay(const Env &env) {
   for (Process *p : {&late, &r.b0, &r.b1, &r.w}) p->stop();
 }
 
+// Slots bound to identities (docs/security.md): the server binds match 0's
+// slot 0 to m0-a and slot 1 to m0-b (--slot-owner). A participant of m0-a,
+// certified for match 0, JOINs slot 1 twice a second from before the bots
+// start: every JOIN is refused (not_player), m0-b's bot takes its slot and
+// the two rally.
+void case_secure_slots(const Env &env) {
+  Case c{env};
+  std::string err, certs = path(env, "certs");
+  CHECK_EQ(run_to_end(env, {"/bin/bash", env.source + "/server/security/certs.sh", certs, "1"}, "certs", &err), 0);
+  std::vector<std::string> sd = secure_as(certs, "server1");
+  sd.insert(sd.end(), {"--slot-owner", "0:0=m0-a", "--slot-owner", "0:1=m0-b"});
+  Server server(c.server(sd));
+  std::vector<std::string> sq = {env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "0", "--join", "1",
+                                 "--rate", "2", "--duration", "14", "--partition", "match/0", "--wait-match",
+                                 "--out", path(env, "squatter.json")};
+  for (const auto &a : secure_as(certs, "m0-a")) sq.push_back(a);
+  Process squatter = program(env, "squatter", sq);
+  usleep(2000000);
+  std::string rec = path(env, "slots.jsonl");
+  Process w = ready_watcher(c, rec, secure_as(certs, "watch"));
+  auto bot = [&](int slot, const char *who) {
+    std::vector<std::string> a = secure_as(certs, who);
+    a.insert(a.end(), {"--rate", "15", "--stats-json", path(env, std::string(who) + ".json")});
+    return c.bot(slot, a);
+  };
+  Process b0 = bot(0, "m0-a"), b1 = bot(1, "m0-b");
+  Tail t(rec);
+  int hits = hits_after_serve_within(t, 3, 25.0);
+  CHECK_EQ(squatter.wait(20.0), 0);
+  ServerReport r = stop_all(server, {&b0, &b1, &w}, path(env, "server.json"));
+  size_t refused = count(t.lines, [](const json &j) {
+    return is_type(j, "event") && j.at("kind") == "refused" && j.at("reason") == "not_player";
+  });
+  json sent = json::parse(file_text(path(env, "squatter.json")), nullptr, false);
+  long joins = sent.is_object() ? sent.value("controls", 0L) : 0L;
+  note("m0-a's %ld JOINs of m0-b's slot: %zu refused not_player as the watcher saw them; %d hits", joins, refused, hits);
+  CHECK(joins >= 10);
+  CHECK(refused >= 5u);
+  CHECK_MSG(hits >= 3, "%d hits with m0-b in its slot", hits);
+  CHECK(r.status.controls_refused >= static_cast<uint64_t>(joins) / 2);
+}
+
 }  // namespace
 
 TEST(secure) { itest::in_case(case_secure); }
+TEST(secure_slots) { itest::in_case(case_secure_slots); }
 TEST(secure_udp_disposal) { itest::in_case(case_secure_udp_disposal); }
 TEST(secure_udp_replay) { itest::in_case(case_secure_udp_replay); }
 TEST(discovery_flood) { itest::in_case(case_discovery_flood); }

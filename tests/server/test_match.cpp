@@ -788,3 +788,26 @@ TEST(host_routes_and_creates) {
 }
 
 CHECK_MAIN
+
+// Slots bound to identities (docs/security.md, "Slots bound to
+// identities"): slot 0 is A's, slot 1 B's. B cannot JOIN slot 0 while it
+// is free, nor when A vanished; a JOIN of "a free slot" finds only its
+// own; a third participant finds no room in a match whose slots are all
+// bound; A and B play.
+TEST(a_slot_bound_to_an_identity_is_that_identity_s_alone) {
+  Game g;
+  g.match.set_slot_rule([](int slot, const ParticipantId &who) { return who == (slot == 0 ? A : B); });
+  CHECK(g.control(ControlKind::join, B, 0) == Reason::refused_not_player);  // free, but A's
+  CHECK(g.control(ControlKind::join, C, -1) == Reason::refused_not_player);  // none of them is C's
+  CHECK(g.control(ControlKind::join, B, -1) == Reason::none);                // its own: slot 1
+  CHECK(g.match.info().slots[1].held && g.match.info().slots[1].owner == B);
+  CHECK(!g.match.info().slots[0].held);
+  CHECK(g.control(ControlKind::join, A, 0) == Reason::none);
+  g.run(3.0);  // A's samples stop coming (parked: g.park), it vanishes after the timeout
+  g.park[0] = false;
+  g.run(3.0);
+  CHECK(g.control(ControlKind::join, B, 0) == Reason::refused_not_player);  // vanished, still A's
+  CHECK(g.control(ControlKind::join, C, 0) == Reason::refused_not_player);
+  CHECK(g.match.info().slots[0].owner == A);
+  CHECK(g.control(ControlKind::join, A, 0) == Reason::none);  // A again
+}
