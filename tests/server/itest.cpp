@@ -705,48 +705,65 @@ void case_forged_server(const Env &env) {
   CHECK_EQ(r.matches.size(), 1u);
 }
 
-// A flood on one match does not reach another: a stranger writes 500 JOINs
-// and 500 racket samples a second into match 1 (a match the server has: it
-// takes slot 0 there, a legal move, and then re-JOINs on and on) while two
-// bots join match 0. Controls are kept per match (keyed by match_id, the
-// newest 16 each), so match 0's JOINs get through and its bots rally; the
-// server counts every control that reached it (taken, refused or lost by
-// DDS) and its racket books balance.
-void case_control_share(const Env &env) {
-  Case c{env};
-  Server server(c.server({"--matches", "2"}));
+// A stranger's flood (ball_intrude with `flood` after --domain) started
+// `head` s before a watcher of match 0 and match 0's two bots: whether and
+// when (s after the bots started) the match was served, its hits after the
+// serve, the server's report once everything stopped, what the flood sent.
+struct UnderFlood {
+  bool served = false;
+  double joined = 0.0;
+  int hits = 0;
+  ServerReport report;
+  json sent;
+};
+UnderFlood bots_under_flood(Case &c, Server &server, const std::vector<std::string> &flood, double head) {
+  const Env &env = c.env;
   std::string flood_out = path(env, "flood.json");
-  // 500 a second: about 8 a frame, half the 16 the reader keeps per match, so that a wake-up a
-  // frame late loses none before the server takes them
-  Process f = Process::start({env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "1", "--junk", "1",
-                              "--rate", "500", "--duration", "14", "--wait-match", "--out", flood_out},
-                             path(env, "flood.out"), path(env, "flood.err"));
-  usleep(3000000);
+  std::vector<std::string> a = {env.bin + "/ball_intrude", "--domain", env.dom(), "--out", flood_out};
+  a.insert(a.end(), flood.begin(), flood.end());
+  Process f = Process::start(a, path(env, "flood.out"), path(env, "flood.err"));
+  usleep(static_cast<useconds_t>(head * 1e6));
   std::string rec = path(env, "watch.jsonl");
   Process w = ready_watcher(c, rec, {"--match", "0"});
   double started = mono_now();
   Process b0 = c.bot(0, {"--rate", "15"}), b1 = c.bot(1, {"--rate", "15"});
   Tail t(rec);
-  json serve = wait_for(t, 20.0, [](const json &j) { return is_type(j, "event") && j.at("kind") == "serve"; });
-  double joined = mono_now() - started;
-  int hits = serve.is_null() ? 0 : hits_after_serve_within(t, 3, 20.0);
+  UnderFlood u;
+  u.served = !wait_for(t, 20.0, [](const json &j) { return is_type(j, "event") && j.at("kind") == "serve"; }).is_null();
+  u.joined = mono_now() - started;
+  u.hits = u.served ? hits_after_serve_within(t, 3, 20.0) : 0;
   CHECK_EQ(f.wait(30.0), 0);
-  b0.stop();
-  b1.stop();
-  w.stop();
-  ServerReport r = stop_server(server, path(env, "server.json"));
-  json sent = json::parse(file_text(flood_out), nullptr, false);
-  uint64_t controls = sent.is_object() ? sent.value("controls", 0u) : 0u;
+  u.report = stop_all(server, {&b0, &b1, &w}, path(env, "server.json"));
+  u.sent = json::parse(file_text(flood_out), nullptr, false);
+  return u;
+}
+
+// A flood on one match does not reach another: a stranger writes 500 JOINs
+// and 500 racket samples a second into match 1 (a match the server has: it
+// takes slot 0 there, a legal move, and then re-JOINs on and on) while two
+// bots join match 0. Each writer has its share of the control inbox, so
+// match 0's JOINs get through and its bots rally; the server counts every
+// control that reached it (taken, refused or lost by DDS) and its racket
+// books balance.
+void case_control_share(const Env &env) {
+  Case c{env};
+  Server server(c.server({"--matches", "2"}));
+  // 500 a second: about 8 a frame, half the 16 the reader keeps per match, so that a wake-up a
+  // frame late loses none before the server takes them
+  UnderFlood u = bots_under_flood(
+      c, server, {"--match", "1", "--junk", "1", "--rate", "500", "--duration", "14", "--wait-match"}, 3.0);
+  const ServerReport &r = u.report;
+  uint64_t controls = u.sent.is_object() ? u.sent.value("controls", 0u) : 0u;
   uint64_t dropped = 0;
   for (int i = 0; i < kDropReasons; ++i) dropped += r.status.drops[i];
   note("a stranger's %llu JOINs and %llu samples into match 1: %llu controls in (%llu refused); match 0's first "
        "serve %.2f s after its bots started, %d hits",
-       static_cast<unsigned long long>(controls), static_cast<unsigned long long>(sent.value("samples", 0u)),
+       static_cast<unsigned long long>(controls), static_cast<unsigned long long>(u.sent.value("samples", 0u)),
        static_cast<unsigned long long>(r.status.controls_in), static_cast<unsigned long long>(r.status.controls_refused),
-       joined, hits);
+       u.joined, u.hits);
   CHECK(controls >= 4000);
-  CHECK_MSG(!serve.is_null() && joined <= 10.0, "match 0 served %.2f s after its bots started", joined);
-  CHECK_MSG(hits >= 3, "match 0: %d hits under the flood of match 1", hits);
+  CHECK_MSG(u.served && u.joined <= 10.0, "match 0 served %.2f s after its bots started", u.joined);
+  CHECK_MSG(u.hits >= 3, "match 0: %d hits under the flood of match 1", u.hits);
   CHECK(r.status.controls_in >= controls * 9 / 10);  // counted, whatever became of them
   CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.status.samples_idle + dropped);
 }
@@ -760,31 +777,20 @@ void case_control_share(const Env &env) {
 void case_control_flood(const Env &env) {
   Case c{env};
   Server server(c.server({"--matches", "1"}));
-  std::string flood_out = path(env, "flood.json");
-  Process f = Process::start({env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "0", "--junk", "1",
-                              "--leave", "1", "--rate", "5000", "--duration", "12", "--wait-match", "--out", flood_out},
-                             path(env, "flood.out"), path(env, "flood.err"));
-  usleep(2000000);
-  std::string rec = path(env, "watch.jsonl");
-  Process w = ready_watcher(c, rec, {"--match", "0"});
-  double started = mono_now();
-  Process b0 = c.bot(0, {"--rate", "15"}), b1 = c.bot(1, {"--rate", "15"});
-  Tail t(rec);
-  json serve = wait_for(t, 20.0, [](const json &j) { return is_type(j, "event") && j.at("kind") == "serve"; });
-  double joined = mono_now() - started;
-  int hits = serve.is_null() ? 0 : hits_after_serve_within(t, 3, 20.0);
-  CHECK_EQ(f.wait(30.0), 0);
-  ServerReport r = stop_all(server, {&b0, &b1, &w}, path(env, "server.json"));
-  json sent = json::parse(file_text(flood_out), nullptr, false);
-  uint64_t controls = sent.is_object() ? sent.value("controls", 0u) : 0u;
+  UnderFlood u = bots_under_flood(c, server,
+                                  {"--match", "0", "--junk", "1", "--leave", "1", "--rate", "5000", "--duration", "12",
+                                   "--wait-match"},
+                                  2.0);
+  const ServerReport &r = u.report;
+  uint64_t controls = u.sent.is_object() ? u.sent.value("controls", 0u) : 0u;
   note("a stranger's %llu LEAVEs of slot 1 in the bots' match: %llu controls in, %llu refused (%llu for want of "
        "room); the first serve %.2f s after the bots started, %d hits",
        static_cast<unsigned long long>(controls), static_cast<unsigned long long>(r.status.controls_in),
        static_cast<unsigned long long>(r.status.controls_refused), static_cast<unsigned long long>(r.controls_no_room),
-       joined, hits);
+       u.joined, u.hits);
   CHECK(controls >= 20000);
-  CHECK_MSG(!serve.is_null() && joined <= 3.0, "the match served %.2f s after its bots started", joined);
-  CHECK_MSG(hits >= 3, "%d hits under the flood", hits);
+  CHECK_MSG(u.served && u.joined <= 3.0, "the match served %.2f s after its bots started", u.joined);
+  CHECK_MSG(u.hits >= 3, "%d hits under the flood", u.hits);
   CHECK(r.status.controls_in >= controls * 99 / 100);  // every one that reached it, counted
   CHECK(r.status.controls_in <= controls + 100);      // (and once: the bots' few besides)
   CHECK(r.controls_no_room > 0);
