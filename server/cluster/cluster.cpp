@@ -10,10 +10,15 @@ namespace ballsrv {
 // ---- what the network brought ------------------------------------------------
 
 void Cluster::hear_status(const StatusOut &status, const ParticipantId &from) {
-  if (peers_.size() >= kMaxPeers && !peers_.count(from)) return;  // (a lost one makes room)
+  if (peers_.size() >= kMaxPeers && !peers_.count(from)) {  // full: the one heard longest ago goes
+    auto oldest = std::min_element(peers_.begin(), peers_.end(),
+                                   [](const auto &a, const auto &b) { return a.second.heard < b.second.heard; });
+    peers_.erase(oldest);
+  }
   Peer &p = peers_[from];
   p.status = status;
   p.alive = true;
+  p.heard = ++statuses_heard_;
 }
 
 void Cluster::hear_model(const MatchModelOut &model) {

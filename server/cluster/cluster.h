@@ -226,7 +226,9 @@ class Cluster {
   struct Peer {
     StatusOut status;  // its newest ServerStatus
     bool alive = true;
+    uint64_t heard = 0;  // its place among the statuses heard (the oldest goes when the map is full)
   };
+  uint64_t statuses_heard_ = 0;
   ClusterSettings settings_;
   ClusterStats stats_;
   std::map<ParticipantId, Peer> peers_;
