@@ -109,21 +109,21 @@ bool use_discovery_servers(const std::string &list, fdds::DomainParticipantQos *
 // room of another writer's stream, the holder's under the same keys
 // included (FNV-1a of the writer GUID, match and slot); one key for every
 // other type.
-inline uint64_t inbox_key(const RacketSampleIn &s, const SampleMeta &m) {
+inline uint64_t writer_hash(const SampleMeta &m) {
   uint64_t h = 1469598103934665603ull;
+  for (uint8_t b : m.writer) h = (h ^ b) * 1099511628211ull;
+  return h;
+}
+inline uint64_t inbox_key(const RacketSampleIn &s, const SampleMeta &m) {
+  uint64_t h = writer_hash(m);
   auto mix = [&h](uint8_t b) { h = (h ^ b) * 1099511628211ull; };
-  for (uint8_t b : m.writer) mix(b);
   for (int i = 0; i < 4; ++i) mix(static_cast<uint8_t>(s.match_id >> (8 * i)));
   for (int i = 0; i < 4; ++i) mix(static_cast<uint8_t>(static_cast<uint32_t>(s.player) >> (8 * i)));
   return h;
 }
 // A control's: its writer's, so that one writer's flood takes its own
 // share of the inbox only, never another's JOIN.
-inline uint64_t inbox_key(const ControlIn &, const SampleMeta &m) {
-  uint64_t h = 1469598103934665603ull;
-  for (uint8_t b : m.writer) h = (h ^ b) * 1099511628211ull;
-  return h;
-}
+inline uint64_t inbox_key(const ControlIn &, const SampleMeta &m) { return writer_hash(m); }
 template <class T>
 uint64_t inbox_key(const T &, const SampleMeta &) {
   return 0;

@@ -103,7 +103,7 @@ bool Host::insert_match(const MatchConfig &config, const ball_scene &scene, std:
   }
   auto m = std::make_unique<Match>();
   if (!m->init(config, scene, err)) return false;
-  if (slot_rule_) m->set_slot_rule([rule = slot_rule_, id = config.id](int k, const ParticipantId &who) { return rule(id, k, who); });
+  apply_slot_rule(*m);
   by_id_[config.id] = m.get();
   matches_.push_back(std::move(m));
   return true;
@@ -144,8 +144,12 @@ void Host::end_streams() {
 
 void Host::set_slot_rule(std::function<bool(uint32_t, int, const ParticipantId &)> rule) {
   slot_rule_ = std::move(rule);
-  for (auto &m : matches_)
-    m->set_slot_rule([r = slot_rule_, id = m->id()](int k, const ParticipantId &who) { return !r || r(id, k, who); });
+  for (auto &m : matches_) apply_slot_rule(*m);
+}
+
+void Host::apply_slot_rule(Match &m) const {
+  if (!slot_rule_) return m.set_slot_rule(nullptr);
+  m.set_slot_rule([rule = slot_rule_, id = m.id()](int k, const ParticipantId &who) { return rule(id, k, who); });
 }
 
 Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match **match) {

@@ -83,6 +83,7 @@ class Host {
   std::vector<std::unique_ptr<Match>> matches_;
   std::map<uint32_t, Match *> by_id_;
   std::function<bool(uint32_t, int, const ParticipantId &)> slot_rule_;
+  void apply_slot_rule(Match &m) const;  // the match's own view of slot_rule_
   std::map<uint32_t, ParticipantId> creators_;  // the matches created on request, by whom
   uint32_t max_creates_ = UINT32_MAX;
   CreateIds create_ids_;
