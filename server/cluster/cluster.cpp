@@ -39,10 +39,11 @@ bool Cluster::server_wrote(const MatchInfoOut &info) {
 Cluster::Heard Cluster::hear_info(const MatchInfoOut &info, const ParticipantId &from, bool hosted, bool ours,
                                   uint32_t our_term, double now) {
   if (!server_wrote(info)) return Heard::refused;
-  // a standby follows what it reads (after a yield too), and its take-over
-  // maps the owner's sim clock by the info's server_time: one far from this
-  // server's clock is no server's (a forged one made the catch-up endless)
-  if (settings_.standby && !(std::fabs(info.server_time - now) <= kMaxClockGap)) {
+  // a server follows what it reads (a standby, and any after a yield), and
+  // a take-over maps the owner's sim clock by the info's server_time: one
+  // far from this server's clock is no server's (a forged one made the
+  // catch-up endless)
+  if (!(std::fabs(info.server_time - now) <= kMaxClockGap)) {
     stats_.others_refused++;
     return Heard::refused;
   }
@@ -94,8 +95,8 @@ uint32_t Cluster::stronger_than(const ParticipantId &from, uint32_t own) const {
 
 Cluster::Follow Cluster::follow_plan(const MatchInfoOut &info, double t0, const ball_model **model) {
   *model = nullptr;
-  if (!settings_.standby) return Follow::none;
   auto f = followed_.find(info.match_id);
+  if (!settings_.standby && f == followed_.end()) return Follow::none;  // (one it yielded it follows)
   if (f != followed_.end()) {
     // nothing of an older owner than the one followed while that one lives
     // (docs/protocol.md, "Terms")
@@ -120,7 +121,7 @@ Cluster::Follow Cluster::follow_plan(const MatchInfoOut &info, double t0, const 
 }
 
 std::string Cluster::followed(const MatchInfoOut &info, const ParticipantId &from, Follow plan, bool ok,
-                              const std::string &err) {
+                              const std::string &err, double t0) {
   if (plan == Follow::none) return "";
   std::string line;
   if (!ok) {
@@ -137,15 +138,18 @@ std::string Cluster::followed(const MatchInfoOut &info, const ParticipantId &fro
   if (f.owner != from) f.segments.clear();  // a new owner: its segments from now
   f.owner = from;
   f.lost_at = -1.0;
+  f.heard_at = t0;
   return line;
 }
 
-void Cluster::yielded(uint32_t match_id, const MatchInfoOut &to, const ParticipantId &from, bool following) {
+void Cluster::yielded(uint32_t match_id, const MatchInfoOut &to, const ParticipantId &from, bool following,
+                      double t0) {
   stats_.yields++;
   if (!following) return;
   Followed f;
   f.info = to;
   f.owner = from;
+  f.heard_at = t0;
   followed_[match_id] = f;
 }
 
@@ -224,15 +228,26 @@ RestorePoint restore_point(const Followed &f, double first_real, double frame_ti
   return p;
 }
 
+namespace {
+// Mono s a followed match's owner was lost: its writers' liveliness, or
+// kOwnerSilent after its newest MatchInfo (+Inf: it lives and writes).
+double owner_lost_at(const Followed &f) {
+  double silent = f.heard_at >= 0.0 ? f.heard_at + kOwnerSilent : HUGE_VAL;
+  return f.lost_at >= 0.0 ? std::min(f.lost_at, silent) : silent;
+}
+}  // namespace
+
 std::vector<uint32_t> Cluster::due_takeovers(double t0, const std::function<bool(uint32_t)> &hears_players) {
   std::vector<uint32_t> due;
   std::vector<ServerView> servers;
   for (auto &kv : followed_) {
     Followed &f = kv.second;
-    if (f.lost_at < 0.0 || t0 < f.lost_at + settings_.takeover_grace) continue;
+    if (t0 < owner_lost_at(f) + settings_.takeover_grace) continue;
     if (servers.empty()) servers = views();
     uint32_t next = 0;
-    if (!successor(servers, f.info.server_id, &next) || next != settings_.server_id) continue;
+    // no standby lives: a server that yielded the match takes it back
+    if (!successor(servers, f.info.server_id, &next) && !settings_.standby) next = settings_.server_id;
+    if (next != settings_.server_id) continue;
     // an owner cut off from this server but not from its players plays
     // on: a take-over here would be a second match nobody plays in
     if (!hears_players(kv.first)) {
@@ -257,7 +272,7 @@ std::vector<uint32_t> Cluster::let_go_unheld(double t0) {
     const Followed &f = it->second;
     bool held = false;
     for (int i = 0; i < f.info.players && i < kMaxPlayers; ++i) held = held || f.info.slots[i].held;
-    if (f.lost_at >= 0.0 && t0 >= f.lost_at + settings_.takeover_grace && !held) {
+    if (t0 >= owner_lost_at(f) + settings_.takeover_grace && !held) {
       out.push_back(it->first);
       stats_.unheld_let_go++;
       it = followed_.erase(it);
@@ -348,8 +363,7 @@ double Cluster::next_wake(double t0) const {
   // every kFollowWake, and wakes for a take-over when its grace ends
   double wake = HUGE_VAL;
   if (!followed_.empty()) wake = t0 + kFollowWake;
-  for (const auto &f : followed_)
-    if (f.second.lost_at >= 0.0) wake = std::min(wake, f.second.lost_at + settings_.takeover_grace);
+  for (const auto &f : followed_) wake = std::min(wake, owner_lost_at(f.second) + settings_.takeover_grace);
   return wake;
 }
 

@@ -46,6 +46,11 @@ constexpr double kModelWait = 2.0;
 // again: a healed cut brings the owner back too, a little after its
 // players' samples (its liveliness, asserted 4 times a second)
 constexpr double kPlayersSettle = 2.0;
+// s: a followed match whose live owner wrote no MatchInfo of it for this
+// long is no longer stepped by it, as if the owner were lost (an owner
+// writes one at least every 4 s, ServerLoop's info_interval): a stranger
+// that took a match with a newer term and went quiet keeps nothing.
+constexpr double kOwnerSilent = 10.0;
 // a server's match writers are as strong as its role plus this much per
 // term of the newest match it steps (docs/protocol.md, "Terms"): above
 // every role's strength, so that a newer term always outranks
@@ -100,12 +105,14 @@ struct ClusterStats {
   uint64_t unheld_let_go = 0;      // followed matches whose owner died with no slot held: not taken over
 };
 
-// Another server's match a standby follows.
+// Another server's match that a standby follows, or a server follows
+// since it yielded it.
 struct Followed {
   MatchInfoOut info;      // the owner's newest
   Segments segments;      // its newest few (kFollowedSegments; the newest may lie ahead)
   ParticipantId owner{};  // the owner's participant
   double lost_at = -1.0;  // mono s its writers lost their liveliness; -1: alive
+  double heard_at = -1.0; // mono s its newest MatchInfo was heard (-1: not yet)
   bool waits_for_players = false;  // due, but none of its players heard here (counted once)
   double players_back_at = -1.0;   // mono s its players were heard again after a wait; -1: not yet
 };
@@ -170,16 +177,20 @@ class Cluster {
   // This server's writers' strength now (ServerStatus, the successor rule).
   void set_strength(uint32_t strength) { settings_.strength = strength; }
   enum class Follow { none, begin, update };
-  // What a standby does with a MatchInfo it heard: nothing (not a
-  // standby, or the MatchModel is still waited for), begin following the
+  // What a server does with a MatchInfo it heard: nothing (not a standby
+  // and not following the match, or the MatchModel is still waited for),
+  // begin following the
   // match (with *model, or a scene of the info's name when *model is
   // nullptr), or update the match it follows. t0: mono s.
   Follow follow_plan(const MatchInfoOut &info, double t0, const ball_model **model);
-  // What came of follow_plan's begin or update: the line for the log, if any.
+  // What came of follow_plan's begin or update (heard at mono s t0): the
+  // line for the log, if any.
   std::string followed(const MatchInfoOut &info, const ParticipantId &from, Follow plan, bool ok,
-                       const std::string &err);
-  // The loop yielded a match to `from`; following: a standby follows it now.
-  void yielded(uint32_t match_id, const MatchInfoOut &to, const ParticipantId &from, bool following);
+                       const std::string &err, double t0);
+  // The loop yielded a match to `from` at mono s t0; following: it follows
+  // the match now (every server does, a standby or not: it takes it back
+  // when that owner is lost or goes silent and no standby is there).
+  void yielded(uint32_t match_id, const MatchInfoOut &to, const ParticipantId &from, bool following, double t0);
   // A segment of another server's match (ours: this server steps it: ignored).
   void hear_segment(const SegmentOut &segment, const ParticipantId &from, bool ours);
   // Another server's writers lost their liveliness at mono s t0: the line
@@ -187,8 +198,10 @@ class Cluster {
   std::string server_lost(const ParticipantId &who, double t0);
 
   // ---- take-overs ----
-  // The followed matches whose owner was lost a grace ago, whose successor
-  // (placement.h) this server is, and whose players it hears
+  // The followed matches whose owner was lost a grace ago (its writers'
+  // liveliness, or kOwnerSilent without a MatchInfo of it), whose successor
+  // (placement.h; when no standby lives, a server that yielded the match
+  // takes it back) this server is, and whose players it hears
   // (hears_players(id): the side with the players decides), at mono s t0.
   std::vector<uint32_t> due_takeovers(double t0, const std::function<bool(uint32_t)> &hears_players);
   // The followed matches whose owner was lost a grace ago with no slot

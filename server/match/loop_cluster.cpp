@@ -51,7 +51,7 @@ void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from)
     Match *m = host_.find(id);
     ok = !m || m->follow(info, &err);
   }
-  std::string line = cluster_.followed(info, from, plan, ok, err);
+  std::string line = cluster_.followed(info, from, plan, ok, err, clock_.mono());
   if (!line.empty()) say(line);
 }
 
@@ -60,11 +60,12 @@ void ServerLoop::yield(uint32_t id, const MatchInfoOut &to, const ParticipantId 
                sched_.end());
   Match *m = host_.find(id);
   std::string err;
-  bool following = settings_.standby && m && m->follow(to, &err);
+  // it follows the match, to take it back if that owner is lost or goes silent (cluster.h)
+  bool following = m && m->follow(to, &err);
   if (!following) host_.remove(id);
-  cluster_.yielded(id, to, from, following);
+  cluster_.yielded(id, to, from, following, clock_.mono());
   say("yielded match " + std::to_string(id) + " to server " + std::to_string(to.server_id) + " (participant " +
-      hex(from) + ")" + (settings_.standby ? ", following it" : ""));
+      hex(from) + ")" + (following ? ", following it" : ", dropped it: " + err));
 }
 
 // ---- claims ----------------------------------------------------------------

@@ -22,12 +22,17 @@
 // writes no samples, and every 0.2 s writes a copy of the newest MatchInfo
 // it heard, as match --match of server ID (with --junk N, as the N match
 // ids from --match on: made-up matches); a client that bound ID to
-// another certificate must refuse every copy.
+// another certificate must refuse every copy. With --status it is also a
+// server heard alive (a ServerStatus as ID every 0.2 s, asserting its
+// writers' liveliness), with --newer-term its copies claim the next
+// round's term (the match's owner yields to them), and with --copies-for S
+// it writes copies for S s only and then goes quiet, alive, to --duration.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
 #include "ball/vec3.h"
+#include "cluster.h"
 #include "common.h"
 #include "domain.h"
 #include "open_domain.h"
@@ -64,6 +69,11 @@ int main(int argc, char **argv) {
   cli.add_option("--decoy", decoy, "with --forge: also a well-formed MatchInfo copy as this match id")
       ->check(CLI::Range(0L, static_cast<long>(UINT32_MAX)));
   cli.add_option("--scene-name", scene_name, "with --decoy: the scene it names");
+  bool status = false, newer_term = false;
+  double copies_for = HUGE_VAL;
+  cli.add_flag("--status", status, "with --as-server: also a ServerStatus as that server, every 0.2 s");
+  cli.add_flag("--newer-term", newer_term, "with --as-server: the copies claim the next round's term");
+  cli.add_option("--copies-for", copies_for, "with --as-server: s of copies, then quiet (alive) to --duration");
   bool create = false;
   cli.add_flag("--create", create, "its controls are CREATEs (scene tennis) instead of JOINs");
   long leave = -1, join_slot = 0;
@@ -81,6 +91,7 @@ int main(int argc, char **argv) {
   dds::Writer<RacketSampleIn> samples;
   dds::Writer<ControlIn> controls;
   dds::Writer<MatchInfoOut> forged;
+  dds::Writer<StatusOut> forged_status;
   dds::Writer<SegmentOut> forged_segments;
   dds::Writer<StateOut> forged_states;
   // and the same in the match's own partition (docs/protocol.md, "A match's own partition")
@@ -94,7 +105,10 @@ int main(int argc, char **argv) {
       forged_segments = d->writer<SegmentOut>(dds::kSegmentTopic, dds::kSegmentProfile, {16}, &err, by);
     if (forged_segments.valid())
       forged_states = d->writer<StateOut>(dds::kStateTopic, dds::kStateProfile, {16}, &err, by);
-    if (!forged.valid() || (forge && !forged_states.valid())) return fail(kProgram, err);
+    if (forged.valid() && status)
+      forged_status = d->writer<StatusOut>(dds::kStatusTopic, dds::kStatusProfile, {1}, &err, by);
+    if (!forged.valid() || (forge && !forged_states.valid()) || (status && !forged_status.valid()))
+      return fail(kProgram, err);
     if (forge) {
       dds::Sizing here{16, 0, dds::match_partition(static_cast<uint32_t>(match))};
       forged_here = d->writer<MatchInfoOut>(dds::kInfoTopic, dds::kInfoProfile, here, &err, by);
@@ -115,7 +129,8 @@ int main(int argc, char **argv) {
 
   long sent_samples = 0, sent_controls = 0, sent_infos = 0, refused = 0, heard_infos = 0, heard_states = 0;
   MatchInfoOut newest;  // the newest MatchInfo heard
-  bool heard_info = false;
+  bool heard_info = false, claimed = false;
+  uint32_t claimed_term = 0;  // --newer-term: the round above the first MatchInfo heard
   uint32_t seq = 0, control_seq = 0;
   double sim = 0.0;  // the newest sim time heard (0: none)
   const double start = mono_now();
@@ -174,10 +189,21 @@ int main(int argc, char **argv) {
       continue;
     }
     if (forged.valid()) {  // a server: copies of what it heard, as --as-server's match --match (and on, --junk)
-      for (uint32_t k = 0; heard_info && k < std::max(1u, junk); ++k) {
+      const uint32_t id = static_cast<uint32_t>(as_server);
+      if (status) {
+        StatusOut alive;
+        alive.server_id = id;
+        alive.server_time = realtime_now();
+        alive.uptime = now - start;
+        if (!forged_status.write(alive)) refused++;
+      }
+      if (!claimed && heard_info) claimed_term = next_term(newest.term, id);
+      claimed = claimed || heard_info;
+      for (uint32_t k = 0; heard_info && now - start < copies_for && k < std::max(1u, junk); ++k) {
         MatchInfoOut f = newest;
         f.match_id = match + k;
-        f.server_id = static_cast<uint32_t>(as_server);
+        f.server_id = id;
+        if (newer_term) f.term = claimed_term;
         if (forged.write(f)) sent_infos++;
         else refused++;
       }

@@ -420,6 +420,68 @@ void case_phantom_matches(const Env &env) {
   CHECK_MSG(hits_after >= 2, "%d hits of server 1 after the stranger left", hits_after);
 }
 
+// A primary alone and a stranger heard as a server ("server 7" writes a
+// ServerStatus) whose copies of match 0's MatchInfo claim the next round's
+// term: the primary yields and follows the match. First the stranger goes
+// quiet, alive: the primary takes the match back kOwnerSilent after its
+// last copy, while the stranger lives. Then another claims a newer term
+// and leaves: the primary takes the match back a grace after. The rally
+// goes on from server 1 both times.
+void case_yield_taken_back(const Env &env) {
+  Case c{env};
+  Process primary = server(env, "primary", 1, {"--matches", "1", "--startup-wait", "0"});
+  Process w = ready_watcher(c, path(env, "watch.jsonl"), {});
+  Process load = bots(env, 1);
+  Tail t(path(env, "watch.jsonl"));
+  CHECK_MSG(rallies(t, 1, 2, 30.0), "no 2 hits within 30 s");
+  const std::string qos = strong_qos(env);
+  auto stranger = [&](const std::string &name, double copies, double duration) {
+    return program(env, name, "ball_intrude",
+                   {"--profile", qos, "--as-server", "7", "--strength", "primary", "--status", "--newer-term",
+                    "--match", "0", "--copies-for", std::to_string(copies), "--duration", std::to_string(duration),
+                    "--out", path(env, name + ".json")});
+  };
+  auto hits_of_one_after = [&](double since) {
+    t.poll();
+    return static_cast<int>(count(t.lines, [&](const json &j) {
+      return j.contains("recv") && recv(j) > since && is_hit(j) && j.get<EventOut>().server_id == 1;
+    }));
+  };
+  // quiet: copies for 2 s, then alive and silent to 2 + kOwnerSilent + 6 s
+  const double copies = 2.0, quiet_end = copies + kOwnerSilent + 6.0;
+  double began = realtime_now();
+  Process quiet = stranger("quiet", copies, quiet_end);
+  CHECK_EQ(quiet.wait(quiet_end + 10.0), 0);
+  int back_while_alive = hits_of_one_after(began + copies + kOwnerSilent);
+  // gone: copies for its 3 s, then it leaves
+  double second = realtime_now();
+  Process gone = stranger("gone", 3.0, 3.0);
+  CHECK_EQ(gone.wait(15.0), 0);
+  double left = realtime_now();
+  int hits_after = 0;
+  for (double end = mono_now() + 15.0; mono_now() < end && hits_after < 2;) {
+    usleep(100000);
+    hits_after = hits_of_one_after(left);
+  }
+  int during_second = hits_of_one_after(second) - hits_after;
+  load.stop();
+  w.stop();
+  stop_server(primary, "the primary");
+  ServerReport r = report(env, "primary");
+  json q = json::parse(file_text(path(env, "quiet.json")), nullptr, false);
+  long quiet_infos = q.is_object() ? q.value("infos", 0L) : 0L;
+  note("the quiet stranger wrote %ld copies; the primary: %llu yields, %llu take-backs, following %u at the end; "
+       "%d hits of server 1 before the quiet one left, %d while the second one claimed, %d after it left",
+       quiet_infos, static_cast<unsigned long long>(r.yields), static_cast<unsigned long long>(r.takeovers),
+       r.following, back_while_alive, during_second, hits_after);
+  CHECK(quiet_infos >= 1);
+  CHECK_EQ(r.yields, 2u);
+  CHECK_EQ(r.takeovers, 2u);
+  CHECK_EQ(r.following, 0u);
+  CHECK_MSG(back_while_alive >= 1, "no hit of server 1 while the quiet stranger lived");
+  CHECK_MSG(hits_after >= 2, "%d hits of server 1 after the second stranger left", hits_after);
+}
+
 // A game on the client library (examples/c/rally.c, ball/net.h) plays
 // through a failover: the primary is killed mid-rally, the game's events
 // go on from the standby with no seq given twice and none skipped, the
@@ -889,6 +951,7 @@ void case_hosts_claimants_meet(const Env &env) {
 
 TEST(failover) { itest::in_case(case_failover); }
 TEST(phantom_matches) { itest::in_case(case_phantom_matches); }
+TEST(yield_taken_back) { itest::in_case(case_yield_taken_back); }
 TEST(hosts_failover) { itest::in_case(case_hosts_failover); }
 TEST(hosts_standby_cut) { itest::in_case(case_hosts_standby_cut); }
 TEST(hosts_stall_4) { itest::in_case(case_hosts_stall_4); }

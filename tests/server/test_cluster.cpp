@@ -19,6 +19,7 @@ namespace {
 
 const ParticipantId kOwner = participant(77);
 constexpr double kNow = 1.7e9;  // server s: the owner's and this server's realtime clock
+constexpr double kHeardAt = 95.0;  // mono s the owner's newest MatchInfo was heard (its silence counts from there)
 
 ClusterSettings standby_settings(uint32_t id = 2, uint32_t strength = 10) {
   ClusterSettings s;
@@ -60,7 +61,7 @@ Cluster following_standby(const Owner &o, ClusterSettings s = standby_settings()
   CHECK(plan == Cluster::Follow::none);  // the MatchModel may still come
   plan = c.follow_plan(i, kModelWait, &model);
   CHECK(plan == Cluster::Follow::begin && model == nullptr);
-  CHECK(c.followed(i, kOwner, plan, true, "").empty());
+  CHECK(c.followed(i, kOwner, plan, true, "", kHeardAt).empty());
   for (const SegmentOut &seg : o.game.segments) c.hear_segment(seg, kOwner, false);
   return c;
 }
@@ -130,7 +131,7 @@ TEST(a_standby_adopts_only_held_matches_of_servers_it_heard) {
   CHECK(unheld.hear_info(left, kOwner, false, false, 0, kNow) == Cluster::Heard::noted);
   Cluster::Follow plan = unheld.follow_plan(left, 1.0, &model);
   CHECK(plan == Cluster::Follow::update);
-  unheld.followed(left, kOwner, plan, true, "");
+  unheld.followed(left, kOwner, plan, true, "", kHeardAt);
   const double grace = held.settings().takeover_grace;
   for (Cluster *x : {&held, &unheld}) x->server_lost(kOwner, 100.0);
   CHECK(held.let_go_unheld(100.0 + grace).empty());
@@ -169,7 +170,7 @@ TEST(a_standby_takes_over_only_a_match_whose_players_it_hears) {
   CHECK(d.due_takeovers(due, hears).empty());
   heard = true;
   CHECK(d.due_takeovers(due + 1.0, hears).empty());
-  d.followed(o.info(), kOwner, Cluster::Follow::update, true, "");  // its MatchInfo: alive
+  d.followed(o.info(), kOwner, Cluster::Follow::update, true, "", due + 1.0);  // its MatchInfo: alive
   CHECK(d.due_takeovers(due + 1.0 + kPlayersSettle, hears).empty());
 }
 
@@ -269,7 +270,7 @@ TEST(a_standby_follows_no_older_owner) {
   newer.server_id = 2;
   newer.term = 2;
   CHECK(c.hear_info(newer, participant(2), true, false, 0, kNow) == Cluster::Heard::noted);
-  c.yielded(7, newer, participant(2), true);  // (followed from then on)
+  c.yielded(7, newer, participant(2), true, 0.0);  // (followed from then on)
   const ball_model *model = nullptr;
   MatchInfoOut older = o.info();  // server 1's, term 1
   older.term = 1;
@@ -290,11 +291,61 @@ TEST(a_conflict_yields_and_a_standby_follows) {
   MatchInfoOut i = o.info();
   CHECK(c.hear_info(i, kOwner, true, true, 0, kNow) == Cluster::Heard::conflict);
   CHECK_EQ(c.stats().conflicts, 1u);
-  c.yielded(7, i, kOwner, true);
+  c.yielded(7, i, kOwner, true, 0.0);
   CHECK_EQ(c.stats().yields, 1u);
   const ball_model *model = nullptr;
   CHECK(c.follow_plan(i, 0.0, &model) == Cluster::Follow::update);
   CHECK(c.followed(7) && c.followed(7)->owner == kOwner);
+}
+
+// A server that yielded its match follows it, standby or not, and takes it
+// back when no standby is there: a grace after the owner it yielded to is
+// lost, or kOwnerSilent after that owner's newest MatchInfo while it lives
+// and writes none (a stranger with a newer term that went quiet). A live
+// standby is the successor: the server that yielded waits. A standby's
+// followed match goes by the same silence.
+TEST(a_server_takes_back_a_match_it_yielded) {
+  Owner o;
+  const ParticipantId stranger = participant(66);
+  auto yielded_to_stranger = [&](bool standby_heard) {
+    ClusterSettings s;
+    s.server_id = 1;  // a primary: no standby
+    Cluster c(s);
+    c.hear_status(status_of(7, 30, false), stranger);
+    if (standby_heard) c.hear_status(status_of(3, 10, true), participant(33));
+    MatchInfoOut newer = o.info();
+    newer.server_id = 7;
+    newer.term = next_term(257, 7);
+    CHECK(c.hear_info(newer, stranger, true, true, 257, kNow) == Cluster::Heard::conflict);
+    c.yielded(7, newer, stranger, true, 50.0);
+    const ball_model *model = nullptr;
+    newer.revision++;
+    CHECK(c.follow_plan(newer, 54.0, &model) == Cluster::Follow::update);  // it follows what it yielded
+    c.followed(newer, stranger, Cluster::Follow::update, true, "", 54.0);
+    return c;
+  };
+  const double grace = ClusterSettings{}.takeover_grace;
+  // silent: its newest MatchInfo at 54 s
+  Cluster quiet = yielded_to_stranger(false);
+  CHECK(quiet.due_takeovers(54.0 + kOwnerSilent + grace - 1e-9, kHeard).empty());
+  CHECK_EQ(quiet.next_wake(60.0), 60.0 + kFollowWake);
+  std::vector<uint32_t> back = quiet.due_takeovers(54.0 + kOwnerSilent + grace, kHeard);
+  CHECK(back.size() == 1u && back[0] == 7u);
+  // lost: its writers' liveliness at 56 s
+  Cluster gone = yielded_to_stranger(false);
+  gone.server_lost(stranger, 56.0);
+  CHECK(gone.due_takeovers(56.0 + grace - 1e-9, kHeard).empty());
+  CHECK_EQ(gone.due_takeovers(56.0 + grace, kHeard).size(), 1u);
+  // a live standby takes it over, not the server that yielded
+  Cluster beside = yielded_to_stranger(true);
+  beside.server_lost(stranger, 56.0);
+  CHECK(beside.due_takeovers(70.0, kHeard).empty());
+  CHECK_EQ(beside.following().size(), 1u);
+  // a standby's followed match: silent kOwnerSilent while its owner lives
+  Cluster standby = following_standby(o);
+  CHECK(standby.due_takeovers(kHeardAt + kOwnerSilent + grace - 1e-9, kHeard).empty());
+  CHECK_EQ(standby.due_takeovers(kHeardAt + kOwnerSilent + grace, kHeard).size(), 1u);
+  CHECK_EQ(standby.peers_known(), 1u);  // (its owner still lives)
 }
 
 // A standby follows at once from a MatchModel that fits the info's hash;
@@ -313,7 +364,7 @@ TEST(a_standby_follows_from_the_wire_model) {
   const ball_model *model = nullptr;
   CHECK(c.follow_plan(i, 0.0, &model) == Cluster::Follow::begin);
   CHECK(model != nullptr && ball_model_hash(model) == i.model_hash);
-  std::string line = c.followed(i, kOwner, Cluster::Follow::begin, false, "no scene");
+  std::string line = c.followed(i, kOwner, Cluster::Follow::begin, false, "no scene", 0.0);
   CHECK(line.find("cannot follow match 7") != std::string::npos);
   CHECK_EQ(c.stats().follow_failures, 1u);
   CHECK(c.following().empty());

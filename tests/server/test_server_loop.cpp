@@ -851,6 +851,7 @@ TEST(another_server_for_our_match) {
   MatchInfoOut theirs = r.host.find(0)->info();  // a MatchInfo a server writes
   theirs.match_id = 99;  // not ours: no conflict
   theirs.server_id = 2;
+  theirs.server_time = r.clock.realtime();  // (a server's clock is in step with ours)
   r.port.others.push_back({theirs, participant(9)});
   MatchInfoOut other;
   double t0 = r.clock.now;
@@ -901,10 +902,12 @@ TEST(another_server_for_our_match) {
   CHECK_EQ(seen, 1);
   CHECK(who == participant(9));
   CHECK_EQ(r.loop->cluster().stats().conflicts, 1u);
-  // a newer term owns the match (docs/protocol.md, "Terms"): we yield
+  // a newer term owns the match (docs/protocol.md, "Terms"): we yield,
+  // and follow it (to take it back if that owner is lost or goes silent)
   CHECK_EQ(r.loop->cluster().stats().yields, 1u);
-  CHECK(r.host.find(0) == nullptr);
+  CHECK(r.host.find(0) != nullptr && r.host.find(0)->following());
   CHECK_EQ(r.loop->status_now().matches, 0u);
+  CHECK_EQ(r.loop->status_now().following, 1u);
 }
 
 CHECK_MAIN
