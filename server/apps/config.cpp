@@ -212,7 +212,11 @@ const std::vector<Field<ServerConfig>> &server_fields() {
        "--max-matches", create_room.c_str()},
       {"allow_create", &C::allow_create, {}, "", "clients may CREATE matches from the catalogue (`--no-create`)"},
       {"max_creates", &C::max_creates, whole(0, 100000), "",
-       "matches one participant's CREATEs may have standing (the rest refused, `no_room`)", "--max-creates"},
+       "matches the CREATEs of one process (of one identity on a secure domain), however many participants it "
+       "has, may have standing (the rest refused, `no_room`)", "--max-creates"},
+      {"max_creates_per_host", &C::max_creates_per_host, whole(0, 100000), "",
+       "matches the CREATEs from one host address (the one its participants announce) may have standing (the "
+       "rest refused, `no_room`)", "--max-creates-per-host"},
       {"create_first", &C::create_first, whole(0, UINT32_MAX), "", "the first match id a CREATE may name"},
       {"create_ids", &C::create_ids, whole(1, 65536), "",
        "how many match ids a CREATE may name, from `create_first` on (the rest turned away at the control "
@@ -265,7 +269,8 @@ std::unique_ptr<Host> make_host(ServerConfig *config, const ServerScenes &scenes
                                 std::string *err) {
   if (player_timeout > 0.0) config->defaults.player_timeout = player_timeout;
   auto host = std::make_unique<Host>(config->max_matches, config->allow_create, config->defaults);
-  host->set_max_creates(config->max_creates);
+  host->set_create_shares(config->security.empty() ? Host::Origin::process : Host::Origin::identity,
+                          config->max_creates, config->max_creates_per_host);
   host->set_create_ids({config->create_first, config->create_ids});
   for (const auto &c : scenes.catalogue)
     if (!host->add_scene(c.first, c.second, err)) return nullptr;

@@ -53,7 +53,8 @@ struct ServerConfig {
   uint32_t max_matches = 0;                  // 0: the configured matches, plus kCreateRoom when CREATE is allowed,
                                              // plus kFollowRoom for a standby
   bool allow_create = true;                  // clients may CREATE matches from the catalogue
-  uint32_t max_creates = 2;                  // matches one participant's CREATEs may have standing
+  uint32_t max_creates = 2;                  // matches one process's (secure: one identity's) CREATEs may have standing
+  uint32_t max_creates_per_host = 8;         // matches the CREATEs from one host address may have standing
   uint32_t create_first = CreateIds{}.first; // the first match id a CREATE may name
   uint32_t create_ids = CreateIds{}.count;   // how many ids from it on (each an instance of the control reader)
   double create_timeout = 30.0;              // s a created match stands with nobody holding a slot

@@ -394,6 +394,8 @@ bool Domain::writes_in(const std::array<uint8_t, 16> &writer, const std::string 
   return names && std::find(names->begin(), names->end(), partition) != names->end();
 }
 
+HostAddress Domain::host_of(const ParticipantId &who) const { return impl_->publications.host_of(who); }
+
 std::string match_partition(uint32_t id) { return "match/" + std::to_string(id); }
 
 double Domain::reader_lease(const char *profile) const {

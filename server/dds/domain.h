@@ -247,6 +247,9 @@ class Domain {
   // Whether the discovered remote writer `writer` writes in `partition`
   // (DDS Security has checked its permissions for every partition it names).
   bool writes_in(const std::array<uint8_t, 16> &writer, const std::string &partition) const;
+  // The address remote participant `who` announced in discovery (its first
+  // unicast IP locator's; zeros: none, or not discovered).
+  HostAddress host_of(const ParticipantId &who) const;
 
   // Endpoints on `topic` with the data_writer/data_reader profile `profile`;
   // an invalid handle with err on failure. A writer with exclusive

@@ -141,7 +141,8 @@ BALL_WIRE(StatusOut, ServerStatus)
 BALL_WIRE(MatchModelOut, MatchModel)
 #undef BALL_WIRE
 
-// The partitions of the remote writers discovered (their publication data).
+// The partitions of the remote writers discovered (their publication
+// data), and the address each remote participant announced.
 struct Publications : public fdds::DomainParticipantListener {
   using Guid = std::array<uint8_t, 16>;
   // a removed writer's partitions stay known for the samples of it still
@@ -167,6 +168,39 @@ struct Publications : public fdds::DomainParticipantListener {
       removed.erase(removed_order.front());
       removed_order.pop_front();
     }
+  }
+  // participant -> its first unicast IP locator's address (metatraffic,
+  // then default); at most kHostsKept participants (the rest: unknown)
+  static constexpr size_t kHostsKept = 4096;
+  std::map<ParticipantId, HostAddress> hosts;
+  void on_participant_discovery(fdds::DomainParticipant *,
+                                eprosima::fastrtps::rtps::ParticipantDiscoveryInfo &&info) override {
+    using S = eprosima::fastrtps::rtps::ParticipantDiscoveryInfo;
+    ParticipantId who = prefix_of(info.info.m_guid);
+    std::lock_guard<std::mutex> lock(mutex);
+    if (info.status == S::REMOVED_PARTICIPANT || info.status == S::DROPPED_PARTICIPANT) {
+      hosts.erase(who);
+      return;
+    }
+    if (hosts.size() >= kHostsKept && !hosts.count(who)) return;
+    auto announced = [](const eprosima::fastrtps::rtps::RemoteLocatorList &list, HostAddress *out) {
+      for (const auto &l : list.unicast) {
+        bool ip = l.kind == LOCATOR_KIND_UDPv4 || l.kind == LOCATOR_KIND_TCPv4 || l.kind == LOCATOR_KIND_UDPv6 ||
+                  l.kind == LOCATOR_KIND_TCPv6;
+        if (ip && std::any_of(l.address, l.address + 16, [](uint8_t b) { return b != 0; })) {
+          std::copy(l.address, l.address + 16, out->begin());
+          return true;
+        }
+      }
+      return false;
+    };
+    HostAddress a{};
+    if (announced(info.info.metatraffic_locators, &a) || announced(info.info.default_locators, &a)) hosts[who] = a;
+  }
+  HostAddress host_of(const ParticipantId &who) const {
+    std::lock_guard<std::mutex> lock(mutex);
+    auto it = hosts.find(who);
+    return it == hosts.end() ? HostAddress{} : it->second;
   }
   const std::vector<std::string> *find(const Guid &g) const {
     auto it = partitions.find(g);

@@ -71,7 +71,7 @@ Match *Host::follow(const MatchInfoOut &info, const ball_model *model, std::stri
 
 ParticipantId Host::creator(uint32_t id) const {
   auto it = creators_.find(id);
-  return it == creators_.end() ? ParticipantId{} : it->second;
+  return it == creators_.end() ? ParticipantId{} : it->second.from;
 }
 
 void Host::remove(uint32_t id) {
@@ -166,9 +166,7 @@ Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match 
   auto scene = scenes_.find(c.scene);
   if (!allow_create_ || matches_.size() >= max_matches_) return Reason::refused_no_room;
   if (!create_ids().has(c.match_id)) return Reason::refused_bad_value;
-  uint32_t standing = 0;
-  for (const auto &kv : creators_) standing += kv.second == c.from;
-  if (standing >= max_creates_) return Reason::refused_no_room;  // its share is taken
+  if (share_taken(c)) return Reason::refused_no_room;
   const Bounds &players = find_field(match_fields(), "players")->bounds;
   if (scene == scenes_.end() || c.players < players.ilo || c.players > players.ihi || c.level < 0 ||
       c.level > BALL_LEVEL_ADVANCED)
@@ -180,10 +178,24 @@ Reason Host::on_control(const ControlIn &c, double now, MatchOutput *out, Match 
   config.level = static_cast<ball_level>(c.level);
   std::string err;
   if (!add_match(config, scene->second, &err)) return Reason::refused_bad_value;
-  creators_[c.match_id] = c.from;
+  creators_[c.match_id] = {c.from, c.host};
   *match = find(c.match_id);
   out->info_changed = true;
   return Reason::none;
+}
+
+bool Host::share_taken(const ControlIn &c) const {
+  // the bytes of a GUID prefix that name its origin: a process's first 8; an
+  // identity's first 6 (PKI-DH's flag bit and 47 bits of its subject: certificate.h)
+  const size_t n = origin_ == Origin::process ? 8 : 6;
+  auto same_origin = [&](const ParticipantId &p) { return std::equal(p.begin(), p.begin() + n, c.from.begin()); };
+  const bool known_host = c.host != HostAddress{};
+  uint32_t by_origin = 0, by_host = 0;
+  for (const auto &kv : creators_) {
+    by_origin += same_origin(kv.second.from);
+    by_host += known_host && kv.second.host == c.host;
+  }
+  return by_origin >= max_creates_ || by_host >= max_creates_per_host_;
 }
 
 void Host::on_participant_lost(const ParticipantId &who) {

@@ -19,9 +19,21 @@ class Host {
   // `max_matches` bounds matches created on request (and sizes DDS); the
   // template gives every setting of such a match but id, scene, players and level.
   Host(size_t max_matches, bool allow_create, MatchConfig create_template);
-  // One participant may have at most `n` matches it created standing (a
-  // stranger's CREATEs must not fill max_matches for good).
-  void set_max_creates(uint32_t n) { max_creates_ = n; }
+  // Whose a CREATE is beyond its participant (docs/protocol.md, "Control
+  // messages"): its process (the first 8 bytes of its GUID prefix: vendor,
+  // host and process id in Fast DDS's layout, the same for every
+  // participant of a process), or on a secure domain its identity (the
+  // first 48 bits: PKI-DH's flag and 47 bits of its subject, certificate.h).
+  enum class Origin { process, identity };
+  // The CREATEs of one origin may have at most `per_origin` matches
+  // standing, those of one host address (ControlIn::host, when known) at
+  // most `per_host`: a stranger's CREATEs, from however many participants,
+  // must not fill max_matches for good.
+  void set_create_shares(Origin origin, uint32_t per_origin, uint32_t per_host) {
+    origin_ = origin;
+    max_creates_ = per_origin;
+    max_creates_per_host_ = per_host;
+  }
   // Which participant may hold which slot of which match (Match::set_slot_rule): every match's, those to come too.
   void set_slot_rule(std::function<bool(uint32_t match, int slot, const ParticipantId &who)> rule);
   bool allows_create() const { return allow_create_; }
@@ -84,8 +96,14 @@ class Host {
   std::map<uint32_t, Match *> by_id_;
   std::function<bool(uint32_t, int, const ParticipantId &)> slot_rule_;
   void apply_slot_rule(Match &m) const;  // the match's own view of slot_rule_
-  std::map<uint32_t, ParticipantId> creators_;  // the matches created on request, by whom
-  uint32_t max_creates_ = UINT32_MAX;
+  struct Creator {
+    ParticipantId from{};
+    HostAddress host{};
+  };
+  std::map<uint32_t, Creator> creators_;  // the matches created on request, by whom
+  Origin origin_ = Origin::process;
+  uint32_t max_creates_ = UINT32_MAX, max_creates_per_host_ = UINT32_MAX;
+  bool share_taken(const ControlIn &create) const;  // its origin's or its host's
   CreateIds create_ids_;
   uint64_t removed_lost_ = 0;  // the gaps of removed matches' streams, until take_lost
 };

@@ -23,6 +23,10 @@ constexpr int kMaxDomain = 232;                // DDS domain ids [0, 232]: RTPS 
 // the client (the DDS layer fills it in from the sample's writer GUID; under
 // DDS Security it is the authenticated participant). All zeros: nobody.
 using ParticipantId = std::array<uint8_t, 12>;
+// The address a participant announced in discovery (its first unicast
+// IP locator's 16 bytes, IPv4 in the last 4): the host it says it is on.
+// All zeros: none announced, or unknown.
+using HostAddress = std::array<uint8_t, 16>;
 std::string hex(const ParticipantId &id);                   // 24 hex digits
 bool parse_hex(const std::string &text, ParticipantId *id);  // false unless 24 hex digits
 
@@ -207,6 +211,7 @@ struct ControlIn {
   int players = 2;            // CREATE: slots
   std::string scene;          // CREATE: a scene name of the server's catalogue
   ParticipantId from{};       // the sender (filled in by the DDS layer)
+  HostAddress host{};         // the address the sender's participant announced (DDS layer)
   bool valid = true;          // false: an enum out of range or a scene name without its NUL on the wire
   bool permitted = true;      // false: under DDS Security, written outside the match's partition (DDS layer)
   bool rejected = false;      // true: the reader had no room for it; it counts only as `rejected` (DDS layer)

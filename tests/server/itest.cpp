@@ -620,6 +620,43 @@ void case_create_flood(const Env &env) {
   CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.status.samples_idle + dropped);
 }
 
+// The shares of CREATEs on an open domain (docs/protocol.md, "Control
+// messages"), on a server with 9 places and a share of 4 per host address:
+// one process of 5 participants CREATEs 2 matches each, held for the
+// test's length (create_timeout 30 s): 2 stand, the process's share (the
+// review's finding: 8 of 9, and a real CREATE unanswered for 37 s). A
+// client's CREATE from another process is answered at once. Then another
+// process of 2 participants CREATEs 2 each: 1 stands, the rest of the
+// host's share, which discovery's announced address gives.
+void case_create_shares(const Env &env) {
+  Case c{env};
+  Server server(c.server({"--max-matches", "9", "--max-creates-per-host", "4"}));
+  auto ask = [&](const std::string &name, std::vector<std::string> args) {
+    std::string err, out = path(env, name + ".json");
+    args.insert(args.begin(), {env.bin + "/ball_create", "--domain", env.dom(), "--out", out});
+    int rc = run_to_end(env, args, name, &err);
+    json j = json::parse(file_text(out), nullptr, false);
+    if (!j.is_object()) j = json::object();
+    j["rc"] = rc;
+    return j;
+  };
+  json greedy = ask("greedy", {"--match", "1000", "--participants", "5", "--each", "2", "--duration", "5"});
+  json real = ask("real", {"--match", "1500", "--duration", "4"});
+  json second = ask("second", {"--match", "1100", "--participants", "2", "--each", "2", "--duration", "4"});
+  ServerReport r = stop_all(server, {}, path(env, "server.json"));
+  long greedy_stood = greedy.value("announced", -1L), second_stood = second.value("announced", -1L);
+  double first = real.value("first_after", -1.0);
+  note("5 participants of one process, 2 CREATEs each: %ld stood; a real CREATE answered %.2f s after its "
+       "start (%ld sent); a second process of 2 participants, 2 each: %ld stood; %zu matches at the end, "
+       "%llu controls refused",
+       greedy_stood, first, real.value("creates", 0L), second_stood, r.matches.size(),
+       static_cast<unsigned long long>(r.status.controls_refused));
+  CHECK_EQ(greedy_stood, 2L);
+  CHECK_MSG(first >= 0.0 && first < 1.0, "the real CREATE: answered after %.2f s", first);
+  CHECK_EQ(second_stood, 1L);
+  CHECK_EQ(r.matches.size(), 5u);  // the configured one, 2 + 1 + 1
+}
+
 // A participant posing as a server on an open domain, its writers stronger
 // than the real server's (ownership strength 4e9, above every term's, in a QoS file of its
 // own), forges match 0's own topics for 4 s: a MatchInfo with level 99, a
@@ -1248,6 +1285,7 @@ TEST(unreadable) { in_case(case_unreadable); }
 TEST(control_share) { in_case(case_control_share); }
 TEST(control_flood) { in_case(case_control_flood); }
 TEST(create_flood) { in_case(case_create_flood); }
+TEST(create_shares) { in_case(case_create_shares); }
 TEST(forged_server) { in_case(case_forged_server); }
 TEST(inbox_share) { in_case(case_inbox_share); }
 TEST(create_expires) { in_case(case_create_expires); }

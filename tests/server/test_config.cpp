@@ -256,7 +256,7 @@ TEST(the_example_uses_every_key) {
     CHECK_MSG(used.count(k.key), "match key %s is not in %s", k.key, BALL_EXAMPLE_CONFIG);
     keys++;
   }
-  CHECK_EQ(keys, 25 + 22);
+  CHECK_EQ(keys, 26 + 22);
   ServerConfig c;
   std::string err;
   CHECK_MSG(load_config_file(BALL_EXAMPLE_CONFIG, &c, &err), "%s", err.c_str());

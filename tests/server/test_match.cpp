@@ -1,5 +1,6 @@
 // The match without a network: serve, point rules, player slots, presence,
 // pause and resume, control messages, sample validation, the host.
+#include <random>
 #include <cmath>
 #include <set>
 
@@ -767,10 +768,10 @@ TEST(host_routes_and_creates) {
   closed.add_scene("tennis", scene, &err);
   c.kind = ControlKind::create;
   CHECK(closed.on_control(c, 0.0, &out, &m) == Reason::refused_no_room);
-  // one participant's CREATEs have at most max_creates matches standing; another's are its own
+  // one process's CREATEs have at most max_creates matches standing; another's are its own
   Host open(8, true, t);
   open.add_scene("tennis", scene, &err);
-  open.set_max_creates(2);
+  open.set_create_shares(Host::Origin::process, 2, 100);
   c.from = participant(3);
   for (uint32_t id : {1020u, 1021u}) {
     c.match_id = id;
@@ -785,6 +786,85 @@ TEST(host_routes_and_creates) {
   c.from = participant(3);
   c.match_id = 1023;
   CHECK(open.on_control(c, 0.0, &out, &m) == Reason::none);
+}
+
+// The shares of CREATEs (docs/protocol.md, "Control messages"), over
+// random participants: however many participants a process has, its
+// CREATEs have at most max_creates matches standing (5 participants of one
+// process, 2 CREATEs each: 2 stand, the review's 8 of 9 places); on a
+// secure domain those of one identity (the first 6 bytes of the GUID
+// prefix), whatever its other bytes; and those from one host address at
+// most max_creates_per_host, whatever process; an unknown host (zeros) has
+// no host share. Every refusal is no_room and changes nothing.
+TEST(creates_are_shared_by_process_identity_and_host) {
+  MatchConfig t;
+  ball_scene scene;
+  ball_scene_default(&scene);
+  std::mt19937 rng(40);
+  auto random_prefix = [&rng]() {
+    ParticipantId p;
+    for (auto &b : p) b = static_cast<uint8_t>(rng());
+    return p;
+  };
+  HostAddress home{}, other{};
+  home[15] = 7;
+  other[15] = 9;
+  for (int round = 0; round < 50; ++round) {
+    for (Host::Origin origin : {Host::Origin::process, Host::Origin::identity}) {
+      const size_t same = origin == Host::Origin::process ? 8 : 6;
+      Host host(40, true, t);
+      std::string err;
+      host.add_scene("tennis", scene, &err);
+      host.set_create_shares(origin, 2, 5);
+      MatchOutput out;
+      Match *m = nullptr;
+      ControlIn c;
+      c.kind = ControlKind::create;
+      c.scene = "tennis";
+      uint32_t next_id = 1000;
+      auto create = [&](const ParticipantId &from, const HostAddress &at) {
+        c.from = from;
+        c.host = at;
+        c.match_id = next_id++;
+        size_t before = host.matches().size();
+        Reason r = host.on_control(c, 0.0, &out, &m);
+        CHECK(r == Reason::none || (r == Reason::refused_no_room && host.matches().size() == before));
+        return r == Reason::none;
+      };
+      // 5 participants of one origin (its bytes the same, the rest random), 2 CREATEs each
+      ParticipantId base = random_prefix();
+      int stood = 0;
+      for (int k = 0; k < 5; ++k) {
+        ParticipantId p = random_prefix();
+        std::copy(base.begin(), base.begin() + same, p.begin());
+        for (int j = 0; j < 2; ++j) stood += create(p, HostAddress{});
+      }
+      CHECK_EQ(stood, 2);
+      CHECK(create(random_prefix(), HostAddress{}));  // another origin: its own share
+      // from one host address: 5 stand, whatever their origins; another host's are its own
+      Host by_host(40, true, t);
+      by_host.add_scene("tennis", scene, &err);
+      by_host.set_create_shares(origin, 2, 5);
+      int from_home = 0;
+      for (int k = 0; k < 8; ++k) {
+        c.from = random_prefix();
+        c.host = home;
+        c.match_id = next_id++;
+        from_home += by_host.on_control(c, 0.0, &out, &m) == Reason::none;
+      }
+      CHECK_EQ(from_home, 5);
+      c.from = random_prefix();
+      c.host = other;
+      c.match_id = next_id++;
+      CHECK(by_host.on_control(c, 0.0, &out, &m) == Reason::none);
+      // one gone: its host may create again
+      by_host.remove(by_host.matches().front()->id());
+      c.from = random_prefix();
+      c.host = home;
+      c.match_id = next_id++;
+      CHECK(by_host.on_control(c, 0.0, &out, &m) == Reason::none);
+    }
+  }
 }
 
 CHECK_MAIN
