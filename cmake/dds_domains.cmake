@@ -56,6 +56,7 @@ set(BALL_DDS_DOMAINS
   "dds_control_flood|167|test: a stranger's 5,000 LEAVEs a second in the bots' match: their JOINs go through at once, every control counted"
   "dds_yield_taken_back|169|test: a stranger heard as a server claims a newer term and goes quiet, then claims one and leaves: the primary yields and takes its match back both times"
   "dds_create_shares|170|test: one process of 5 participants CREATEs 2 matches each: 2 stand, a real CREATE is answered at once, a host address has its share"
+  "dds_secure_own_flood|171|test: a certified player floods its own slot at 20,000 samples a second: its partner never vanishes, every sample counted once"
   "dds_secure_slots|168|test: slots bound to identities on the secure domain: a certified player JOINing another's slot is refused, the rally goes on"
   "dds_secure|115|test: DDS Security: no plaintext on the wire, strangers and other matches' players kept out"
   "demo_secure|116|test: the demo under DDS Security rallies"

@@ -500,9 +500,81 @@ void case_secure_slots(const Env &env) {
   CHECK(r.status.controls_refused >= static_cast<uint64_t>(joins) / 2);
 }
 
+// Real s of CPU process `pid` has used (user and system), from /proc.
+double cpu_seconds(pid_t pid) {
+  std::istringstream in(file_text("/proc/" + std::to_string(pid) + "/stat"));
+  std::string field;
+  double ticks = 0.0;
+  for (int k = 1; in >> field && k <= 15; ++k)
+    if (k == 14 || k == 15) ticks += std::atof(field.c_str());  // utime, stime
+  return ticks / static_cast<double>(sysconf(_SC_CLK_TCK));
+}
+
+// A certified player floods its own slot (the review's finding): m0-a
+// holds slot 0 of match 0 and writes 20,000 samples a second into it for
+// 10 s while m0-b's bot holds slot 1. The partner never vanishes, and
+// every sample that reached the server is counted once by reason, the
+// books balanced (samples_in = ok + idle + drops, no more than were sent),
+// or counted as DDS's gaps (dds_lost: what the kernel dropped before the
+// server read it). The server's CPU over the flood is noted: it is Fast
+// DDS's receive path, which no reader can refuse a writer's datagrams
+// before (docs/security.md, "Floods").
+void case_secure_own_flood(const Env &env) {
+  Case c{env};
+  std::string err, certs = path(env, "certs");
+  CHECK_EQ(run_to_end(env, {"/bin/bash", env.source + "/server/security/certs.sh", certs, "1"}, "certs", &err), 0);
+  std::vector<std::string> sd = secure_as(certs, "server1");
+  sd.insert(sd.end(), {"--slot-owner", "0:0=m0-a", "--slot-owner", "0:1=m0-b"});
+  Server server(c.server(sd));
+  std::string rec = path(env, "flood.jsonl");
+  Process w = ready_watcher(c, rec, secure_as(certs, "watch"));
+  std::vector<std::string> pa = secure_as(certs, "m0-b");
+  pa.insert(pa.end(), {"--rate", "15", "--stats-json", path(env, "m0-b.json")});
+  Process partner = c.bot(1, pa);
+  Tail t(rec);
+  wait_for(t, 15.0, [](const json &j) {
+    return is_type(j, "match_info") && j.at("match") == 0 && j.at("slots").at(1).at("held").get<bool>();
+  });
+  std::vector<std::string> fa = {env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "0", "--join", "0",
+                                 "--rate", "20000", "--duration", "10", "--partition", "match/0", "--wait-match",
+                                 "--out", path(env, "flooder.json")};
+  for (const auto &a : secure_as(certs, "m0-a")) fa.push_back(a);
+  double cpu0 = cpu_seconds(server.p.pid()), began = mono_now();
+  Process flooder = program(env, "flooder", fa);
+  CHECK_EQ(flooder.wait(30.0), 0);
+  double cpu = cpu_seconds(server.p.pid()) - cpu0, span = mono_now() - began;
+  double ended = realtime_now();
+  usleep(1000000);
+  ServerReport r = stop_all(server, {&partner, &w}, path(env, "server.json"));
+  t.poll();
+  size_t vanished = count(t.lines, [&](const json &j) {
+    if (!is_event(j, EventKind::pause) || recv(j) > ended) return false;
+    EventOut e = j.get<EventOut>();
+    return e.reason == Reason::pause_vanished && e.index == 1;
+  });
+  json sent = json::parse(file_text(path(env, "flooder.json")), nullptr, false);
+  uint64_t flooded = sent.is_object() ? sent.value("samples", uint64_t{0}) : 0;
+  uint64_t drops = 0;
+  for (int i = 0; i < kDropReasons; ++i) drops += r.status.drops[i];
+  note("m0-a wrote %llu samples into its own slot in %.1f s: the server took %llu in (%llu ok, %llu rejected, %llu "
+       "stale), DDS counted %llu lost; the partner vanished %zu times; the server used %.0f %% of a core",
+       static_cast<unsigned long long>(flooded), span, static_cast<unsigned long long>(r.status.samples_in),
+       static_cast<unsigned long long>(r.status.samples_ok),
+       static_cast<unsigned long long>(r.status.drops[static_cast<int>(SampleResult::rejected)]),
+       static_cast<unsigned long long>(r.status.drops[static_cast<int>(SampleResult::stale)]),
+       static_cast<unsigned long long>(r.status.dds_lost), vanished, 100.0 * cpu / span);
+  CHECK(flooded >= 50000u);
+  CHECK_EQ(vanished, 0u);
+  CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.status.samples_idle + drops);
+  CHECK(r.status.samples_in <= flooded + 1000u);  // (the partner's few besides): nothing counted twice
+  CHECK_MSG(r.status.samples_in + r.status.dds_lost >= flooded * 9 / 10, "%llu of %llu accounted for",
+            static_cast<unsigned long long>(r.status.samples_in + r.status.dds_lost), static_cast<unsigned long long>(flooded));
+}
+
 }  // namespace
 
 TEST(secure) { itest::in_case(case_secure); }
+TEST(secure_own_flood) { itest::in_case(case_secure_own_flood); }
 TEST(secure_slots) { itest::in_case(case_secure_slots); }
 TEST(secure_udp_disposal) { itest::in_case(case_secure_udp_disposal); }
 TEST(secure_udp_replay) { itest::in_case(case_secure_udp_replay); }

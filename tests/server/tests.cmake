@@ -136,7 +136,7 @@ find_program(BALL_TCPDUMP tcpdump PATHS /usr/bin /usr/sbin)
 find_program(BALL_ITEST_PYTHON NAMES python3 PATHS /usr/bin NO_DEFAULT_PATH)
 set(BALL_ITEST_CASES rally desync lag lag_own pause flood key_flood junk_keys unreadable control_share control_flood create_flood create_shares forged_server inbox_share create_expires late_join lossy server_cli busy snapshots discovery
   failover phantom_matches yield_taken_back standby_killed primary_back claim standby_no_scene hosts_failover hosts_standby_cut
-  hosts_stall_4 hosts_stall_10 hosts_cut_5 hosts_cut_12 hosts_players_split hosts_claimants_meet hosts_primary_back wan_tcp wan_secure wan_tls wan_udp wan_link_cut wan_failover wan_public_address wan_delay wan_refused wan_bytes wan_renew wan_stall net_failover secure secure_slots secure_udp_disposal secure_udp_replay load_secure load_split discovery_flood)
+  hosts_stall_4 hosts_stall_10 hosts_cut_5 hosts_cut_12 hosts_players_split hosts_claimants_meet hosts_primary_back wan_tcp wan_secure wan_tls wan_udp wan_link_cut wan_failover wan_public_address wan_delay wan_refused wan_bytes wan_renew wan_stall net_failover secure secure_slots secure_own_flood secure_udp_disposal secure_udp_replay load_secure load_split discovery_flood)
 foreach(case ${BALL_ITEST_CASES})
   ball_dds_domain(dds_${case} domain)
   add_test(NAME dds_${case}
