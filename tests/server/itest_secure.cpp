@@ -458,6 +458,18 @@ void case_secure_udp_replay(const Env &env) {
   for (Process *p : {&late, &r.b0, &r.b1, &r.w}) p->stop();
 }
 
+// Test certificates for one match (certs.sh) in the case's folder
+// (*certs), and a secure server with match 0's slot 0 bound to m0-a and
+// slot 1 to m0-b (--slot-owner).
+Server slot_bound_server(Case &c, const Env &env, std::string *certs) {
+  std::string err;
+  *certs = path(env, "certs");
+  CHECK_EQ(run_to_end(env, {"/bin/bash", env.source + "/server/security/certs.sh", *certs, "1"}, "certs", &err), 0);
+  std::vector<std::string> sd = secure_as(*certs, "server1");
+  sd.insert(sd.end(), {"--slot-owner", "0:0=m0-a", "--slot-owner", "0:1=m0-b"});
+  return Server(c.server(sd));
+}
+
 // Slots bound to identities (docs/security.md): the server binds match 0's
 // slot 0 to m0-a and slot 1 to m0-b (--slot-owner). A participant of m0-a,
 // certified for match 0, JOINs slot 1 twice a second from before the bots
@@ -465,11 +477,8 @@ void case_secure_udp_replay(const Env &env) {
 // the two rally.
 void case_secure_slots(const Env &env) {
   Case c{env};
-  std::string err, certs = path(env, "certs");
-  CHECK_EQ(run_to_end(env, {"/bin/bash", env.source + "/server/security/certs.sh", certs, "1"}, "certs", &err), 0);
-  std::vector<std::string> sd = secure_as(certs, "server1");
-  sd.insert(sd.end(), {"--slot-owner", "0:0=m0-a", "--slot-owner", "0:1=m0-b"});
-  Server server(c.server(sd));
+  std::string certs;
+  Server server = slot_bound_server(c, env, &certs);
   std::vector<std::string> sq = {env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "0", "--join", "1",
                                  "--rate", "2", "--duration", "14", "--partition", "match/0", "--wait-match",
                                  "--out", path(env, "squatter.json")};
@@ -518,14 +527,11 @@ double cpu_seconds(pid_t pid) {
 // or counted as DDS's gaps (dds_lost: what the kernel dropped before the
 // server read it). The server's CPU over the flood is noted: it is Fast
 // DDS's receive path, which no reader can refuse a writer's datagrams
-// before (docs/security.md, "Floods").
+// before (docs/security.md, "What it costs").
 void case_secure_own_flood(const Env &env) {
   Case c{env};
-  std::string err, certs = path(env, "certs");
-  CHECK_EQ(run_to_end(env, {"/bin/bash", env.source + "/server/security/certs.sh", certs, "1"}, "certs", &err), 0);
-  std::vector<std::string> sd = secure_as(certs, "server1");
-  sd.insert(sd.end(), {"--slot-owner", "0:0=m0-a", "--slot-owner", "0:1=m0-b"});
-  Server server(c.server(sd));
+  std::string certs;
+  Server server = slot_bound_server(c, env, &certs);
   std::string rec = path(env, "flood.jsonl");
   Process w = ready_watcher(c, rec, secure_as(certs, "watch"));
   std::vector<std::string> pa = secure_as(certs, "m0-b");
