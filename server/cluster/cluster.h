@@ -152,6 +152,8 @@ class Cluster {
   // A MatchInfo no server could have written (trust.h: usable_other_info)
   // is nobody's: counted, false.
   bool server_wrote(const MatchInfoOut &info);
+  // A conflicting MatchInfo the match cannot follow (Match::can_follow): nobody's, counted.
+  void refuse_other() { stats_.others_refused++; }
   enum class Heard { refused, noted, conflict, stale, unknown };
   // Another server's MatchInfo. unknown: its writer is no server heard
   // alive (no ServerStatus from its participant): nobody yields to it,

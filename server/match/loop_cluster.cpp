@@ -37,6 +37,10 @@ void ServerLoop::other_info(const MatchInfoOut &info, const ParticipantId &from)
     return;
   }
   if (heard == Cluster::Heard::conflict) {
+    // one this match cannot follow (another slot count or model) is not its owner's: it keeps the match
+    std::string why;
+    const Match *m = host_.find(id);
+    if (m && !m->can_follow(info, &why)) return cluster_.refuse_other();
     if (on_conflict_) on_conflict_(info, from);
     yield(id, info, from);
   }

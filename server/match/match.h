@@ -117,6 +117,8 @@ class Match {
   // never stepped while it follows. false with err when the info does not
   // fit this match (another id, slot count or model).
   bool follow(const MatchInfoOut &info, std::string *err);
+  // Whether follow(info) would take it, changing nothing (false with err).
+  bool can_follow(const MatchInfoOut &info, std::string *err) const;
   void follow_clock(double sim_now) { follow_time_ = sim_now; }
   bool following() const { return following_; }
   // Whether this server hears the match's players at real s `now` (Roster::hears_players, the player timeout).

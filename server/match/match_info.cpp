@@ -63,13 +63,13 @@ void Match::set_level(ball_level level, std::string *err) {
   config_.level = level;
 }
 
-bool Match::follow(const MatchInfoOut &info, std::string *err) {
+bool Match::can_follow(const MatchInfoOut &info, std::string *err) const {
   if (info.match_id != config_.id || info.players != config_.players) {
     *err = "match " + std::to_string(info.match_id) + " with " + std::to_string(info.players) +
            " slots is not match " + std::to_string(config_.id) + " with " + std::to_string(config_.players);
     return false;
   }
-  // the owner's model, checked before anything changes
+  // the owner's model
   ball_model m = model();
   if (info.level != config_.level) {
     if (info.level < BALL_LEVEL_EASY || info.level > BALL_LEVEL_ADVANCED ||
@@ -83,6 +83,11 @@ bool Match::follow(const MatchInfoOut &info, std::string *err) {
            config_.scene_name + "\" (hash " + std::to_string(ball_model_hash(&m)) + ")";
     return false;
   }
+  return true;
+}
+
+bool Match::follow(const MatchInfoOut &info, std::string *err) {
+  if (!can_follow(info, err)) return false;  // (checked before anything changes)
   if (info.level != config_.level) {
     set_level(static_cast<ball_level>(info.level), err);
     if (!err->empty()) return false;

@@ -888,8 +888,16 @@ TEST(another_server_for_our_match) {
   r.loop->step();
   CHECK_EQ(r.loop->cluster().stats().stale_terms, 2u);  // (the one held back, heard again, and this one)
   CHECK(r.host.find(0) != nullptr);
-  // while running, a newer term's (the next round): reported at the status, with the participant
+  // a newer term's of a match this one is not (another model): nobody's, the match kept
   theirs.term = next_term(next_term(0, 1), 2);
+  MatchInfoOut other_model = theirs;
+  other_model.model_hash ^= 1;
+  r.port.others.push_back({other_model, participant(9)});
+  r.loop->step();
+  CHECK_EQ(r.loop->cluster().stats().others_refused, 3u);
+  CHECK_EQ(r.loop->cluster().stats().yields, 0u);
+  CHECK(r.host.find(0) != nullptr && !r.host.find(0)->following());
+  // while running, a newer term's (the next round): reported at the status, with the participant
   r.port.others.push_back({theirs, participant(9)});
   int seen = 0;
   ParticipantId who{};
@@ -901,7 +909,7 @@ TEST(another_server_for_our_match) {
               });
   CHECK_EQ(seen, 1);
   CHECK(who == participant(9));
-  CHECK_EQ(r.loop->cluster().stats().conflicts, 1u);
+  CHECK_EQ(r.loop->cluster().stats().conflicts, 2u);  // (the other model's, refused, and this one)
   // a newer term owns the match (docs/protocol.md, "Terms"): we yield,
   // and follow it (to take it back if that owner is lost or goes silent)
   CHECK_EQ(r.loop->cluster().stats().yields, 1u);
