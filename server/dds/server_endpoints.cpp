@@ -257,7 +257,7 @@ bool ServerEndpoints::take_control(ControlIn *control) {
   SampleMeta meta;
   if (!controls_.take(control, &meta)) return false;
   control->from = meta.from;
-  control->host = domain_.host_of(meta.from);
+  if (control->kind == ControlKind::create) control->host = domain_.host_of(meta.from);  // (its share: Host)
   control->rejected = meta.rejected;
   control->permitted = !domain_.secure() || domain_.writes_in(meta.writer, match_partition(control->match_id));
   return true;

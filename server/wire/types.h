@@ -211,7 +211,7 @@ struct ControlIn {
   int players = 2;            // CREATE: slots
   std::string scene;          // CREATE: a scene name of the server's catalogue
   ParticipantId from{};       // the sender (filled in by the DDS layer)
-  HostAddress host{};         // the address the sender's participant announced (DDS layer)
+  HostAddress host{};         // CREATE: the address the sender's participant announced (DDS layer)
   bool valid = true;          // false: an enum out of range or a scene name without its NUL on the wire
   bool permitted = true;      // false: under DDS Security, written outside the match's partition (DDS layer)
   bool rejected = false;      // true: the reader had no room for it; it counts only as `rejected` (DDS layer)
