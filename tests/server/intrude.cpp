@@ -129,8 +129,8 @@ int main(int argc, char **argv) {
 
   long sent_samples = 0, sent_controls = 0, sent_infos = 0, refused = 0, heard_infos = 0, heard_states = 0;
   MatchInfoOut newest;  // the newest MatchInfo heard
-  bool heard_info = false, claimed = false;
-  uint32_t claimed_term = 0;  // --newer-term: the round above the first MatchInfo heard
+  bool heard_info = false;
+  uint32_t claimed_term = 0;  // --newer-term: the round above the first MatchInfo heard (0: none yet)
   uint32_t seq = 0, control_seq = 0;
   double sim = 0.0;  // the newest sim time heard (0: none)
   const double start = mono_now();
@@ -197,8 +197,7 @@ int main(int argc, char **argv) {
         alive.uptime = now - start;
         if (!forged_status.write(alive)) refused++;
       }
-      if (!claimed && heard_info) claimed_term = next_term(newest.term, id);
-      claimed = claimed || heard_info;
+      if (!claimed_term && heard_info) claimed_term = next_term(newest.term, id);  // (never 0)
       for (uint32_t k = 0; heard_info && now - start < copies_for && k < std::max(1u, junk); ++k) {
         MatchInfoOut f = newest;
         f.match_id = match + k;
