@@ -307,6 +307,16 @@ bool ClientCore::wants_renewal(bool meets, bool hears, double local) {
     double since = std::max({f.join_since, f.answered, renewed_at_});
     stuck = stuck || (hears && f.join_since >= 0.0 && local - since >= renew_wait_);
   }
+  // a followed match heard once, and no MatchInfo of it for the silence
+  // (its owner writes one at least every 4 s, its successor takes it over in
+  // seconds) while a server is heard: a connection to its new owner may be deaf
+  for (auto &kv : followed_) {
+    auto l = listed_.find(kv.first);
+    if (l == listed_.end() || local - l->second.heard < settings_.silence) continue;
+    waiting = true;
+    double since = std::max(l->second.heard, renewed_at_);
+    stuck = stuck || (hears && local - since >= std::max(settings_.silence, renew_wait_));
+  }
   if (hears && !waiting && !stuck) renew_wait_ = kRenewFirst;
   if (!stuck) return false;
   renewed_at_ = heard_at_ = local;

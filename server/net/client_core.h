@@ -107,9 +107,11 @@ class ClientCore {
   // (some endpoint of one matched: ClientPort::meets_server) and hears one:
   // true when the client should make its participant anew, either because
   // no server has been met for `renew_wait` s since it opened (or last
-  // started anew, or last met one), or because a JOIN has had no answer
+  // started anew, or last met one), because a JOIN has had no answer
   // (the slot held, or a refusal in its match) for that long while a server
-  // is heard. A server of many matches takes seconds to be found whole:
+  // is heard, or because a followed match it heard has had no MatchInfo for
+  // the silence (and that wait) while a server is heard (an owner lost, and
+  // its successor deaf to this client). A server of many matches takes seconds to be found whole:
   // meeting it is enough to wait on. Each time it says so the wait doubles,
   // up to kRenewMost s; it is kRenewFirst again once a server is heard and
   // no JOIN waits. After a new participant, renewed() with its id: the

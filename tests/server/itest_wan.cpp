@@ -349,12 +349,14 @@ void case_wan_failover(const Env &env) {
   const double killed = realtime_now();
   n.server.signal(SIGKILL);
   n.server.wait(2.0);
-  json taken = wait_for(*n.t, 10.0, [&](const json &j) {
+  // (a player whose connection to the standby stayed deaf starts anew once the match is
+  // silent for 10 s, and the standby takes the match over 2 s after it hears it: deploy.md, "Limits")
+  json taken = wait_for(*n.t, 20.0, [&](const json &j) {
     return is_type(j, "match_info") && j.get<MatchInfoOut>().server_id == 2 && recv(j) > killed;
   });
-  CHECK_MSG(!taken.is_null(), "no MatchInfo of the standby within 10 s of the kill");
+  CHECK_MSG(!taken.is_null(), "no MatchInfo of the standby within 20 s of the kill");
   double last = 0.0;
-  int hits = hits_within(*n.t, killed, 4, 25.0, &last);
+  int hits = hits_within(*n.t, killed, 4, 30.0, &last);
   wan_end(n);
   ServerReport s = report(env, "standby");
   note("over TCP through the NAT: the standby's MatchInfo %.2f s after the kill, %d hits after, %llu take-overs",

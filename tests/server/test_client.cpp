@@ -292,6 +292,7 @@ TEST(a_client_that_hears_no_answer_starts_anew) {
   g.control(ControlKind::join, other, 1);
   server_says(g, net.port);
   for (double t = 21.3; t < 40.0; t += 1.0) {
+    if (static_cast<int>(t) % 4 == 0) server_says(g, net.port);  // (its MatchInfo every 4 s)
     EventOut refused;
     refused.match_id = match;
     refused.server_id = 1;
@@ -317,6 +318,41 @@ TEST(a_client_that_hears_no_answer_starts_anew) {
   udp.port.heard = false;
   poll_every_tenth(&udp, 30.0);
   CHECK_EQ(udp.renewals, 0);
+}
+
+// A TCP client that follows a match and hears its MatchInfo no more for
+// the silence (10 s) while it hears a server starts anew (the owner lost,
+// its successor deaf to this client); each time it waits twice as long,
+// and not at all once the match's MatchInfo comes again.
+TEST(a_client_whose_match_falls_silent_starts_anew) {
+  Game g;
+  FakeNet net(participant(9));
+  net.renewable = true;
+  auto poll_until = [&](double t) { poll_every_tenth(&net, t); };
+  CHECK_EQ(ball_net_watch(net.client, g.match.id()), BALL_OK);
+  for (double t = 0.0; t < 12.0; t += 4.0) {  // its owner's MatchInfo every 4 s
+    server_says(g, net.port);
+    poll_until(t + 4.0);
+  }
+  CHECK_EQ(net.renewals, 0);
+  // the owner's last MatchInfo at 8 s, a server still heard (its successor)
+  poll_until(17.9);
+  CHECK_EQ(net.renewals, 0);
+  poll_until(18.2);
+  CHECK_EQ(net.renewals, 1);
+  poll_until(27.8);
+  CHECK_EQ(net.renewals, 1);  // the wait is 10 s, and the silence counts from the renewal
+  poll_until(28.4);
+  CHECK_EQ(net.renewals, 2);
+  poll_until(47.8);
+  CHECK_EQ(net.renewals, 2);  // then 20 s
+  poll_until(48.6);
+  CHECK_EQ(net.renewals, 3);
+  for (double t = 48.6; t < 120.0; t += 4.0) {  // the successor heard: no more
+    server_says(g, net.port, 2);
+    poll_until(t + 4.0);
+  }
+  CHECK_EQ(net.renewals, 3);
 }
 
 // wire, no scene file, and sends at its rate what the server accepts.
