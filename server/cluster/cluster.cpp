@@ -237,17 +237,30 @@ double owner_lost_at(const Followed &f) {
 }
 }  // namespace
 
+// Whether this server succeeds followed match f's owner (placement.h): when
+// no standby lives, a server that yielded the match takes it back.
+bool Cluster::succeeds(const Followed &f, std::vector<ServerView> *servers) const {
+  if (servers->empty()) *servers = views();
+  uint32_t next = 0;
+  if (!successor(*servers, f.info.server_id, &next) && !settings_.standby) next = settings_.server_id;
+  return next == settings_.server_id;
+}
+
+uint32_t Cluster::coming_term(double t0) const {
+  uint32_t term = 0;
+  std::vector<ServerView> servers;
+  for (const auto &kv : followed_)
+    if (t0 >= owner_lost_at(kv.second) && succeeds(kv.second, &servers))
+      term = std::max(term, next_term(heard_term(kv.first), settings_.server_id));
+  return term;
+}
+
 std::vector<uint32_t> Cluster::due_takeovers(double t0, const std::function<bool(uint32_t)> &hears_players) {
   std::vector<uint32_t> due;
   std::vector<ServerView> servers;
   for (auto &kv : followed_) {
     Followed &f = kv.second;
-    if (t0 < owner_lost_at(f) + settings_.takeover_grace) continue;
-    if (servers.empty()) servers = views();
-    uint32_t next = 0;
-    // no standby lives: a server that yielded the match takes it back
-    if (!successor(servers, f.info.server_id, &next) && !settings_.standby) next = settings_.server_id;
-    if (next != settings_.server_id) continue;
+    if (t0 < owner_lost_at(f) + settings_.takeover_grace || !succeeds(f, &servers)) continue;
     // an owner cut off from this server but not from its players plays
     // on: a take-over here would be a second match nobody plays in
     if (!hears_players(kv.first)) {

@@ -206,6 +206,11 @@ class Cluster {
   // takes it back) this server is, and whose players it hears
   // (hears_players(id): the side with the players decides), at mono s t0.
   std::vector<uint32_t> due_takeovers(double t0, const std::function<bool(uint32_t)> &hears_players);
+  // The highest term this server would take a followed match over at whose
+  // owner is lost at mono s t0 and whose successor it is (0: none), grace or
+  // no grace: raised to it before its first sample, the writers' strength
+  // reaches the readers by discovery during the grace.
+  uint32_t coming_term(double t0) const;
   // The followed matches whose owner was lost a grace ago with no slot
   // held in its newest MatchInfo: nobody plays them, no take-over; they are
   // followed no more (the loop removes them from its host).
@@ -238,6 +243,7 @@ class Cluster {
   size_t owners_known() const { return owners_.size(); }  // owners kept of a claimant's configured matches
 
  private:
+  bool succeeds(const Followed &f, std::vector<ServerView> *servers) const;  // (views() once, when first asked)
   struct Peer {
     StatusOut status;  // its newest ServerStatus
     bool alive = true;

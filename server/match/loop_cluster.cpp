@@ -113,6 +113,9 @@ void ServerLoop::take_over(double t0, double now) {
     host_.remove(id);
     say("let match " + std::to_string(id) + " go: its owner is gone, and nobody held a slot of it");
   }
+  // the strength of a take-over's term from the moment the owner is lost: readers learn it by
+  // discovery, and one that knew the old strength when the first samples came would drop them
+  if (uint32_t term = cluster_.coming_term(t0)) raise_strength(term_strength(base_strength_, term));
   for (uint32_t id : cluster_.due_takeovers(t0, hears)) take_over_match(id, t0, now);
 }
 

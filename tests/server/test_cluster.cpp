@@ -333,13 +333,18 @@ TEST(a_server_takes_back_a_match_it_yielded) {
   CHECK(back.size() == 1u && back[0] == 7u);
   // lost: its writers' liveliness at 56 s
   Cluster gone = yielded_to_stranger(false);
+  CHECK_EQ(gone.coming_term(56.0), 0u);  // (its owner lives)
   gone.server_lost(stranger, 56.0);
+  // the term it takes the match back at, from the loss on, the grace not out: its writers'
+  // strength is raised to it before its first sample
+  CHECK_EQ(gone.coming_term(56.0), next_term(next_term(257, 7), 1));
   CHECK(gone.due_takeovers(56.0 + grace - 1e-9, kHeard).empty());
   CHECK_EQ(gone.due_takeovers(56.0 + grace, kHeard).size(), 1u);
   // a live standby takes it over, not the server that yielded
   Cluster beside = yielded_to_stranger(true);
   beside.server_lost(stranger, 56.0);
   CHECK(beside.due_takeovers(70.0, kHeard).empty());
+  CHECK_EQ(beside.coming_term(70.0), 0u);
   CHECK_EQ(beside.following().size(), 1u);
   // a standby's followed match: silent kOwnerSilent while its owner lives
   Cluster standby = following_standby(o);
