@@ -34,7 +34,7 @@ constexpr double kFollowWake = 1.0 / 60.0;
 // one in effect and those written ahead of their contact
 constexpr size_t kFollowedSegments = 8;
 // real s a followed MatchInfo's server_time may lie from this server's
-// realtime clock: an owner writes its MatchInfo at least every 4 s,
+// realtime clock: an owner writes its MatchInfo at least every kInfoEvery s,
 // stamped with its newest frame's deadline, and the servers of a domain keep
 // their clocks in step (NTP); a take-over maps the owner's sim clock by that stamp
 constexpr double kMaxClockGap = 10.0;
@@ -48,7 +48,7 @@ constexpr double kModelWait = 2.0;
 constexpr double kPlayersSettle = 2.0;
 // s: a followed match whose live owner wrote no MatchInfo of it for this
 // long is no longer stepped by it, as if the owner were lost (an owner
-// writes one at least every 4 s, ServerLoop's info_interval): a stranger
+// writes one at least every kInfoEvery s): a stranger
 // that took a match with a newer term and went quiet keeps nothing.
 constexpr double kOwnerSilent = 10.0;
 // a server's match writers are as strong as its role plus this much per

@@ -118,7 +118,7 @@ constexpr uint64_t kMaxLostPerNote = 1000;
 // Cluster's (cluster.h: server_id, standby, claim, strength, the graces).
 struct LoopSettings : ClusterSettings {
   double status_interval = 1.0;  // real s between status writes
-  double info_interval = 4.0;    // real s from a match's MatchInfo to the next when nothing changed (docs/protocol.md, "Time")
+  double info_interval = kInfoEvery;  // real s from a match's MatchInfo to the next when nothing changed
   double max_behind = 5.0;       // frames: a match further behind its deadline skips to the present
   double settle = 1.0;           // real s a claimed match waits before its first frame (startup_wait)
   double create_timeout = 30.0;  // real s a created match stands with nobody holding a slot before it goes

@@ -308,7 +308,7 @@ bool ClientCore::wants_renewal(bool meets, bool hears, double local) {
     stuck = stuck || (hears && f.join_since >= 0.0 && local - since >= renew_wait_);
   }
   // a followed match heard once, and no MatchInfo of it for the silence
-  // (its owner writes one at least every 4 s, its successor takes it over in
+  // (its owner writes one at least every kInfoEvery s, its successor takes it over in
   // seconds) while a server is heard: a connection to its new owner may be deaf
   for (auto &kv : followed_) {
     auto l = listed_.find(kv.first);

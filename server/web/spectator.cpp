@@ -245,9 +245,10 @@ void Spectator::mirror_events(uint32_t id, const WatchedView &v, Mirror *m) {
 }
 
 // The clock: the watcher's estimate while the server is heard; the ball
-// held still from when it went silent until a server serves the match again.
+// held still from when it went silent (at the latest, its newest MatchInfo
+// and the period the owner writes one in) until a server serves the match again.
 void Spectator::mirror_clock(uint32_t id, const WatchedView &v, bool live, double real, Mirror *m) {
-  if (live != m->live && !live) m->frozen = v.sim_at(std::min(real, v.info_real + 1.0));
+  if (live != m->live && !live) m->frozen = v.sim_at(std::min(real, v.info_real + kInfoEvery));
   if (live == m->live && real - m->clock_real < settings_.clock_every) return;
   double sim = live ? v.sim_at(real) : m->frozen;
   m->clock = json{{"type", "clock"},     {"match", id},

@@ -335,6 +335,10 @@ struct SlotInfo {
 #define BALL_FLIGHT_FIELDS(X) \
   X(gravity) X(mass) X(air_friction) X(spin_damping) X(radius) X(floor_level) X(effects) X(extrapolation_time) X(stale_time)
 
+// real s: a match's owner writes its MatchInfo on every change and at
+// least this often (docs/protocol.md, "Time")
+constexpr double kInfoEvery = 4.0;
+
 // server -> clients: a match's setup and state (MatchInfo).
 struct MatchInfoOut {
   uint32_t match_id = 0;           // the match

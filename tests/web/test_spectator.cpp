@@ -191,7 +191,7 @@ TEST(a_silent_server_freezes_the_clock_and_a_new_one_moves_it) {
   Spectator &sp = p.sp;
   const SpectatorSettings &ss = p.ss;
   double sim0 = g.match.info().sim_time;
-  // no MatchInfo for longer than `silence`: gone, and still at the sim time of 1 s after the last info
+  // no MatchInfo for longer than `silence`: gone, and still at the sim time of the info period after the last
   sp.update(w, 1000.0 + ss.silence + 0.1);
   std::vector<PageMessage> got;
   CHECK(sp.since(0, 100000, &got));
@@ -199,11 +199,11 @@ TEST(a_silent_server_freezes_the_clock_and_a_new_one_moves_it) {
   CHECK_EQ(clock.at("type"), "clock");
   CHECK_EQ(clock.at("live"), false);
   CHECK_EQ(clock.at("running"), false);
-  CHECK_NEAR(clock.at("sim_time").get<double>(), sim0 + 1.0, 1e-9);
+  CHECK_NEAR(clock.at("sim_time").get<double>(), sim0 + kInfoEvery, 1e-9);
   json info = of_type(messages(sp.snapshot()), "info")[0];
   CHECK_EQ(info.at("live"), false);
   sp.update(w, 1010.0);
-  CHECK_NEAR(json::parse(sp.snapshot().back()).at("sim_time").get<double>(), sim0 + 1.0, 1e-9);
+  CHECK_NEAR(json::parse(sp.snapshot().back()).at("sim_time").get<double>(), sim0 + kInfoEvery, 1e-9);
   // a server that started the match anew: its seqs start over, the page is reset
   Game again = played(1.5);
   uint64_t before = sp.newest();
